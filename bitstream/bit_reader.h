@@ -1,0 +1,56 @@
+// MSB-first bit reader with a 64-bit cache. Reading past the end yields
+// zero bits and makes overrun() true for good (a sticky error): callers
+// check it once per syntax element instead of after every refill.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace m4mesh {
+
+class BitReader {
+ public:
+  // The largest field read() and peek() accept.
+  static constexpr int kMaxFieldBits = 32;
+
+  BitReader(const uint8_t* data, size_t size) : data_(data), size_(size) { refill(); }
+
+  // Bits consumed so far (may exceed size_bits() after an overrun).
+  uint64_t position() const { return consumed_bytes_ * 8 - cache_bits_; }
+  uint64_t size_bits() const { return static_cast<uint64_t>(size_) * 8; }
+  uint64_t bits_left() const { return overrun() ? 0 : size_bits() - position(); }
+  bool overrun() const { return position() > size_bits(); }
+  bool byte_aligned() const { return position() % 8 == 0; }
+
+  // The next n bits (0 ≤ n ≤ 32) without consuming them.
+  uint32_t peek(int n) {
+    if (n == 0) return 0;
+    if (cache_bits_ < n) refill();
+    return static_cast<uint32_t>(cache_ >> (64 - n));
+  }
+  void skip(int n) {
+    if (cache_bits_ < n) refill();
+    cache_ <<= n;
+    cache_bits_ -= n;
+  }
+  uint32_t read(int n) {
+    uint32_t value = peek(n);
+    skip(n);
+    return value;
+  }
+  bool read_bit() { return read(1) != 0; }
+
+  // Moves to an absolute bit position (≤ size_bits()).
+  void seek(uint64_t bit_position);
+
+ private:
+  void refill();
+
+  const uint8_t* data_;
+  size_t size_;
+  size_t consumed_bytes_ = 0;  // bytes moved into the cache (or zero-filled past the end)
+  uint64_t cache_ = 0;         // next bits, left-aligned
+  int cache_bits_ = 0;
+};
+
+}  // namespace m4mesh

@@ -1,0 +1,196 @@
+// m4mesh: encoder, decoder and tools for MPEG-4-style 2D mesh bitstreams.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <iostream>
+#include <map>
+
+#include "cli/demo.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "decoder/decoder.h"
+#include "encoder/encoder.h"
+#include "encoder/frame_input.h"
+#include "mesh/decoded_text.h"
+#include "syntax/mesh_object.h"
+
+namespace m4mesh {
+namespace {
+
+MotionMethod method_of(int method) { return method == 1 ? MotionMethod::kMethod1 : MotionMethod::kMethod2; }
+
+bool is_decoded_text(const std::string& path) {
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) return false;
+  char header[17] = {};
+  const size_t n = std::fread(header, 1, 16, file);
+  std::fclose(file);
+  return n == 16 && std::string(header) == "m4mesh-decoded 1";
+}
+
+struct EncodeArgs {
+  std::string input;
+  std::string output;
+  int method = 2;
+  bool keep_order = false;
+  bool no_end_code = false;
+  bool trace = false;
+  double scale = 1.0;
+};
+
+int run_encode(const EncodeArgs& args) {
+  std::vector<MeshPlane> planes;
+  if (is_decoded_text(args.input)) {
+    const std::vector<uint8_t> bytes = read_file(args.input);
+    planes = parse_decoded_text(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), args.input);
+  } else {
+    const std::vector<std::string> files = frame_files(args.input);
+    std::vector<ObjFrame> frames;
+    for (size_t k = 0; k < files.size(); ++k) {
+      frames.push_back(read_obj(files[k]));
+      if (files.size() > 20 && (k + 1) % 20 == 0) std::fprintf(stderr, "read %zu/%zu frames\r", k + 1, files.size());
+    }
+    planes = planes_from_frames(frames, files, args.scale).planes;
+  }
+  Trace trace(std::cout);
+  EncoderOptions options;
+  options.method = method_of(args.method);
+  options.keep_node_order = args.keep_order;
+  options.end_code = !args.no_end_code;
+  options.trace = args.trace ? &trace : nullptr;
+  options.report = [&](const std::string& message) { std::fprintf(stderr, "note: %s: %s\n", args.input.c_str(), message.c_str()); };
+  const EncodeResult result = encode(planes, options);
+  write_file_atomically(args.output, std::string_view(reinterpret_cast<const char*>(result.stream.data()), result.stream.size()));
+  std::fprintf(stderr, "%s: %zu bytes, %lld I-planes, %lld P-planes\n", args.output.c_str(), result.stream.size(),
+               static_cast<long long>(result.intra_planes), static_cast<long long>(result.inter_planes));
+  return 0;
+}
+
+struct DecodeArgs {
+  std::string input;
+  std::string output;
+  int method = 2;
+  bool md5_only = false;
+};
+
+int run_decode(const DecodeArgs& args) {
+  const std::vector<uint8_t> stream = read_file(args.input);
+  DecoderOptions options;
+  options.method = method_of(args.method);
+  std::string md5;
+  Decoder decoder(stream, options);
+  auto decode_all = [&](const DecodedTextWriter::Sink& sink) {
+    DecodedTextWriter writer(sink);
+    while (decoder.next()) writer.plane(decoder.info(), decoder.nodes(), decoder.triangles());
+    return writer.finish();
+  };
+  if (args.output.empty()) {
+    md5 = decode_all({});
+  } else {
+    AtomicFile file(args.output);
+    md5 = decode_all([&](std::string_view text) { file.write(text); });
+    file.commit();
+  }
+  for (const syntax::Warning& w : decoder.warnings())
+    std::fprintf(stderr, "warning: %s: bit %lld: %s\n", args.input.c_str(), static_cast<long long>(w.bit_offset), w.message.c_str());
+  if (args.md5_only)
+    std::printf("%s\n", md5.c_str());
+  else
+    std::printf("%s  %s (%lld planes)\n", md5.c_str(), args.input.c_str(), static_cast<long long>(decoder.plane_index() + 1));
+  return 0;
+}
+
+int run_trace(const std::string& input) {
+  const std::vector<uint8_t> stream = read_file(input);
+  Trace trace(std::cout);
+  syntax::read_mesh_object(stream, &trace);
+  return 0;
+}
+
+int run_info(const std::string& input) {
+  const std::vector<uint8_t> stream = read_file(input);
+  syntax::MeshObjectReader reader(stream);
+  MeshObjectPlane plane;
+  std::printf("%s: %zu bytes, 2D mesh object\n", input.c_str(), stream.size());
+  uint64_t start = reader.position();
+  std::map<std::string, int64_t> counts;
+  while (reader.next(plane)) {
+    const uint64_t bits = reader.position() - start;
+    std::string kind;
+    if (!plane.new_mesh_flag) {
+      kind = "P range=" + std::to_string(plane.motion.motion_range_code);
+    } else if (plane.geometry.mesh_type_code == kMeshTypeUniform) {
+      const UniformGeometry& u = plane.geometry.uniform;
+      kind = "I uniform " + std::to_string(u.nr_of_mesh_nodes_hori) + "x" + std::to_string(u.nr_of_mesh_nodes_verti) +
+             " split=" + std::to_string(u.triangle_split_code);
+    } else {
+      kind = "I delaunay boundary=" + std::to_string(plane.geometry.delaunay.nr_of_boundary_nodes);
+    }
+    ++counts[plane.new_mesh_flag ? "I" : "P"];
+    std::printf("plane %lld at bit %llu: %s, %u nodes, %llu bits (%.3f bits/node)\n",
+                static_cast<long long>(reader.planes_read() - 1), static_cast<unsigned long long>(start), kind.c_str(),
+                reader.mesh_nodes(), static_cast<unsigned long long>(bits),
+                static_cast<double>(bits) / reader.mesh_nodes());
+    start = reader.position();
+  }
+  std::printf("%lld planes (%lld I, %lld P), end code %s\n", static_cast<long long>(reader.planes_read()),
+              static_cast<long long>(counts["I"]), static_cast<long long>(counts["P"]),
+              reader.has_end_code() ? "present" : "MISSING");
+  return 0;
+}
+
+}  // namespace
+}  // namespace m4mesh
+
+int main(int argc, char** argv) {
+  using namespace m4mesh;
+  CLI::App app{"m4mesh: MPEG-4-style 2D mesh object encoder, decoder and tools"};
+  app.require_subcommand(1);
+
+  EncodeArgs encode_args;
+  CLI::App* encode_cmd = app.add_subcommand("encode", "Encode §9 text or OBJ frames into a mesh stream");
+  encode_cmd->add_option("input", encode_args.input, "§9 decoded text, an OBJ file, a folder of OBJ frames or a pattern with '*'")->required();
+  encode_cmd->add_option("-o,--output", encode_args.output, "output stream (.m4m)")->required();
+  encode_cmd->add_option("--method", encode_args.method, "motion vector prediction: 2 (breadth-first, normative) or 1 (linear)")
+      ->check(CLI::IsMember({1, 2}));
+  encode_cmd->add_flag("--keep-order", encode_args.keep_order, "code Delaunay nodes in the input order instead of §10's");
+  encode_cmd->add_option("--scale", encode_args.scale, "OBJ input: multiply x and y by this to get half pixels");
+  encode_cmd->add_flag("--no-end-code", encode_args.no_end_code, "leave out mesh_object_end_code");
+  encode_cmd->add_flag("--trace", encode_args.trace, "print every syntax element written");
+
+  DecodeArgs decode_args;
+  CLI::App* decode_cmd = app.add_subcommand("decode", "Decode a mesh stream to §9 text and print its MD5");
+  decode_cmd->add_option("input", decode_args.input, "mesh stream")->required();
+  decode_cmd->add_option("-o,--output", decode_args.output, "§9 text output (written only when decoding succeeds)");
+  decode_cmd->add_option("--method", decode_args.method, "motion vector prediction: 2 or 1")->check(CLI::IsMember({1, 2}));
+  decode_cmd->add_flag("--md5", decode_args.md5_only, "print only the MD5 of the decoded text");
+
+  std::string trace_input;
+  CLI::App* trace_cmd = app.add_subcommand("trace", "Print every syntax element: bit offset, name, bit count, value");
+  trace_cmd->add_option("input", trace_input, "mesh stream")->required();
+
+  std::string info_input;
+  CLI::App* info_cmd = app.add_subcommand("info", "Summarise a mesh stream plane by plane");
+  info_cmd->add_option("input", info_input, "mesh stream")->required();
+
+  DemoOptions demo_options;
+  CLI::App* demo_cmd = app.add_subcommand("demo", "Encode and decode an embedded waving-flag animation, check bit-exactness");
+  demo_cmd->add_option("--cols", demo_options.cols, "nodes per row")->check(CLI::Range(2, 1023));
+  demo_cmd->add_option("--rows", demo_options.rows, "nodes per column")->check(CLI::Range(2, 1023));
+  demo_cmd->add_option("--frames", demo_options.frames, "planes")->check(CLI::Range(1, 100000));
+
+  CLI11_PARSE(app, argc, argv);
+  std::string current_file;
+  try {
+    if (*encode_cmd) return current_file = encode_args.input, run_encode(encode_args);
+    if (*decode_cmd) return current_file = decode_args.input, run_decode(decode_args);
+    if (*trace_cmd) return current_file = trace_input, run_trace(trace_input);
+    if (*info_cmd) return current_file = info_input, run_info(info_input);
+    if (*demo_cmd) return run_demo(demo_options);
+  } catch (const Error& e) {
+    std::cout.flush();
+    std::fprintf(stderr, "error: %s: %s\n", current_file.c_str(), e.what());
+    return 1;
+  }
+  return 0;
+}

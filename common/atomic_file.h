@@ -1,0 +1,31 @@
+// Output files that appear only when complete: data goes to a temporary
+// file beside the target, which is renamed over it on commit().
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace m4mesh {
+
+class AtomicFile {
+ public:
+  explicit AtomicFile(std::string path);
+  ~AtomicFile();  // removes the temporary file unless committed
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  void write(std::string_view data);
+  void commit();
+
+ private:
+  std::string path_;
+  std::string temp_path_;
+  std::FILE* file_ = nullptr;
+};
+
+std::vector<uint8_t> read_file(const std::string& path);
+void write_file_atomically(const std::string& path, std::string_view data);
+
+}  // namespace m4mesh

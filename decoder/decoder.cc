@@ -1,0 +1,133 @@
+#include "decoder/decoder.h"
+
+#include "mesh/cdt.h"
+#include "mesh/decoded_text.h"
+#include "mesh/uniform.h"
+#include "syntax/values.h"
+
+namespace m4mesh {
+
+namespace {
+
+// Positions after motion are not range-limited (§7.2); this decoder keeps
+// them in 32 bits and stops, naming the plane, before they could overflow.
+constexpr int32_t kPositionLimit = 1 << 30;
+
+// Node coordinates from node0 and the deltas (their range is checked while parsing).
+std::vector<Point> delaunay_node_positions(const DelaunayGeometry& g) {
+  std::vector<Point> nodes;
+  nodes.reserve(g.nr_of_mesh_nodes);
+  Point p{static_cast<int32_t>(g.node0_x), static_cast<int32_t>(g.node0_y)};
+  nodes.push_back(p);
+  for (const NodeDelta& d : g.deltas) {
+    p.x += delta_value(d.x);
+    p.y += delta_value(d.y);
+    nodes.push_back(p);
+  }
+  return nodes;
+}
+
+Error plane_error(ErrorKind kind, const char* element, int64_t plane, uint64_t offset,
+                  const std::string& message) {
+  return Error(kind, element, plane, static_cast<int64_t>(offset), message);
+}
+
+}  // namespace
+
+Decoder::Decoder(std::span<const uint8_t> stream, const DecoderOptions& options)
+    : options_(options), reader_(stream, options.trace) {}
+
+bool Decoder::next() {
+  const uint64_t plane_start = reader_.position();
+  if (!reader_.next(plane_)) return false;
+  if (plane_.new_mesh_flag)
+    decode_geometry(plane_.geometry, plane_start);
+  else
+    decode_motion(plane_.motion, plane_start);
+  return true;
+}
+
+void Decoder::decode_geometry(const MeshGeometry& g, uint64_t plane_start) {
+  info_ = PlaneInfo{};
+  info_.intra = true;
+  std::vector<Triangle> mesh_triangles;
+  if (g.mesh_type_code == kMeshTypeUniform) {
+    const UniformGeometry& u = g.uniform;
+    info_.kind = MeshKind::kUniform;
+    info_.uniform = UniformParams{u.nr_of_mesh_nodes_hori, u.nr_of_mesh_nodes_verti, u.mesh_rect_size_hori,
+                                  u.mesh_rect_size_verti, u.triangle_split_code};
+    nodes_ = uniform_nodes(info_.uniform);
+    mesh_triangles = uniform_triangles(info_.uniform);
+  } else {
+    const DelaunayGeometry& d = g.delaunay;
+    info_.kind = MeshKind::kDelaunay;
+    info_.boundary = d.nr_of_boundary_nodes;
+    nodes_ = delaunay_node_positions(d);
+    try {
+      mesh_triangles = constrained_delaunay(nodes_, d.nr_of_boundary_nodes);
+    } catch (const Error& e) {
+      throw plane_error(e.kind(), "MeshGeometry", plane_index(), plane_start, e.message());
+    }
+  }
+  const NodeIndex count = static_cast<NodeIndex>(nodes_.size());
+  if (options_.method == MotionMethod::kMethod2) {
+    // §7.1: from the top-left node to the next clockwise boundary node.
+    const NodeIndex second = info_.kind == MeshKind::kUniform ? 1 : info_.boundary - 1;
+    try {
+      order_ = method2_order(mesh_triangles, count, 0, second);
+    } catch (const Error& e) {
+      throw plane_error(e.kind(), "MeshGeometry", plane_index(), plane_start, e.message());
+    }
+  } else if (info_.kind == MeshKind::kUniform) {
+    order_ = method1_order(boustrophedon(info_.uniform.cols, info_.uniform.rows));
+  } else {
+    std::vector<NodeIndex> sequence(count);
+    for (NodeIndex i = 0; i < count; ++i) sequence[i] = i;
+    order_ = method1_order(sequence);
+  }
+  triangles_ = canonical_triangles(mesh_triangles, nodes_);
+  vectors_.assign(count + size_t{1}, Point{});
+}
+
+void Decoder::decode_motion(const MeshMotion& motion, uint64_t plane_start) {
+  info_ = PlaneInfo{};
+  info_.intra = false;
+  info_.range = motion.motion_range_code;
+  const MotionRange range(motion.motion_range_code);
+  const size_t count = order_.node.size();
+  const NodeIndex* node = order_.node.data();
+  const NodeIndex* pred_a = order_.pred_a.data();
+  const NodeIndex* pred_b = order_.pred_b.data();
+  const NodeMotion* coded = motion.nodes.data();
+  Point* v = vectors_.data();
+  Point* p = nodes_.data();
+  bool overflow = false;
+  for (size_t k = 0; k < count; ++k) {
+    const NodeIndex n = node[k];
+    Point vector{0, 0};
+    if (coded[k].node_motion_vector_flag) {
+      const Point& a = v[pred_a[k]];
+      const Point& b = v[pred_b[k]];
+      vector.x = range.wrap(((a.x + b.x + 1) >> 1) + range.difference(coded[k].delta_mv_x, coded[k].delta_mv_x_res));
+      vector.y = range.wrap(((a.y + b.y + 1) >> 1) + range.difference(coded[k].delta_mv_y, coded[k].delta_mv_y_res));
+    }
+    v[n] = vector;
+    p[n].x += vector.x;
+    p[n].y += vector.y;
+    overflow |= p[n].x > kPositionLimit || p[n].x < -kPositionLimit || p[n].y > kPositionLimit ||
+                p[n].y < -kPositionLimit;
+  }
+  if (overflow)
+    throw plane_error(ErrorKind::kLimit, "MeshMotion", plane_index(), plane_start,
+                      "node positions leave ±2^30 half pixels (decoder limit, docs/decisions.md)");
+}
+
+std::string decode_to_text(std::span<const uint8_t> stream, const DecoderOptions& options,
+                           const std::function<void(std::string_view)>& sink) {
+  Decoder decoder(stream, options);
+  DecodedTextWriter writer(sink);
+  while (decoder.next()) writer.plane(decoder.info(), decoder.nodes(), decoder.triangles());
+  return writer.finish();
+}
+
+}  // namespace m4mesh

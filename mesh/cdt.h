@@ -1,0 +1,40 @@
+// The constrained Delaunay triangulation of §6.2: all nodes, the boundary
+// polygon (nodes 0 … B−1, counterclockwise) as constraints, triangles
+// outside the polygon removed. Exact integer predicates; cocircular nodes
+// are resolved by symbolic perturbation by node index, so the result is
+// unique and independent of the insertion order.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "mesh/geometry.h"
+#include "mesh/topology.h"
+
+namespace m4mesh {
+
+struct CdtOptions {
+  // Node insertion order: biased randomized insertion (BRIO) rounds, each
+  // sorted along a Hilbert curve, shuffled with this seed. The triangles
+  // never depend on it.
+  uint64_t insertion_seed = 0x6d346d657368;  // "m4mesh"
+  bool shuffle = true;
+};
+
+// Checks §6.1 (kGeometry errors name the node): coordinates 0 … 1023, node 0
+// the top-left node, no duplicates, a simple counterclockwise boundary.
+// Interior nodes strictly inside are checked by constrained_delaunay().
+void validate_delaunay_nodes(std::span<const Point> nodes, uint32_t boundary_count);
+
+// Validates, then triangulates. Triangles are clockwise (orient > 0).
+std::vector<Triangle> constrained_delaunay(std::span<const Point> nodes, uint32_t boundary_count,
+                                           const CdtOptions& options = {});
+
+// Whether the edge (a, c) shared by clockwise triangles (a, b, c) and (a, c, d)
+// is replaced by (b, d): d strictly inside the circle through a, b, c, or on
+// it with the smallest of the four indices at b or d (§6.2).
+bool delaunay_flip(const Point& pa, const Point& pb, const Point& pc, const Point& pd, NodeIndex a, NodeIndex b,
+                   NodeIndex c, NodeIndex d);
+
+}  // namespace m4mesh

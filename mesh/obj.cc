@@ -1,0 +1,127 @@
+#include "mesh/obj.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "common/error.h"
+
+namespace m4mesh {
+
+namespace {
+
+double parse_number(std::string_view token, const std::string& path, int64_t line) {
+  double value = 0;
+  auto result = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (token.empty() || result.ec != std::errc() || result.ptr != token.data() + token.size())
+    throw input_error(path, line, "expected a number, found '" + std::string(token) + "'");
+  if (!std::isfinite(value)) throw input_error(path, line, "non-finite number '" + std::string(token) + "'");
+  return value;
+}
+
+// The vertex index of an "i", "i/t" or "i/t/n" face token, 0-based.
+NodeIndex parse_face_index(std::string_view token, size_t vertex_count, const std::string& path, int64_t line) {
+  token = token.substr(0, token.find('/'));
+  int64_t index = 0;
+  auto result = std::from_chars(token.data(), token.data() + token.size(), index);
+  if (token.empty() || result.ec != std::errc() || result.ptr != token.data() + token.size())
+    throw input_error(path, line, "malformed face index '" + std::string(token) + "'");
+  if (index < 0) index += static_cast<int64_t>(vertex_count) + 1;  // relative index
+  if (index < 1 || index > static_cast<int64_t>(vertex_count))
+    throw input_error(path, line, "face index " + std::string(token) + " outside 1…" + std::to_string(vertex_count));
+  return static_cast<NodeIndex>(index - 1);
+}
+
+// The number in a file name, for numeric frame order.
+int64_t frame_number(const std::filesystem::path& path) {
+  const std::string stem = path.stem().string();
+  int64_t number = -1;
+  for (size_t i = 0; i < stem.size();) {
+    if (std::isdigit(static_cast<unsigned char>(stem[i]))) {
+      size_t j = i;
+      while (j < stem.size() && std::isdigit(static_cast<unsigned char>(stem[j]))) ++j;
+      std::from_chars(stem.data() + i, stem.data() + j, number);
+      i = j;
+    } else {
+      ++i;
+    }
+  }
+  return number;
+}
+
+}  // namespace
+
+ObjFrame read_obj(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, path + ": cannot open");
+  ObjFrame frame;
+  std::string text;
+  int64_t line = 0;
+  std::vector<std::string_view> tokens;
+  while (std::getline(in, text)) {
+    ++line;
+    tokens.clear();
+    std::string_view rest(text);
+    while (!rest.empty()) {
+      const size_t start = rest.find_first_not_of(" \t\r");
+      if (start == std::string_view::npos) break;
+      rest.remove_prefix(start);
+      const size_t end = rest.find_first_of(" \t\r");
+      tokens.push_back(rest.substr(0, end));
+      rest.remove_prefix(end == std::string_view::npos ? rest.size() : end);
+    }
+    if (tokens.empty() || tokens[0][0] == '#') continue;
+    if (tokens[0] == "v") {
+      if (tokens.size() < 4) throw input_error(path, line, "a vertex needs x y z");
+      frame.vertices.push_back({parse_number(tokens[1], path, line), parse_number(tokens[2], path, line),
+                                parse_number(tokens[3], path, line)});
+    } else if (tokens[0] == "f") {
+      if (tokens.size() < 4) throw input_error(path, line, "a face needs at least 3 vertices");
+      std::vector<NodeIndex> polygon;
+      for (size_t i = 1; i < tokens.size(); ++i)
+        polygon.push_back(parse_face_index(tokens[i], frame.vertices.size(), path, line));
+      for (size_t i = 1; i + 1 < polygon.size(); ++i) frame.faces.push_back(Triangle{{polygon[0], polygon[i], polygon[i + 1]}});
+    }
+  }
+  if (in.bad()) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, path + ": cannot read");
+  if (frame.vertices.empty()) throw input_error(path, 0, "no vertices");
+  return frame;
+}
+
+std::vector<std::string> frame_files(const std::string& folder_or_pattern, const std::string& extension) {
+  namespace fs = std::filesystem;
+  fs::path folder;
+  std::string prefix, suffix = extension;
+  const fs::path given(folder_or_pattern);
+  if (fs::is_directory(given)) {
+    folder = given;
+  } else if (const std::string name = given.filename().string(); name.find('*') != std::string::npos) {
+    folder = given.parent_path().empty() ? fs::path(".") : given.parent_path();
+    prefix = name.substr(0, name.find('*'));
+    suffix = name.substr(name.find('*') + 1);
+  } else if (fs::is_regular_file(given)) {
+    return {folder_or_pattern};
+  } else {
+    throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, folder_or_pattern + ": no such file, folder or pattern");
+  }
+  std::vector<fs::path> files;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_regular_file() && name.size() >= prefix.size() + suffix.size() && name.starts_with(prefix) &&
+        name.ends_with(suffix))
+      files.push_back(entry.path());
+  }
+  if (files.empty()) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, folder_or_pattern + ": no frame files");
+  std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
+    const int64_t na = frame_number(a), nb = frame_number(b);
+    return na != nb ? na < nb : a < b;
+  });
+  std::vector<std::string> paths;
+  for (const fs::path& p : files) paths.push_back(p.string());
+  return paths;
+}
+
+}  // namespace m4mesh

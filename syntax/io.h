@@ -1,0 +1,208 @@
+// I/O policies for the descriptions of syntax/describe.h: ReadIO parses
+// and range-checks, WriteIO writes (and refuses values the syntax does not
+// allow), CountIO counts bits. ReadIO and WriteIO trace when given a Trace.
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "bitstream/bit_reader.h"
+#include "bitstream/bit_writer.h"
+#include "bitstream/start_codes.h"
+#include "common/error.h"
+#include "syntax/trace.h"
+#include "syntax/vlc.h"
+
+namespace m4mesh::syntax {
+
+// What every policy shares: the plane number, the offset of the element in
+// hand, and the error it raises.
+class IOBase {
+ public:
+  void set_plane(int64_t plane) { plane_ = plane; }
+  int64_t plane() const { return plane_; }
+
+  [[noreturn]] void fail(ErrorKind kind, const char* element, const std::string& message) const {
+    throw Error(kind, element, plane_, static_cast<int64_t>(element_start_), message);
+  }
+  void require(bool ok, ErrorKind kind, const char* element, const char* message) const {
+    if (!ok) fail(kind, element, message);
+  }
+
+ protected:
+  int64_t plane_ = kNoPlane;
+  uint64_t element_start_ = 0;
+  Trace* trace_ = nullptr;
+};
+
+class ReadIO : public IOBase {
+ public:
+  explicit ReadIO(BitReader& reader, Trace* trace = nullptr) : reader_(reader) { trace_ = trace; }
+
+  BitReader& reader() { return reader_; }
+
+  template <class T>
+  void field(const char* name, int bits, T& value) {
+    element_start_ = reader_.position();
+    uint32_t raw = reader_.read(bits);
+    if (reader_.overrun()) truncated(name);
+    value = static_cast<T>(raw);
+    if (trace_) trace_->element(element_start_, name, bits, static_cast<int64_t>(raw));
+  }
+
+  template <class T>
+  void field_in(const char* name, int bits, T& value, uint32_t lo, uint32_t hi) {
+    field(name, bits, value);
+    if (value < lo || value > hi)
+      fail(ErrorKind::kOutOfRange, name,
+           "value " + std::to_string(value) + " outside " + std::to_string(lo) + "…" + std::to_string(hi));
+  }
+
+  template <class T>
+  void vlc(const char* name, const VlcTable& table, T& symbol) {
+    element_start_ = reader_.position();
+    VlcTable::Match match = table.match(reader_.peek(table.max_length()));
+    if (match.length == 0 || static_cast<uint64_t>(match.length) > reader_.bits_left()) {
+      if (reader_.bits_left() < static_cast<uint64_t>(table.max_length()) || match.length != 0) truncated(name);
+      fail(ErrorKind::kInvalidCode, name, "bits are not a code of the table");
+    }
+    reader_.skip(match.length);
+    symbol = static_cast<T>(match.symbol);
+    if (trace_) trace_->element(element_start_, name, match.length, match.symbol);
+  }
+
+  void start_code(const char* name, uint32_t code) {
+    element_start_ = reader_.position();
+    uint32_t value = reader_.read(32);
+    if (reader_.overrun()) truncated(name);
+    if (value != code) {
+      char hex[16];
+      std::snprintf(hex, sizeof hex, "0x%08x", value);
+      fail(ErrorKind::kMissingStartCode, name, std::string("found ") + hex);
+    }
+    if (trace_) trace_->start_code(element_start_, name, value);
+  }
+
+  // next_start_code(): '0' then '1's up to the byte boundary (§2.2).
+  void next_start_code() {
+    element_start_ = reader_.position();
+    int n = stuffing_bit_count(element_start_);
+    uint32_t bits = reader_.read(n);
+    if (reader_.overrun()) truncated("next_start_code");
+    if (trace_) trace_->bit_string(element_start_, "next_start_code", n, bits);
+    if (bits != stuffing_pattern(n)) fail(ErrorKind::kBadStuffing, "next_start_code", "stuffing is not '0' followed by '1's");
+  }
+
+  // Sizes a list read from the stream; `count` has been range-checked and
+  // each item takes at least `min_bits_each` bits, so a count that the
+  // remaining data cannot hold fails before anything is allocated.
+  template <class T>
+  void resize(std::vector<T>& items, uint32_t count, const char* element, int min_bits_each = 1) {
+    if (static_cast<uint64_t>(count) * static_cast<uint64_t>(min_bits_each) > reader_.bits_left()) {
+      element_start_ = reader_.position();
+      fail(ErrorKind::kTruncated, element,
+           std::to_string(count) + " items cannot fit in the " + std::to_string(reader_.bits_left()) +
+               " bits left");
+    }
+    items.resize(count);
+  }
+
+ private:
+  [[noreturn]] void truncated(const char* name) const { fail(ErrorKind::kTruncated, name, "the data ends inside this element"); }
+
+  BitReader& reader_;
+};
+
+class WriteIO : public IOBase {
+ public:
+  explicit WriteIO(BitWriter& writer, Trace* trace = nullptr) : writer_(writer) { trace_ = trace; }
+
+  template <class T>
+  void field(const char* name, int bits, T& value) {
+    element_start_ = writer_.position();
+    if constexpr (std::is_signed_v<T>) {
+      if (value < 0) fail(ErrorKind::kOutOfRange, name, "negative value " + std::to_string(value));
+    }
+    uint64_t raw = static_cast<uint64_t>(value);
+    if (raw >= (uint64_t{1} << bits))
+      fail(ErrorKind::kOutOfRange, name, "value " + std::to_string(value) + " does not fit " + std::to_string(bits) + " bits");
+    writer_.write(static_cast<uint32_t>(raw), bits);
+    if (trace_) trace_->element(element_start_, name, bits, static_cast<int64_t>(raw));
+  }
+
+  template <class T>
+  void field_in(const char* name, int bits, T& value, uint32_t lo, uint32_t hi) {
+    element_start_ = writer_.position();
+    if (value < lo || value > hi)
+      fail(ErrorKind::kOutOfRange, name,
+           "value " + std::to_string(value) + " outside " + std::to_string(lo) + "…" + std::to_string(hi));
+    field(name, bits, value);
+  }
+
+  template <class T>
+  void vlc(const char* name, const VlcTable& table, T& symbol) {
+    element_start_ = writer_.position();
+    if (!table.has_symbol(symbol)) fail(ErrorKind::kOutOfRange, name, "value " + std::to_string(symbol) + " has no code");
+    const VlcCode& code = table.code(symbol);
+    writer_.write(code.bits, code.length);
+    if (trace_) trace_->element(element_start_, name, code.length, symbol);
+  }
+
+  void start_code(const char* name, uint32_t code) {
+    element_start_ = writer_.position();
+    if (!writer_.byte_aligned()) fail(ErrorKind::kStructure, name, "start code not byte-aligned");
+    writer_.write(code, 32);
+    if (trace_) trace_->start_code(element_start_, name, code);
+  }
+
+  void next_start_code() {
+    element_start_ = writer_.position();
+    int n = stuffing_bit_count(element_start_);
+    writer_.write(stuffing_pattern(n), n);
+    if (trace_) trace_->bit_string(element_start_, "next_start_code", n, stuffing_pattern(n));
+  }
+
+  template <class T>
+  void resize(std::vector<T>& items, uint32_t count, const char* element, int = 1) {
+    element_start_ = writer_.position();
+    if (items.size() != count)
+      fail(ErrorKind::kStructure, element,
+           "holds " + std::to_string(items.size()) + " items where the syntax needs " + std::to_string(count));
+  }
+
+ private:
+  BitWriter& writer_;
+};
+
+// Counts the bits a structure takes, with the writer's checks.
+class CountIO : public IOBase {
+ public:
+  uint64_t bits() const { return bits_; }
+
+  template <class T>
+  void field(const char*, int bits, T&) { bits_ += static_cast<uint64_t>(bits); }
+  template <class T>
+  void field_in(const char* name, int bits, T& value, uint32_t lo, uint32_t hi) {
+    if (value < lo || value > hi) fail(ErrorKind::kOutOfRange, name, "value out of range");
+    field(name, bits, value);
+  }
+  template <class T>
+  void vlc(const char* name, const VlcTable& table, T& symbol) {
+    if (!table.has_symbol(symbol)) fail(ErrorKind::kOutOfRange, name, "value has no code");
+    bits_ += static_cast<uint64_t>(table.code(symbol).length);
+  }
+  void start_code(const char*, uint32_t) { bits_ += 32; }
+  void next_start_code() { bits_ += static_cast<uint64_t>(stuffing_bit_count(bits_)); }
+  template <class T>
+  void resize(std::vector<T>& items, uint32_t count, const char* element, int = 1) {
+    if (items.size() != count) fail(ErrorKind::kStructure, element, "item count differs from the syntax");
+  }
+
+ private:
+  uint64_t bits_ = 0;
+};
+
+}  // namespace m4mesh::syntax
