@@ -192,9 +192,9 @@ void Triangulation::flip(uint32_t t, int i, uint32_t& t_out, uint32_t& u_out) {
   const int j = neighbour_slot(u, t);
   const uint32_t p = to.v[i], a = to.v[next(i)], b = to.v[prev(i)], q = uo.v[j];
   const uint32_t n_pa = to.n[prev(i)], n_bp = to.n[next(i)];
-  const uint32_t n_qb = uo.n[next(j)], n_aq = uo.n[prev(j)];
-  set(t, p, a, q, n_aq, u, n_pa, uo.fixed[prev(j)], 0, to.fixed[prev(i)]);
-  set(u, p, q, b, n_qb, n_bp, t, uo.fixed[next(j)], to.fixed[next(i)], 0);
+  const uint32_t n_qb = uo.n[prev(j)], n_aq = uo.n[next(j)];
+  set(t, p, a, q, n_aq, u, n_pa, uo.fixed[next(j)], 0, to.fixed[prev(i)]);
+  set(u, p, q, b, n_qb, n_bp, t, uo.fixed[prev(j)], to.fixed[next(i)], 0);
   replace_neighbour(n_aq, u, t);
   replace_neighbour(n_bp, t, u);
   t_out = t;

@@ -97,12 +97,12 @@ class TextCursor {
   int64_t line_number() const { return line_; }
 
   std::string_view next_line() {
+    ++line_;
     if (at_end()) fail("unexpected end of text");
     size_t end = text_.find('\n', pos_);
     if (end == std::string_view::npos) fail("line without a final LF");
     std::string_view line = text_.substr(pos_, end - pos_);
     pos_ = end + 1;
-    ++line_;
     return line;
   }
 
@@ -212,7 +212,10 @@ std::vector<MeshPlane> parse_decoded_text(std::string_view text, const std::stri
     }
     planes.push_back(std::move(plane));
   }
-  if (!cursor.at_end()) cursor.fail("text after 'end'");
+  if (!cursor.at_end()) {
+    cursor.next_line();
+    cursor.fail("text after 'end'");
+  }
   if (planes.empty()) cursor.fail("no planes");
   return planes;
 }

@@ -1,0 +1,127 @@
+#include "tests/test_util.h"
+
+#include <cmath>
+#include <numbers>
+#include <set>
+#include <stdexcept>
+
+#include "decoder/decoder.h"
+#include "encoder/encoder.h"
+#include "mesh/cdt.h"
+
+namespace m4mesh::test {
+
+std::vector<uint8_t> bytes_from_bits(std::string_view bits) {
+  std::vector<uint8_t> bytes;
+  int count = 0;
+  uint32_t current = 0;
+  for (char c : bits) {
+    if (c == ' ' || c == '|' || c == '\n') continue;
+    if (c != '0' && c != '1') throw std::invalid_argument("bit string with a character other than 0/1");
+    current = (current << 1) | static_cast<uint32_t>(c == '1');
+    if (++count % 8 == 0) {
+      bytes.push_back(static_cast<uint8_t>(current));
+      current = 0;
+    }
+  }
+  if (count % 8 != 0) throw std::invalid_argument("bit string not a whole number of bytes");
+  return bytes;
+}
+
+std::string bits_of(const std::vector<uint8_t>& bytes) {
+  std::string s;
+  for (uint8_t b : bytes)
+    for (int i = 7; i >= 0; --i) s += ((b >> i) & 1) ? '1' : '0';
+  return s;
+}
+
+MeshPlane uniform_plane(uint32_t cols, uint32_t rows, uint32_t dx, uint32_t dy, uint32_t split) {
+  MeshPlane plane;
+  plane.info.kind = MeshKind::kUniform;
+  plane.info.uniform = UniformParams{cols, rows, dx, dy, split};
+  plane.nodes = uniform_nodes(plane.info.uniform);
+  return plane;
+}
+
+MeshPlane inter_plane(std::vector<Point> nodes, uint32_t range) {
+  MeshPlane plane;
+  plane.info.intra = false;
+  plane.info.range = range;
+  plane.nodes = std::move(nodes);
+  return plane;
+}
+
+MeshPlane delaunay_plane(std::vector<Point> nodes, uint32_t boundary) {
+  MeshPlane plane;
+  plane.info.kind = MeshKind::kDelaunay;
+  plane.info.boundary = boundary;
+  plane.nodes = std::move(nodes);
+  return plane;
+}
+
+uint64_t Random::next() {
+  uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+int32_t Random::uniform(int32_t lo, int32_t hi) {
+  return lo + static_cast<int32_t>(next() % static_cast<uint64_t>(int64_t{hi} - lo + 1));
+}
+
+bool strictly_inside(const std::vector<Point>& nodes, uint32_t boundary, const Point& p) {
+  bool inside = false;
+  for (uint32_t i = 0, j = boundary - 1; i < boundary; j = i++) {
+    const Point &a = nodes[i], &b = nodes[j];
+    if (orient(a, b, p) == 0 && std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= p.y &&
+        p.y <= std::max(a.y, b.y))
+      return false;
+    if ((a.y > p.y) != (b.y > p.y)) {
+      const double x = a.x + static_cast<double>(p.y - a.y) * (b.x - a.x) / (b.y - a.y);
+      if (p.x < x) inside = !inside;
+    }
+  }
+  return inside;
+}
+
+std::vector<Point> random_polygon_with_interior(uint64_t seed, uint32_t boundary, uint32_t interior, int32_t min_radius,
+                                                int32_t max_radius) {
+  Random random(seed);
+  for (int attempt = 0;; ++attempt) {
+    std::vector<Point> nodes;
+    std::set<std::pair<int, int>> used;
+    for (uint32_t k = 0; k < boundary; ++k) {
+      const double angle = 2 * std::numbers::pi * (k + 0.1 + 0.8 * static_cast<double>(random.next() % 1000) / 1000) / boundary;
+      const double radius = random.uniform(min_radius, max_radius);
+      const Point p{static_cast<int32_t>(std::lround(512 + radius * std::cos(angle))),
+                    static_cast<int32_t>(std::lround(512 - radius * std::sin(angle)))};
+      if (used.insert({p.x, p.y}).second) nodes.push_back(p);
+    }
+    const uint32_t b = static_cast<uint32_t>(nodes.size());
+    while (nodes.size() < b + interior) {
+      const Point p{random.uniform(0, 1023), random.uniform(0, 1023)};
+      if (!used.count({p.x, p.y}) && strictly_inside(nodes, b, p)) {
+        used.insert({p.x, p.y});
+        nodes.push_back(p);
+      }
+    }
+    const std::vector<NodeIndex> order = delaunay_node_order(nodes, b);
+    std::vector<Point> ordered;
+    for (NodeIndex i : order) ordered.push_back(nodes[i]);
+    try {
+      validate_delaunay_nodes(ordered, b);
+      if (b == boundary) return ordered;
+    } catch (const Error&) {
+      if (attempt > 100) throw;
+    }
+  }
+}
+
+std::string decoded_text(const std::vector<uint8_t>& stream) {
+  std::string text;
+  decode_to_text(stream, {}, [&](std::string_view chunk) { text.append(chunk); });
+  return text;
+}
+
+}  // namespace m4mesh::test
