@@ -50,21 +50,21 @@ bool Decoder::next() {
 void Decoder::decode_geometry(const MeshGeometry& g, uint64_t plane_start) {
   info_ = PlaneInfo{};
   info_.intra = true;
-  std::vector<Triangle> mesh_triangles;
+  MeshTopology mesh;
   if (g.mesh_type_code == kMeshTypeUniform) {
     const UniformGeometry& u = g.uniform;
     info_.kind = MeshKind::kUniform;
     info_.uniform = UniformParams{u.nr_of_mesh_nodes_hori, u.nr_of_mesh_nodes_verti, u.mesh_rect_size_hori,
                                   u.mesh_rect_size_verti, u.triangle_split_code};
     nodes_ = uniform_nodes(info_.uniform);
-    mesh_triangles = uniform_triangles(info_.uniform);
+    mesh = uniform_topology(info_.uniform);
   } else {
     const DelaunayGeometry& d = g.delaunay;
     info_.kind = MeshKind::kDelaunay;
     info_.boundary = d.nr_of_boundary_nodes;
     nodes_ = delaunay_node_positions(d);
     try {
-      mesh_triangles = constrained_delaunay(nodes_, d.nr_of_boundary_nodes);
+      mesh = constrained_delaunay(nodes_, d.nr_of_boundary_nodes);
     } catch (const Error& e) {
       throw plane_error(e.kind(), "MeshGeometry", plane_index(), plane_start, e.message());
     }
@@ -74,7 +74,7 @@ void Decoder::decode_geometry(const MeshGeometry& g, uint64_t plane_start) {
     // §7.1: from the top-left node to the next clockwise boundary node.
     const NodeIndex second = info_.kind == MeshKind::kUniform ? 1 : info_.boundary - 1;
     try {
-      order_ = method2_order(mesh_triangles, count, 0, second);
+      order_ = method2_order(mesh.triangles, mesh.neighbours, count, 0, second);
     } catch (const Error& e) {
       throw plane_error(e.kind(), "MeshGeometry", plane_index(), plane_start, e.message());
     }
@@ -85,7 +85,7 @@ void Decoder::decode_geometry(const MeshGeometry& g, uint64_t plane_start) {
     for (NodeIndex i = 0; i < count; ++i) sequence[i] = i;
     order_ = method1_order(sequence);
   }
-  triangles_ = canonical_triangles(mesh_triangles, nodes_);
+  triangles_ = canonical_triangles(mesh.triangles, nodes_);
   vectors_.assign(count + size_t{1}, Point{});
 }
 

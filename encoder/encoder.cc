@@ -17,7 +17,7 @@ Error plane_error(int64_t plane, const std::string& message) {
 
 class PlaneEncoder {
  public:
-  PlaneEncoder(const EncoderOptions& options) : options_(options), writer_(options.trace) {}
+  explicit PlaneEncoder(const EncoderOptions& options) : options_(options), writer_(options.trace) {}
 
   void intra(const MeshPlane& plane, int64_t index);
   // False when the motion does not fit the largest range.
@@ -30,7 +30,7 @@ class PlaneEncoder {
   void report(const std::string& message) const {
     if (options_.report) options_.report(message);
   }
-  void set_order(std::span<const Triangle> triangles, NodeIndex second);
+  void set_order(const MeshTopology& mesh, NodeIndex second);
 
   const EncoderOptions& options_;
   syntax::MeshObjectWriter writer_;
@@ -42,10 +42,10 @@ class PlaneEncoder {
   std::vector<Point> vectors_;
 };
 
-void PlaneEncoder::set_order(std::span<const Triangle> triangles, NodeIndex second) {
+void PlaneEncoder::set_order(const MeshTopology& mesh, NodeIndex second) {
   const size_t count = current_.size();
   if (options_.method == MotionMethod::kMethod2) {
-    order_ = method2_order(triangles, count, 0, second);
+    order_ = method2_order(mesh.triangles, mesh.neighbours, count, 0, second);
   } else {
     std::vector<NodeIndex> sequence(count);
     for (NodeIndex i = 0; i < count; ++i) sequence[i] = i;
@@ -70,11 +70,11 @@ void PlaneEncoder::intra(const MeshPlane& plane, int64_t index) {
     input_of_coded_.resize(count);
     for (NodeIndex i = 0; i < count; ++i) input_of_coded_[i] = i;
     current_ = plane.nodes;
-    const std::vector<Triangle> triangles = uniform_triangles(u);
-    if (!plane.triangles.empty() && canonical_triangles(plane.triangles, current_) != canonical_triangles(triangles, current_))
+    const MeshTopology mesh = uniform_topology(u);
+    if (!plane.triangles.empty() && canonical_triangles(plane.triangles, current_) != canonical_triangles(mesh.triangles, current_))
       report("plane " + std::to_string(index) + ": the input triangles differ from the uniform split; the split code wins");
     writer_.write(syntax_);
-    set_order(triangles, 1);
+    set_order(mesh, 1);
     return;
   }
 
@@ -91,9 +91,9 @@ void PlaneEncoder::intra(const MeshPlane& plane, int64_t index) {
   }
   current_.resize(count);
   for (NodeIndex i = 0; i < count; ++i) current_[i] = plane.nodes[input_of_coded_[i]];
-  std::vector<Triangle> triangles;
+  MeshTopology mesh;
   try {
-    triangles = constrained_delaunay(current_, boundary);
+    mesh = constrained_delaunay(current_, boundary);
   } catch (const Error& e) {
     throw plane_error(index, e.message());
   }
@@ -103,7 +103,7 @@ void PlaneEncoder::intra(const MeshPlane& plane, int64_t index) {
     std::vector<Triangle> given = plane.triangles;
     for (Triangle& t : given)
       for (NodeIndex& v : t.v) v = coded_of_input[v];
-    const std::vector<Triangle> ours = canonical_triangles(triangles, current_);
+    const std::vector<Triangle> ours = canonical_triangles(mesh.triangles, current_);
     given = canonical_triangles(given, current_);
     if (given != ours) {
       std::vector<Triangle> only_given;
@@ -124,7 +124,7 @@ void PlaneEncoder::intra(const MeshPlane& plane, int64_t index) {
   for (size_t n = 1; n < count; ++n)
     d.deltas[n - 1] = NodeDelta{delta_code(current_[n].x - current_[n - 1].x), delta_code(current_[n].y - current_[n - 1].y)};
   writer_.write(syntax_);
-  set_order(triangles, boundary - 1);
+  set_order(mesh, boundary - 1);
 }
 
 bool PlaneEncoder::inter(const MeshPlane& plane, int64_t index) {
@@ -178,34 +178,52 @@ bool PlaneEncoder::inter(const MeshPlane& plane, int64_t index) {
 
 }  // namespace
 
-EncodeResult encode(std::span<const MeshPlane> planes, const EncoderOptions& options) {
-  if (planes.empty() || !planes[0].info.intra)
-    throw Error(ErrorKind::kInput, "", 0, kNoOffset, "the first plane must be an I-plane");
-  PlaneEncoder encoder(options);
-  EncodeResult result;
-  PlaneInfo last_intra;
-  for (size_t k = 0; k < planes.size(); ++k) {
-    const int64_t index = static_cast<int64_t>(k);
-    const MeshPlane& plane = planes[k];
+class Encoder::Impl {
+ public:
+  explicit Impl(const EncoderOptions& options) : options_(options), planes_(options_) {}
+
+  void add(const MeshPlane& plane) {
+    const int64_t index = next_index_++;
+    if (index == 0 && !plane.info.intra) throw plane_error(0, "the first plane must be an I-plane");
     if (plane.info.intra) {
-      encoder.intra(plane, index);
-      last_intra = plane.info;
-      ++result.intra_planes;
-    } else if (encoder.inter(plane, index)) {
-      ++result.inter_planes;
-    } else if (encoder.is_delaunay()) {
+      planes_.intra(plane, index);
+      last_intra_ = plane.info;
+      ++result_.intra_planes;
+    } else if (planes_.inter(plane, index)) {
+      ++result_.inter_planes;
+    } else if (planes_.is_delaunay()) {
       // §10: motion beyond [−128, 127] is coded as a new Delaunay I-plane.
-      if (options.report)
-        options.report("plane " + std::to_string(k) + ": motion exceeds [-128, 127]; coded as a new I-plane");
-      MeshPlane intra{last_intra, plane.nodes, {}};
-      encoder.intra(intra, index);
-      ++result.intra_planes;
+      if (options_.report) options_.report("plane " + std::to_string(index) + ": motion exceeds [-128, 127]; coded as a new I-plane");
+      planes_.intra(MeshPlane{last_intra_, plane.nodes, {}}, index);
+      ++result_.intra_planes;
     } else {
       throw plane_error(index, "motion exceeds [-128, 127], which a uniform mesh cannot code");
     }
   }
-  result.stream = encoder.finish();
-  return result;
+
+  EncodeResult finish() {
+    if (next_index_ == 0) throw plane_error(kNoPlane, "no planes to encode");
+    result_.stream = planes_.finish();
+    return std::move(result_);
+  }
+
+ private:
+  const EncoderOptions options_;
+  PlaneEncoder planes_;
+  PlaneInfo last_intra_;
+  int64_t next_index_ = 0;
+  EncodeResult result_;
+};
+
+Encoder::Encoder(const EncoderOptions& options) : impl_(std::make_unique<Impl>(options)) {}
+Encoder::~Encoder() = default;
+void Encoder::add(const MeshPlane& plane) { impl_->add(plane); }
+EncodeResult Encoder::finish() { return impl_->finish(); }
+
+EncodeResult encode(std::span<const MeshPlane> planes, const EncoderOptions& options) {
+  Encoder encoder(options);
+  for (const MeshPlane& plane : planes) encoder.add(plane);
+  return encoder.finish();
 }
 
 }  // namespace m4mesh

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -29,6 +30,22 @@ struct EncodeResult {
   std::vector<uint8_t> stream;
   int64_t intra_planes = 0;
   int64_t inter_planes = 0;
+};
+
+// Encodes plane by plane (see encode()).
+class Encoder {
+ public:
+  explicit Encoder(const EncoderOptions& options = {});
+  ~Encoder();
+  Encoder(const Encoder&) = delete;
+  Encoder& operator=(const Encoder&) = delete;
+
+  void add(const MeshPlane& plane);
+  EncodeResult finish();
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 // Input planes hold every plane's node positions by the input's node index;

@@ -1,6 +1,7 @@
 #include "mesh/cdt.h"
 
 #include <algorithm>
+#include <array>
 #include <numeric>
 #include <string>
 
@@ -60,7 +61,7 @@ class Triangulation {
 
   void insert_all(const CdtOptions& options);
   void insert_boundary();
-  std::vector<Triangle> interior_triangles();
+  MeshTopology interior_triangles();
 
  private:
   struct Tri {
@@ -348,15 +349,16 @@ void Triangulation::insert_all(const CdtOptions& options) {
   if (options.shuffle) {
     uint64_t state = options.insertion_seed;
     for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[splitmix64(state) % i]);
-    // BRIO: the later half of each prefix is one round, sorted along a Hilbert curve.
-    std::vector<uint32_t> keys(node_count_);
-    for (uint32_t v = 0; v < node_count_; ++v) keys[v] = hilbert_index(points_[v]);
-    auto by_key = [&](uint32_t l, uint32_t r) { return keys[l] != keys[r] ? keys[l] < keys[r] : l < r; };
-    for (size_t end = order.size(); end > 0; end /= 2) {
+    // BRIO: the later half of each prefix is one round, sorted along a Hilbert curve
+    // (keys: Hilbert index above, node below).
+    std::vector<uint64_t> keys(node_count_);
+    for (size_t k = 0; k < order.size(); ++k) keys[k] = uint64_t{hilbert_index(points_[order[k]])} << 32 | order[k];
+    for (size_t end = keys.size(); end > 0; end /= 2) {
       const size_t begin = end / 2 < 64 ? 0 : end / 2;
-      std::sort(order.begin() + static_cast<std::ptrdiff_t>(begin), order.begin() + static_cast<std::ptrdiff_t>(end), by_key);
+      std::sort(keys.begin() + static_cast<std::ptrdiff_t>(begin), keys.begin() + static_cast<std::ptrdiff_t>(end));
       if (begin == 0) break;
     }
+    for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<uint32_t>(keys[k]);
   }
   uint32_t hint = 0;
   for (uint32_t v : order) insert(v, hint);
@@ -366,7 +368,7 @@ void Triangulation::insert_boundary() {
   for (uint32_t k = 0; k < boundary_count_; ++k) insert_constraint(k, (k + 1) % boundary_count_);
 }
 
-std::vector<Triangle> Triangulation::interior_triangles() {
+MeshTopology Triangulation::interior_triangles() {
   // Everything reachable from the enclosing triangle's corners without
   // crossing the boundary is outside.
   std::vector<uint8_t> outside(tris_.size(), 0);
@@ -389,17 +391,26 @@ std::vector<Triangle> Triangulation::interior_triangles() {
       }
     }
   }
-  std::vector<Triangle> result;
+  MeshTopology mesh;
+  std::vector<uint32_t> output_index(tris_.size(), kNoTriangle);
+  for (uint32_t t = 0; t < tris_.size(); ++t) {
+    if (outside[t]) continue;
+    output_index[t] = static_cast<uint32_t>(mesh.triangles.size());
+    mesh.triangles.push_back(Triangle{{tris_[t].v[0], tris_[t].v[1], tris_[t].v[2]}});
+  }
   std::vector<uint8_t> covered(node_count_, 0);
+  mesh.neighbours.reserve(mesh.triangles.size());
   for (uint32_t t = 0; t < tris_.size(); ++t) {
     if (outside[t]) continue;
     const Tri& tri = tris_[t];
-    result.push_back(Triangle{{tri.v[0], tri.v[1], tri.v[2]}});
+    std::array<uint32_t, 3> n;
+    for (int i = 0; i < 3; ++i) n[i] = tri.n[i] == kNone ? kNoTriangle : output_index[tri.n[i]];
+    mesh.neighbours.push_back(n);
     covered[tri.v[0]] = covered[tri.v[1]] = covered[tri.v[2]] = 1;
   }
   for (uint32_t v = boundary_count_; v < node_count_; ++v)
     if (!covered[v]) throw geometry_error("interior node " + std::to_string(v) + " lies outside the boundary");
-  return result;
+  return mesh;
 }
 
 }  // namespace
@@ -421,13 +432,13 @@ void validate_delaunay_nodes(std::span<const Point> nodes, uint32_t boundary_cou
     if (more_top_left(nodes[i], nodes[0]))
       throw geometry_error("node 0 is not the top-left node (node " + std::to_string(i) + " is)");
 
-  std::vector<uint32_t> sorted(n);
-  std::iota(sorted.begin(), sorted.end(), 0u);
-  auto key = [&](uint32_t i) { return int64_t{nodes[i].x} << 32 | static_cast<uint32_t>(nodes[i].y); };
-  std::sort(sorted.begin(), sorted.end(), [&](uint32_t l, uint32_t r) { return key(l) != key(r) ? key(l) < key(r) : l < r; });
-  for (uint32_t i = 1; i < n; ++i)
-    if (nodes[sorted[i]] == nodes[sorted[i - 1]])
-      throw geometry_error("nodes " + std::to_string(sorted[i - 1]) + " and " + std::to_string(sorted[i]) + " coincide");
+  // Coordinates are 10-bit: an occupancy map finds duplicates in linear time.
+  std::vector<uint32_t> first_at(size_t{1} << 20, kNone);
+  for (uint32_t i = 0; i < n; ++i) {
+    uint32_t& slot = first_at[static_cast<uint32_t>(nodes[i].y) << 10 | static_cast<uint32_t>(nodes[i].x)];
+    if (slot != kNone) throw geometry_error("nodes " + std::to_string(slot) + " and " + std::to_string(i) + " coincide");
+    slot = i;
+  }
 
   const uint32_t b = boundary_count;
   int64_t area = 0;
@@ -465,8 +476,7 @@ void validate_delaunay_nodes(std::span<const Point> nodes, uint32_t boundary_cou
   }
 }
 
-std::vector<Triangle> constrained_delaunay(std::span<const Point> nodes, uint32_t boundary_count,
-                                           const CdtOptions& options) {
+MeshTopology constrained_delaunay(std::span<const Point> nodes, uint32_t boundary_count, const CdtOptions& options) {
   validate_delaunay_nodes(nodes, boundary_count);
   Triangulation triangulation(nodes, boundary_count);
   triangulation.insert_all(options);

@@ -28,7 +28,7 @@ struct CdtOptions {
 void validate_delaunay_nodes(std::span<const Point> nodes, uint32_t boundary_count);
 
 // Validates, then triangulates. Triangles are clockwise (orient > 0).
-std::vector<Triangle> constrained_delaunay(std::span<const Point> nodes, uint32_t boundary_count,
+MeshTopology constrained_delaunay(std::span<const Point> nodes, uint32_t boundary_count,
                                            const CdtOptions& options = {});
 
 // Whether the edge (a, c) shared by clockwise triangles (a, b, c) and (a, c, d)

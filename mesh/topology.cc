@@ -5,35 +5,52 @@
 namespace m4mesh {
 
 std::vector<Triangle> canonical_triangles(std::span<const Triangle> triangles, std::span<const Point> nodes) {
-  std::vector<Triangle> out(triangles.begin(), triangles.end());
-  for (Triangle& t : out) {
+  // Bucket by the smallest index (a counting sort), then order each small bucket.
+  std::vector<Triangle> rotated(triangles.begin(), triangles.end());
+  std::vector<uint32_t> start(nodes.size() + 1, 0);
+  for (Triangle& t : rotated) {
     if (orient(nodes[t.v[0]], nodes[t.v[1]], nodes[t.v[2]]) < 0) std::swap(t.v[1], t.v[2]);
     std::rotate(t.v.begin(), std::min_element(t.v.begin(), t.v.end()), t.v.end());
+    ++start[t.v[0] + 1];
   }
-  std::sort(out.begin(), out.end());
+  for (size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+  std::vector<Triangle> out(rotated.size());
+  std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+  for (const Triangle& t : rotated) out[fill[t.v[0]]++] = t;
+  for (size_t i = 0; i + 1 < start.size(); ++i)
+    std::sort(out.begin() + start[i], out.begin() + start[i + 1]);
   return out;
 }
 
-HalfEdges::HalfEdges(std::span<const Triangle> triangles, size_t node_count) : first_(node_count + 1, 0) {
+TriangleNeighbours triangle_neighbours(std::span<const Triangle> triangles, size_t node_count) {
+  // Directed edges grouped by their first node.
+  std::vector<uint32_t> first(node_count + 1, 0);
   for (const Triangle& t : triangles)
-    for (NodeIndex from : t.v) ++first_[from + 1];
-  for (size_t i = 1; i <= node_count; ++i) first_[i] += first_[i - 1];
-  edges_.resize(triangles.size() * 3);
-  std::vector<uint32_t> fill(first_.begin(), first_.end() - 1);
-  for (uint32_t k = 0; k < triangles.size(); ++k) {
-    const Triangle& t = triangles[k];
-    for (int j = 0; j < 3; ++j) edges_[fill[t.v[j]]++] = Edge{t.v[(j + 1) % 3], t.v[(j + 2) % 3], k};
-  }
-}
+    for (NodeIndex from : t.v) ++first[from + 1];
+  for (size_t i = 1; i <= node_count; ++i) first[i] += first[i - 1];
+  struct Edge {
+    NodeIndex to;
+    uint32_t triangle;
+  };
+  std::vector<Edge> edges(triangles.size() * 3);
+  std::vector<uint32_t> fill(first.begin(), first.end() - 1);
+  for (uint32_t k = 0; k < triangles.size(); ++k)
+    for (int j = 0; j < 3; ++j) edges[fill[triangles[k].v[j]]++] = Edge{triangles[k].v[(j + 1) % 3], k};
 
-bool HalfEdges::find(NodeIndex a, NodeIndex b, Found& found) const {
-  for (uint32_t i = first_[a]; i < first_[a + 1]; ++i) {
-    if (edges_[i].to == b) {
-      found = Found{edges_[i].triangle, edges_[i].third};
-      return true;
+  TriangleNeighbours neighbours(triangles.size(), {kNoTriangle, kNoTriangle, kNoTriangle});
+  for (uint32_t k = 0; k < triangles.size(); ++k) {
+    for (int j = 0; j < 3; ++j) {
+      // The edge opposite v[j] runs v[j+1] → v[j+2]; its neighbour holds v[j+2] → v[j+1].
+      const NodeIndex a = triangles[k].v[(j + 2) % 3], b = triangles[k].v[(j + 1) % 3];
+      for (uint32_t e = first[a]; e < first[a + 1]; ++e) {
+        if (edges[e].to == b) {
+          neighbours[k][j] = edges[e].triangle;
+          break;
+        }
+      }
     }
   }
-  return false;
+  return neighbours;
 }
 
 }  // namespace m4mesh

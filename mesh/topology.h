@@ -23,27 +23,17 @@ struct Triangle {
 // start at its smallest index; the list sorted.
 std::vector<Triangle> canonical_triangles(std::span<const Triangle> triangles, std::span<const Point> nodes);
 
-// Directed half-edges grouped by their first node, for finding the
-// triangle on the other side of an edge in O(degree).
-class HalfEdges {
- public:
-  HalfEdges(std::span<const Triangle> triangles, size_t node_count);
+inline constexpr uint32_t kNoTriangle = 0xFFFFFFFF;
 
-  struct Found {
-    uint32_t triangle;
-    NodeIndex third;  // the triangle's node opposite the edge
-  };
-  // The triangle holding the directed edge a → b, if any.
-  bool find(NodeIndex a, NodeIndex b, Found& found) const;
+// neighbours[t][i]: the triangle across the edge of t opposite t.v[i], or
+// kNoTriangle on the border. Triangles must be consistently oriented.
+using TriangleNeighbours = std::vector<std::array<uint32_t, 3>>;
+TriangleNeighbours triangle_neighbours(std::span<const Triangle> triangles, size_t node_count);
 
- private:
-  std::vector<uint32_t> first_;  // per node, start in edges_
-  struct Edge {
-    NodeIndex to;
-    NodeIndex third;
-    uint32_t triangle;
-  };
-  std::vector<Edge> edges_;
+// A triangle mesh over node indices with its adjacency.
+struct MeshTopology {
+  std::vector<Triangle> triangles;
+  TriangleNeighbours neighbours;
 };
 
 }  // namespace m4mesh

@@ -17,8 +17,8 @@ Error traversal_error(const std::string& message) {
 
 }  // namespace
 
-MotionOrder method2_order(std::span<const Triangle> triangles, size_t node_count, NodeIndex first,
-                          NodeIndex second) {
+MotionOrder method2_order(std::span<const Triangle> triangles, const TriangleNeighbours& neighbours,
+                          size_t node_count, NodeIndex first, NodeIndex second) {
   MotionOrder order;
   order.zero_slot = static_cast<NodeIndex>(node_count);
   order.node.reserve(node_count);
@@ -31,10 +31,16 @@ MotionOrder method2_order(std::span<const Triangle> triangles, size_t node_count
     order.pred_b.push_back(b);
     done[node] = 1;
   };
+  auto slot = [&](uint32_t t, NodeIndex v) {
+    const Triangle& tri = triangles[t];
+    return tri.v[0] == v ? 0 : tri.v[1] == v ? 1 : 2;
+  };
 
-  HalfEdges edges(triangles, node_count);
-  HalfEdges::Found start;
-  if (!edges.find(first, second, start))
+  uint32_t start = kNoTriangle;
+  for (uint32_t t = 0; t < triangles.size() && start == kNoTriangle; ++t)
+    for (int j = 0; j < 3; ++j)
+      if (triangles[t].v[j] == first && triangles[t].v[(j + 1) % 3] == second) start = t;
+  if (start == kNoTriangle)
     throw traversal_error("no clockwise triangle holds the initial edge " + std::to_string(first) + "→" +
                           std::to_string(second));
   code(first, order.zero_slot, order.zero_slot);
@@ -43,22 +49,22 @@ MotionOrder method2_order(std::span<const Triangle> triangles, size_t node_count
   std::vector<uint8_t> labelled(triangles.size(), 0);
   std::vector<QueuedTriangle> queue;  // FIFO: a vector read from the front
   queue.reserve(triangles.size());
-  labelled[start.triangle] = 1;
-  queue.push_back({first, second, start.third, start.triangle});
+  labelled[start] = 1;
+  queue.push_back({first, second, triangles[start].v[(slot(start, second) + 1) % 3], start});
+  // The neighbour of t across the edge (a, b) opposite `across`, with its far node.
+  auto enqueue = [&](uint32_t t, NodeIndex across, NodeIndex base0, NodeIndex base1) {
+    const uint32_t next = neighbours[t][slot(t, across)];
+    if (next == kNoTriangle || labelled[next]) return;
+    labelled[next] = 1;
+    const Triangle& tri = triangles[next];
+    const NodeIndex far = tri.v[0] != base0 && tri.v[0] != base1 ? tri.v[0] : tri.v[1] != base0 && tri.v[1] != base1 ? tri.v[1] : tri.v[2];
+    queue.push_back({base0, base1, far, next});
+  };
   for (size_t head = 0; head < queue.size(); ++head) {
     const QueuedTriangle t = queue[head];
     if (!done[t.n]) code(t.n, t.l, t.m);
-    HalfEdges::Found next;
-    // Right edge (l, n): the neighbour holds l → n.
-    if (edges.find(t.l, t.n, next) && !labelled[next.triangle]) {
-      labelled[next.triangle] = 1;
-      queue.push_back({t.l, t.n, next.third, next.triangle});
-    }
-    // Left edge (m, n): the neighbour holds n → m.
-    if (edges.find(t.n, t.m, next) && !labelled[next.triangle]) {
-      labelled[next.triangle] = 1;
-      queue.push_back({t.n, t.m, next.third, next.triangle});
-    }
+    enqueue(t.triangle, t.m, t.l, t.n);  // right edge (l, n), appended as ⟨l, n, q⟩
+    enqueue(t.triangle, t.l, t.n, t.m);  // left edge (m, n), appended as ⟨n, m, q⟩
   }
   if (order.node.size() != node_count) {
     for (NodeIndex i = 0; i < node_count; ++i)

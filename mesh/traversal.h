@@ -26,8 +26,8 @@ struct MotionOrder {
 // Method II (§7): breadth-first over the clockwise triangles, starting at the
 // triangle holding the directed edge first → second. Fails (kGeometry) when
 // that edge is missing or a node is in no triangle reached.
-MotionOrder method2_order(std::span<const Triangle> triangles, size_t node_count, NodeIndex first,
-                          NodeIndex second);
+MotionOrder method2_order(std::span<const Triangle> triangles, const TriangleNeighbours& neighbours,
+                          size_t node_count, NodeIndex first, NodeIndex second);
 
 // Method I (§8): each node predicted from the one before it in `sequence`.
 MotionOrder method1_order(std::span<const NodeIndex> sequence);

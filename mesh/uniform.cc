@@ -38,4 +38,10 @@ std::vector<Triangle> uniform_triangles(const UniformParams& p) {
   return triangles;
 }
 
+MeshTopology uniform_topology(const UniformParams& params) {
+  MeshTopology mesh{uniform_triangles(params), {}};
+  mesh.neighbours = triangle_neighbours(mesh.triangles, size_t{params.cols} * params.rows);
+  return mesh;
+}
+
 }  // namespace m4mesh

@@ -22,6 +22,8 @@ struct UniformParams {
 std::vector<Point> uniform_nodes(const UniformParams& params);
 // Two clockwise triangles per rectangle, rectangles in row-major order.
 std::vector<Triangle> uniform_triangles(const UniformParams& params);
+// The triangles with their adjacency.
+MeshTopology uniform_topology(const UniformParams& params);
 // Whether rectangle (c, r) is split top-left to bottom-right.
 bool uniform_split_tl_br(uint32_t split, uint32_t c, uint32_t r);
 

@@ -12,7 +12,7 @@ namespace m4mesh {
 namespace {
 
 std::vector<Triangle> cdt(const std::vector<Point>& nodes, uint32_t boundary, CdtOptions options = {}) {
-  return canonical_triangles(constrained_delaunay(nodes, boundary, options), nodes);
+  return canonical_triangles(constrained_delaunay(nodes, boundary, options).triangles, nodes);
 }
 
 // The properties that make the triangulation the unique CDT: exact cover of

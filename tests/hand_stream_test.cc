@@ -103,7 +103,8 @@ TEST(HandStream, DecoderReproducesThePositions) {
 
 TEST(HandStream, MotionOrderMatchesTheHandTraversal) {
   const UniformParams params{3, 3, 16, 16, 0};
-  const MotionOrder order = method2_order(uniform_triangles(params), 9, 0, 1);
+  const MeshTopology mesh = uniform_topology(params);
+  const MotionOrder order = method2_order(mesh.triangles, mesh.neighbours, 9, 0, 1);
   EXPECT_EQ(order.node, (std::vector<NodeIndex>{0, 1, 4, 3, 5, 7, 8, 2, 6}));
   EXPECT_EQ(order.pred_a, (std::vector<NodeIndex>{9, 0, 0, 0, 4, 3, 4, 5, 3}));
   EXPECT_EQ(order.pred_b, (std::vector<NodeIndex>{9, 0, 1, 4, 1, 4, 5, 1, 7}));
