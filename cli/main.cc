@@ -189,7 +189,11 @@ int main(int argc, char** argv) {
     if (*demo_cmd) return run_demo(demo_options);
   } catch (const Error& e) {
     std::cout.flush();
-    std::fprintf(stderr, "error: %s: %s\n", current_file.c_str(), e.what());
+    // Input and file errors name their own file (and line).
+    if (e.kind() == ErrorKind::kInput || e.kind() == ErrorKind::kIo || current_file.empty())
+      std::fprintf(stderr, "error: %s\n", e.what());
+    else
+      std::fprintf(stderr, "error: %s: %s\n", current_file.c_str(), e.what());
     return 1;
   }
   return 0;

@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Installs what m4mesh needs to build and test on Debian (run as root).
+set -euo pipefail
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends \
+  g++ make cmake pkg-config \
+  libgtest-dev libgmock-dev libbenchmark-dev \
+  libcli11-dev libssl-dev libcgal-dev \
+  > /dev/null

@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# End-to-end checks of the m4mesh command line: usage as a person would.
+set -euo pipefail
+m4mesh="$1"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+
+cat > "$work/in.txt" <<'TXT'
+m4mesh-decoded 1
+plane 0 I uniform cols=3 rows=2 dx=16 dy=16 split=2
+nodes 6
+0 0
+16 0
+32 0
+0 16
+16 16
+32 16
+triangles 4
+0 1 4
+0 4 3
+1 2 4
+2 5 4
+plane 1 P range=2
+nodes 6
+1 0
+16 3
+32 0
+-40 16
+16 16
+32 16
+end
+TXT
+
+# encode → decode reproduces the text; decode → encode reproduces the stream.
+"$m4mesh" encode "$work/in.txt" -o "$work/a.m4m" 2> /dev/null
+"$m4mesh" decode "$work/a.m4m" -o "$work/out.txt" > /dev/null
+cmp -s "$work/in.txt" "$work/out.txt" || fail "decoded text differs from the input"
+"$m4mesh" encode "$work/out.txt" -o "$work/b.m4m" 2> /dev/null
+cmp -s "$work/a.m4m" "$work/b.m4m" || fail "re-encoding changed the stream"
+[ "$("$m4mesh" decode --md5 "$work/a.m4m")" = "$(md5sum < "$work/in.txt" | cut -d' ' -f1)" ] || fail "--md5 is not the MD5 of the text"
+
+# The encoder's trace equals the decoder's.
+"$m4mesh" encode --trace "$work/in.txt" -o "$work/c.m4m" > "$work/encode.trace" 2> /dev/null
+"$m4mesh" trace "$work/a.m4m" > "$work/decode.trace"
+cmp -s "$work/encode.trace" "$work/decode.trace" || fail "encoder and decoder traces differ"
+grep -q "delta_mv_x_res" "$work/decode.trace" || fail "trace lacks elements"
+"$m4mesh" info "$work/a.m4m" | grep -q "2 planes (1 I, 1 P), end code present" || fail "info"
+
+# A truncated stream: non-zero exit, a located message, no output file.
+head -c 20 "$work/a.m4m" > "$work/cut.m4m"
+if "$m4mesh" decode "$work/cut.m4m" -o "$work/cut.txt" 2> "$work/err"; then fail "truncated stream accepted"; fi
+grep -Eq "^error: .*cut.m4m: plane 1, [a-z_]+ at bit [0-9]+: " "$work/err" || fail "error message: $(cat "$work/err")"
+[ ! -e "$work/cut.txt" ] || fail "a failed decode left an output file"
+ls "$work" | grep -q tmp && fail "a temporary file was left behind"
+
+# Malformed encoder input names the file and line.
+sed 's/^16 3$/16 x/' "$work/in.txt" > "$work/bad.txt"
+if "$m4mesh" encode "$work/bad.txt" -o "$work/bad.m4m" 2> "$work/err"; then fail "bad input accepted"; fi
+grep -q "^error: .*bad.txt:18: expected an integer for y" "$work/err" || fail "input error: $(cat "$work/err")"
+
+"$m4mesh" demo --frames 12 > "$work/demo" || fail "demo failed"
+grep -q "bit-exact" "$work/demo" || fail "demo not bit-exact"
+echo "cli: all checks passed"
