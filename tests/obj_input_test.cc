@@ -1,0 +1,128 @@
+// OBJ frame sequences as encoder input.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "common/error.h"
+#include "encoder/encoder.h"
+#include "encoder/frame_input.h"
+#include "mesh/obj.h"
+#include "tests/test_util.h"
+
+namespace m4mesh {
+namespace {
+
+namespace fs = std::filesystem;
+
+class TempDir {
+ public:
+  TempDir() : path_(fs::temp_directory_path() / ("m4mesh-test-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "-" +
+                                                 ::testing::UnitTest::GetInstance()->current_test_info()->name())) {
+    fs::create_directories(path_);
+  }
+  ~TempDir() { fs::remove_all(path_); }
+  std::string write(const std::string& name, const std::string& text) const {
+    const fs::path p = path_ / name;
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  std::string path() const { return path_.string(); }
+
+ private:
+  fs::path path_;
+};
+
+// A 3×2 grid with spacing 0.5 (8 half pixels at scale 16), split '00'.
+std::string grid_obj(double shift_y) {
+  std::string text = "# grid\n";
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 3; ++c)
+      text += "v " + std::to_string(c * 0.5) + " " + std::to_string(r * 0.5 + shift_y) + " 0\n";
+  text += "f 1 2 5\nf 1 5 4\nf 2/1 3/2 6/3\nf 2 6 5\n";
+  return text;
+}
+
+TEST(ObjInput, FramesAreReadInNumericOrder) {
+  TempDir dir;
+  dir.write("f10.obj", grid_obj(0.125));
+  dir.write("f2.obj", grid_obj(0.0625));
+  dir.write("f1.obj", grid_obj(0));
+  dir.write("notes.txt", "not a frame");
+  const std::vector<std::string> files = frame_files(dir.path());
+  ASSERT_EQ(files.size(), 3u);
+  EXPECT_TRUE(files[0].ends_with("f1.obj"));
+  EXPECT_TRUE(files[1].ends_with("f2.obj"));
+  EXPECT_TRUE(files[2].ends_with("f10.obj"));
+  EXPECT_EQ(frame_files(dir.path() + "/f1*.obj").size(), 2u);
+}
+
+TEST(ObjInput, AGridBecomesAUniformMesh) {
+  TempDir dir;
+  std::vector<ObjFrame> frames{read_obj(dir.write("1.obj", grid_obj(0))), read_obj(dir.write("2.obj", grid_obj(0.0625)))};
+  const FrameInput input = planes_from_frames(frames, {"1.obj", "2.obj"}, 16);
+  ASSERT_EQ(input.planes.size(), 2u);
+  EXPECT_EQ(input.planes[0].info.kind, MeshKind::kUniform);
+  EXPECT_EQ(input.planes[0].info.uniform, (UniformParams{3, 2, 8, 8, 0}));
+  EXPECT_EQ(input.planes[1].nodes[4], (Point{8, 9}));
+  const std::string text = test::decoded_text(encode(input.planes).stream);
+  EXPECT_NE(text.find("plane 1 P range=1"), std::string::npos);
+}
+
+TEST(ObjInput, AnIrregularMeshBecomesDelaunayWithItsBoundaryLoop) {
+  TempDir dir;
+  // A square with a centre node, triangulated as a fan: the CDT agrees.
+  const std::string square = "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv 5 5 0\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n";
+  std::vector<ObjFrame> frames{read_obj(dir.write("a.obj", square))};
+  FrameInput input = planes_from_frames(frames, {"a.obj"}, 2);
+  EXPECT_EQ(input.planes[0].info.kind, MeshKind::kDelaunay);
+  EXPECT_EQ(input.planes[0].info.boundary, 4u);
+  std::vector<std::string> reports;
+  EncoderOptions options;
+  options.report = [&](const std::string& message) { reports.push_back(message); };
+  encode(input.planes, options);
+  EXPECT_TRUE(reports.empty());
+  // The same square split by one diagonal without the centre's fan: reported.
+  const std::string other = "v 0 0 0\nv 10 0 0\nv 10 10 0\nv 0 10 0\nv 5 5 0\nf 1 2 5\nf 2 3 5\nf 3 4 1\nf 3 1 5\n";
+  frames = {read_obj(dir.write("b.obj", other))};
+  input = planes_from_frames(frames, {"b.obj"}, 2);
+  encode(input.planes, options);
+  ASSERT_EQ(reports.size(), 1u);
+  EXPECT_NE(reports[0].find("the decoder's triangles win"), std::string::npos);
+}
+
+TEST(ObjInput, MalformedFilesNameTheLine) {
+  TempDir dir;
+  const std::pair<std::string, std::string> cases[] = {
+      {"v 0 0 0\nv 1 nan 0\n", ":2: non-finite number"},
+      {"v 0 0 0\nv 1 inf 0\n", ":2: non-finite number"},
+      {"v 0 0\n", ":1: a vertex needs x y z"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", ":4: face index 4 outside 1…3"},
+      {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", ":4: malformed face index"},
+      {"# nothing\n", ": no vertices"},
+  };
+  int k = 0;
+  for (const auto& [text, fragment] : cases) {
+    const std::string path = dir.write("bad" + std::to_string(k++) + ".obj", text);
+    try {
+      read_obj(path);
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(path + fragment), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(ObjInput, ChangingConnectivityIsRejected) {
+  TempDir dir;
+  ObjFrame a = read_obj(dir.write("1.obj", grid_obj(0)));
+  ObjFrame b = a;
+  b.vertices.pop_back();
+  EXPECT_THROW(planes_from_frames({a, b}, {"1.obj", "2.obj"}, 16), Error);
+  b = a;
+  std::swap(b.faces[0], b.faces[1]);
+  EXPECT_THROW(planes_from_frames({a, b}, {"1.obj", "2.obj"}, 16), Error);
+}
+
+}  // namespace
+}  // namespace m4mesh
