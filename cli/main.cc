@@ -8,6 +8,9 @@
 #include "cli/demo.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "conformance/checker.h"
+#include "conformance/manifest.h"
+#include "conformance/runner.h"
 #include "decoder/decoder.h"
 #include "encoder/encoder.h"
 #include "encoder/frame_input.h"
@@ -139,6 +142,30 @@ int run_info(const std::string& input) {
   return 0;
 }
 
+int run_check(const std::string& input) {
+  const std::vector<uint8_t> stream = read_file(input);
+  const CheckReport report = check_stream(stream);
+  for (const Finding& f : report.findings) std::printf("%s\n", format_finding(f).c_str());
+  const size_t errors = report.errors();
+  std::printf("%s: %lld planes, %zu errors, %zu warnings: %s\n", input.c_str(), static_cast<long long>(report.planes), errors,
+              report.findings.size() - errors, report.conformant() ? "conformant" : "NOT conformant");
+  return report.conformant() ? 0 : 1;
+}
+
+int run_conform(const ConformOptions& options) {
+  const ConformResult result = run_conformance(options, std::cout);
+  return result.failed == 0 ? 0 : 1;
+}
+
+int run_generate_suite(const std::string& folder) {
+  const Manifest manifest = generate_suite(folder);
+  size_t valid = 0;
+  for (const ManifestEntry& e : manifest.entries) valid += e.valid;
+  std::printf("%s: %zu streams (%zu to decode, %zu to reject) and manifest.json\n", folder.c_str(), manifest.entries.size(),
+              valid, manifest.entries.size() - valid);
+  return 0;
+}
+
 }  // namespace
 }  // namespace m4mesh
 
@@ -173,6 +200,21 @@ int main(int argc, char** argv) {
   CLI::App* info_cmd = app.add_subcommand("info", "Summarise a mesh stream plane by plane");
   info_cmd->add_option("input", info_input, "mesh stream")->required();
 
+  std::string check_input;
+  CLI::App* check_cmd = app.add_subcommand("check", "List every violation of the specification in a stream (exit 0 only if conformant)");
+  check_cmd->add_option("input", check_input, "mesh stream")->required();
+
+  ConformOptions conform_options;
+  conform_options.suite = M4MESH_CONFORMANCE_DIR;
+  CLI::App* conform_cmd = app.add_subcommand("conform", "Run the conformance suite through m4mesh's or another decoder");
+  conform_cmd->add_option("suite", conform_options.suite, "suite folder holding manifest.json")->capture_default_str();
+  conform_cmd->add_option("--decoder", conform_options.decoder_command,
+                          "external decoder command: {in} stream, {out} §9 text to write, {method} 1 or 2");
+
+  std::string suite_folder;
+  CLI::App* generate_cmd = app.add_subcommand("generate-suite", "Regenerate the conformance streams and manifest");
+  generate_cmd->add_option("folder", suite_folder, "output folder")->required();
+
   DemoOptions demo_options;
   CLI::App* demo_cmd = app.add_subcommand("demo", "Encode and decode an embedded waving-flag animation, check bit-exactness");
   demo_cmd->add_option("--cols", demo_options.cols, "nodes per row")->check(CLI::Range(2, 1023));
@@ -186,6 +228,9 @@ int main(int argc, char** argv) {
     if (*decode_cmd) return current_file = decode_args.input, run_decode(decode_args);
     if (*trace_cmd) return current_file = trace_input, run_trace(trace_input);
     if (*info_cmd) return current_file = info_input, run_info(info_input);
+    if (*check_cmd) return current_file = check_input, run_check(check_input);
+    if (*conform_cmd) return run_conform(conform_options);
+    if (*generate_cmd) return run_generate_suite(suite_folder);
     if (*demo_cmd) return run_demo(demo_options);
   } catch (const Error& e) {
     std::cout.flush();

@@ -13,20 +13,6 @@ namespace {
 // them in 32 bits and stops, naming the plane, before they could overflow.
 constexpr int32_t kPositionLimit = 1 << 30;
 
-// Node coordinates from node0 and the deltas (their range is checked while parsing).
-std::vector<Point> delaunay_node_positions(const DelaunayGeometry& g) {
-  std::vector<Point> nodes;
-  nodes.reserve(g.nr_of_mesh_nodes);
-  Point p{static_cast<int32_t>(g.node0_x), static_cast<int32_t>(g.node0_y)};
-  nodes.push_back(p);
-  for (const NodeDelta& d : g.deltas) {
-    p.x += delta_value(d.x);
-    p.y += delta_value(d.y);
-    nodes.push_back(p);
-  }
-  return nodes;
-}
-
 Error plane_error(ErrorKind kind, const char* element, int64_t plane, uint64_t offset,
                   const std::string& message) {
   return Error(kind, element, plane, static_cast<int64_t>(offset), message);
@@ -120,6 +106,19 @@ void Decoder::decode_motion(const MeshMotion& motion, uint64_t plane_start) {
   if (overflow)
     throw plane_error(ErrorKind::kLimit, "MeshMotion", plane_index(), plane_start,
                       "node positions leave ±2^30 half pixels (decoder limit, docs/decisions.md)");
+}
+
+std::vector<Point> delaunay_node_positions(const DelaunayGeometry& g) {
+  std::vector<Point> nodes;
+  nodes.reserve(g.nr_of_mesh_nodes);
+  Point p{static_cast<int32_t>(g.node0_x), static_cast<int32_t>(g.node0_y)};
+  nodes.push_back(p);
+  for (const NodeDelta& d : g.deltas) {
+    p.x += delta_value(d.x);
+    p.y += delta_value(d.y);
+    nodes.push_back(p);
+  }
+  return nodes;
 }
 
 std::string decode_to_text(std::span<const uint8_t> stream, const DecoderOptions& options,

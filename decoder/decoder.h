@@ -34,6 +34,8 @@ class Decoder {
   std::span<const Triangle> triangles() const { return triangles_; }
   const std::vector<syntax::Warning>& warnings() const { return reader_.warnings(); }
   bool has_end_code() const { return reader_.has_end_code(); }
+  // The coding order of the current mesh's P-planes.
+  const MotionOrder& motion_order() const { return order_; }
   uint64_t bit_position() const { return reader_.position(); }
 
  private:
@@ -49,6 +51,9 @@ class Decoder {
   MotionOrder order_;
   std::vector<Point> vectors_;  // per node, plus the zero slot
 };
+
+// Delaunay node coordinates from node0 and the deltas.
+std::vector<Point> delaunay_node_positions(const DelaunayGeometry& geometry);
 
 // Decodes a whole stream into §9 text (sink may be empty) and returns its MD5.
 std::string decode_to_text(std::span<const uint8_t> stream, const DecoderOptions& options,

@@ -422,22 +422,38 @@ bool delaunay_flip(const Point& pa, const Point& pb, const Point& pc, const Poin
   return std::min(b, d) < std::min(a, c);
 }
 
-void validate_delaunay_nodes(std::span<const Point> nodes, uint32_t boundary_count) {
+std::vector<std::string> delaunay_node_violations(std::span<const Point> nodes, uint32_t boundary_count,
+                                                  size_t max_reports) {
+  std::vector<std::string> found;
+  auto report = [&](std::string message) {
+    if (found.size() < max_reports) found.push_back(std::move(message));
+  };
   const uint32_t n = static_cast<uint32_t>(nodes.size());
-  if (boundary_count < 3 || boundary_count > n) throw geometry_error("need 3 … " + std::to_string(n) + " boundary nodes");
-  for (uint32_t i = 0; i < n; ++i)
-    if (nodes[i].x < 0 || nodes[i].x > kMaxCoordinate || nodes[i].y < 0 || nodes[i].y > kMaxCoordinate)
-      throw geometry_error("node " + std::to_string(i) + " lies outside 0…1023");
+  if (boundary_count < 3 || boundary_count > n) {
+    report("need 3 … " + std::to_string(n) + " boundary nodes");
+    return found;
+  }
+  bool coordinates_ok = true;
+  for (uint32_t i = 0; i < n; ++i) {
+    if (nodes[i].x < 0 || nodes[i].x > kMaxCoordinate || nodes[i].y < 0 || nodes[i].y > kMaxCoordinate) {
+      report("node " + std::to_string(i) + " lies outside 0…1023");
+      coordinates_ok = false;
+    }
+  }
+  if (!coordinates_ok) return found;
+  NodeIndex top_left = 0;
   for (uint32_t i = 1; i < n; ++i)
-    if (more_top_left(nodes[i], nodes[0]))
-      throw geometry_error("node 0 is not the top-left node (node " + std::to_string(i) + " is)");
+    if (more_top_left(nodes[i], nodes[top_left])) top_left = i;
+  if (top_left != 0) report("node 0 is not the top-left node (node " + std::to_string(top_left) + " is)");
 
   // Coordinates are 10-bit: an occupancy map finds duplicates in linear time.
   std::vector<uint32_t> first_at(size_t{1} << 20, kNone);
   for (uint32_t i = 0; i < n; ++i) {
     uint32_t& slot = first_at[static_cast<uint32_t>(nodes[i].y) << 10 | static_cast<uint32_t>(nodes[i].x)];
-    if (slot != kNone) throw geometry_error("nodes " + std::to_string(slot) + " and " + std::to_string(i) + " coincide");
-    slot = i;
+    if (slot != kNone)
+      report("nodes " + std::to_string(slot) + " and " + std::to_string(i) + " coincide");
+    else
+      slot = i;
   }
 
   const uint32_t b = boundary_count;
@@ -446,9 +462,8 @@ void validate_delaunay_nodes(std::span<const Point> nodes, uint32_t boundary_cou
     const Point &p = nodes[i], &q = nodes[(i + 1) % b];
     area += int64_t{p.x} * q.y - int64_t{q.x} * p.y;
   }
-  if (area >= 0)
-    throw geometry_error(area == 0 ? "the boundary polygon has zero area"
-                                   : "the boundary polygon is clockwise (area " + std::to_string(area) + " > 0)");
+  if (area == 0) report("the boundary polygon has zero area");
+  if (area > 0) report("the boundary polygon is clockwise (area " + std::to_string(area) + " > 0)");
 
   // Simple: adjacent edges do not fold back, non-adjacent edges do not touch.
   auto on_segment = [](const Point& p, const Point& q, const Point& r) {
@@ -464,16 +479,22 @@ void validate_delaunay_nodes(std::span<const Point> nodes, uint32_t boundary_cou
     const Point &p0 = nodes[(i + b - 1) % b], &p1 = nodes[i], &p2 = nodes[(i + 1) % b];
     if (orient(p0, p1, p2) == 0 &&
         (int64_t{p0.x} - p1.x) * (p2.x - p1.x) + (int64_t{p0.y} - p1.y) * (p2.y - p1.y) > 0)
-      throw geometry_error("the boundary folds back on itself at node " + std::to_string(i));
+      report("the boundary folds back on itself at node " + std::to_string(i));
   }
   for (uint32_t i = 0; i < b; ++i) {
     for (uint32_t j = i + 2; j < b; ++j) {
       if (i == 0 && j == b - 1) continue;  // adjacent through the closing edge
       if (touch(nodes[i], nodes[(i + 1) % b], nodes[j], nodes[(j + 1) % b]))
-        throw geometry_error("boundary edges (" + std::to_string(i) + ", " + std::to_string((i + 1) % b) + ") and (" +
-                             std::to_string(j) + ", " + std::to_string((j + 1) % b) + ") touch: the boundary is not simple");
+        report("boundary edges (" + std::to_string(i) + ", " + std::to_string((i + 1) % b) + ") and (" +
+               std::to_string(j) + ", " + std::to_string((j + 1) % b) + ") touch: the boundary is not simple");
     }
   }
+  return found;
+}
+
+void validate_delaunay_nodes(std::span<const Point> nodes, uint32_t boundary_count) {
+  const std::vector<std::string> violations = delaunay_node_violations(nodes, boundary_count, 1);
+  if (!violations.empty()) throw geometry_error(violations.front());
 }
 
 MeshTopology constrained_delaunay(std::span<const Point> nodes, uint32_t boundary_count, const CdtOptions& options) {

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "mesh/geometry.h"
@@ -26,6 +27,9 @@ struct CdtOptions {
 // the top-left node, no duplicates, a simple counterclockwise boundary.
 // Interior nodes strictly inside are checked by constrained_delaunay().
 void validate_delaunay_nodes(std::span<const Point> nodes, uint32_t boundary_count);
+// Every such violation, up to max_reports of them (empty when valid).
+std::vector<std::string> delaunay_node_violations(std::span<const Point> nodes, uint32_t boundary_count,
+                                                  size_t max_reports);
 
 // Validates, then triangulates. Triangles are clockwise (orient > 0).
 MeshTopology constrained_delaunay(std::span<const Point> nodes, uint32_t boundary_count,

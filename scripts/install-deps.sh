@@ -6,5 +6,5 @@ apt-get update -qq
 apt-get install -y -qq --no-install-recommends \
   g++ make cmake pkg-config \
   libgtest-dev libgmock-dev libbenchmark-dev \
-  libcli11-dev libssl-dev libcgal-dev \
+  libcli11-dev libssl-dev libcgal-dev nlohmann-json3-dev \
   > /dev/null

@@ -1,0 +1,180 @@
+// The conformance suite: regeneration, coverage, syntax round trips and the checker.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <tuple>
+
+#include "common/atomic_file.h"
+#include "conformance/checker.h"
+#include "conformance/coverage.h"
+#include "conformance/manifest.h"
+#include "syntax/mesh_object.h"
+#include "syntax/values.h"
+#include "tests/test_util.h"
+
+namespace m4mesh {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kSuite = M4MESH_CONFORMANCE_DIR;
+const fs::path kSpec = fs::path(M4MESH_SOURCE_DIR) / ".." / "shared" / "spec" / "mesh-bitstream.md";
+
+std::vector<uint8_t> stream_of(const ManifestEntry& e) { return read_file((kSuite / e.file).string()); }
+
+TEST(Conformance, RegenerationGivesIdenticalBytes) {
+  const fs::path folder = fs::temp_directory_path() / "m4mesh-suite-regenerated";
+  fs::remove_all(folder);
+  const Manifest regenerated = generate_suite(folder.string());
+  EXPECT_EQ(read_file((folder / "manifest.json").string()), read_file((kSuite / "manifest.json").string()))
+      << "manifest.json differs: run `m4mesh generate-suite conformance` and review the change";
+  for (const ManifestEntry& e : regenerated.entries)
+    EXPECT_EQ(read_file((folder / e.file).string()), stream_of(e)) << e.id << " differs from the committed stream";
+  size_t committed = 0;
+  for (const auto& entry : fs::directory_iterator(kSuite / "streams")) committed += entry.path().extension() == ".m4m";
+  EXPECT_EQ(committed, regenerated.entries.size()) << "streams/ holds files the manifest does not list";
+  fs::remove_all(folder);
+}
+
+TEST(Conformance, SuiteSize) {
+  const Manifest manifest = read_manifest((kSuite / "manifest.json").string());
+  size_t valid = 0;
+  for (const ManifestEntry& e : manifest.entries) valid += e.valid;
+  EXPECT_GE(valid, 40u);
+  EXPECT_GE(manifest.entries.size() - valid, 20u);
+}
+
+// Every numbered clause of the specification has a stream.
+TEST(Conformance, EveryClauseOfTheSpecificationIsCovered) {
+  if (!fs::exists(kSpec)) GTEST_SKIP() << "the specification is not at " << kSpec << " (../shared absent)";
+  std::ifstream spec(kSpec);
+  const std::regex heading(R"(^#{2,3} (\d+(\.\d+)?)\.? )");
+  std::set<std::string> clauses;
+  for (std::string line; std::getline(spec, line);) {
+    std::smatch m;
+    if (std::regex_search(line, m, heading)) clauses.insert(m[1]);
+  }
+  ASSERT_GE(clauses.size(), 20u);
+  std::set<std::string> covered;
+  for (const ManifestEntry& e : read_manifest((kSuite / "manifest.json").string()).entries)
+    for (const std::string& c : e.clauses) {
+      covered.insert(c);
+      covered.insert(c.substr(0, c.find('.')));  // a subclause covers its parent
+    }
+  // §12 (3D containers) is exercised by the 3D suites, not by 2D mesh object streams.
+  clauses.erase("12");
+  for (const std::string& c : clauses) EXPECT_TRUE(covered.count(c)) << "no stream covers §" << c;
+}
+
+// The manifest's value classes are what the streams really contain, and
+// together they cover every required class.
+TEST(Conformance, ValueClassesAreCoveredAndTrue) {
+  std::set<std::string> covered;
+  for (const ManifestEntry& e : read_manifest((kSuite / "manifest.json").string()).entries) {
+    if (!e.valid) continue;
+    const std::set<std::string> actual = value_classes(stream_of(e), e.method == 1 ? MotionMethod::kMethod1 : MotionMethod::kMethod2);
+    EXPECT_EQ(std::set<std::string>(e.classes.begin(), e.classes.end()), actual) << e.id;
+    covered.insert(actual.begin(), actual.end());
+  }
+  for (const std::string& c : required_value_classes()) EXPECT_TRUE(covered.count(c)) << "no stream has value class " << c;
+}
+
+// Parse every stream the syntax can hold into structures and write it back.
+TEST(Conformance, EveryParsableStreamRoundTripsThroughSyntaxStructures) {
+  for (const ManifestEntry& e : read_manifest((kSuite / "manifest.json").string()).entries) {
+    const std::vector<uint8_t> stream = stream_of(e);
+    // Valid streams, and negative ones whose error is in the geometry, hold correct syntax.
+    const bool parsable = e.valid || e.error_kind == "geometry";
+    MeshObject object;
+    try {
+      object = syntax::read_mesh_object(stream);
+    } catch (const Error& error) {
+      EXPECT_FALSE(parsable) << e.id << " does not parse: " << error.what();
+      continue;
+    }
+    EXPECT_TRUE(parsable) << e.id << " parses";
+    EXPECT_EQ(syntax::write_mesh_object(object), stream) << e.id;
+  }
+}
+
+TEST(Conformance, CheckerAcceptsValidAndRejectsInvalidStreams) {
+  for (const ManifestEntry& e : read_manifest((kSuite / "manifest.json").string()).entries) {
+    const CheckReport report = check_stream(stream_of(e));
+    EXPECT_EQ(report.conformant(), e.valid) << e.id;
+    if (e.valid) {
+      std::vector<std::string> warnings;
+      for (const Finding& f : report.findings) warnings.push_back(format_finding(f));
+      EXPECT_EQ(warnings, e.warnings) << e.id;
+      continue;
+    }
+    ASSERT_FALSE(report.findings.empty()) << e.id;
+    const Finding& first = *std::find_if(report.findings.begin(), report.findings.end(), [](const Finding& f) { return f.error; });
+    EXPECT_EQ(to_string(first.kind), e.error_kind) << e.id << ": " << format_finding(first);
+  }
+}
+
+// Violations in two planes, and two in one plane: the checker lists them all.
+TEST(Conformance, CheckerListsEveryViolation) {
+  const Manifest manifest = read_manifest((kSuite / "manifest.json").string());
+  std::vector<uint8_t> stream;
+  for (const ManifestEntry& e : manifest.entries)
+    if (e.id == "p02-uniform-split0") stream = stream_of(e);
+  ASSERT_EQ(stream.size() > 0, true);
+  // Where each element lies, from the tracer.
+  std::ostringstream text;
+  Trace trace(text);
+  syntax::read_mesh_object(stream, &trace);
+  std::vector<std::tuple<uint64_t, std::string, int>> elements;
+  std::istringstream lines(text.str());
+  uint64_t offset;
+  std::string name, value;
+  int bits;
+  while (lines >> offset >> name >> bits >> value) elements.push_back({offset, name, bits});
+  auto set_bit = [&](uint64_t bit, bool one) {
+    const uint8_t mask = static_cast<uint8_t>(0x80 >> (bit % 8));
+    stream[bit / 8] = one ? stream[bit / 8] | mask : stream[bit / 8] & static_cast<uint8_t>(~mask);
+  };
+  int ranges = 0, stuffings = 0;
+  for (const auto& [at, element, size] : elements) {
+    if (element == "motion_range_code" && ranges++ == 0) set_bit(at, false), set_bit(at + 1, false);  // plane 1: range 0
+    if (element == "next_start_code" && stuffings++ == 3) set_bit(at, true);                           // plane 3: stuffing
+  }
+  const CheckReport report = check_stream(stream);
+  std::set<int64_t> planes;
+  for (const Finding& f : report.findings)
+    if (f.error) planes.insert(f.plane);
+  EXPECT_EQ(planes, (std::set<int64_t>{1, 3})) << [&] {
+    std::string all;
+    for (const Finding& f : report.findings) all += format_finding(f) + "\n";
+    return all;
+  }();
+
+  // A clockwise boundary with two coinciding nodes: both reported for plane 0.
+  const std::vector<Point> nodes{{0, 0}, {100, 0}, {100, 100}, {0, 100}, {50, 50}, {50, 50}};
+  MeshObject object;
+  object.planes.resize(1);
+  MeshGeometry& g = object.planes[0].geometry;
+  g.mesh_type_code = kMeshTypeDelaunay;
+  g.delaunay.nr_of_mesh_nodes = 6;
+  g.delaunay.nr_of_boundary_nodes = 4;
+  for (size_t i = 1; i < nodes.size(); ++i)
+    g.delaunay.deltas.push_back({delta_code(nodes[i].x - nodes[i - 1].x), delta_code(nodes[i].y - nodes[i - 1].y)});
+  const CheckReport geometry = check_stream(syntax::write_mesh_object(object));
+  EXPECT_EQ(geometry.errors(), 2u);
+  for (const Finding& f : geometry.findings) EXPECT_EQ(f.plane, 0);
+}
+
+TEST(Conformance, EmulationScan) {
+  // 23 zeros then a one, at bit 3.
+  const std::vector<uint8_t> bytes = test::bytes_from_bits("11100000 00000000 00000000 00110000");
+  EXPECT_EQ(start_code_emulations(bytes, 0, 32), (std::vector<uint64_t>{3}));
+  EXPECT_TRUE(start_code_emulations(bytes, 0, 26).empty());  // the '1' lies outside the range
+  EXPECT_TRUE(start_code_emulations(test::bytes_from_bits("00000000 00000000 00000010"), 0, 24).empty());  // 22 zeros
+}
+
+}  // namespace
+}  // namespace m4mesh
