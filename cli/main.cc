@@ -84,7 +84,8 @@ int run_decode(const DecodeArgs& args) {
   Decoder decoder(stream, options);
   auto decode_all = [&](const DecodedTextWriter::Sink& sink) {
     DecodedTextWriter writer(sink);
-    while (decoder.next()) writer.plane(decoder.info(), decoder.nodes(), decoder.triangles());
+    while (decoder.next())
+      writer.plane(decoder.info(), decoder.nodes(), decoder.info().intra ? decoder.triangles() : std::span<const Triangle>{});
     return writer.finish();
   };
   if (args.output.empty()) {

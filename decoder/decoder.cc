@@ -36,46 +36,67 @@ bool Decoder::next() {
 void Decoder::decode_geometry(const MeshGeometry& g, uint64_t plane_start) {
   info_ = PlaneInfo{};
   info_.intra = true;
-  MeshTopology mesh;
   if (g.mesh_type_code == kMeshTypeUniform) {
     const UniformGeometry& u = g.uniform;
     info_.kind = MeshKind::kUniform;
     info_.uniform = UniformParams{u.nr_of_mesh_nodes_hori, u.nr_of_mesh_nodes_verti, u.mesh_rect_size_hori,
                                   u.mesh_rect_size_verti, u.triangle_split_code};
-    nodes_ = uniform_nodes(info_.uniform);
-    mesh = uniform_topology(info_.uniform);
   } else {
-    const DelaunayGeometry& d = g.delaunay;
     info_.kind = MeshKind::kDelaunay;
-    info_.boundary = d.nr_of_boundary_nodes;
-    nodes_ = delaunay_node_positions(d);
+    info_.boundary = g.delaunay.nr_of_boundary_nodes;
+  }
+  intra_info_ = info_;
+  mesh_ = MeshTopology{};
+  order_ready_ = false;
+  triangles_ready_ = false;
+  if (info_.kind == MeshKind::kUniform) {
+    // The topology, traversal and triangle list follow from five numbers:
+    // they are built when a P-plane or the output first needs them.
+    nodes_ = uniform_nodes(info_.uniform);
+  } else {
+    // The triangulation validates the geometry, so it is built at once.
+    nodes_ = delaunay_node_positions(g.delaunay);
     try {
-      mesh = constrained_delaunay(nodes_, d.nr_of_boundary_nodes);
+      mesh_ = constrained_delaunay(nodes_, info_.boundary);
+      build_order();
     } catch (const Error& e) {
       throw plane_error(e.kind(), "MeshGeometry", plane_index(), plane_start, e.message());
     }
+    triangles_ = canonical_triangles(mesh_.triangles, nodes_);
+    triangles_ready_ = true;
   }
+  vectors_.assign(nodes_.size() + 1, Point{});
+}
+
+void Decoder::build_order() {
   const NodeIndex count = static_cast<NodeIndex>(nodes_.size());
   if (options_.method == MotionMethod::kMethod2) {
+    const bool uniform = intra_info_.kind == MeshKind::kUniform;
+    if (uniform && mesh_.triangles.empty()) mesh_ = uniform_topology(intra_info_.uniform);
     // §7.1: from the top-left node to the next clockwise boundary node.
-    const NodeIndex second = info_.kind == MeshKind::kUniform ? 1 : info_.boundary - 1;
-    try {
-      order_ = method2_order(mesh.triangles, mesh.neighbours, count, 0, second);
-    } catch (const Error& e) {
-      throw plane_error(e.kind(), "MeshGeometry", plane_index(), plane_start, e.message());
-    }
-  } else if (info_.kind == MeshKind::kUniform) {
-    order_ = method1_order(boustrophedon(info_.uniform.cols, info_.uniform.rows));
+    const NodeIndex second = uniform ? 1 : intra_info_.boundary - 1;
+    order_ = method2_order(mesh_.triangles, mesh_.neighbours, count, 0, second);
+  } else if (intra_info_.kind == MeshKind::kUniform) {
+    order_ = method1_order(boustrophedon(intra_info_.uniform.cols, intra_info_.uniform.rows));
   } else {
     std::vector<NodeIndex> sequence(count);
     for (NodeIndex i = 0; i < count; ++i) sequence[i] = i;
     order_ = method1_order(sequence);
   }
-  triangles_ = canonical_triangles(mesh.triangles, nodes_);
-  vectors_.assign(count + size_t{1}, Point{});
+  order_ready_ = true;
+}
+
+std::span<const Triangle> Decoder::triangles() {
+  if (!triangles_ready_) {  // a uniform mesh: listed from its parameters on first use
+    const UniformParams& u = intra_info_.uniform;
+    triangles_ = canonical_triangles(uniform_triangles(u), uniform_nodes(u));
+    triangles_ready_ = true;
+  }
+  return triangles_;
 }
 
 void Decoder::decode_motion(const MeshMotion& motion, uint64_t plane_start) {
+  if (!order_ready_) build_order();
   info_ = PlaneInfo{};
   info_.intra = false;
   info_.range = motion.motion_range_code;
@@ -125,7 +146,8 @@ std::string decode_to_text(std::span<const uint8_t> stream, const DecoderOptions
                            const std::function<void(std::string_view)>& sink) {
   Decoder decoder(stream, options);
   DecodedTextWriter writer(sink);
-  while (decoder.next()) writer.plane(decoder.info(), decoder.nodes(), decoder.triangles());
+  while (decoder.next())
+    writer.plane(decoder.info(), decoder.nodes(), decoder.info().intra ? decoder.triangles() : std::span<const Triangle>{});
   return writer.finish();
 }
 

@@ -31,7 +31,7 @@ class Decoder {
   // Node positions after the current plane, by node index.
   std::span<const Point> nodes() const { return nodes_; }
   // Canonical triangles (§9) of the current mesh.
-  std::span<const Triangle> triangles() const { return triangles_; }
+  std::span<const Triangle> triangles();
   const std::vector<syntax::Warning>& warnings() const { return reader_.warnings(); }
   bool has_end_code() const { return reader_.has_end_code(); }
   // The coding order of the current mesh's P-planes.
@@ -40,15 +40,20 @@ class Decoder {
 
  private:
   void decode_geometry(const MeshGeometry& geometry, uint64_t plane_start);
+  void build_order();
   void decode_motion(const MeshMotion& motion, uint64_t plane_start);
 
   DecoderOptions options_;
   syntax::MeshObjectReader reader_;
   MeshObjectPlane plane_;
-  PlaneInfo info_;
+  PlaneInfo info_;        // the current plane
+  PlaneInfo intra_info_;  // the I-plane of the current mesh
   std::vector<Point> nodes_;
-  std::vector<Triangle> triangles_;
+  MeshTopology mesh_;
   MotionOrder order_;
+  bool order_ready_ = false;
+  std::vector<Triangle> triangles_;
+  bool triangles_ready_ = false;
   std::vector<Point> vectors_;  // per node, plus the zero slot
 };
 
