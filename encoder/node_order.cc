@@ -71,6 +71,9 @@ class NodeGrid {
 
 std::vector<NodeIndex> delaunay_node_order(std::span<const Point> nodes, uint32_t boundary) {
   const uint32_t n = static_cast<uint32_t>(nodes.size());
+  if (boundary < 3 || boundary > n)
+    throw Error(ErrorKind::kGeometry, "", kNoPlane, kNoOffset,
+                std::to_string(boundary) + " boundary nodes of " + std::to_string(n) + " nodes (3 … " + std::to_string(n) + " allowed)");
   NodeIndex top_left = 0;
   for (NodeIndex i = 1; i < n; ++i)
     if (more_top_left(nodes[i], nodes[top_left])) top_left = i;

@@ -446,14 +446,16 @@ std::vector<std::string> delaunay_node_violations(std::span<const Point> nodes, 
     if (more_top_left(nodes[i], nodes[top_left])) top_left = i;
   if (top_left != 0) report("node 0 is not the top-left node (node " + std::to_string(top_left) + " is)");
 
-  // Coordinates are 10-bit: an occupancy map finds duplicates in linear time.
-  std::vector<uint32_t> first_at(size_t{1} << 20, kNone);
+  // Coordinates are 10-bit: an occupancy bitmap finds duplicates in linear time.
+  std::vector<uint64_t> occupied((size_t{1} << 20) / 64, 0);
   for (uint32_t i = 0; i < n; ++i) {
-    uint32_t& slot = first_at[static_cast<uint32_t>(nodes[i].y) << 10 | static_cast<uint32_t>(nodes[i].x)];
-    if (slot != kNone)
-      report("nodes " + std::to_string(slot) + " and " + std::to_string(i) + " coincide");
-    else
-      slot = i;
+    const uint32_t cell = static_cast<uint32_t>(nodes[i].y) << 10 | static_cast<uint32_t>(nodes[i].x);
+    const uint64_t bit = uint64_t{1} << (cell % 64);
+    if (occupied[cell / 64] & bit) {
+      const uint32_t first = static_cast<uint32_t>(std::find(nodes.begin(), nodes.begin() + i, nodes[i]) - nodes.begin());
+      report("nodes " + std::to_string(first) + " and " + std::to_string(i) + " coincide");
+    }
+    occupied[cell / 64] |= bit;
   }
 
   const uint32_t b = boundary_count;
@@ -481,9 +483,19 @@ std::vector<std::string> delaunay_node_violations(std::span<const Point> nodes, 
         (int64_t{p0.x} - p1.x) * (p2.x - p1.x) + (int64_t{p0.y} - p1.y) * (p2.y - p1.y) > 0)
       report("the boundary folds back on itself at node " + std::to_string(i));
   }
+  struct Box {
+    int32_t x0, y0, x1, y1;
+  };
+  std::vector<Box> boxes(b);
+  for (uint32_t i = 0; i < b; ++i) {
+    const Point &p = nodes[i], &q = nodes[(i + 1) % b];
+    boxes[i] = {std::min(p.x, q.x), std::min(p.y, q.y), std::max(p.x, q.x), std::max(p.y, q.y)};
+  }
   for (uint32_t i = 0; i < b; ++i) {
     for (uint32_t j = i + 2; j < b; ++j) {
       if (i == 0 && j == b - 1) continue;  // adjacent through the closing edge
+      const Box &l = boxes[i], &r = boxes[j];
+      if (l.x1 < r.x0 || r.x1 < l.x0 || l.y1 < r.y0 || r.y1 < l.y0) continue;
       if (touch(nodes[i], nodes[(i + 1) % b], nodes[j], nodes[(j + 1) % b]))
         report("boundary edges (" + std::to_string(i) + ", " + std::to_string((i + 1) % b) + ") and (" +
                std::to_string(j) + ", " + std::to_string((j + 1) % b) + ") touch: the boundary is not simple");

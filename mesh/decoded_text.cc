@@ -186,6 +186,8 @@ std::vector<MeshPlane> parse_decoded_text(std::string_view text, const std::stri
     std::vector<std::string_view> n = split_spaces(cursor.next_line());
     if (n.size() != 2 || n[0] != "nodes") cursor.fail("expected 'nodes N'");
     const int64_t count = cursor.integer(n[1], 3, kMaxNodes, "node count");
+    if (info.intra && info.kind == MeshKind::kDelaunay && info.boundary > count)
+      cursor.fail("boundary=" + std::to_string(info.boundary) + " exceeds the " + std::to_string(count) + " nodes");
     if (!info.intra && count != static_cast<int64_t>(planes.back().nodes.size()))
       cursor.fail("a P-plane has " + std::to_string(count) + " nodes where the mesh has " +
                   std::to_string(planes.back().nodes.size()));

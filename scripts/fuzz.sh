@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (clang, ASan + UBSan) and runs each for a
+# bounded time, seeded from the conformance suite. Fails on any crash, leak,
+# timeout, out-of-memory or sanitizer report; findings are left in
+# build-fuzz/findings/ (turn them into regression tests in tests/fuzz_regressions/).
+# Usage: scripts/fuzz.sh [SECONDS_PER_TARGET] (default 60)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds="${1:-60}"
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DM4MESH_FUZZ=ON -DM4MESH_CGAL=OFF > /dev/null
+cmake --build build-fuzz -j"$(nproc)" > /dev/null
+
+work=build-fuzz/run
+rm -rf "$work"
+mkdir -p "$work/seeds-stream" "$work/seeds-text" build-fuzz/findings
+# Seeds no longer than the inputs the fuzzers make (-max_len).
+find conformance/streams tests/fuzz_regressions -name '*.m4m' -size -8193c -exec cp {} "$work/seeds-stream/" \;
+cp tests/fuzz_regressions/*.txt "$work/seeds-text/" 2> /dev/null || true
+for stream in conformance/streams/p0*.m4m conformance/streams/p1*.m4m conformance/streams/p2[0-4]*.m4m; do
+  build-fuzz/cli/m4mesh decode "$stream" -o "$work/seeds-text/$(basename "$stream" .m4m).txt" > /dev/null 2>&1 || true
+done
+
+total=0
+for target in decoder checker text; do
+  seeds="$work/seeds-stream"
+  [ "$target" = text ] && seeds="$work/seeds-text"
+  mkdir -p "$work/corpus-$target"
+  log="$work/$target.log"
+  echo "== ${target}_fuzzer for ${seconds}s"
+  if ! build-fuzz/fuzz/${target}_fuzzer "$work/corpus-$target" "$seeds" -max_total_time="$seconds" -timeout=10 \
+       -rss_limit_mb=2048 -max_len=8192 -print_final_stats=1 -artifact_prefix=build-fuzz/findings/ > "$log" 2>&1; then
+    tail -40 "$log"
+    echo "FAIL: ${target}_fuzzer found a problem (artifact in build-fuzz/findings/)"
+    exit 1
+  fi
+  runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$')
+  echo "${target}_fuzzer: $runs executions, no findings"
+  total=$((total + runs))
+done
+echo "fuzzing: $total executions in all, no findings"
