@@ -48,6 +48,27 @@ void BM_IPlaneDecode65535(benchmark::State& state) {
 }
 BENCHMARK(BM_IPlaneDecode65535)->Unit(benchmark::kMillisecond);
 
+// Growth with the node count: Google Benchmark fits the complexity (expected N log N).
+void BM_IPlaneDecodeScaling(benchmark::State& state) {
+  const size_t count = static_cast<size_t>(state.range(0));
+  std::vector<Point> raw{{0, 0}, {0, 1023}, {1023, 1023}, {1023, 0}};
+  raw.insert(raw.end(), square_nodes().begin() + 4, square_nodes().begin() + static_cast<std::ptrdiff_t>(count));
+  std::vector<Point> ordered;
+  for (NodeIndex i : delaunay_node_order(raw, 4)) ordered.push_back(raw[i]);
+  MeshPlane intra;
+  intra.info.kind = MeshKind::kDelaunay;
+  intra.info.boundary = 4;
+  intra.nodes = ordered;
+  const std::vector<uint8_t> stream = encode(std::vector<MeshPlane>{intra}).stream;
+  for (auto _ : state) {
+    Decoder decoder(stream);
+    decoder.next();
+    benchmark::DoNotOptimize(decoder.triangles().data());
+  }
+  state.SetComplexityN(static_cast<int64_t>(count));
+}
+BENCHMARK(BM_IPlaneDecodeScaling)->RangeMultiplier(4)->Range(1024, 65535)->Unit(benchmark::kMillisecond)->Complexity();
+
 void BM_OurCdt65535(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(constrained_delaunay(square_nodes(), 4).triangles.data());
 }

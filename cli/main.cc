@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <optional>
 
 #include "cli/demo.h"
 #include "common/atomic_file.h"
@@ -74,33 +75,45 @@ struct DecodeArgs {
   std::string output;
   int method = 2;
   bool md5_only = false;
+  bool keep_going = false;
 };
 
 int run_decode(const DecodeArgs& args) {
   const std::vector<uint8_t> stream = read_file(args.input);
   DecoderOptions options;
   options.method = method_of(args.method);
-  std::string md5;
   Decoder decoder(stream, options);
-  auto decode_all = [&](const DecodedTextWriter::Sink& sink) {
-    DecodedTextWriter writer(sink);
-    while (decoder.next())
+  std::optional<AtomicFile> file;
+  if (!args.output.empty()) file.emplace(args.output);
+  DecodedTextWriter writer([&](std::string_view text) {
+    if (file) file->write(text);
+  });
+  int64_t planes = 0;
+  try {
+    while (decoder.next()) {
       writer.plane(decoder.info(), decoder.nodes(), decoder.info().intra ? decoder.triangles() : std::span<const Triangle>{});
-    return writer.finish();
-  };
-  if (args.output.empty()) {
-    md5 = decode_all({});
-  } else {
-    AtomicFile file(args.output);
-    md5 = decode_all([&](std::string_view text) { file.write(text); });
-    file.commit();
+      ++planes;
+    }
+  } catch (const Error& e) {
+    if (!args.keep_going) throw;
+    std::fprintf(stderr, "error: %s: %s\n", args.input.c_str(), e.what());
+    if (file) {
+      writer.finish_incomplete();
+      file->commit();
+    }
+    std::fprintf(stderr, "%s: decoded %lld complete planes before the error%s\n", args.input.c_str(),
+                 static_cast<long long>(planes),
+                 file ? ("; " + args.output + " holds them, without the final 'end' line").c_str() : "");
+    return 1;
   }
+  const std::string md5 = writer.finish();
+  if (file) file->commit();
   for (const syntax::Warning& w : decoder.warnings())
     std::fprintf(stderr, "warning: %s: bit %lld: %s\n", args.input.c_str(), static_cast<long long>(w.bit_offset), w.message.c_str());
   if (args.md5_only)
     std::printf("%s\n", md5.c_str());
   else
-    std::printf("%s  %s (%lld planes)\n", md5.c_str(), args.input.c_str(), static_cast<long long>(decoder.plane_index() + 1));
+    std::printf("%s  %s (%lld planes)\n", md5.c_str(), args.input.c_str(), static_cast<long long>(planes));
   return 0;
 }
 
@@ -192,6 +205,8 @@ int main(int argc, char** argv) {
   decode_cmd->add_option("-o,--output", decode_args.output, "§9 text output (written only when decoding succeeds)");
   decode_cmd->add_option("--method", decode_args.method, "motion vector prediction: 2 or 1")->check(CLI::IsMember({1, 2}));
   decode_cmd->add_flag("--md5", decode_args.md5_only, "print only the MD5 of the decoded text");
+  decode_cmd->add_flag("--keep-going", decode_args.keep_going,
+                       "on an error, keep the planes decoded before it (the output then lacks its final 'end' line)");
 
   std::string trace_input;
   CLI::App* trace_cmd = app.add_subcommand("trace", "Print every syntax element: bit offset, name, bit count, value");

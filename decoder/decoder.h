@@ -21,7 +21,9 @@ struct DecoderOptions {
 
 class Decoder {
  public:
+  // The stream is not copied: it must outlive the decoder.
   Decoder(std::span<const uint8_t> stream, const DecoderOptions& options = {});
+  Decoder(std::vector<uint8_t>&&, const DecoderOptions& = {}) = delete;
 
   // Decodes the next plane; false at the end of the object.
   bool next();

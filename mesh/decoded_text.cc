@@ -80,6 +80,8 @@ void DecodedTextWriter::plane(const PlaneInfo& info, std::span<const Point> node
   }
 }
 
+void DecodedTextWriter::finish_incomplete() { flush(); }
+
 std::string DecodedTextWriter::finish() {
   buffer_ += "end\n";
   flush();

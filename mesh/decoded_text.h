@@ -23,6 +23,9 @@ class DecodedTextWriter {
   void plane(const PlaneInfo& info, std::span<const Point> nodes, std::span<const Triangle> triangles);
   // Writes `end` and returns the MD5 of the whole text.
   std::string finish();
+  // Hands the planes written so far to the sink without `end`: the text of
+  // a decoding that stopped early, incomplete by §9's own rule.
+  void finish_incomplete();
 
  private:
   void flush_if_full();

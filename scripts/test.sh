@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs, builds and runs the whole test suite twice: a release build, and
-# a build under AddressSanitizer and UndefinedBehaviorSanitizer.
+# Installs, builds and runs the whole test suite twice (a release build, and
+# a build under AddressSanitizer and UndefinedBehaviorSanitizer), then runs
+# each fuzz target for a bounded time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -16,3 +17,6 @@ cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DM4MESH_SANITIZE
 cmake --build build-sanitize -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-sanitize --output-on-failure -j"$jobs"
+
+echo "== fuzzing: each target for ${M4MESH_FUZZ_SECONDS:-60}s"
+bash scripts/fuzz.sh "${M4MESH_FUZZ_SECONDS:-60}"

@@ -54,6 +54,12 @@ grep -Eq "^error: .*cut.m4m: plane 1, [a-z_]+ at bit [0-9]+: " "$work/err" || fa
 [ ! -e "$work/cut.txt" ] || fail "a failed decode left an output file"
 ls "$work" | grep -q tmp && fail "a temporary file was left behind"
 
+# --keep-going keeps the complete planes, without the final 'end', and still fails.
+if "$m4mesh" decode --keep-going "$work/cut.m4m" -o "$work/kept.txt" 2> "$work/err"; then fail "--keep-going exit status 0"; fi
+grep -q "decoded 1 complete planes before the error" "$work/err" || fail "--keep-going report: $(cat "$work/err")"
+[ "$(head -2 "$work/kept.txt" | tail -1)" = "plane 0 I uniform cols=3 rows=2 dx=16 dy=16 split=2" ] || fail "--keep-going output"
+grep -qx end "$work/kept.txt" && fail "--keep-going output ends with 'end'"
+
 # Malformed encoder input names the file and line.
 sed 's/^16 3$/16 x/' "$work/in.txt" > "$work/bad.txt"
 if "$m4mesh" encode "$work/bad.txt" -o "$work/bad.m4m" 2> "$work/err"; then fail "bad input accepted"; fi

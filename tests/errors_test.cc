@@ -89,6 +89,19 @@ TEST(Errors, HugeCountWithTinyPayloadFailsBeforeAllocating) {
   expect_error(stream_of(bits + "000000"), ErrorKind::kTruncated, "delta_x_len_vlc", 0, 113);
 }
 
+// The largest uniform mesh (1,046,529 nodes) costs 18 bytes; a P-plane for
+// it must then hold at least one bit per node before anything is allocated.
+TEST(Errors, PPlaneOfTheLargestMeshWithATinyPayload) {
+  const std::string intra = std::string(kPlaneStart) + "1" + "00" + "1111111111 1111111111 00000001 00000001 00" + "0111111";
+  const std::string inter = std::string(kPlaneStart) + "0 01" + "1 1 1 1 1";
+  expect_error(stream_of(intra + inter), ErrorKind::kTruncated, "node_motion_vector_flag", 1, 112 + 32 + 3);
+  // The same I-plane alone decodes: the syntax allows it.
+  const std::vector<uint8_t> alone = stream_of(intra + kEnd);
+  Decoder decoder(alone);
+  ASSERT_TRUE(decoder.next());
+  EXPECT_EQ(decoder.nodes().size(), 1023u * 1023u);
+}
+
 TEST(Errors, DeltaLengthTwelveAndCoordinateRange) {
   // 3 nodes, node0 (0, 0), then a length code of nine '1's.
   const std::string head = std::string(kPlaneStart) + "1" + "01" + "0000000000000011" + "0000000011" + "0000000000" + "0000000000";
