@@ -1,0 +1,60 @@
+// The decoder of §12 containers: one frame at a time, each checked against
+// its decoded-frame hash unit when the stream carries one.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mesh3d/quantization.h"
+#include "mesh3d/traversal3d.h"
+#include "syntax/bfs3d.h"
+#include "syntax/container.h"
+
+namespace m4mesh {
+
+class Mesh3dDecoder {
+ public:
+  // The stream is not copied: it must outlive the decoder.
+  explicit Mesh3dDecoder(std::span<const uint8_t> stream);
+  Mesh3dDecoder(std::vector<uint8_t>&&) = delete;
+
+  const ObjectHeader& header() const { return header_; }
+  const std::vector<Triangle>& faces() const { return faces_; }
+
+  // Decodes the next frame; false after the last.
+  bool next_frame();
+  uint32_t frame_index() const { return frame_index_; }
+  const std::vector<Float3>& positions() const { return positions_; }
+  // The frame's hash unit: nothing when the stream has none for it, else
+  // whether the decoded frame matches it.
+  std::optional<bool> hash_matches() const { return hash_matches_; }
+  bool has_end_code() const { return parts_.has_end_code; }
+
+ private:
+  void decode_base(const ContainerUnit& unit);
+  void decode_frame(const ContainerUnit& unit, uint32_t frame);
+  void check_hash();
+  [[noreturn]] void fail(ErrorKind kind, const ContainerUnit& unit, const char* element, const std::string& message) const;
+
+  ContainerParts parts_;
+  size_t next_unit_ = 0;
+  ObjectHeader header_;
+  Bfs3dHeader codec_;
+  Grid grid_;
+  std::vector<Triangle> faces_;
+  MotionOrder3d order_;
+  std::vector<IntPoint3> quantized_;
+  std::vector<std::array<int64_t, 3>> motion_;
+  std::vector<Float3> positions_;
+  uint32_t frame_index_ = 0;
+  bool started_ = false;
+  std::optional<bool> hash_matches_;
+};
+
+// The whole sequence (tests, benchmarks).
+MeshSequence decode_mesh3d(std::span<const uint8_t> stream);
+
+}  // namespace m4mesh

@@ -1,0 +1,184 @@
+#include "mesh3d/metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "common/error.h"
+
+namespace m4mesh {
+
+namespace {
+
+double distance(const Vec3& a, const Vec3& b) {
+  const double dx = a.x - b.x, dy = a.y - b.y, dz = a.z - b.z;
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+void require_comparable(const MeshSequence& a, const MeshSequence& b) {
+  if (a.vertex_count != b.vertex_count || a.frames.size() != b.frames.size() || a.faces != b.faces)
+    throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
+                "the sequences differ in vertex count, frame count or faces (" + std::to_string(a.vertex_count) + "/" +
+                    std::to_string(b.vertex_count) + " vertices, " + std::to_string(a.frames.size()) + "/" +
+                    std::to_string(b.frames.size()) + " frames)");
+  if (a.frames.empty()) throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "no frames to compare");
+}
+
+// Unique undirected edges of the faces.
+std::vector<std::pair<NodeIndex, NodeIndex>> edges_of(const MeshSequence& s) {
+  std::vector<std::pair<NodeIndex, NodeIndex>> edges;
+  for (const Triangle& t : s.faces)
+    for (int j = 0; j < 3; ++j) edges.push_back(std::minmax(t.v[j], t.v[(j + 1) % 3]));
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+}  // namespace
+
+double kg_error(const MeshSequence& a, const MeshSequence& b) {
+  require_comparable(a, b);
+  double error = 0, spread = 0;
+  for (size_t f = 0; f < a.frames.size(); ++f) {
+    const std::vector<Vec3>& o = a.frames[f];
+    Vec3 mean;
+    for (const Vec3& v : o) {
+      mean.x += v.x;
+      mean.y += v.y;
+      mean.z += v.z;
+    }
+    const double n = static_cast<double>(o.size());
+    mean = {mean.x / n, mean.y / n, mean.z / n};
+    for (size_t i = 0; i < o.size(); ++i) {
+      const Vec3& d = b.frames[f][i];
+      error += (o[i].x - d.x) * (o[i].x - d.x) + (o[i].y - d.y) * (o[i].y - d.y) + (o[i].z - d.z) * (o[i].z - d.z);
+      spread += (o[i].x - mean.x) * (o[i].x - mean.x) + (o[i].y - mean.y) * (o[i].y - mean.y) + (o[i].z - mean.z) * (o[i].z - mean.z);
+    }
+  }
+  return spread > 0 ? 100.0 * std::sqrt(error) / std::sqrt(spread) : 0.0;
+}
+
+double psnr(const MeshSequence& a, const MeshSequence& b) {
+  require_comparable(a, b);
+  double dmax = 0, squared = 0;
+  for (size_t f = 0; f < a.frames.size(); ++f) {
+    Vec3 lo = a.frames[f][0], hi = lo;
+    for (size_t i = 0; i < a.frames[f].size(); ++i) {
+      const Vec3& v = a.frames[f][i];
+      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+      hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+      const double e = distance(v, b.frames[f][i]);
+      squared += e * e;
+    }
+    dmax = std::max(dmax, distance(lo, hi));
+  }
+  const double avg_mse = squared / (static_cast<double>(a.frames.size()) * a.vertex_count);
+  return avg_mse > 0 ? 10.0 * std::log10(dmax * dmax / avg_mse) : INFINITY;
+}
+
+void sted(const MeshSequence& a, const MeshSequence& b, const StedParams& p, double& spatial, double& temporal,
+          double& combined) {
+  require_comparable(a, b);
+  const size_t V = a.vertex_count, F = a.frames.size();
+  const auto edges = edges_of(a);
+  // NE(i, d): the edges incident to a vertex within topological distance d of i.
+  std::vector<std::vector<NodeIndex>> neighbours(V);
+  for (const auto& [u, v] : edges) {
+    neighbours[u].push_back(v);
+    neighbours[v].push_back(u);
+  }
+  std::vector<std::vector<uint32_t>> incident(V);
+  for (uint32_t e = 0; e < edges.size(); ++e) {
+    incident[edges[e].first].push_back(e);
+    incident[edges[e].second].push_back(e);
+  }
+  std::vector<std::vector<uint32_t>> ne(V);
+  for (NodeIndex i = 0; i < V; ++i) {
+    std::set<NodeIndex> ring{i};
+    std::vector<NodeIndex> frontier{i};
+    for (int step = 0; step < p.d; ++step) {
+      std::vector<NodeIndex> next;
+      for (NodeIndex u : frontier)
+        for (NodeIndex v : neighbours[u])
+          if (ring.insert(v).second) next.push_back(v);
+      frontier = std::move(next);
+    }
+    std::set<uint32_t> es;
+    for (NodeIndex u : ring) es.insert(incident[u].begin(), incident[u].end());
+    ne[i].assign(es.begin(), es.end());
+  }
+
+  // Spatial error, Eqs. 10–14.
+  double spatial_sum = 0;
+  std::vector<double> el(edges.size()), ed(edges.size());
+  for (size_t f = 0; f < F; ++f) {
+    for (size_t e = 0; e < edges.size(); ++e) {
+      el[e] = distance(a.frames[f][edges[e].first], a.frames[f][edges[e].second]);
+      const double distorted = distance(b.frames[f][edges[e].first], b.frames[f][edges[e].second]);
+      ed[e] = el[e] > 0 ? std::abs(el[e] - distorted) / el[e] : 0.0;
+    }
+    for (size_t i = 0; i < V; ++i) {
+      double weight = 0, mean = 0;
+      for (uint32_t e : ne[i]) {
+        weight += el[e];
+        mean += ed[e] * el[e];
+      }
+      if (weight <= 0) continue;
+      mean /= weight;
+      double variance = 0;
+      for (uint32_t e : ne[i]) variance += (ed[e] - mean) * (ed[e] - mean) * el[e];
+      spatial_sum += std::sqrt(variance / weight);
+    }
+  }
+  spatial = spatial_sum / (static_cast<double>(V) * static_cast<double>(F));
+
+  // Temporal error, Eqs. 15–19; ld from the original's first frame.
+  temporal = 0;
+  if (F >= 2) {
+    double ld = 0;
+    const std::vector<Vec3>& first = a.frames[0];
+    for (size_t i = 0; i < V; ++i)
+      for (size_t j = i + 1; j < V; ++j) ld = std::max(ld, distance(first[i], first[j]));
+    if (ld <= 0) ld = 1;
+    auto tel = [&](const MeshSequence& s, size_t i, size_t f) {
+      const Vec3 &u = s.frames[f][i], &v = s.frames[f + 1][i];
+      const double dx = (v.x - u.x) / ld, dy = (v.y - u.y) / ld, dz = (v.z - u.z) / ld;
+      return std::sqrt(dx * dx + dy * dy + dz * dz + p.dt * p.dt);
+    };
+    double temporal_sum = 0;
+    std::vector<double> original_tel(F - 1);
+    for (size_t i = 0; i < V; ++i) {
+      for (size_t f = 0; f + 1 < F; ++f) original_tel[f] = tel(a, i, f);
+      for (size_t f = 0; f + 1 < F; ++f) {
+        // Eq. 17: the mean of tel over the frames of the window that have one.
+        const size_t from = f >= static_cast<size_t>(p.w) ? f - static_cast<size_t>(p.w) : 0;
+        const size_t to = std::min(F - 2, f + static_cast<size_t>(p.w));
+        double speed = 0;
+        for (size_t k = from; k <= to; ++k) speed += original_tel[k];
+        speed /= static_cast<double>(to - from + 1);
+        temporal_sum += std::abs(original_tel[f] - tel(b, i, f)) / speed;
+      }
+    }
+    temporal = temporal_sum / (static_cast<double>(V) * static_cast<double>(F - 1));
+  }
+  combined = std::sqrt(spatial * spatial + p.c * p.c * temporal * temporal);
+}
+
+SequenceMetrics compare_sequences(const MeshSequence& a, const MeshSequence& b, const StedParams& params) {
+  require_comparable(a, b);
+  SequenceMetrics m;
+  double squared = 0;
+  for (size_t f = 0; f < a.frames.size(); ++f)
+    for (size_t i = 0; i < a.vertex_count; ++i) {
+      const double e = distance(a.frames[f][i], b.frames[f][i]);
+      squared += e * e;
+      m.max_error = std::max(m.max_error, e);
+    }
+  m.rmse = std::sqrt(squared / (static_cast<double>(a.frames.size()) * a.vertex_count));
+  m.kg_error = kg_error(a, b);
+  m.psnr = psnr(a, b);
+  sted(a, b, params, m.sted_spatial, m.sted_temporal, m.sted);
+  return m;
+}
+
+}  // namespace m4mesh

@@ -1,0 +1,39 @@
+// Quality metrics for animated meshes (docs/metrics.md gives the formulas
+// and how each source equation was read).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "mesh3d/sequence.h"
+
+namespace m4mesh {
+
+struct StedParams {
+  int d = 1;          // topological distance of the neighbourhood (Eq. 13)
+  int w = 5;          // temporal window (Eq. 17)
+  double dt = 0.0003; // temporal edge constant (Eq. 16)
+  double c = 9.144e-5;  // weight of the temporal term (Eq. 20)
+};
+
+struct SequenceMetrics {
+  double kg_error = 0;     // Karni–Gotsman, Váša & Skala Eq. 2 (percent)
+  double rmse = 0;         // sqrt(mean over vertices and frames of |v' − v|²)
+  double max_error = 0;    // max |v' − v|
+  double psnr = 0;         // Affine-Octree Eq. 5 (dB)
+  double sted_spatial = 0; // Eq. 14
+  double sted_temporal = 0;// Eq. 19
+  double sted = 0;         // Eq. 20
+};
+
+// Both sequences must have the same vertex count, faces and frame count.
+SequenceMetrics compare_sequences(const MeshSequence& original, const MeshSequence& decoded,
+                                  const StedParams& sted = {});
+
+double kg_error(const MeshSequence& original, const MeshSequence& decoded);
+double psnr(const MeshSequence& original, const MeshSequence& decoded);
+// Spatial and temporal STED and their combination.
+void sted(const MeshSequence& original, const MeshSequence& decoded, const StedParams& params, double& spatial,
+          double& temporal, double& combined);
+
+}  // namespace m4mesh

@@ -1,0 +1,52 @@
+#include "mesh3d/quantization.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "common/md5.h"
+
+namespace m4mesh {
+
+Grid Grid::over(const std::vector<Vec3>& frame, int bits) {
+  Vec3 lo = frame[0], hi = frame[0];
+  for (const Vec3& v : frame) {
+    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+  }
+  const double extent[3] = {hi.x - lo.x, hi.y - lo.y, hi.z - lo.z};
+  const double largest = std::max({extent[0], extent[1], extent[2], 1e-30});
+  const double steps = std::ldexp(1.0, bits) - 1;
+  Grid grid;
+  const double low[3] = {lo.x, lo.y, lo.z};
+  for (int axis = 0; axis < 3; ++axis) {
+    grid.origin[axis] = static_cast<float>(low[axis]);
+    grid.step[axis] = static_cast<float>((extent[axis] > 0 ? extent[axis] : largest) / steps);
+    if (!(grid.step[axis] > 0)) grid.step[axis] = 1e-30f;
+  }
+  return grid;
+}
+
+bool Grid::quantize(const Vec3& p, IntPoint3& q) const {
+  const double value[3] = {p.x, p.y, p.z};
+  for (int axis = 0; axis < 3; ++axis) {
+    const double index = std::nearbyint((value[axis] - static_cast<double>(origin[axis])) / static_cast<double>(step[axis]));
+    if (!(std::abs(index) <= static_cast<double>(kMaxQuantized))) return false;
+    q[axis] = static_cast<int32_t>(index);
+  }
+  return true;
+}
+
+std::string frame_md5(std::span<const Float3> positions) {
+  std::string bytes;
+  bytes.reserve(positions.size() * 12);
+  for (const Float3& p : positions)
+    for (float f : p) {
+      uint32_t bits;
+      std::memcpy(&bits, &f, 4);
+      for (int i = 0; i < 4; ++i) bytes += static_cast<char>((bits >> (8 * i)) & 0xFF);
+    }
+  return md5_hex(bytes);
+}
+
+}  // namespace m4mesh

@@ -1,0 +1,40 @@
+// The quantization grid of the 3D codecs and the canonical bytes of a
+// decoded frame (docs/container3d.md), shared by encoders and decoders.
+#pragma once
+
+#include <array>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mesh3d/draco_base.h"
+#include "mesh3d/sequence.h"
+
+namespace m4mesh {
+
+using Float3 = std::array<float, 3>;
+
+// Quantized coordinates stay within ±2^26 steps, so that motion residuals
+// fit 32 bits with any prediction.
+inline constexpr int64_t kMaxQuantized = int64_t{1} << 26;
+
+struct Grid {
+  std::array<float, 3> origin{};
+  std::array<float, 3> step{};
+
+  // A grid of 2^bits − 1 steps per axis over the bounding box of `frame`
+  // (an axis without extent borrows the largest one).
+  static Grid over(const std::vector<Vec3>& frame, int bits);
+
+  // Decoding: origin + q · step in binary64, rounded to binary32.
+  float position(int axis, int64_t q) const {
+    return static_cast<float>(static_cast<double>(origin[axis]) + static_cast<double>(q) * static_cast<double>(step[axis]));
+  }
+  // Encoding (not normative): the nearest grid index; false if beyond ±kMaxQuantized.
+  bool quantize(const Vec3& p, IntPoint3& q) const;
+};
+
+// MD5 of the frame as binary32 x, y, z per vertex, little-endian.
+std::string frame_md5(std::span<const Float3> positions);
+
+}  // namespace m4mesh

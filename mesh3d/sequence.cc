@@ -1,0 +1,247 @@
+#include "mesh3d/sequence.h"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "mesh/obj.h"
+
+namespace m4mesh {
+
+namespace {
+
+constexpr char kMagic[] = "M4SEQ1\n";
+constexpr size_t kMagicSize = sizeof kMagic - 1;
+constexpr uint64_t kMaxVertices = uint64_t{1} << 26;
+
+Error io(const std::string& path, const std::string& message) {
+  return Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, path + ": " + message);
+}
+
+// Little-endian fields of .m4seq, written and read byte by byte.
+void put_u32(std::string& out, uint32_t v) {
+  for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xFF);
+}
+void put_f32(std::string& out, float f) {
+  uint32_t bits;
+  std::memcpy(&bits, &f, 4);
+  put_u32(out, bits);
+}
+
+class ByteReader {
+ public:
+  ByteReader(const std::vector<uint8_t>& bytes, const std::string& path) : bytes_(bytes), path_(path) {}
+  uint32_t u32() {
+    need(4);
+    uint32_t v = 0;
+    for (int i = 0; i < 4; ++i) v |= uint32_t{bytes_[pos_++]} << (8 * i);
+    return v;
+  }
+  float f32() {
+    const uint32_t bits = u32();
+    float f;
+    std::memcpy(&f, &bits, 4);
+    return f;
+  }
+  void need(uint64_t n) const {
+    if (pos_ + n > bytes_.size()) throw io(path_, "truncated .m4seq file");
+  }
+  size_t position() const { return pos_; }
+  void skip(size_t n) {
+    need(n);
+    pos_ += n;
+  }
+
+ private:
+  const std::vector<uint8_t>& bytes_;
+  const std::string& path_;
+  size_t pos_ = 0;
+};
+
+// The vertex count, faces and, on mismatch, the frame named.
+void check_same_connectivity(const MeshSequence& s, const MeshFrame& frame, const std::string& name) {
+  if (frame.vertices.size() != s.vertex_count)
+    throw input_error(name, 0, "has " + std::to_string(frame.vertices.size()) + " vertices where the first frame has " +
+                                   std::to_string(s.vertex_count) + ": connectivity must stay fixed");
+  if (!frame.faces.empty() && frame.faces != s.faces)
+    throw input_error(name, 0, "its faces differ from the first frame's: connectivity must stay fixed");
+}
+
+MeshFrame read_obj_frame(const std::string& path) {
+  ObjFrame obj = read_obj(path);
+  MeshFrame frame;
+  frame.vertices.reserve(obj.vertices.size());
+  for (const auto& v : obj.vertices) frame.vertices.push_back({v[0], v[1], v[2]});
+  frame.faces = std::move(obj.faces);
+  return frame;
+}
+
+}  // namespace
+
+MeshFrame read_off(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw io(path, "cannot open");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Tokens with their line numbers, comments removed.
+  std::vector<std::pair<std::string_view, int64_t>> tokens;
+  int64_t line = 1;
+  for (size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      ++i;
+    } else if (c == '#') {
+      while (i < text.size() && text[i] != '\n') ++i;
+    } else if (std::isspace(static_cast<unsigned char>(c))) {
+      ++i;
+    } else {
+      const size_t start = i;
+      while (i < text.size() && !std::isspace(static_cast<unsigned char>(text[i])) && text[i] != '#') ++i;
+      tokens.push_back({std::string_view(text).substr(start, i - start), line});
+    }
+  }
+  size_t t = 0;
+  auto next = [&](const char* what) -> std::pair<std::string_view, int64_t> {
+    if (t >= tokens.size()) throw input_error(path, line, std::string("unexpected end of file, expected ") + what);
+    return tokens[t++];
+  };
+  auto integer = [&](const char* what, int64_t lo, int64_t hi) {
+    const auto [token, at] = next(what);
+    int64_t v = 0;
+    auto r = std::from_chars(token.data(), token.data() + token.size(), v);
+    if (r.ec != std::errc() || r.ptr != token.data() + token.size() || v < lo || v > hi)
+      throw input_error(path, at, std::string("expected ") + what + " in " + std::to_string(lo) + "…" + std::to_string(hi) +
+                                      ", found '" + std::string(token) + "'");
+    return v;
+  };
+  auto number = [&](const char* what) {
+    const auto [token, at] = next(what);
+    double v = 0;
+    auto r = std::from_chars(token.data(), token.data() + token.size(), v);
+    if (r.ec != std::errc() || r.ptr != token.data() + token.size())
+      throw input_error(path, at, std::string("expected ") + what + ", found '" + std::string(token) + "'");
+    if (!std::isfinite(v)) throw input_error(path, at, "non-finite number '" + std::string(token) + "'");
+    return v;
+  };
+  const auto [header, header_line] = next("OFF");
+  if (header != "OFF") throw input_error(path, header_line, "expected the header 'OFF'");
+  const int64_t vertices = integer("a vertex count", 0, static_cast<int64_t>(kMaxVertices));
+  const int64_t faces = integer("a face count", 0, static_cast<int64_t>(4 * kMaxVertices));
+  integer("an edge count", 0, INT64_MAX);
+  MeshFrame frame;
+  frame.vertices.reserve(static_cast<size_t>(std::min<int64_t>(vertices, static_cast<int64_t>(tokens.size()))));
+  for (int64_t i = 0; i < vertices; ++i) {
+    const double x = number("x"), y = number("y"), z = number("z");
+    frame.vertices.push_back({x, y, z});
+  }
+  for (int64_t f = 0; f < faces; ++f) {
+    const int64_t n = integer("a polygon size", 3, 1 << 16);
+    std::vector<NodeIndex> polygon;
+    for (int64_t k = 0; k < n; ++k) polygon.push_back(static_cast<NodeIndex>(integer("a vertex index", 0, vertices - 1)));
+    for (size_t k = 1; k + 1 < polygon.size(); ++k) frame.faces.push_back(Triangle{{polygon[0], polygon[k], polygon[k + 1]}});
+  }
+  return frame;
+}
+
+MeshSequence load_sequence(const std::string& path, bool report_progress) {
+  namespace fs = std::filesystem;
+  if (fs::is_regular_file(path) && fs::path(path).extension() == ".m4seq") return read_binary_sequence(path);
+  std::string extension = ".obj";
+  if (fs::is_directory(path)) {
+    for (const auto& entry : fs::directory_iterator(path))
+      if (entry.path().extension() == ".off") extension = ".off";
+  } else if (fs::path(path).extension() == ".off") {
+    extension = ".off";
+  }
+  const std::vector<std::string> files = frame_files(path, extension);
+  MeshSequence sequence;
+  for (size_t k = 0; k < files.size(); ++k) {
+    MeshFrame frame = extension == ".off" ? read_off(files[k]) : read_obj_frame(files[k]);
+    if (k == 0) {
+      if (frame.vertices.size() < 3 || frame.faces.empty()) throw input_error(files[k], 0, "a mesh needs vertices and faces");
+      sequence.vertex_count = static_cast<uint32_t>(frame.vertices.size());
+      sequence.faces = frame.faces;
+    } else {
+      check_same_connectivity(sequence, frame, files[k]);
+    }
+    sequence.frames.push_back(std::move(frame.vertices));
+    if (report_progress && files.size() > 10) std::fprintf(stderr, "\rreading frame %zu/%zu", k + 1, files.size());
+  }
+  if (report_progress && files.size() > 10) std::fprintf(stderr, "\n");
+  return sequence;
+}
+
+void write_binary_sequence(const MeshSequence& s, const std::string& path) {
+  std::string out(kMagic, kMagicSize);
+  put_u32(out, s.vertex_count);
+  put_u32(out, static_cast<uint32_t>(s.faces.size()));
+  put_u32(out, static_cast<uint32_t>(s.frames.size()));
+  for (const Triangle& t : s.faces)
+    for (NodeIndex v : t.v) put_u32(out, v);
+  for (const std::vector<Vec3>& frame : s.frames)
+    for (const Vec3& v : frame) {
+      put_f32(out, static_cast<float>(v.x));
+      put_f32(out, static_cast<float>(v.y));
+      put_f32(out, static_cast<float>(v.z));
+    }
+  write_file_atomically(path, out);
+}
+
+MeshSequence read_binary_sequence(const std::string& path) {
+  const std::vector<uint8_t> bytes = read_file(path);
+  ByteReader r(bytes, path);
+  r.need(kMagicSize);
+  if (std::memcmp(bytes.data(), kMagic, kMagicSize) != 0) throw io(path, "not a .m4seq file");
+  r.skip(kMagicSize);
+  MeshSequence s;
+  s.vertex_count = r.u32();
+  const uint32_t face_count = r.u32(), frame_count = r.u32();
+  if (s.vertex_count < 3 || s.vertex_count > kMaxVertices) throw io(path, "vertex count out of range");
+  // Everything the counts announce must be in the file before anything is allocated.
+  r.need(uint64_t{face_count} * 12 + uint64_t{frame_count} * s.vertex_count * 12);
+  s.faces.resize(face_count);
+  for (Triangle& t : s.faces)
+    for (NodeIndex& v : t.v) {
+      v = r.u32();
+      if (v >= s.vertex_count) throw io(path, "face index out of range");
+    }
+  s.frames.resize(frame_count);
+  for (std::vector<Vec3>& frame : s.frames) {
+    frame.resize(s.vertex_count);
+    for (Vec3& v : frame) {
+      v.x = r.f32();
+      v.y = r.f32();
+      v.z = r.f32();
+      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) throw io(path, "non-finite position");
+    }
+  }
+  if (r.position() != bytes.size()) throw io(path, "bytes after the last frame");
+  return s;
+}
+
+void write_obj_frames(const MeshSequence& s, const std::string& folder) {
+  std::filesystem::create_directories(folder);
+  for (size_t k = 0; k < s.frames.size(); ++k) {
+    std::string text;
+    char line[96];
+    for (const Vec3& v : s.frames[k]) {
+      std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", v.x, v.y, v.z);
+      text += line;
+    }
+    for (const Triangle& t : s.faces) {
+      std::snprintf(line, sizeof line, "f %u %u %u\n", t.v[0] + 1, t.v[1] + 1, t.v[2] + 1);
+      text += line;
+    }
+    char name[32];
+    std::snprintf(name, sizeof name, "%04zu.obj", k + 1);
+    write_file_atomically((std::filesystem::path(folder) / name).string(), text);
+  }
+}
+
+}  // namespace m4mesh

@@ -1,0 +1,46 @@
+// Animated triangle meshes with fixed connectivity, and their files: OBJ
+// or OFF frame sequences (a folder or a pattern, numeric frame order) and
+// the project's compact binary format (.m4seq).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "mesh/topology.h"
+
+namespace m4mesh {
+
+struct Vec3 {
+  double x = 0, y = 0, z = 0;
+  friend bool operator==(const Vec3&, const Vec3&) = default;
+};
+
+struct MeshSequence {
+  uint32_t vertex_count = 0;
+  std::vector<Triangle> faces;
+  std::vector<std::vector<Vec3>> frames;
+};
+
+// A folder of frames (.obj or .off), a pattern with '*', a single frame
+// file, or a .m4seq file. Every frame must have the first frame's vertex
+// count and faces; the error names the first frame that differs.
+MeshSequence load_sequence(const std::string& path, bool report_progress = false);
+
+// .m4seq: "M4SEQ1\n", vertex_count u32, face_count u32, frame_count u32,
+// faces (3 × u32 each), then every frame's positions as binary32 (x y z per
+// vertex); all little-endian.
+void write_binary_sequence(const MeshSequence& sequence, const std::string& path);
+MeshSequence read_binary_sequence(const std::string& path);
+
+// Frames as OBJ files 0001.obj, 0002.obj, … in a folder (created if needed).
+void write_obj_frames(const MeshSequence& sequence, const std::string& folder);
+
+// One OFF frame: "OFF", counts, vertices, polygons (fanned into triangles).
+struct MeshFrame {
+  std::vector<Vec3> vertices;
+  std::vector<Triangle> faces;
+};
+MeshFrame read_off(const std::string& path);
+
+}  // namespace m4mesh

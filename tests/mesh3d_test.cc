@@ -1,0 +1,391 @@
+// The 3D half: container, arithmetic coding, traversal, bfs3d, metrics, sequence files.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <set>
+
+#include "bitstream/arithmetic.h"
+#include "bitstream/emulation.h"
+#include "common/error.h"
+#include "decoder/mesh3d_decoder.h"
+#include "encoder/mesh3d_encoder.h"
+#include "mesh3d/draco_base.h"
+#include "mesh3d/metrics.h"
+#include "mesh3d/sequence.h"
+#include "mesh3d/traversal3d.h"
+#include "syntax/bfs3d.h"
+#include "syntax/container.h"
+#include "tests/test_util.h"
+
+namespace m4mesh {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A UV sphere (closed), a separate open sheet, and one isolated vertex, in motion.
+MeshSequence test_sequence(int frames, uint64_t seed) {
+  MeshSequence s;
+  std::vector<Vec3> base;
+  const int rings = 8, segments = 12;
+  base.push_back({0, 0, 1});
+  for (int r = 1; r < rings; ++r)
+    for (int k = 0; k < segments; ++k) {
+      const double theta = std::numbers::pi * r / rings, phi = 2 * std::numbers::pi * k / segments;
+      base.push_back({std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)});
+    }
+  base.push_back({0, 0, -1});
+  const NodeIndex south = static_cast<NodeIndex>(base.size() - 1);
+  auto ring = [&](int r, int k) { return static_cast<NodeIndex>(1 + (r - 1) * segments + (k % segments)); };
+  for (int k = 0; k < segments; ++k) s.faces.push_back({{0, ring(1, k), ring(1, k + 1)}});
+  for (int r = 1; r + 1 < rings; ++r)
+    for (int k = 0; k < segments; ++k) {
+      s.faces.push_back({{ring(r, k), ring(r + 1, k), ring(r + 1, k + 1)}});
+      s.faces.push_back({{ring(r, k), ring(r + 1, k + 1), ring(r, k + 1)}});
+    }
+  for (int k = 0; k < segments; ++k) s.faces.push_back({{south, ring(rings - 1, k + 1), ring(rings - 1, k)}});
+  const NodeIndex sheet = static_cast<NodeIndex>(base.size());
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 5; ++x) base.push_back({2.0 + 0.3 * x, 0.3 * y, 0.0});
+  for (int y = 0; y + 1 < 4; ++y)
+    for (int x = 0; x + 1 < 5; ++x) {
+      const NodeIndex a = sheet + static_cast<NodeIndex>(y * 5 + x);
+      s.faces.push_back({{a, a + 1, a + 6}});
+      s.faces.push_back({{a, a + 6, a + 5}});
+    }
+  base.push_back({-3, 1, 0.5});  // in no face
+  s.vertex_count = static_cast<uint32_t>(base.size());
+  test::Random random(seed);
+  for (int f = 0; f < frames; ++f) {
+    std::vector<Vec3> frame = base;
+    for (size_t i = 0; i < frame.size(); ++i) {
+      const double t = 0.15 * f;
+      frame[i].x += 0.2 * std::sin(t + frame[i].y) + 1e-4 * random.uniform(-5, 5);
+      frame[i].y += 0.1 * std::cos(2 * t + frame[i].z);
+      frame[i].z += 0.05 * f;
+    }
+    s.frames.push_back(std::move(frame));
+  }
+  return s;
+}
+
+TEST(Emulation, EscapedPayloadsNeverHoldAStartCodePrefix) {
+  test::Random random(1);
+  for (int trial = 0; trial < 500; ++trial) {
+    std::vector<uint8_t> payload(static_cast<size_t>(random.uniform(0, 64)));
+    for (uint8_t& b : payload) b = static_cast<uint8_t>(random.uniform(0, 3) == 0 ? random.uniform(0, 255) : random.uniform(0, 3));
+    const std::vector<uint8_t> escaped = escape_payload(payload);
+    for (size_t i = 0; i + 2 < escaped.size(); ++i)
+      ASSERT_FALSE(escaped[i] == 0 && escaped[i + 1] == 0 && escaped[i + 2] <= 2);
+    if (escaped.size() >= 2) {
+      ASSERT_FALSE(escaped[escaped.size() - 1] == 0 && escaped[escaped.size() - 2] == 0);
+    }
+    ASSERT_EQ(unescape_payload(escaped), payload);
+  }
+  EXPECT_EQ(escape_payload(std::vector<uint8_t>{0, 0, 1}), (std::vector<uint8_t>{0, 0, 3, 1}));
+  EXPECT_EQ(escape_payload(std::vector<uint8_t>{0, 0, 3}), (std::vector<uint8_t>{0, 0, 3, 3}));
+  EXPECT_EQ(escape_payload(std::vector<uint8_t>{5, 0, 0}), (std::vector<uint8_t>{5, 0, 0, 3}));
+  EXPECT_EQ(escape_payload(std::vector<uint8_t>{0, 0, 4}), (std::vector<uint8_t>{0, 0, 4}));
+}
+
+TEST(Container, SplitsObjectUnitsAndEndCode) {
+  ContainerWriter writer;
+  writer.object(std::vector<uint8_t>{1, 2, 0, 0});
+  writer.unit(std::vector<uint8_t>{0, 0, 1, 7});
+  writer.unit(std::vector<uint8_t>{});
+  const std::vector<uint8_t> stream = writer.finish();
+  const ContainerParts parts = split_container(stream);
+  EXPECT_EQ(parts.object_payload, (std::vector<uint8_t>{1, 2, 0, 0}));
+  ASSERT_EQ(parts.units.size(), 2u);
+  EXPECT_EQ(parts.units[0].payload, (std::vector<uint8_t>{0, 0, 1, 7}));
+  EXPECT_TRUE(parts.has_end_code);
+  std::vector<uint8_t> trailing = stream;
+  trailing.push_back(9);
+  EXPECT_THROW(split_container(trailing), Error);
+  std::vector<uint8_t> no_end(stream.begin(), stream.end() - 4);
+  EXPECT_FALSE(split_container(no_end).has_end_code);
+  EXPECT_THROW(split_container(std::vector<uint8_t>{0, 0, 1, 0xC5}), Error);
+}
+
+TEST(Arithmetic, RoundTripsBinsAndBypassBits) {
+  test::Random random(2);
+  std::vector<std::pair<int, int>> bins;  // (context or −1 for bypass, value)
+  ArithmeticEncoder encoder;
+  std::vector<BinContext> contexts(4);
+  for (int i = 0; i < 20000; ++i) {
+    const int context = random.uniform(-1, 3);
+    const int bin = context < 0 ? random.uniform(0, 255) : (random.uniform(0, 9) < context * 3 ? 1 : 0);
+    bins.push_back({context, bin});
+    if (context < 0)
+      encoder.encode_bypass(static_cast<uint32_t>(bin), 8);
+    else
+      encoder.encode(contexts[context], bin);
+  }
+  const std::vector<uint8_t> data = encoder.finish();
+  ArithmeticDecoder decoder(data);
+  std::vector<BinContext> decoding(4);
+  for (const auto& [context, bin] : bins)
+    ASSERT_EQ(context < 0 ? static_cast<int>(decoder.decode_bypass(8)) : decoder.decode(decoding[context]), bin);
+  EXPECT_EQ(decoder.overrun(), 0u);
+  EXPECT_EQ(decoder.position(), data.size());
+  ArithmeticDecoder truncated(std::span<const uint8_t>(data).first(data.size() / 2));
+  for (const auto& [context, bin] : bins)
+    context < 0 ? truncated.decode_bypass(8) : truncated.decode(decoding[context]);
+  EXPECT_GT(truncated.overrun(), 0u);
+}
+
+TEST(Arithmetic, ResidualsOfEverySizeRoundTrip) {
+  std::vector<int32_t> values{0, 1, -1, 2, -2, 3, 100, -100, 65535, -65536, (1 << 29), -(1 << 29), (1 << 30) + 7};
+  test::Random random(3);
+  for (int i = 0; i < 3000; ++i) values.push_back(random.uniform(-3000, 3000) >> random.uniform(0, 10));
+  ArithmeticEncoder encoder;
+  ResidualModel model;
+  for (size_t i = 0; i < values.size(); ++i) model.encode(encoder, static_cast<int>(i % 3), values[i]);
+  const std::vector<uint8_t> data = encoder.finish();
+  ArithmeticDecoder decoder(data);
+  ResidualModel decoding;
+  for (size_t i = 0; i < values.size(); ++i) {
+    int32_t r;
+    ASSERT_TRUE(decoding.decode(decoder, static_cast<int>(i % 3), r));
+    ASSERT_EQ(r, values[i]);
+  }
+}
+
+TEST(Traversal3d, EveryVertexOnceAndPredictorsBeforeUse) {
+  const MeshSequence s = test_sequence(1, 4);
+  const MotionOrder3d order = bfs3d_order(s.faces, s.vertex_count);
+  ASSERT_EQ(order.node.size(), s.vertex_count);
+  std::set<NodeIndex> coded;
+  for (size_t k = 0; k < order.node.size(); ++k) {
+    for (NodeIndex p : {order.pred_a[k], order.pred_b[k], order.pred_c[k]})
+      ASSERT_TRUE(p == order.zero_slot || coded.count(p)) << "predictor " << p << " of node " << order.node[k];
+    ASSERT_TRUE(coded.insert(order.node[k]).second);
+  }
+  EXPECT_EQ(order.node.front(), s.faces[0].v[0]);
+  EXPECT_EQ(order.node.back(), s.vertex_count - 1);  // the isolated vertex comes last
+}
+
+TEST(DracoBase, KeepsVertexAndFaceOrder) {
+  const MeshSequence s = test_sequence(1, 5);
+  std::vector<IntPoint3> q;
+  test::Random random(5);
+  for (uint32_t i = 0; i < s.vertex_count; ++i) q.push_back({random.uniform(-4000, 4000), random.uniform(0, 4095), random.uniform(-9, 9)});
+  const std::vector<uint8_t> data = encode_base_mesh(s.faces, q);
+  const BaseMesh base = decode_base_mesh(data, s.vertex_count, static_cast<uint32_t>(s.faces.size()));
+  EXPECT_EQ(base.positions, q);
+  EXPECT_EQ(base.faces, s.faces);
+  EXPECT_THROW(decode_base_mesh(data, s.vertex_count + 1, static_cast<uint32_t>(s.faces.size())), Error);
+}
+
+void expect_round_trip(const MeshSequence& s, const Encode3dOptions& options) {
+  const Encode3dResult encoded = encode_mesh3d(s, options);
+  Mesh3dDecoder decoder(encoded.stream);
+  const Grid grid = Grid::over(s.frames[0], options.bits);
+  uint32_t frames = 0;
+  while (decoder.next_frame()) {
+    ASSERT_EQ(decoder.frame_index(), frames);
+    ASSERT_TRUE(decoder.hash_matches().value_or(false)) << "frame " << frames;
+    for (uint32_t i = 0; i < s.vertex_count; ++i) {
+      IntPoint3 q;
+      ASSERT_TRUE(grid.quantize(s.frames[frames][i], q));
+      for (int axis = 0; axis < 3; ++axis) ASSERT_EQ(decoder.positions()[i][axis], grid.position(axis, q[axis]));
+    }
+    ++frames;
+  }
+  EXPECT_EQ(frames, s.frames.size());
+  EXPECT_TRUE(decoder.has_end_code());
+  EXPECT_EQ(encoded.base_bytes + encoded.frame_bytes + encoded.other_bytes, encoded.stream.size());
+}
+
+TEST(Bfs3d, RoundTripsWithBothPredictions) {
+  const MeshSequence s = test_sequence(6, 6);
+  for (bool parallelogram : {false, true})
+    for (int bits : {8, 12, 16}) {
+      Encode3dOptions options;
+      options.bits = bits;
+      options.parallelogram = parallelogram;
+      expect_round_trip(s, options);
+    }
+}
+
+TEST(Bfs3d, EncoderIsDeterministicAndHashesCatchChanges) {
+  const MeshSequence s = test_sequence(4, 7);
+  const std::vector<uint8_t> stream = encode_mesh3d(s).stream;
+  EXPECT_EQ(encode_mesh3d(s).stream, stream);
+  // The same units under a header whose grid origin moved by one binary32 step:
+  // the stream still decodes, but no frame matches its hash any more.
+  const ContainerParts parts = split_container(stream);
+  BitReader reader(parts.object_payload.data(), parts.object_payload.size());
+  syntax::ReadIO in(reader);
+  ObjectHeader header;
+  Bfs3dHeader codec;
+  syntax::describe(in, header);
+  syntax::describe(in, codec);
+  codec.origin[0] += 1;
+  BitWriter writer;
+  syntax::WriteIO out(writer);
+  syntax::describe(out, header);
+  syntax::describe(out, codec);
+  ContainerWriter moved;
+  moved.object(writer.take_bytes());
+  for (const ContainerUnit& unit : parts.units) moved.unit(unit.payload);
+  const std::vector<uint8_t> moved_stream = moved.finish();
+  Mesh3dDecoder decoder(moved_stream);
+  int mismatches = 0;
+  while (decoder.next_frame()) mismatches += !decoder.hash_matches().value_or(true);
+  EXPECT_EQ(mismatches, 4);
+}
+
+TEST(Bfs3d, CorruptAndTruncatedStreamsFailCleanly) {
+  const MeshSequence s = test_sequence(3, 8);
+  const std::vector<uint8_t> stream = encode_mesh3d(s).stream;
+  for (size_t size = 0; size < stream.size(); size += 7) {
+    const std::vector<uint8_t> cut(stream.begin(), stream.begin() + static_cast<std::ptrdiff_t>(size));
+    try {
+      decode_mesh3d(cut);
+    } catch (const Error&) {
+    }
+  }
+  test::Random random(8);
+  for (int trial = 0; trial < 300; ++trial) {
+    std::vector<uint8_t> bad = stream;
+    bad[static_cast<size_t>(random.uniform(0, static_cast<int32_t>(bad.size()) - 1))] ^= static_cast<uint8_t>(1 << random.uniform(0, 7));
+    try {
+      decode_mesh3d(bad);
+    } catch (const Error&) {
+    }
+  }
+}
+
+// ---- metrics ----------------------------------------------------------------
+
+MeshSequence one_triangle(std::vector<std::vector<Vec3>> frames) {
+  MeshSequence s;
+  s.vertex_count = 3;
+  s.faces = {{{0, 1, 2}}};
+  s.frames = std::move(frames);
+  return s;
+}
+
+TEST(Metrics, HandComputedValues) {
+  // One frame: (0,0,0) (3,0,0) (0,4,0); the decoded moves vertex 1 by 0.3 in x.
+  const MeshSequence a = one_triangle({{{0, 0, 0}, {3, 0, 0}, {0, 4, 0}}});
+  const MeshSequence b = one_triangle({{{0, 0, 0}, {3.3, 0, 0}, {0, 4, 0}}});
+  const SequenceMetrics m = compare_sequences(a, b);
+  // Mean (1, 4/3, 0); spread Σ|v − mean|² = (1 + 16/9) + (4 + 16/9) + (1 + 64/9) = 50/3; error 0.09.
+  EXPECT_NEAR(m.kg_error, 100 * std::sqrt(0.09) / std::sqrt(50.0 / 3), 1e-12);
+  EXPECT_NEAR(m.rmse, std::sqrt(0.09 / 3), 1e-12);
+  EXPECT_NEAR(m.max_error, 0.3, 1e-12);
+  // dmax = diagonal of the box 3×4×0 = 5; AVGMSE = 0.03.
+  EXPECT_NEAR(m.psnr, 10 * std::log10(25 / 0.03), 1e-9);
+  // Edges 0-1 (3 → 3.3: ed 0.1), 1-2 (5 → √(3.3² + 16) : ed (√26.89 − 5)/5), 2-0 (4: ed 0).
+  // Every vertex's neighbourhood holds all three edges (d = 1).
+  const double e12 = (std::sqrt(26.89) - 5) / 5;
+  const double mean = (0.1 * 3 + e12 * 5 + 0 * 4) / 12;
+  const double deviation = std::sqrt(((0.1 - mean) * (0.1 - mean) * 3 + (e12 - mean) * (e12 - mean) * 5 + mean * mean * 4) / 12);
+  EXPECT_NEAR(m.sted_spatial, deviation, 1e-12);
+  EXPECT_EQ(m.sted_temporal, 0);  // one frame
+  EXPECT_NEAR(m.sted, deviation, 1e-12);
+}
+
+TEST(Metrics, TemporalStedByHand) {
+  // Two frames; vertex 0 moves by 0.5 in the original and by 0.6 in the decoded; ld = 5.
+  const MeshSequence a = one_triangle({{{0, 0, 0}, {3, 0, 0}, {0, 4, 0}}, {{0.5, 0, 0}, {3, 0, 0}, {0, 4, 0}}});
+  const MeshSequence b = one_triangle({{{0, 0, 0}, {3, 0, 0}, {0, 4, 0}}, {{0.6, 0, 0}, {3, 0, 0}, {0, 4, 0}}});
+  double spatial, temporal, combined;
+  StedParams p;
+  sted(a, b, p, spatial, temporal, combined);
+  const double tel_a = std::sqrt(0.1 * 0.1 + p.dt * p.dt), tel_b = std::sqrt(0.12 * 0.12 + p.dt * p.dt);
+  // ted = |tel − tel'| / s with s = tel (the window holds one frame); static vertices add 0.
+  EXPECT_NEAR(temporal, (std::abs(tel_a - tel_b) / tel_a) / 3, 1e-12);
+  EXPECT_NEAR(combined, std::sqrt(spatial * spatial + p.c * p.c * temporal * temporal), 1e-15);
+}
+
+TEST(Metrics, StedIgnoresRigidMotionAndUniformScaling) {
+  const MeshSequence original = test_sequence(5, 9);
+  MeshSequence decoded = original;
+  test::Random random(9);
+  for (auto& frame : decoded.frames)
+    for (Vec3& v : frame) v.x += 1e-3 * random.uniform(-10, 10);
+  double s0, t0, c0;
+  sted(original, decoded, {}, s0, t0, c0);
+  ASSERT_GT(c0, 0);
+  const double kg0 = kg_error(original, decoded);
+  auto transformed = [](MeshSequence s, double scale) {
+    const double angle = 0.7;
+    for (auto& frame : s.frames)
+      for (Vec3& v : frame) {
+        const double x = std::cos(angle) * v.x - std::sin(angle) * v.z, z = std::sin(angle) * v.x + std::cos(angle) * v.z;
+        v = {scale * x + 5, scale * v.y - 2, scale * z + 1};
+      }
+    return s;
+  };
+  for (double scale : {1.0, 3.5}) {
+    double s1, t1, c1;
+    sted(transformed(original, scale), transformed(decoded, scale), {}, s1, t1, c1);
+    EXPECT_NEAR(s1, s0, 1e-9 * s0);
+    EXPECT_NEAR(t1, t0, 1e-9 * t0);
+    EXPECT_NEAR(c1, c0, 1e-9 * c0);
+    EXPECT_NEAR(kg_error(transformed(original, scale), transformed(decoded, scale)), kg0, 1e-9 * kg0);
+  }
+}
+
+// ---- sequence files ------------------------------------------------------------
+
+TEST(SequenceFiles, ObjOffAndBinaryAgree) {
+  const fs::path dir = fs::temp_directory_path() / "m4mesh-seq-test";
+  fs::remove_all(dir);
+  const MeshSequence s = test_sequence(3, 10);
+  write_obj_frames(s, (dir / "obj").string());
+  const MeshSequence from_obj = load_sequence((dir / "obj").string());
+  EXPECT_EQ(from_obj.faces, s.faces);
+  ASSERT_EQ(from_obj.frames.size(), 3u);
+  EXPECT_NEAR(from_obj.frames[2][5].x, s.frames[2][5].x, 1e-8);
+  write_binary_sequence(from_obj, (dir / "s.m4seq").string());
+  const MeshSequence binary = load_sequence((dir / "s.m4seq").string());
+  EXPECT_EQ(binary.faces, s.faces);
+  EXPECT_EQ(binary.frames[1][3].y, static_cast<double>(static_cast<float>(from_obj.frames[1][3].y)));
+  std::ofstream(dir / "a1.off") << "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+  std::ofstream(dir / "a2.off") << "OFF\n# moved\n4 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n4 0 1 2 3\n";
+  std::ofstream(dir / "a10.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n1 1 0\n3 0 1 2\n";
+  try {
+    load_sequence((dir / "a*.off").string());
+    ADD_FAILURE() << "a changed vertex count was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("a10.off"), std::string::npos) << e.what();
+  }
+  fs::remove(dir / "a10.off");
+  const MeshSequence off = load_sequence((dir / "a*.off").string());
+  EXPECT_EQ(off.frames.size(), 2u);
+  EXPECT_EQ(off.faces.size(), 2u);
+  EXPECT_EQ(off.frames[1][2].z, 1.0);
+  fs::remove_all(dir);
+}
+
+// ---- real sequences (../shared/data) -----------------------------------------
+
+const fs::path kData = fs::path(M4MESH_SOURCE_DIR) / ".." / "shared" / "data";
+
+TEST(RealData, CowAt12BitsBeatsDracoPerFrameWithSmallKgError) {
+  if (!fs::exists(kData / "pcow")) GTEST_SKIP() << "../shared/data/pcow is absent";
+  MeshSequence cow = load_sequence((kData / "pcow").string());
+  cow.frames.resize(20);
+  Encode3dOptions options;
+  const Encode3dResult encoded = encode_mesh3d(cow, options);
+  const MeshSequence decoded = decode_mesh3d(encoded.stream);
+  EXPECT_LE(kg_error(cow, decoded), 0.05);
+  const double ours = 8.0 * static_cast<double>(encoded.frame_bytes) / (cow.vertex_count * 19.0);
+  double draco = 0;
+  for (size_t f = 1; f < cow.frames.size(); ++f) {
+    std::vector<std::array<float, 3>> p;
+    for (const Vec3& v : cow.frames[f]) p.push_back({static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)});
+    draco += 8.0 * static_cast<double>(draco_frame_size(cow.faces, p, 12)) / cow.vertex_count;
+  }
+  draco /= 19.0;
+  EXPECT_LT(ours, draco) << "bfs3d " << ours << " bits/vertex/frame, Draco " << draco;
+}
+
+}  // namespace
+}  // namespace m4mesh
