@@ -1,6 +1,6 @@
 // Adaptive binary arithmetic coding: a range coder with 11-bit adaptive
-// probabilities and equiprobable (bypass) bits. Integer arithmetic only,
-// so every platform decodes the same bits.
+// probabilities. Integer arithmetic only, so every platform decodes the
+// same bins. (Equiprobable bits are cheaper as raw bits beside it.)
 #pragma once
 
 #include <cstdint>
@@ -31,17 +31,6 @@ class ArithmeticEncoder {
       shift_low();
     }
   }
-  // The low `count` bits of value, most significant first, each with probability 1/2.
-  void encode_bypass(uint32_t value, int count) {
-    for (int i = count - 1; i >= 0; --i) {
-      range_ >>= 1;
-      if ((value >> i) & 1) low_ += range_;
-      while (range_ < kTop) {
-        range_ <<= 8;
-        shift_low();
-      }
-    }
-  }
   std::vector<uint8_t> finish();
 
   static constexpr int kProbabilityBits = 11;
@@ -63,38 +52,20 @@ class ArithmeticDecoder {
  public:
   explicit ArithmeticDecoder(std::span<const uint8_t> data);
 
+  // Branch-free selection of the sub-range: mask is all ones for a 1.
   int decode(BinContext& context) {
-    const uint32_t bound = (range_ >> ArithmeticEncoder::kProbabilityBits) * context.p0;
-    int bin;
-    if (code_ < bound) {
-      range_ = bound;
-      context.p0 = static_cast<uint16_t>(context.p0 + ((ArithmeticEncoder::kOne - context.p0) >> ArithmeticEncoder::kAdaptShift));
-      bin = 0;
-    } else {
-      code_ -= bound;
-      range_ -= bound;
-      context.p0 = static_cast<uint16_t>(context.p0 - (context.p0 >> ArithmeticEncoder::kAdaptShift));
-      bin = 1;
-    }
+    const uint32_t p0 = context.p0;
+    const uint32_t bound = (range_ >> ArithmeticEncoder::kProbabilityBits) * p0;
+    const uint32_t mask = 0u - static_cast<uint32_t>(code_ >= bound);
+    code_ -= bound & mask;
+    range_ = (bound & ~mask) | ((range_ - bound) & mask);
+    const uint32_t toward = (ArithmeticEncoder::kOne & ~mask) + (mask & 31u);  // 1 → 31, 0 → 2048
+    context.p0 = static_cast<uint16_t>(p0 + ((static_cast<int32_t>(toward) - static_cast<int32_t>(p0)) >> ArithmeticEncoder::kAdaptShift));
     while (range_ < ArithmeticEncoder::kTop) {
       range_ <<= 8;
       code_ = (code_ << 8) | next_byte();
     }
-    return bin;
-  }
-  uint32_t decode_bypass(int count) {
-    uint32_t value = 0;
-    for (int i = 0; i < count; ++i) {
-      range_ >>= 1;
-      const uint32_t bit = code_ >= range_ ? 1u : 0u;
-      code_ -= range_ & (0u - bit);
-      value = (value << 1) | bit;
-      while (range_ < ArithmeticEncoder::kTop) {
-        range_ <<= 8;
-        code_ = (code_ << 8) | next_byte();
-      }
-    }
-    return value;
+    return static_cast<int>(mask & 1u);
   }
 
   // Bytes read past the end of the data (zeros were used): a sticky error.

@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 
+#include "cli/commands3d.h"
 #include "cli/demo.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
@@ -16,6 +17,7 @@
 #include "encoder/encoder.h"
 #include "encoder/frame_input.h"
 #include "mesh/decoded_text.h"
+#include "syntax/container.h"
 #include "syntax/mesh_object.h"
 
 namespace m4mesh {
@@ -126,6 +128,7 @@ int run_trace(const std::string& input) {
 
 int run_info(const std::string& input) {
   const std::vector<uint8_t> stream = read_file(input);
+  if (is_mesh3d_stream(stream)) return run_info3d(input);
   syntax::MeshObjectReader reader(stream);
   MeshObjectPlane plane;
   std::printf("%s: %zu bytes, 2D mesh object\n", input.c_str(), stream.size());
@@ -213,7 +216,7 @@ int main(int argc, char** argv) {
   trace_cmd->add_option("input", trace_input, "mesh stream")->required();
 
   std::string info_input;
-  CLI::App* info_cmd = app.add_subcommand("info", "Summarise a mesh stream plane by plane");
+  CLI::App* info_cmd = app.add_subcommand("info", "Summarise a 2D mesh stream plane by plane, or a 3D stream unit by unit");
   info_cmd->add_option("input", info_input, "mesh stream")->required();
 
   std::string check_input;
@@ -231,6 +234,33 @@ int main(int argc, char** argv) {
   CLI::App* generate_cmd = app.add_subcommand("generate-suite", "Regenerate the conformance streams and manifest");
   generate_cmd->add_option("folder", suite_folder, "output folder")->required();
 
+  Encode3dArgs encode3d_args;
+  CLI::App* encode3d_cmd = app.add_subcommand("encode3d", "Encode an animated 3D mesh (OBJ/OFF frames or .m4seq) into a mesh3d stream");
+  encode3d_cmd->add_option("input", encode3d_args.input, "a folder of frames, a pattern with '*', or a .m4seq file")->required();
+  encode3d_cmd->add_option("-o,--output", encode3d_args.output, "output stream (.m4m)")->required();
+  encode3d_cmd->add_option("--codec", encode3d_args.codec, "codec")->capture_default_str();
+  encode3d_cmd->add_option("--bits", encode3d_args.bits, "quantization bits per coordinate")->check(CLI::Range(4, 24))->capture_default_str();
+  encode3d_cmd->add_flag("--parallelogram", encode3d_args.parallelogram, "bfs3d: parallelogram prediction instead of the base-edge average");
+  encode3d_cmd->add_flag("--no-hash", encode3d_args.no_hash, "leave out the decoded-frame hash units");
+  encode3d_cmd->add_option("--fps", encode3d_args.fps, "frame rate")->check(CLI::Range(1, 65535))->capture_default_str();
+
+  Decode3dArgs decode3d_args;
+  CLI::App* decode3d_cmd = app.add_subcommand("decode3d", "Decode a mesh3d stream into OBJ frames or a .m4seq file");
+  decode3d_cmd->add_option("input", decode3d_args.input, "mesh3d stream")->required();
+  decode3d_cmd->add_option("-o,--output", decode3d_args.output, "a folder for OBJ frames, or a .m4seq file")->required();
+  decode3d_cmd->add_flag("--verify", decode3d_args.verify, "check every frame against its hash unit: OK or MISMATCH per frame");
+
+  MetricsArgs metrics_args;
+  CLI::App* metrics_cmd = app.add_subcommand("metrics", "KG error, RMSE, max error, PSNR and STED between two sequences");
+  metrics_cmd->add_option("original", metrics_args.original, "original frames or .m4seq")->required();
+  metrics_cmd->add_option("decoded", metrics_args.decoded, "decoded frames, .m4seq, or a mesh3d stream")->required();
+  metrics_cmd->add_option("--stream", metrics_args.stream, "the stream, to report bits per vertex per frame");
+
+  std::string convert_input, convert_output;
+  CLI::App* convert_cmd = app.add_subcommand("convert", "Convert a frame sequence to .m4seq or to OBJ frames");
+  convert_cmd->add_option("input", convert_input, "frames or .m4seq")->required();
+  convert_cmd->add_option("output", convert_output, "a .m4seq file or a folder")->required();
+
   DemoOptions demo_options;
   CLI::App* demo_cmd = app.add_subcommand("demo", "Encode and decode an embedded waving-flag animation, check bit-exactness");
   demo_cmd->add_option("--cols", demo_options.cols, "nodes per row")->check(CLI::Range(2, 1023));
@@ -247,6 +277,10 @@ int main(int argc, char** argv) {
     if (*check_cmd) return current_file = check_input, run_check(check_input);
     if (*conform_cmd) return run_conform(conform_options);
     if (*generate_cmd) return run_generate_suite(suite_folder);
+    if (*encode3d_cmd) return current_file = encode3d_args.input, run_encode3d(encode3d_args);
+    if (*decode3d_cmd) return current_file = decode3d_args.input, run_decode3d(decode3d_args);
+    if (*metrics_cmd) return run_metrics(metrics_args);
+    if (*convert_cmd) return run_convert(convert_input, convert_output);
     if (*demo_cmd) return run_demo(demo_options);
   } catch (const Error& e) {
     std::cout.flush();

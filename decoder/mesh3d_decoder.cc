@@ -23,7 +23,8 @@ UnitHeader read_unit_header(const ContainerUnit& unit, int64_t frame, size_t& da
 
 }  // namespace
 
-Mesh3dDecoder::Mesh3dDecoder(std::span<const uint8_t> stream) : parts_(split_container(stream)) {
+Mesh3dDecoder::Mesh3dDecoder(std::span<const uint8_t> stream, bool verify)
+    : parts_(split_container(stream)), verify_(verify) {
   BitReader reader(parts_.object_payload.data(), parts_.object_payload.size());
   syntax::ReadIO io(reader);
   try {
@@ -65,7 +66,21 @@ void Mesh3dDecoder::decode_base(const ContainerUnit& unit) {
 }
 
 void Mesh3dDecoder::decode_frame(const ContainerUnit& unit, uint32_t frame) {
-  ArithmeticDecoder data(std::span(unit.payload).subspan(kUnitHeaderBytes));
+  std::span<const uint8_t> data = std::span<const uint8_t>(unit.payload).subspan(kUnitHeaderBytes);
+  if (data.size() < 3 * kArithmeticLengthBytes) fail(ErrorKind::kTruncated, unit, "arithmetic_bytes", "the frame's data ends early");
+  std::array<uint32_t, 3> lengths;
+  for (int axis = 0; axis < 3; ++axis) {
+    const uint8_t* p = data.data() + axis * kArithmeticLengthBytes;
+    lengths[axis] = uint32_t{p[0]} << 24 | uint32_t{p[1]} << 16 | uint32_t{p[2]} << 8 | p[3];
+  }
+  data = data.subspan(3 * kArithmeticLengthBytes);
+  std::array<ArithmeticDecoder, 3> bins{ArithmeticDecoder({}), ArithmeticDecoder({}), ArithmeticDecoder({})};
+  for (int axis = 0; axis < 3; ++axis) {
+    if (lengths[axis] > data.size()) fail(ErrorKind::kOutOfRange, unit, "arithmetic_bytes", "longer than the frame's data");
+    bins[axis] = ArithmeticDecoder(data.first(lengths[axis]));
+    data = data.subspan(lengths[axis]);
+  }
+  BitReader raw(data.data(), data.size());
   ResidualModel model;
   const bool parallelogram = codec_.prediction == kPredictParallelogram;
   for (size_t k = 0; k < order_.node.size(); ++k) {
@@ -74,7 +89,7 @@ void Mesh3dDecoder::decode_frame(const ContainerUnit& unit, uint32_t frame) {
     const bool use_parallelogram = parallelogram && order_.pred_c[k] != order_.zero_slot;
     for (int axis = 0; axis < 3; ++axis) {
       int32_t r;
-      if (!model.decode(data, axis, r)) fail(ErrorKind::kInvalidCode, unit, "motion_residual", "a residual longer than 32 bits");
+      if (!model.decode(bins[axis], raw, axis, r)) fail(ErrorKind::kInvalidCode, unit, "motion_residual", "a residual longer than 32 bits");
       const int64_t w = use_parallelogram ? a[axis] + b[axis] - c[axis] : (a[axis] + b[axis] + 1) >> 1;
       const int64_t v = w + r;
       const int64_t q = quantized_[n][axis] + v;
@@ -84,7 +99,7 @@ void Mesh3dDecoder::decode_frame(const ContainerUnit& unit, uint32_t frame) {
       quantized_[n][axis] = static_cast<int32_t>(q);
     }
   }
-  if (data.overrun() != 0) fail(ErrorKind::kTruncated, unit, "motion_residual", "the frame's data ends early");
+  if (bins[0].overrun() + bins[1].overrun() + bins[2].overrun() != 0 || raw.overrun()) fail(ErrorKind::kTruncated, unit, "motion_residual", "the frame's data ends early");
   frame_index_ = frame;
 }
 
@@ -98,6 +113,7 @@ void Mesh3dDecoder::check_hash() {
   ++next_unit_;
   if (h.frame_index != frame_index_) fail(ErrorKind::kStructure, unit, "frame_index", "a hash unit for another frame");
   if (unit.payload.size() != offset + 16) fail(ErrorKind::kOutOfRange, unit, "frame_md5", "a hash unit holds 16 bytes");
+  if (!verify_) return;
   static const char kHex[] = "0123456789abcdef";
   std::string expected;
   for (size_t i = offset; i < offset + 16; ++i) {
@@ -139,10 +155,12 @@ bool Mesh3dDecoder::next_frame() {
 }
 
 MeshSequence decode_mesh3d(std::span<const uint8_t> stream) {
-  Mesh3dDecoder decoder(stream);
+  Mesh3dDecoder decoder(stream, true);
   MeshSequence s;
   s.vertex_count = decoder.header().vertex_count;
   while (decoder.next_frame()) {
+    if (decoder.hash_matches() == false)
+      throw Error(ErrorKind::kStructure, "frame_md5", decoder.frame_index(), kNoOffset, "the decoded frame does not match its hash");
     std::vector<Vec3> frame;
     frame.reserve(decoder.positions().size());
     for (const Float3& p : decoder.positions()) frame.push_back({p[0], p[1], p[2]});

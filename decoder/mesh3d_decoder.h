@@ -17,9 +17,10 @@ namespace m4mesh {
 
 class Mesh3dDecoder {
  public:
-  // The stream is not copied: it must outlive the decoder.
-  explicit Mesh3dDecoder(std::span<const uint8_t> stream);
-  Mesh3dDecoder(std::vector<uint8_t>&&) = delete;
+  // The stream is not copied: it must outlive the decoder. With `verify`,
+  // each frame is checked against its hash unit (hash_matches()).
+  explicit Mesh3dDecoder(std::span<const uint8_t> stream, bool verify = false);
+  Mesh3dDecoder(std::vector<uint8_t>&&, bool = false) = delete;
 
   const ObjectHeader& header() const { return header_; }
   const std::vector<Triangle>& faces() const { return faces_; }
@@ -28,8 +29,8 @@ class Mesh3dDecoder {
   bool next_frame();
   uint32_t frame_index() const { return frame_index_; }
   const std::vector<Float3>& positions() const { return positions_; }
-  // The frame's hash unit: nothing when the stream has none for it, else
-  // whether the decoded frame matches it.
+  // The frame's hash unit: nothing when the stream has none for it (or
+  // verification is off), else whether the decoded frame matches it.
   std::optional<bool> hash_matches() const { return hash_matches_; }
   bool has_end_code() const { return parts_.has_end_code; }
 
@@ -51,10 +52,11 @@ class Mesh3dDecoder {
   std::vector<Float3> positions_;
   uint32_t frame_index_ = 0;
   bool started_ = false;
+  bool verify_;
   std::optional<bool> hash_matches_;
 };
 
-// The whole sequence (tests, benchmarks).
+// The whole sequence (tests, tools); fails on a hash mismatch.
 MeshSequence decode_mesh3d(std::span<const uint8_t> stream);
 
 }  // namespace m4mesh

@@ -23,6 +23,22 @@ std::vector<uint8_t> unit_payload(UnitType type, uint32_t frame, std::span<const
   return payload;
 }
 
+// arithmetic_bytes u(32) × 3, the three bin streams, the raw bits.
+std::vector<uint8_t> frame_data(std::array<ArithmeticEncoder, 3>& coders, BitWriter& raw) {
+  std::array<std::vector<uint8_t>, 3> bins;
+  BitWriter lengths;
+  for (int axis = 0; axis < 3; ++axis) {
+    bins[axis] = coders[axis].finish();
+    lengths.write(static_cast<uint32_t>(bins[axis].size()), 32);
+  }
+  std::vector<uint8_t> data = lengths.take_bytes();
+  for (const std::vector<uint8_t>& b : bins) data.insert(data.end(), b.begin(), b.end());
+  raw.write(0, static_cast<int>((8 - raw.position() % 8) % 8));
+  const std::vector<uint8_t> bits = raw.take_bytes();
+  data.insert(data.end(), bits.begin(), bits.end());
+  return data;
+}
+
 std::vector<uint8_t> hash_payload(uint32_t frame, std::span<const Float3> positions) {
   const std::string hex = frame_md5(positions);
   std::vector<uint8_t> digest;
@@ -90,7 +106,8 @@ Encode3dResult encode_mesh3d(const MeshSequence& s, const Encode3dOptions& optio
   std::vector<std::array<int64_t, 3>> motion(V + 1, {0, 0, 0});
   for (size_t f = 1; f < s.frames.size(); ++f) {
     quantize_frame(f, current);
-    ArithmeticEncoder coder;
+    std::array<ArithmeticEncoder, 3> coders;
+    BitWriter raw;
     ResidualModel model;
     for (size_t k = 0; k < order.node.size(); ++k) {
       const NodeIndex n = order.node[k];
@@ -99,11 +116,11 @@ Encode3dResult encode_mesh3d(const MeshSequence& s, const Encode3dOptions& optio
       for (int axis = 0; axis < 3; ++axis) {
         const int64_t v = int64_t{current[n][axis]} - previous[n][axis];
         const int64_t w = parallelogram ? a[axis] + b[axis] - c[axis] : (a[axis] + b[axis] + 1) >> 1;
-        model.encode(coder, axis, static_cast<int32_t>(v - w));
+        model.encode(coders[axis], raw, axis, static_cast<int32_t>(v - w));
         motion[n][axis] = v;
       }
     }
-    add_unit(unit_payload(UnitType::kFrame, static_cast<uint32_t>(f), coder.finish()), result.frame_bytes);
+    add_unit(unit_payload(UnitType::kFrame, static_cast<uint32_t>(f), frame_data(coders, raw)), result.frame_bytes);
     if (options.hashes) add_unit(hash_payload(static_cast<uint32_t>(f), dequantize(current)), result.other_bytes);
     std::swap(previous, current);
     if (options.progress) options.progress(f + 1, s.frames.size());

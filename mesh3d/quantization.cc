@@ -38,15 +38,20 @@ bool Grid::quantize(const Vec3& p, IntPoint3& q) const {
 }
 
 std::string frame_md5(std::span<const Float3> positions) {
-  std::string bytes;
-  bytes.reserve(positions.size() * 12);
+  std::vector<uint8_t> bytes(positions.size() * 12);
+  uint8_t* out = bytes.data();
   for (const Float3& p : positions)
     for (float f : p) {
       uint32_t bits;
       std::memcpy(&bits, &f, 4);
-      for (int i = 0; i < 4; ++i) bytes += static_cast<char>((bits >> (8 * i)) & 0xFF);
+      *out++ = static_cast<uint8_t>(bits);
+      *out++ = static_cast<uint8_t>(bits >> 8);
+      *out++ = static_cast<uint8_t>(bits >> 16);
+      *out++ = static_cast<uint8_t>(bits >> 24);
     }
-  return md5_hex(bytes);
+  Md5 md5;
+  md5.update(bytes.data(), bytes.size());
+  return md5.hex_digest();
 }
 
 }  // namespace m4mesh

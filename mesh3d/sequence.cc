@@ -1,5 +1,7 @@
 #include "mesh3d/sequence.h"
 
+#include <unistd.h>
+
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -149,7 +151,7 @@ MeshFrame read_off(const std::string& path) {
   return frame;
 }
 
-MeshSequence load_sequence(const std::string& path, bool report_progress) {
+MeshSequence load_sequence(const std::string& path, bool progress) {
   namespace fs = std::filesystem;
   if (fs::is_regular_file(path) && fs::path(path).extension() == ".m4seq") return read_binary_sequence(path);
   std::string extension = ".obj";
@@ -160,6 +162,7 @@ MeshSequence load_sequence(const std::string& path, bool report_progress) {
     extension = ".off";
   }
   const std::vector<std::string> files = frame_files(path, extension);
+  const bool report_progress = progress && files.size() > 10 && isatty(fileno(stderr));
   MeshSequence sequence;
   for (size_t k = 0; k < files.size(); ++k) {
     MeshFrame frame = extension == ".off" ? read_off(files[k]) : read_obj_frame(files[k]);
@@ -171,9 +174,9 @@ MeshSequence load_sequence(const std::string& path, bool report_progress) {
       check_same_connectivity(sequence, frame, files[k]);
     }
     sequence.frames.push_back(std::move(frame.vertices));
-    if (report_progress && files.size() > 10) std::fprintf(stderr, "\rreading frame %zu/%zu", k + 1, files.size());
+    if (report_progress) std::fprintf(stderr, "\rreading frame %zu/%zu", k + 1, files.size());
   }
-  if (report_progress && files.size() > 10) std::fprintf(stderr, "\n");
+  if (report_progress) std::fprintf(stderr, "\n");
   return sequence;
 }
 
@@ -225,23 +228,30 @@ MeshSequence read_binary_sequence(const std::string& path) {
   return s;
 }
 
+std::string obj_frame_name(size_t frame_index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "%04zu.obj", frame_index + 1);
+  return name;
+}
+
+void write_obj_frame(std::span<const Vec3> positions, std::span<const Triangle> faces, const std::string& path) {
+  std::string text;
+  char line[96];
+  for (const Vec3& v : positions) {
+    std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", v.x, v.y, v.z);
+    text += line;
+  }
+  for (const Triangle& t : faces) {
+    std::snprintf(line, sizeof line, "f %u %u %u\n", t.v[0] + 1, t.v[1] + 1, t.v[2] + 1);
+    text += line;
+  }
+  write_file_atomically(path, text);
+}
+
 void write_obj_frames(const MeshSequence& s, const std::string& folder) {
   std::filesystem::create_directories(folder);
-  for (size_t k = 0; k < s.frames.size(); ++k) {
-    std::string text;
-    char line[96];
-    for (const Vec3& v : s.frames[k]) {
-      std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", v.x, v.y, v.z);
-      text += line;
-    }
-    for (const Triangle& t : s.faces) {
-      std::snprintf(line, sizeof line, "f %u %u %u\n", t.v[0] + 1, t.v[1] + 1, t.v[2] + 1);
-      text += line;
-    }
-    char name[32];
-    std::snprintf(name, sizeof name, "%04zu.obj", k + 1);
-    write_file_atomically((std::filesystem::path(folder) / name).string(), text);
-  }
+  for (size_t k = 0; k < s.frames.size(); ++k)
+    write_obj_frame(s.frames[k], s.faces, (std::filesystem::path(folder) / obj_frame_name(k)).string());
 }
 
 }  // namespace m4mesh

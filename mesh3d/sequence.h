@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,9 @@ MeshSequence read_binary_sequence(const std::string& path);
 
 // Frames as OBJ files 0001.obj, 0002.obj, … in a folder (created if needed).
 void write_obj_frames(const MeshSequence& sequence, const std::string& folder);
+void write_obj_frame(std::span<const Vec3> positions, std::span<const Triangle> faces, const std::string& path);
+// "0001.obj" for frame index 0.
+std::string obj_frame_name(size_t frame_index);
 
 // One OFF frame: "OFF", counts, vertices, polygons (fanned into triangles).
 struct MeshFrame {

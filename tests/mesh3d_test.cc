@@ -109,30 +109,26 @@ TEST(Container, SplitsObjectUnitsAndEndCode) {
   EXPECT_THROW(split_container(std::vector<uint8_t>{0, 0, 1, 0xC5}), Error);
 }
 
-TEST(Arithmetic, RoundTripsBinsAndBypassBits) {
+TEST(Arithmetic, RoundTripsBins) {
   test::Random random(2);
-  std::vector<std::pair<int, int>> bins;  // (context or −1 for bypass, value)
+  std::vector<std::pair<int, int>> bins;  // (context, value)
   ArithmeticEncoder encoder;
   std::vector<BinContext> contexts(4);
   for (int i = 0; i < 20000; ++i) {
-    const int context = random.uniform(-1, 3);
-    const int bin = context < 0 ? random.uniform(0, 255) : (random.uniform(0, 9) < context * 3 ? 1 : 0);
+    const int context = random.uniform(0, 3);
+    const int bin = random.uniform(0, 9) < context * 3 ? 1 : 0;
     bins.push_back({context, bin});
-    if (context < 0)
-      encoder.encode_bypass(static_cast<uint32_t>(bin), 8);
-    else
-      encoder.encode(contexts[context], bin);
+    encoder.encode(contexts[context], bin);
   }
   const std::vector<uint8_t> data = encoder.finish();
+  EXPECT_LT(data.size(), 20000u / 8);  // skewed bins cost less than a bit each
   ArithmeticDecoder decoder(data);
   std::vector<BinContext> decoding(4);
-  for (const auto& [context, bin] : bins)
-    ASSERT_EQ(context < 0 ? static_cast<int>(decoder.decode_bypass(8)) : decoder.decode(decoding[context]), bin);
+  for (const auto& [context, bin] : bins) ASSERT_EQ(decoder.decode(decoding[context]), bin);
   EXPECT_EQ(decoder.overrun(), 0u);
   EXPECT_EQ(decoder.position(), data.size());
   ArithmeticDecoder truncated(std::span<const uint8_t>(data).first(data.size() / 2));
-  for (const auto& [context, bin] : bins)
-    context < 0 ? truncated.decode_bypass(8) : truncated.decode(decoding[context]);
+  for (const auto& [context, bin] : bins) truncated.decode(decoding[context]);
   EXPECT_GT(truncated.overrun(), 0u);
 }
 
@@ -141,16 +137,21 @@ TEST(Arithmetic, ResidualsOfEverySizeRoundTrip) {
   test::Random random(3);
   for (int i = 0; i < 3000; ++i) values.push_back(random.uniform(-3000, 3000) >> random.uniform(0, 10));
   ArithmeticEncoder encoder;
+  BitWriter raw;
   ResidualModel model;
-  for (size_t i = 0; i < values.size(); ++i) model.encode(encoder, static_cast<int>(i % 3), values[i]);
+  for (size_t i = 0; i < values.size(); ++i) model.encode(encoder, raw, static_cast<int>(i % 3), values[i]);
   const std::vector<uint8_t> data = encoder.finish();
+  raw.write(0, static_cast<int>((8 - raw.position() % 8) % 8));
+  const std::vector<uint8_t> raw_bytes = raw.take_bytes();
   ArithmeticDecoder decoder(data);
+  BitReader raw_reader(raw_bytes.data(), raw_bytes.size());
   ResidualModel decoding;
   for (size_t i = 0; i < values.size(); ++i) {
     int32_t r;
-    ASSERT_TRUE(decoding.decode(decoder, static_cast<int>(i % 3), r));
+    ASSERT_TRUE(decoding.decode(decoder, raw_reader, static_cast<int>(i % 3), r));
     ASSERT_EQ(r, values[i]);
   }
+  EXPECT_FALSE(raw_reader.overrun());
 }
 
 TEST(Traversal3d, EveryVertexOnceAndPredictorsBeforeUse) {
@@ -181,7 +182,7 @@ TEST(DracoBase, KeepsVertexAndFaceOrder) {
 
 void expect_round_trip(const MeshSequence& s, const Encode3dOptions& options) {
   const Encode3dResult encoded = encode_mesh3d(s, options);
-  Mesh3dDecoder decoder(encoded.stream);
+  Mesh3dDecoder decoder(encoded.stream, true);
   const Grid grid = Grid::over(s.frames[0], options.bits);
   uint32_t frames = 0;
   while (decoder.next_frame()) {
@@ -232,7 +233,7 @@ TEST(Bfs3d, EncoderIsDeterministicAndHashesCatchChanges) {
   moved.object(writer.take_bytes());
   for (const ContainerUnit& unit : parts.units) moved.unit(unit.payload);
   const std::vector<uint8_t> moved_stream = moved.finish();
-  Mesh3dDecoder decoder(moved_stream);
+  Mesh3dDecoder decoder(moved_stream, true);
   int mismatches = 0;
   while (decoder.next_frame()) mismatches += !decoder.hash_matches().value_or(true);
   EXPECT_EQ(mismatches, 4);
