@@ -12,7 +12,7 @@ cmake --build build-fuzz -j"$(nproc)" > /dev/null
 
 work=build-fuzz/run
 rm -rf "$work"
-mkdir -p "$work/seeds-stream" "$work/seeds-text" build-fuzz/findings
+mkdir -p "$work/seeds-stream" "$work/seeds-text" "$work/seeds-mesh3d" build-fuzz/findings
 # Seeds no longer than the inputs the fuzzers make (-max_len).
 find conformance/streams tests/fuzz_regressions -name '*.m4m' -size -8193c -exec cp {} "$work/seeds-stream/" \;
 cp tests/fuzz_regressions/*.txt "$work/seeds-text/" 2> /dev/null || true
@@ -20,15 +20,22 @@ for stream in conformance/streams/p0*.m4m conformance/streams/p1*.m4m conformanc
   build-fuzz/cli/m4mesh decode "$stream" -o "$work/seeds-text/$(basename "$stream" .m4m).txt" > /dev/null 2>&1 || true
 done
 
+# Small 3D streams: the first frames of a test sequence, both predictions.
+for bits in 6 10; do
+  build-fuzz/cli/m4mesh encode3d tests/data/tetra-frames -o "$work/seeds-mesh3d/tetra-$bits.m4m" --bits "$bits" > /dev/null 2>&1 || true
+  build-fuzz/cli/m4mesh encode3d tests/data/tetra-frames -o "$work/seeds-mesh3d/tetra-$bits-p.m4m" --bits "$bits" --parallelogram > /dev/null 2>&1 || true
+done
+
 total=0
-for target in decoder checker text; do
+for target in decoder checker text mesh3d; do
   seeds="$work/seeds-stream"
   [ "$target" = text ] && seeds="$work/seeds-text"
+  [ "$target" = mesh3d ] && seeds="$work/seeds-mesh3d"
   mkdir -p "$work/corpus-$target"
   log="$work/$target.log"
   echo "== ${target}_fuzzer for ${seconds}s"
   if ! build-fuzz/fuzz/${target}_fuzzer "$work/corpus-$target" "$seeds" -max_total_time="$seconds" -timeout=10 \
-       -rss_limit_mb=2048 -max_len=8192 -print_final_stats=1 -artifact_prefix=build-fuzz/findings/ > "$log" 2>&1; then
+       -rss_limit_mb=2048 -max_len=4096 -print_final_stats=1 -artifact_prefix=build-fuzz/findings/ > "$log" 2>&1; then
     tail -40 "$log"
     echo "FAIL: ${target}_fuzzer found a problem (artifact in build-fuzz/findings/)"
     exit 1
