@@ -3,7 +3,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -51,12 +50,15 @@ TEST(Conformance, SuiteSize) {
 // Every numbered clause of the specification has a stream.
 TEST(Conformance, EveryClauseOfTheSpecificationIsCovered) {
   if (!fs::exists(kSpec)) GTEST_SKIP() << "the specification is not at " << kSpec << " (../shared absent)";
+  // Headings "## N. Title" and "### N.M Title".
   std::ifstream spec(kSpec);
-  const std::regex heading(R"(^#{2,3} (\d+(\.\d+)?)\.? )");
   std::set<std::string> clauses;
   for (std::string line; std::getline(spec, line);) {
-    std::smatch m;
-    if (std::regex_search(line, m, heading)) clauses.insert(m[1]);
+    if (!line.starts_with("## ") && !line.starts_with("### ")) continue;
+    const std::string rest = line.substr(line.find(' ') + 1);
+    const std::string number = rest.substr(0, rest.find(' '));
+    std::string clause = number.ends_with(".") ? number.substr(0, number.size() - 1) : number;
+    if (!clause.empty() && clause.find_first_not_of("0123456789.") == std::string::npos) clauses.insert(clause);
   }
   ASSERT_GE(clauses.size(), 20u);
   std::set<std::string> covered;
