@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "bitstream/start_codes.h"
+#include "common/random.h"
 #include "encoder/encoder.h"
 #include "syntax/mesh_object.h"
 #include "syntax/values.h"
@@ -17,44 +18,7 @@ namespace m4mesh {
 
 namespace {
 
-// Deterministic pseudo-random numbers (splitmix64).
-class Random {
- public:
-  explicit Random(uint64_t seed) : state_(seed) {}
-  int32_t uniform(int32_t lo, int32_t hi) {
-    uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    return lo + static_cast<int32_t>(z % static_cast<uint64_t>(int64_t{hi} - lo + 1));
-  }
-
- private:
-  uint64_t state_;
-};
-
-MeshPlane uniform(uint32_t cols, uint32_t rows, uint32_t dx, uint32_t dy, uint32_t split) {
-  MeshPlane plane;
-  plane.info.uniform = UniformParams{cols, rows, dx, dy, split};
-  plane.nodes = uniform_nodes(plane.info.uniform);
-  return plane;
-}
-
-MeshPlane delaunay(std::vector<Point> nodes, uint32_t boundary) {
-  MeshPlane plane;
-  plane.info.kind = MeshKind::kDelaunay;
-  plane.info.boundary = boundary;
-  plane.nodes = std::move(nodes);
-  return plane;
-}
-
-MeshPlane inter(std::vector<Point> nodes, uint32_t range = 0) {
-  MeshPlane plane;
-  plane.info.intra = false;
-  plane.info.range = range;
-  plane.nodes = std::move(nodes);
-  return plane;
-}
+using Random = SplitMix64;
 
 // `frames` P-planes of random motion in [lo, hi] after `intra`.
 std::vector<MeshPlane> with_motion(MeshPlane intra, int frames, int lo, int hi, uint64_t seed) {
@@ -66,7 +30,7 @@ std::vector<MeshPlane> with_motion(MeshPlane intra, int frames, int lo, int hi, 
       p.x += random.uniform(lo, hi);
       p.y += random.uniform(lo, hi);
     }
-    planes.push_back(inter(std::move(next)));
+    planes.push_back(inter_plane(std::move(next)));
   }
   return planes;
 }
@@ -121,7 +85,8 @@ std::vector<Point> star_boundary(int count, int min_radius, int max_radius, uint
   return nodes;
 }
 
-// The comb of tests/cdt_test.cc: notches cut up from the bottom.
+}  // namespace
+
 std::vector<Point> comb_boundary() {
   std::vector<Point> comb{{0, 0}, {0, 900}};
   for (int t = 0; t < 10; ++t) {
@@ -159,6 +124,25 @@ std::vector<Point> spiral_boundary() {
   spiral.push_back({w, 0});
   return spiral;
 }
+
+std::vector<MeshPlane> hand_stream_planes() {
+  std::vector<MeshPlane> planes{uniform_plane(3, 3, 16, 16, 0)};
+  std::vector<Point> p1 = planes[0].nodes;
+  p1[0] = {1, 0};
+  p1[1] = {17, 0};
+  p1[4] = {18, 17};
+  p1[3] = {0, 14};
+  p1[7] = {13, 32};
+  planes.push_back(inter_plane(p1));
+  std::vector<Point> p2 = p1;
+  p2[0] = {41, -1};
+  p2[1] = {-23, 0};
+  p2[4] = {18, 80};
+  planes.push_back(inter_plane(p2));
+  return planes;
+}
+
+namespace {
 
 // ---- negative streams ----------------------------------------------------
 
@@ -298,80 +282,66 @@ std::vector<SuiteCase> build_suite() {
   const std::vector<std::string> delaunay_clauses{"1", "2.1", "2.2", "3", "3.1", "4", "4.1", "4.2", "6.1", "6.2", "7.1", "7.2", "9", "10"};
 
   // ---- uniform meshes -----------------------------------------------------
-  {
-    std::vector<MeshPlane> planes{uniform(3, 3, 16, 16, 0)};
-    std::vector<Point> p1 = planes[0].nodes;
-    p1[0] = {1, 0};
-    p1[1] = {17, 0};
-    p1[4] = {18, 17};
-    p1[3] = {0, 14};
-    p1[7] = {13, 32};
-    planes.push_back(inter(p1));
-    std::vector<Point> p2 = p1;
-    p2[0] = {41, -1};
-    p2[1] = {-23, 0};
-    p2[4] = {18, 80};
-    planes.push_back(inter(p2));
-    valid("p01-hand-3x3", "the 3×3 stream worked out by hand in tests/hand_stream_test.cc", uniform_clauses, encoded(planes));
-  }
+  valid("p01-hand-3x3", "the 3×3 stream worked out by hand in tests/hand_stream_test.cc", uniform_clauses,
+        encoded(hand_stream_planes()));
   for (uint32_t split = 0; split < 4; ++split)
     valid("p0" + std::to_string(2 + split) + "-uniform-split" + std::to_string(split),
           "triangle_split_code '" + std::string(split < 2 ? "0" : "1") + (split % 2 ? "1" : "0") + "' on a 6×5 mesh with motion",
-          uniform_clauses, encoded(with_motion(uniform(6, 5, 20, 18, split), 3, -20, 20, 100 + split)));
-  valid("p06-uniform-2x2", "the smallest uniform mesh", uniform_clauses, encoded(with_motion(uniform(2, 2, 100, 100, 1), 2, -30, 30, 6)));
-  valid("p07-uniform-1023x2", "the widest uniform mesh", uniform_clauses, encoded(with_motion(uniform(1023, 2, 1, 50, 2), 1, -3, 3, 7)));
-  valid("p08-uniform-2x1023", "the tallest uniform mesh", uniform_clauses, encoded(with_motion(uniform(2, 1023, 50, 1, 3), 1, -3, 3, 8)));
-  valid("p09-uniform-rect-1-255", "mesh_rect_size at 1 and 255", uniform_clauses, encoded(with_motion(uniform(8, 5, 1, 255, 0), 2, -9, 9, 9)));
+          uniform_clauses, encoded(with_motion(uniform_plane(6, 5, 20, 18, split), 3, -20, 20, 100 + split)));
+  valid("p06-uniform-2x2", "the smallest uniform mesh", uniform_clauses, encoded(with_motion(uniform_plane(2, 2, 100, 100, 1), 2, -30, 30, 6)));
+  valid("p07-uniform-1023x2", "the widest uniform mesh", uniform_clauses, encoded(with_motion(uniform_plane(1023, 2, 1, 50, 2), 1, -3, 3, 7)));
+  valid("p08-uniform-2x1023", "the tallest uniform mesh", uniform_clauses, encoded(with_motion(uniform_plane(2, 1023, 50, 1, 3), 1, -3, 3, 8)));
+  valid("p09-uniform-rect-1-255", "mesh_rect_size at 1 and 255", uniform_clauses, encoded(with_motion(uniform_plane(8, 5, 1, 255, 0), 2, -9, 9, 9)));
   for (uint32_t code = 1; code <= 3; ++code) {
     const MotionRange range(code);
-    std::vector<MeshPlane> planes{uniform(6, 6, 255, 255, 0)};
+    std::vector<MeshPlane> planes{uniform_plane(6, 6, 255, 255, 0)};
     std::vector<Point> nodes = planes[0].nodes;
     for (size_t i = 0; i < nodes.size(); ++i) {
       nodes[i].x += i % 2 ? range.low : range.high;
       nodes[i].y += i % 3 ? range.high : range.low;
     }
-    planes.push_back(inter(nodes));
+    planes.push_back(inter_plane(nodes));
     valid("p" + std::to_string(9 + code) + "-range" + std::to_string(code) + "-limits",
           "motion_range_code " + std::to_string(code) + " with vectors at low and high", uniform_clauses, encoded(planes));
   }
   for (uint32_t code = 1; code <= 3; ++code) {
     const MotionRange range(code);
-    std::vector<MeshPlane> planes{uniform(4, 4, 100, 100, 2)};
+    std::vector<MeshPlane> planes{uniform_plane(4, 4, 100, 100, 2)};
     std::vector<Point> nodes = planes[0].nodes;
     for (size_t i = 0; i < nodes.size(); ++i) {
       const int v = i % 2 ? range.low + 1 : range.high - 1;
       nodes[i].x += v;
       nodes[i].y -= v;
     }
-    planes.push_back(inter(nodes, code));
+    planes.push_back(inter_plane(nodes, code));
     valid("p" + std::to_string(12 + code) + "-range" + std::to_string(code) + "-wrap",
           "differences that wrap in both directions, range " + std::to_string(code), uniform_clauses, encoded(planes));
   }
   {
-    std::vector<MeshPlane> planes{uniform(40, 40, 8, 8, 0)};
-    for (int k = 0; k < 3; ++k) planes.push_back(inter(planes[0].nodes));
+    std::vector<MeshPlane> planes{uniform_plane(40, 40, 8, 8, 0)};
+    for (int k = 0; k < 3; ++k) planes.push_back(inter_plane(planes[0].nodes));
     std::vector<Point> moved = planes[0].nodes;
     moved[1599].y -= 1;
-    planes.push_back(inter(moved));
+    planes.push_back(inter_plane(moved));
     auto clauses = uniform_clauses;
     clauses.push_back("2.3");
     valid("p16-zero-motion-runs", "long runs of node_motion_vector_flag '0': start-code emulation inside planes", clauses, encoded(planes));
   }
   {
-    std::vector<MeshPlane> planes = with_motion(uniform(5, 4, 30, 30, 1), 2, -10, 10, 17);
-    std::vector<MeshPlane> second = with_motion(delaunay(concat(box_boundary(100, 100, 500, 500, 2), random_inside(20, 100, 100, 500, 500, 17)), 8), 2, -10, 10, 18);
+    std::vector<MeshPlane> planes = with_motion(uniform_plane(5, 4, 30, 30, 1), 2, -10, 10, 17);
+    std::vector<MeshPlane> second = with_motion(delaunay_plane(concat(box_boundary(100, 100, 500, 500, 2), random_inside(20, 100, 100, 500, 500, 17)), 8), 2, -10, 10, 18);
     planes.insert(planes.end(), second.begin(), second.end());
-    planes.push_back(uniform(3, 7, 9, 9, 3));
+    planes.push_back(uniform_plane(3, 7, 9, 9, 3));
     auto clauses = delaunay_clauses;
     clauses.push_back("5");
     valid("p17-repeated-intra", "I-planes that change the topology: uniform, Delaunay, uniform", clauses, encoded(planes));
   }
   valid("p18-no-end-code", "a stream without mesh_object_end_code (a warning, not an error)", uniform_clauses,
-        encoded(with_motion(uniform(4, 3, 12, 12, 0), 2, -5, 5, 18), MotionMethod::kMethod2, false));
+        encoded(with_motion(uniform_plane(4, 3, 12, 12, 0), 2, -5, 5, 18), MotionMethod::kMethod2, false));
 
   // ---- Delaunay meshes ----------------------------------------------------
   valid("p19-delaunay-convex", "a square boundary with 200 interior nodes and motion", delaunay_clauses,
-        encoded(with_motion(delaunay(concat(box_boundary(50, 60, 950, 940, 1), random_inside(200, 50, 60, 950, 940, 19)), 4), 3, -25, 25, 19)));
+        encoded(with_motion(delaunay_plane(concat(box_boundary(50, 60, 950, 940, 1), random_inside(200, 50, 60, 950, 940, 19)), 4), 3, -25, 25, 19)));
   {
     std::vector<Point> comb = comb_boundary();
     const uint32_t b = static_cast<uint32_t>(comb.size());
@@ -379,39 +349,39 @@ std::vector<SuiteCase> build_suite() {
     for (const Point& p : comb) used.insert({p.x, p.y});
     comb = concat(comb, random_inside(60, 0, 0, 1000, 200, 20, used));
     valid("p20-delaunay-nonconvex", "a non-convex comb boundary with interior nodes", delaunay_clauses,
-          encoded(with_motion(delaunay(comb, b), 2, -8, 8, 20)));
+          encoded(with_motion(delaunay_plane(comb, b), 2, -8, 8, 20)));
   }
   {
     std::vector<Point> nodes = box_boundary(0, 0, 1000, 1000, 40);
     const uint32_t b = static_cast<uint32_t>(nodes.size());
     nodes = concat(nodes, random_inside(300, 0, 0, 1000, 1000, 21));
     valid("p21-delaunay-collinear", "collinear boundary runs (160 boundary nodes on a square)", delaunay_clauses,
-          encoded(with_motion(delaunay(nodes, b), 2, -5, 5, 21)));
+          encoded(with_motion(delaunay_plane(nodes, b), 2, -5, 5, 21)));
   }
   {
     std::vector<Point> nodes{{0, 0}, {0, 300}, {300, 300}, {300, 0}};
     for (int y = 1; y < 30; ++y)
       for (int x = 1; x < 30; ++x) nodes.push_back({x * 10, y * 10});
     valid("p22-delaunay-cocircular-lattice", "a lattice: every cell cocircular, the §6.2 fan rule everywhere", delaunay_clauses,
-          encoded(with_motion(delaunay(nodes, 4), 1, -2, 2, 22)));
+          encoded(with_motion(delaunay_plane(nodes, 4), 1, -2, 2, 22)));
   }
   {
     std::vector<Point> ring{{495, 500}, {496, 503}, {497, 504}, {500, 505}, {503, 504}, {504, 503},
                             {505, 500}, {504, 497}, {503, 496}, {500, 495}, {497, 496}, {496, 497}};
     valid("p23-delaunay-circle", "twelve nodes on one circle: a fan from node 0", delaunay_clauses,
-          encoded(with_motion(delaunay(ring, 12), 1, -3, 3, 23)));
+          encoded(with_motion(delaunay_plane(ring, 12), 1, -3, 3, 23)));
   }
   valid("p24-delaunay-3-nodes", "the smallest Delaunay mesh", delaunay_clauses,
-        encoded(with_motion(delaunay({{10, 10}, {10, 500}, {600, 20}}, 3), 2, -60, 60, 24)));
+        encoded(with_motion(delaunay_plane({{10, 10}, {10, 500}, {600, 20}}, 3), 2, -60, 60, 24)));
   {
     std::vector<Point> nodes = star_boundary(1023, 420, 511, 25);
     std::set<std::pair<int, int>> used;
     for (const Point& p : nodes) used.insert({p.x, p.y});
     nodes = concat(nodes, random_inside(65535 - 1023, 230, 230, 794, 794, 25, used));
-    std::vector<MeshPlane> planes{delaunay(nodes, 1023)};
+    std::vector<MeshPlane> planes{delaunay_plane(nodes, 1023)};
     std::vector<Point> moved = nodes;
     for (size_t i = 0; i < moved.size(); i += 97) moved[i].x += 3;
-    planes.push_back(inter(moved));
+    planes.push_back(inter_plane(moved));
     valid("p25-delaunay-65535-nodes", "the largest Delaunay mesh: 65,535 nodes, 1,023 of them on the boundary", delaunay_clauses, encoded(planes));
   }
   {
@@ -419,12 +389,12 @@ std::vector<SuiteCase> build_suite() {
     std::set<std::pair<int, int>> used;
     for (const Point& p : nodes) used.insert({p.x, p.y});
     valid("p26-delaunay-1023-boundary", "1,023 boundary nodes on a star-shaped polygon", delaunay_clauses,
-          encoded(with_motion(delaunay(concat(nodes, random_inside(100, 312, 312, 712, 712, 26, used)), 1023), 1, -4, 4, 26)));
+          encoded(with_motion(delaunay_plane(concat(nodes, random_inside(100, 312, 312, 712, 712, 26, used)), 1023), 1, -4, 4, 26)));
   }
   {
     std::vector<Point> nodes{{0, 0}, {0, 1023}, {1023, 1023}, {1023, 0}, {1, 1}, {1022, 1022}, {1, 1022}, {1022, 1}};
     valid("p27-delaunay-coordinate-extremes", "node coordinates at 0 and 1023", delaunay_clauses,
-          encoded(with_motion(delaunay(nodes, 4), 1, -2, 2, 27)));
+          encoded(with_motion(delaunay_plane(nodes, 4), 1, -2, 2, 27)));
   }
   {
     // Down the left side with steps 1, 2, 4, …, 512: every delta length 0 … 10.
@@ -436,15 +406,15 @@ std::vector<SuiteCase> build_suite() {
     std::set<std::pair<int, int>> used;
     for (const Point& p : nodes) used.insert({p.x, p.y});
     valid("p28-delaunay-delta-lengths", "node deltas of every length 0 … 10 (11 cannot occur in a valid stream)", delaunay_clauses,
-          encoded(with_motion(delaunay(concat(nodes, random_inside(40, 0, 0, 1023, 1023, 28, used)), b), 1, -3, 3, 28)));
+          encoded(with_motion(delaunay_plane(concat(nodes, random_inside(40, 0, 0, 1023, 1023, 28, used)), b), 1, -3, 3, 28)));
   }
   {
     const std::vector<Point> spiral = spiral_boundary();
     valid("p29-delaunay-spiral", "a spiral corridor boundary", delaunay_clauses,
-          encoded(with_motion(delaunay(spiral, static_cast<uint32_t>(spiral.size())), 1, -5, 5, 29)));
+          encoded(with_motion(delaunay_plane(spiral, static_cast<uint32_t>(spiral.size())), 1, -5, 5, 29)));
   }
   {
-    MeshPlane intra = delaunay(concat(box_boundary(200, 200, 800, 800, 3), random_inside(150, 200, 200, 800, 800, 30)), 12);
+    MeshPlane intra = delaunay_plane(concat(box_boundary(200, 200, 800, 800, 3), random_inside(150, 200, 200, 800, 800, 30)), 12);
     std::vector<MeshPlane> planes{intra};
     Random random(30);
     for (int limit : {31, 63, 127}) {
@@ -454,44 +424,44 @@ std::vector<SuiteCase> build_suite() {
         p.y += random.uniform(-limit / 2, limit / 2);
       }
       next[5].x = planes.back().nodes[5].x + limit;
-      planes.push_back(inter(next));
+      planes.push_back(inter_plane(next));
     }
     valid("p30-delaunay-all-ranges", "Method II on a Delaunay mesh with each motion_range_code", delaunay_clauses, encoded(planes));
   }
   {
-    std::vector<MeshPlane> planes{delaunay(concat(box_boundary(0, 0, 200, 200, 1), random_inside(30, 0, 0, 200, 200, 31)), 4)};
+    std::vector<MeshPlane> planes{delaunay_plane(concat(box_boundary(0, 0, 200, 200, 1), random_inside(30, 0, 0, 200, 200, 31)), 4)};
     for (int k = 0; k < 3; ++k) {
       std::vector<Point> next = planes.back().nodes;
       for (Point& p : next) {
         p.x -= 100;
         p.y -= 100;
       }
-      planes.push_back(inter(next));
+      planes.push_back(inter_plane(next));
     }
     valid("p31-positions-outside", "P-planes that move nodes to negative coordinates (positions are not range-limited)",
           delaunay_clauses, encoded(planes));
   }
-  valid("p32-intra-only", "a single uniform I-plane", uniform_clauses, encoded({uniform(9, 9, 7, 11, 2)}));
+  valid("p32-intra-only", "a single uniform I-plane", uniform_clauses, encoded({uniform_plane(9, 9, 7, 11, 2)}));
   {
     auto clauses = uniform_clauses;
     clauses.push_back("8");
     valid("p33-method1-uniform", "Method I on a uniform mesh (decode with Method I)", clauses,
-          encoded(with_motion(uniform(7, 6, 14, 14, 2), 3, -15, 15, 33), MotionMethod::kMethod1), MotionMethod::kMethod1);
+          encoded(with_motion(uniform_plane(7, 6, 14, 14, 2), 3, -15, 15, 33), MotionMethod::kMethod1), MotionMethod::kMethod1);
     auto dclauses = delaunay_clauses;
     dclauses.push_back("8");
     valid("p34-method1-delaunay", "Method I on a Delaunay mesh (decode with Method I)", dclauses,
-          encoded(with_motion(delaunay(concat(box_boundary(0, 0, 400, 400, 2), random_inside(50, 0, 0, 400, 400, 34)), 8), 3, -15, 15, 34),
+          encoded(with_motion(delaunay_plane(concat(box_boundary(0, 0, 400, 400, 2), random_inside(50, 0, 0, 400, 400, 34)), 8), 3, -15, 15, 34),
                   MotionMethod::kMethod1),
           MotionMethod::kMethod1);
   }
-  valid("p35-long-sequence", "100 P-planes of small motion", uniform_clauses, encoded(with_motion(uniform(5, 5, 20, 20, 3), 100, -2, 2, 35)));
+  valid("p35-long-sequence", "100 P-planes of small motion", uniform_clauses, encoded(with_motion(uniform_plane(5, 5, 20, 20, 3), 100, -2, 2, 35)));
   {
-    std::vector<MeshPlane> planes{delaunay(concat(box_boundary(0, 0, 300, 300, 1), random_inside(40, 0, 0, 300, 300, 36)), 4)};
+    std::vector<MeshPlane> planes{delaunay_plane(concat(box_boundary(0, 0, 300, 300, 1), random_inside(40, 0, 0, 300, 300, 36)), 4)};
     std::vector<Point> moved = planes[0].nodes;
     for (Point& p : moved) p.x += 300;  // beyond [−128, 127]: coded as a new I-plane
-    planes.push_back(inter(moved));
+    planes.push_back(inter_plane(moved));
     for (Point& p : moved) p.y += 100;
-    planes.push_back(inter(moved));
+    planes.push_back(inter_plane(moved));
     valid("p36-delaunay-refresh", "motion beyond the largest range, coded as a new Delaunay I-plane (§10)", delaunay_clauses, encoded(planes));
   }
   {
@@ -502,22 +472,22 @@ std::vector<SuiteCase> build_suite() {
             c.push_back("2.3");
             return c;
           }(),
-          encoded(with_motion(delaunay(concat(nodes, random_inside(100, 0, 0, 1016, 1016, 37)), 512), 1, -1, 1, 37)));
+          encoded(with_motion(delaunay_plane(concat(nodes, random_inside(100, 0, 0, 1016, 1016, 37)), 512), 1, -1, 1, 37)));
   }
   valid("p38-range3-residuals", "large motion: range 3 with every residual value", uniform_clauses,
-        encoded(with_motion(uniform(10, 10, 60, 60, 0), 3, -128, 127, 38)));
-  valid("p39-uniform-odd-checkerboard", "split '10' on odd node counts", uniform_clauses, encoded(with_motion(uniform(7, 3, 33, 21, 2), 2, -12, 12, 39)));
-  valid("p40-uniform-even-checkerboard", "split '11' on even node counts", uniform_clauses, encoded(with_motion(uniform(8, 4, 21, 33, 3), 2, -12, 12, 40)));
+        encoded(with_motion(uniform_plane(10, 10, 60, 60, 0), 3, -128, 127, 38)));
+  valid("p39-uniform-odd-checkerboard", "split '10' on odd node counts", uniform_clauses, encoded(with_motion(uniform_plane(7, 3, 33, 21, 2), 2, -12, 12, 39)));
+  valid("p40-uniform-even-checkerboard", "split '11' on even node counts", uniform_clauses, encoded(with_motion(uniform_plane(8, 4, 21, 33, 3), 2, -12, 12, 40)));
   valid("p41-delaunay-square-centre", "a square with one interior node", delaunay_clauses,
-        encoded(with_motion(delaunay({{0, 0}, {0, 10}, {10, 10}, {10, 0}, {5, 5}}, 4), 2, -4, 4, 41)));
+        encoded(with_motion(delaunay_plane({{0, 0}, {0, 10}, {10, 10}, {10, 0}, {5, 5}}, 4), 2, -4, 4, 41)));
   valid("p42-uniform-max-rect", "mesh_rect_size 255 both ways with range 3 motion", uniform_clauses,
-        encoded(with_motion(uniform(5, 5, 255, 255, 1), 2, -100, 100, 42)));
+        encoded(with_motion(uniform_plane(5, 5, 255, 255, 1), 2, -100, 100, 42)));
 
   // ---- negative streams ---------------------------------------------------
-  const std::vector<uint8_t> small = encoded(with_motion(uniform(4, 3, 16, 16, 0), 2, -20, 20, 50));
-  const std::vector<uint8_t> large_motion = encoded(with_motion(uniform(4, 3, 16, 16, 0), 1, -100, 100, 51));
+  const std::vector<uint8_t> small = encoded(with_motion(uniform_plane(4, 3, 16, 16, 0), 2, -20, 20, 50));
+  const std::vector<uint8_t> large_motion = encoded(with_motion(uniform_plane(4, 3, 16, 16, 0), 1, -100, 100, 51));
   const std::vector<uint8_t> small_delaunay =
-      encoded(with_motion(delaunay(concat(box_boundary(0, 0, 100, 100, 1), random_inside(10, 0, 0, 100, 100, 52)), 4), 1, -5, 5, 52));
+      encoded(with_motion(delaunay_plane(concat(box_boundary(0, 0, 100, 100, 1), random_inside(10, 0, 0, 100, 100, 52)), 4), 1, -5, 5, 52));
   invalid("n01-truncated-start-code", "the data ends inside mesh_object_start_code", {"2.1", "11"},
           std::vector<uint8_t>(small.begin(), small.begin() + 3), ErrorKind::kTruncated, "mesh_object_start_code", kNoPlane);
   for (const auto& [id, element, occurrence, base] :

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "mesh/plane.h"
 #include "mesh/traversal.h"
 
 namespace m4mesh {
@@ -25,5 +26,11 @@ struct SuiteCase {
 };
 
 std::vector<SuiteCase> build_suite();
+
+// Shapes of the suite that the tests use too.
+std::vector<Point> comb_boundary();    // a comb: notches cut up from the bottom
+std::vector<Point> spiral_boundary();  // a square spiral corridor, 20 wide
+// The 3×3 uniform mesh and two P-planes of tests/hand_stream_test.cc.
+std::vector<MeshPlane> hand_stream_planes();
 
 }  // namespace m4mesh

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/error.h"
+#include "common/random.h"
 
 namespace m4mesh {
 
@@ -39,13 +40,6 @@ uint32_t hilbert_index(Point p) {
     }
   }
   return d;
-}
-
-uint64_t splitmix64(uint64_t& state) {
-  uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
 }
 
 class Triangulation {
@@ -347,8 +341,8 @@ void Triangulation::insert_all(const CdtOptions& options) {
   std::vector<uint32_t> order(node_count_);
   std::iota(order.begin(), order.end(), 0u);
   if (options.shuffle) {
-    uint64_t state = options.insertion_seed;
-    for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[splitmix64(state) % i]);
+    SplitMix64 random(options.insertion_seed);
+    for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[random.next() % i]);
     // BRIO: the later half of each prefix is one round, sorted along a Hilbert curve
     // (keys: Hilbert index above, node below).
     std::vector<uint64_t> keys(node_count_);

@@ -27,4 +27,10 @@ struct MeshPlane {
   std::vector<Triangle> triangles;  // I-planes
 };
 
+// A uniform I-plane on its grid, a Delaunay I-plane (boundary nodes first),
+// and a P-plane (range 0: the encoder chooses).
+MeshPlane uniform_plane(uint32_t cols, uint32_t rows, uint32_t dx, uint32_t dy, uint32_t split);
+MeshPlane delaunay_plane(std::vector<Point> nodes, uint32_t boundary);
+MeshPlane inter_plane(std::vector<Point> nodes, uint32_t range = 0);
+
 }  // namespace m4mesh

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "common/error.h"
+#include "conformance/suite.h"
 #include "mesh/cdt.h"
 #include "tests/test_util.h"
 
@@ -148,41 +149,10 @@ TEST(Cdt, CollinearBoundaryRunsWithInteriorNodes) {
 }
 
 TEST(Cdt, NonConvexAndSpiralBoundaries) {
-  // A comb: counterclockwise from (0, 0), down, then along the bottom with
-  // ten narrow notches cut up to y = 200, up the right side, back along the top.
-  std::vector<Point> comb{{0, 0}, {0, 900}};
-  for (int t = 0; t < 10; ++t) {
-    comb.push_back({t * 100 + 40, 900});
-    comb.push_back({t * 100 + 40, 200});
-    comb.push_back({t * 100 + 60, 200});
-    comb.push_back({t * 100 + 60, 900});
-  }
-  comb.push_back({1000, 900});
-  comb.push_back({1000, 0});
+  const std::vector<Point> comb = comb_boundary();
   expect_valid_cdt(comb, static_cast<uint32_t>(comb.size()), cdt(comb, static_cast<uint32_t>(comb.size())));
 
-  // A square spiral corridor, 20 wide, winding inwards.
-  std::vector<Point> outer, inner;
-  int x0 = 0, y0 = 0, x1 = 1000, y1 = 1000;
-  const int w = 20;
-  outer.push_back({x0, y0});
-  while (x1 - x0 > 4 * w && y1 - y0 > 4 * w) {
-    outer.push_back({x0, y1});
-    outer.push_back({x1, y1});
-    outer.push_back({x1, y0 + 2 * w});
-    inner.push_back({x0 + w, y0 + w});
-    inner.push_back({x0 + w, y1 - w});
-    inner.push_back({x1 - w, y1 - w});
-    inner.push_back({x1 - w, y0 + 3 * w});
-    x0 += 2 * w;
-    y0 += 2 * w;
-    x1 -= 2 * w;
-    y1 -= 2 * w;
-    outer.push_back({x0, y0});
-  }
-  std::vector<Point> spiral = outer;
-  spiral.insert(spiral.end(), inner.rbegin(), inner.rend());
-  spiral.push_back({w, 0});
+  const std::vector<Point> spiral = spiral_boundary();
   const uint32_t b = static_cast<uint32_t>(spiral.size());
   validate_delaunay_nodes(spiral, b);
   expect_valid_cdt(spiral, b, cdt(spiral, b));

@@ -39,7 +39,7 @@ std::vector<MeshPlane> random_motion(MeshPlane intra, int frames, int lo, int hi
       p.x += random.uniform(lo, hi);
       p.y += random.uniform(lo, hi);
     }
-    planes.push_back(test::inter_plane(next));
+    planes.push_back(inter_plane(next));
   }
   return planes;
 }
@@ -64,7 +64,7 @@ TEST(Uniform, SplitCodesFollowSection5) {
 
 TEST(Uniform, EverySplitCodeRoundTrips) {
   for (uint32_t split = 0; split < 4; ++split) {
-    const auto planes = random_motion(test::uniform_plane(7, 5, 20, 16, split), 6, -20, 20, split);
+    const auto planes = random_motion(uniform_plane(7, 5, 20, 16, split), 6, -20, 20, split);
     const std::vector<uint8_t> stream = encode(planes).stream;
     expect_decodes_to(stream, planes);
     Decoder decoder(stream);
@@ -76,7 +76,7 @@ TEST(Uniform, EverySplitCodeRoundTrips) {
 
 TEST(Uniform, ExtremeShapes) {
   for (auto [cols, rows] : {std::pair{2u, 2u}, {1023u, 2u}, {2u, 1023u}}) {
-    const auto planes = random_motion(test::uniform_plane(cols, rows, 1, 255, 2), 3, -3, 3, cols);
+    const auto planes = random_motion(uniform_plane(cols, rows, 1, 255, 2), 3, -3, 3, cols);
     expect_decodes_to(encode(planes).stream, planes);
   }
 }
@@ -85,13 +85,13 @@ TEST(Uniform, ExtremeShapes) {
 TEST(Motion, EveryRangeAtItsLimits) {
   for (uint32_t code = 1; code <= 3; ++code) {
     const MotionRange range(code);
-    std::vector<MeshPlane> planes{test::uniform_plane(6, 6, 255, 255, 0)};
+    std::vector<MeshPlane> planes{uniform_plane(6, 6, 255, 255, 0)};
     std::vector<Point> nodes = planes[0].nodes;
     for (size_t i = 0; i < nodes.size(); ++i) {
       nodes[i].x += i % 2 ? range.low : range.high;
       nodes[i].y += i % 3 ? range.high : range.low;
     }
-    planes.push_back(test::inter_plane(nodes));
+    planes.push_back(inter_plane(nodes));
     const std::vector<uint8_t> stream = encode(planes).stream;
     expect_decodes_to(stream, planes);
     MeshObject object = syntax::read_mesh_object(stream);
@@ -104,40 +104,40 @@ TEST(Motion, WrappingInBothDirections) {
   // leave [low, high] both ways.
   for (uint32_t code = 1; code <= 3; ++code) {
     const MotionRange range(code);
-    std::vector<MeshPlane> planes{test::uniform_plane(4, 4, 100, 100, 0)};
+    std::vector<MeshPlane> planes{uniform_plane(4, 4, 100, 100, 0)};
     std::vector<Point> nodes = planes[0].nodes;
     for (size_t i = 0; i < nodes.size(); ++i) {
       const int v = i % 2 ? range.low + 1 : range.high - 1;
       nodes[i].x += v;
       nodes[i].y -= v;
     }
-    planes.push_back(test::inter_plane(nodes, code));
+    planes.push_back(inter_plane(nodes, code));
     expect_decodes_to(encode(planes).stream, planes);
   }
 }
 
 TEST(Motion, ExplicitRangeIsKeptAndTooSmallIsRefused) {
-  std::vector<MeshPlane> planes{test::uniform_plane(3, 3, 16, 16, 0)};
+  std::vector<MeshPlane> planes{uniform_plane(3, 3, 16, 16, 0)};
   std::vector<Point> nodes = planes[0].nodes;
   nodes[4].x += 5;
-  planes.push_back(test::inter_plane(nodes, 3));
+  planes.push_back(inter_plane(nodes, 3));
   MeshObject object = syntax::read_mesh_object(encode(planes).stream);
   EXPECT_EQ(object.planes[1].motion.motion_range_code, 3u);
   nodes[4].x += 60;
-  planes[1] = test::inter_plane(nodes, 1);
+  planes[1] = inter_plane(nodes, 1);
   EXPECT_THROW(encode(planes), Error);
-  planes[1] = test::inter_plane(nodes, 0);
+  planes[1] = inter_plane(nodes, 0);
   nodes[4].x += 200;  // beyond [−128, 127]: a uniform mesh cannot code it
-  planes[1] = test::inter_plane(nodes, 0);
+  planes[1] = inter_plane(nodes, 0);
   EXPECT_THROW(encode(planes), Error);
 }
 
 TEST(Motion, LongZeroMotionRuns) {
-  std::vector<MeshPlane> planes{test::uniform_plane(40, 40, 8, 8, 0)};
-  for (int k = 0; k < 5; ++k) planes.push_back(test::inter_plane(planes[0].nodes));
+  std::vector<MeshPlane> planes{uniform_plane(40, 40, 8, 8, 0)};
+  for (int k = 0; k < 5; ++k) planes.push_back(inter_plane(planes[0].nodes));
   std::vector<Point> moved = planes[0].nodes;
   moved[1599].y -= 1;
-  planes.push_back(test::inter_plane(moved));
+  planes.push_back(inter_plane(moved));
   const std::vector<uint8_t> stream = encode(planes).stream;
   expect_decodes_to(stream, planes);
   // A still plane is range '01' and 1600 '0' flags: 2 + 1 + 1600 bits then stuffing.
@@ -148,7 +148,7 @@ TEST(Motion, LongZeroMotionRuns) {
 }
 
 TEST(Motion, MethodOneRoundTripsOnlyWithMethodOne) {
-  const auto planes = random_motion(test::uniform_plane(9, 7, 16, 16, 2), 5, -10, 10, 3);
+  const auto planes = random_motion(uniform_plane(9, 7, 16, 16, 2), 5, -10, 10, 3);
   EncoderOptions options;
   options.method = MotionMethod::kMethod1;
   const std::vector<uint8_t> stream = encode(planes, options).stream;
@@ -169,7 +169,7 @@ std::vector<Point> square_with_interior(int interior, uint64_t seed) {
 }
 
 TEST(Delaunay, RandomMotionRoundTrips) {
-  const auto planes = random_motion(test::delaunay_plane(square_with_interior(300, 5), 4), 5, -60, 60, 9);
+  const auto planes = random_motion(delaunay_plane(square_with_interior(300, 5), 4), 5, -60, 60, 9);
   const EncodeResult result = encode(planes);
   // The encoder reorders nodes (§10): compare through the decoded text instead.
   const std::string text = test::decoded_text(result.stream);
@@ -182,12 +182,12 @@ TEST(Delaunay, RandomMotionRoundTrips) {
 }
 
 TEST(Delaunay, LargeMotionBecomesANewIntraPlane) {
-  std::vector<MeshPlane> planes{test::delaunay_plane(square_with_interior(20, 1), 4)};
+  std::vector<MeshPlane> planes{delaunay_plane(square_with_interior(20, 1), 4)};
   std::vector<Point> moved = planes[0].nodes;
   for (Point& p : moved) p.x -= 90;  // fits range 3
-  planes.push_back(test::inter_plane(moved));
+  planes.push_back(inter_plane(moved));
   for (Point& p : moved) p.x += 150;  // does not fit [−128, 127]
-  planes.push_back(test::inter_plane(moved));
+  planes.push_back(inter_plane(moved));
   std::vector<std::string> reports;
   EncoderOptions options;
   options.report = [&](const std::string& message) { reports.push_back(message); };
@@ -200,10 +200,10 @@ TEST(Delaunay, LargeMotionBecomesANewIntraPlane) {
 // decode → §9 text → encode reproduces the stream byte for byte.
 TEST(Identity, DecodeThenEncodeReproducesTheStream) {
   std::vector<std::vector<MeshPlane>> inputs{
-      random_motion(test::uniform_plane(11, 9, 12, 14, 3), 8, -70, 70, 1),
-      random_motion(test::delaunay_plane(square_with_interior(500, 2), 4), 6, -5, 5, 2)};
+      random_motion(uniform_plane(11, 9, 12, 14, 3), 8, -70, 70, 1),
+      random_motion(delaunay_plane(square_with_interior(500, 2), 4), 6, -5, 5, 2)};
   inputs.push_back(inputs[0]);
-  inputs.back().push_back(test::uniform_plane(3, 3, 5, 5, 1));  // a repeated I-plane
+  inputs.back().push_back(uniform_plane(3, 3, 5, 5, 1));  // a repeated I-plane
   for (const auto& planes : inputs) {
     const std::vector<uint8_t> stream = encode(planes).stream;
     const std::vector<MeshPlane> decoded = parse_decoded_text(test::decoded_text(stream), "decoded");
@@ -212,7 +212,7 @@ TEST(Identity, DecodeThenEncodeReproducesTheStream) {
 }
 
 TEST(Identity, EncoderIsDeterministic) {
-  const auto planes = random_motion(test::delaunay_plane(square_with_interior(400, 4), 4), 4, -30, 30, 8);
+  const auto planes = random_motion(delaunay_plane(square_with_interior(400, 4), 4), 4, -30, 30, 8);
   const std::vector<uint8_t> first = encode(planes).stream;
   for (int i = 0; i < 3; ++i) EXPECT_EQ(encode(planes).stream, first);
 }

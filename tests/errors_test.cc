@@ -139,12 +139,12 @@ TEST(Errors, MissingEndCodeIsAWarning) {
 // Every truncation of a real stream is an error or, exactly at a plane
 // boundary, a missing end code; never a crash.
 TEST(Errors, EveryTruncationIsHandled) {
-  std::vector<MeshPlane> planes{test::uniform_plane(5, 5, 9, 9, 2)};
+  std::vector<MeshPlane> planes{uniform_plane(5, 5, 9, 9, 2)};
   test::Random random(3);
   for (int k = 0; k < 3; ++k) {
     std::vector<Point> next = planes.back().nodes;
     for (Point& p : next) p.x += random.uniform(-100, 100);
-    planes.push_back(test::inter_plane(next));
+    planes.push_back(inter_plane(next));
   }
   const std::vector<uint8_t> full = encode(planes).stream;
   int warnings = 0;
@@ -162,10 +162,10 @@ TEST(Errors, EveryTruncationIsHandled) {
 }
 
 TEST(Errors, RandomCorruptionNeverCrashes) {
-  std::vector<MeshPlane> planes{test::uniform_plane(6, 6, 9, 9, 1)};
+  std::vector<MeshPlane> planes{uniform_plane(6, 6, 9, 9, 1)};
   std::vector<Point> next = planes[0].nodes;
   for (Point& p : next) p.y += 7;
-  planes.push_back(test::inter_plane(next));
+  planes.push_back(inter_plane(next));
   const std::vector<uint8_t> full = encode(planes).stream;
   test::Random random(11);
   for (int trial = 0; trial < 2000; ++trial) {

@@ -2,6 +2,7 @@
 // the code): a 3×3 uniform mesh, then two P-planes.
 #include <gtest/gtest.h>
 
+#include "conformance/suite.h"
 #include "decoder/decoder.h"
 #include "encoder/encoder.h"
 #include "tests/test_util.h"
@@ -62,22 +63,8 @@ constexpr const char* kHandStream =
     "01111"                                 // stuffing
     "00000000 00000000 00000001 10110001";  // mesh_object_end_code
 
-std::vector<MeshPlane> hand_planes() {
-  std::vector<MeshPlane> planes{test::uniform_plane(3, 3, 16, 16, 0)};
-  std::vector<Point> p1 = planes[0].nodes;
-  p1[0] = {1, 0};
-  p1[1] = {17, 0};
-  p1[4] = {18, 17};
-  p1[3] = {0, 14};
-  p1[7] = {13, 32};
-  planes.push_back(test::inter_plane(p1));
-  std::vector<Point> p2 = p1;
-  p2[0] = {41, -1};
-  p2[1] = {-23, 0};
-  p2[4] = {18, 80};
-  planes.push_back(test::inter_plane(p2));
-  return planes;
-}
+// The planes of the worked example (shared with the conformance suite's p01).
+std::vector<MeshPlane> hand_planes() { return hand_stream_planes(); }
 
 TEST(HandStream, EncoderWritesTheHandComputedBits) {
   const std::vector<uint8_t> expected = test::bytes_from_bits(kHandStream);

@@ -125,10 +125,10 @@ TEST(Syntax, WriterRefusesValuesTheSyntaxCannotHold) {
 }
 
 TEST(Syntax, WholeObjectRoundTripsThroughStructures) {
-  std::vector<MeshPlane> planes{test::uniform_plane(4, 3, 8, 8, 3)};
+  std::vector<MeshPlane> planes{uniform_plane(4, 3, 8, 8, 3)};
   std::vector<Point> moved = planes[0].nodes;
   moved[5].x += 3;
-  planes.push_back(test::inter_plane(moved));
+  planes.push_back(inter_plane(moved));
   const std::vector<uint8_t> stream = encode(planes).stream;
   MeshObject object = syntax::read_mesh_object(stream);
   EXPECT_EQ(object.planes.size(), 2u);
@@ -137,12 +137,12 @@ TEST(Syntax, WholeObjectRoundTripsThroughStructures) {
 
 // The tracer prints the same lines whether the stream is written or read.
 TEST(Syntax, EncoderAndDecoderTracesAreIdentical) {
-  std::vector<MeshPlane> planes{test::uniform_plane(5, 4, 10, 12, 1)};
+  std::vector<MeshPlane> planes{uniform_plane(5, 4, 10, 12, 1)};
   test::Random random(7);
   for (int k = 0; k < 3; ++k) {
     std::vector<Point> next = planes.back().nodes;
     for (Point& p : next) p.x += random.uniform(-40, 40);
-    planes.push_back(test::inter_plane(next));
+    planes.push_back(inter_plane(next));
   }
   std::ostringstream encoder_trace, decoder_trace;
   Trace write_trace(encoder_trace), read_trace(decoder_trace);

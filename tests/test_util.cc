@@ -35,41 +35,6 @@ std::string bits_of(const std::vector<uint8_t>& bytes) {
   return s;
 }
 
-MeshPlane uniform_plane(uint32_t cols, uint32_t rows, uint32_t dx, uint32_t dy, uint32_t split) {
-  MeshPlane plane;
-  plane.info.kind = MeshKind::kUniform;
-  plane.info.uniform = UniformParams{cols, rows, dx, dy, split};
-  plane.nodes = uniform_nodes(plane.info.uniform);
-  return plane;
-}
-
-MeshPlane inter_plane(std::vector<Point> nodes, uint32_t range) {
-  MeshPlane plane;
-  plane.info.intra = false;
-  plane.info.range = range;
-  plane.nodes = std::move(nodes);
-  return plane;
-}
-
-MeshPlane delaunay_plane(std::vector<Point> nodes, uint32_t boundary) {
-  MeshPlane plane;
-  plane.info.kind = MeshKind::kDelaunay;
-  plane.info.boundary = boundary;
-  plane.nodes = std::move(nodes);
-  return plane;
-}
-
-uint64_t Random::next() {
-  uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-int32_t Random::uniform(int32_t lo, int32_t hi) {
-  return lo + static_cast<int32_t>(next() % static_cast<uint64_t>(int64_t{hi} - lo + 1));
-}
-
 bool strictly_inside(const std::vector<Point>& nodes, uint32_t boundary, const Point& p) {
   bool inside = false;
   for (uint32_t i = 0, j = boundary - 1; i < boundary; j = i++) {

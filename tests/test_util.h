@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/random.h"
 #include "mesh/plane.h"
 
 namespace m4mesh::test {
@@ -15,20 +16,7 @@ std::vector<uint8_t> bytes_from_bits(std::string_view bits);
 // '0'/'1' string of bytes.
 std::string bits_of(const std::vector<uint8_t>& bytes);
 
-MeshPlane uniform_plane(uint32_t cols, uint32_t rows, uint32_t dx, uint32_t dy, uint32_t split);
-MeshPlane inter_plane(std::vector<Point> nodes, uint32_t range = 0);
-MeshPlane delaunay_plane(std::vector<Point> nodes, uint32_t boundary);
-
-// Deterministic pseudo-random numbers for test inputs.
-class Random {
- public:
-  explicit Random(uint64_t seed) : state_(seed) {}
-  uint64_t next();
-  int32_t uniform(int32_t lo, int32_t hi);  // inclusive
-
- private:
-  uint64_t state_;
-};
+using Random = SplitMix64;
 
 // A random star-shaped simple polygon of `boundary` nodes around (512, 512)
 // with `interior` distinct nodes strictly inside, in §10 order (node 0

@@ -12,10 +12,10 @@ namespace m4mesh {
 namespace {
 
 TEST(DecodedText, ExactFormat) {
-  std::vector<MeshPlane> planes{test::uniform_plane(2, 2, 32, 16, 1)};
+  std::vector<MeshPlane> planes{uniform_plane(2, 2, 32, 16, 1)};
   std::vector<Point> moved = planes[0].nodes;
   moved[3] = {33, 14};
-  planes.push_back(test::inter_plane(moved));
+  planes.push_back(inter_plane(moved));
   const std::string text = test::decoded_text(encode(planes).stream);
   EXPECT_EQ(text,
             "m4mesh-decoded 1\n"
