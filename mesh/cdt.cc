@@ -485,16 +485,25 @@ std::vector<std::string> delaunay_node_violations(std::span<const Point> nodes, 
     const Point &p = nodes[i], &q = nodes[(i + 1) % b];
     boxes[i] = {std::min(p.x, q.x), std::min(p.y, q.y), std::max(p.x, q.x), std::max(p.y, q.y)};
   }
-  for (uint32_t i = 0; i < b; ++i) {
-    for (uint32_t j = i + 2; j < b; ++j) {
-      if (i == 0 && j == b - 1) continue;  // adjacent through the closing edge
-      const Box &l = boxes[i], &r = boxes[j];
-      if (l.x1 < r.x0 || r.x1 < l.x0 || l.y1 < r.y0 || r.y1 < l.y0) continue;
-      if (touch(nodes[i], nodes[(i + 1) % b], nodes[j], nodes[(j + 1) % b]))
-        report("boundary edges (" + std::to_string(i) + ", " + std::to_string((i + 1) % b) + ") and (" +
-               std::to_string(j) + ", " + std::to_string((j + 1) % b) + ") touch: the boundary is not simple");
+  // Sweep in x: only edges whose x-ranges overlap are compared.
+  std::vector<uint32_t> by_x(b);
+  std::iota(by_x.begin(), by_x.end(), 0u);
+  std::sort(by_x.begin(), by_x.end(), [&](uint32_t l, uint32_t r) { return boxes[l].x0 != boxes[r].x0 ? boxes[l].x0 < boxes[r].x0 : l < r; });
+  std::vector<std::pair<uint32_t, uint32_t>> touching;
+  for (uint32_t a = 0; a < b; ++a) {
+    const Box& l = boxes[by_x[a]];
+    for (uint32_t c = a + 1; c < b && boxes[by_x[c]].x0 <= l.x1; ++c) {
+      const uint32_t i = std::min(by_x[a], by_x[c]), j = std::max(by_x[a], by_x[c]);
+      if (j == i + 1 || (i == 0 && j == b - 1)) continue;  // adjacent edges
+      const Box& r = boxes[by_x[c]];
+      if (l.y1 < r.y0 || r.y1 < l.y0) continue;
+      if (touch(nodes[i], nodes[(i + 1) % b], nodes[j], nodes[(j + 1) % b])) touching.push_back({i, j});
     }
   }
+  std::sort(touching.begin(), touching.end());
+  for (const auto& [i, j] : touching)
+    report("boundary edges (" + std::to_string(i) + ", " + std::to_string((i + 1) % b) + ") and (" + std::to_string(j) + ", " +
+           std::to_string((j + 1) % b) + ") touch: the boundary is not simple");
   return found;
 }
 
