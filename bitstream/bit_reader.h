@@ -10,9 +10,6 @@ namespace m4mesh {
 
 class BitReader {
  public:
-  // The largest field read() and peek() accept.
-  static constexpr int kMaxFieldBits = 32;
-
   BitReader(const uint8_t* data, size_t size) : data_(data), size_(size) { refill(); }
 
   // Bits consumed so far (may exceed size_bits() after an overrun).

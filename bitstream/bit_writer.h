@@ -8,8 +8,6 @@ namespace m4mesh {
 
 class BitWriter {
  public:
-  static constexpr int kMaxFieldBits = 32;
-
   // Writes the low n bits of value (0 ≤ n ≤ 32), most significant first.
   void write(uint32_t value, int n) {
     if (n == 0) return;

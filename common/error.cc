@@ -43,8 +43,6 @@ Error::Error(ErrorKind kind, std::string element, int64_t plane, int64_t bit_off
       bit_offset_(bit_offset),
       message_(message) {}
 
-std::string Error::describe() const { return what(); }
-
 Error input_error(const std::string& file, int64_t line, const std::string& message) {
   std::string text = file;
   if (line > 0) text.append(":").append(std::to_string(line));

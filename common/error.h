@@ -31,6 +31,7 @@ inline constexpr int64_t kNoOffset = -1;
 
 class Error : public std::runtime_error {
  public:
+  // what() is "plane K, ELEMENT at bit N: MESSAGE" (parts that do not apply are left out).
   Error(ErrorKind kind, std::string element, int64_t plane, int64_t bit_offset,
         const std::string& message);
 
@@ -39,9 +40,6 @@ class Error : public std::runtime_error {
   int64_t plane() const { return plane_; }
   int64_t bit_offset() const { return bit_offset_; }
   const std::string& message() const { return message_; }
-
-  // "plane K, ELEMENT at bit N: MESSAGE" (parts that do not apply are left out).
-  std::string describe() const;
 
  private:
   ErrorKind kind_;

@@ -31,6 +31,4 @@ void Trace::bit_string(uint64_t offset, std::string_view name, int bits, uint32_
   out_ << '\'' << s << "'\n";
 }
 
-void Trace::note(std::string_view text) { out_ << "# " << text << '\n'; }
-
 }  // namespace m4mesh

@@ -16,7 +16,6 @@ class Trace {
   void element(uint64_t offset, std::string_view name, int bits, int64_t value);
   void start_code(uint64_t offset, std::string_view name, uint32_t value);
   void bit_string(uint64_t offset, std::string_view name, int bits, uint32_t value);
-  void note(std::string_view text);
 
  private:
   void prefix(uint64_t offset, std::string_view name, int bits);
