@@ -142,6 +142,31 @@ std::vector<MeshPlane> hand_stream_planes() {
   return planes;
 }
 
+std::vector<MeshPlane> range_limit_planes(uint32_t code) {
+  const MotionRange range(code);
+  std::vector<MeshPlane> planes{uniform_plane(6, 6, 255, 255, 0)};
+  std::vector<Point> nodes = planes[0].nodes;
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    nodes[i].x += i % 2 ? range.low : range.high;
+    nodes[i].y += i % 3 ? range.high : range.low;
+  }
+  planes.push_back(inter_plane(nodes));
+  return planes;
+}
+
+std::vector<MeshPlane> wrap_planes(uint32_t code) {
+  const MotionRange range(code);
+  std::vector<MeshPlane> planes{uniform_plane(4, 4, 100, 100, 2)};
+  std::vector<Point> nodes = planes[0].nodes;
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const int v = i % 2 ? range.low + 1 : range.high - 1;
+    nodes[i].x += v;
+    nodes[i].y -= v;
+  }
+  planes.push_back(inter_plane(nodes, code));
+  return planes;
+}
+
 namespace {
 
 // ---- negative streams ----------------------------------------------------
@@ -267,16 +292,12 @@ std::vector<SuiteCase> build_suite() {
   };
   auto invalid = [&](std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream,
                      ErrorKind kind, std::string element, int64_t plane) {
-    SuiteCase c;
-    c.id = std::move(id);
-    c.purpose = std::move(purpose);
-    c.clauses = std::move(clauses);
-    c.stream = std::move(stream);
+    valid(std::move(id), std::move(purpose), std::move(clauses), std::move(stream));
+    SuiteCase& c = suite.back();
     c.valid = false;
     c.error_kind = kind;
     c.error_element = std::move(element);
     c.error_plane = plane;
-    suite.push_back(std::move(c));
   };
   const std::vector<std::string> uniform_clauses{"1", "2.1", "2.2", "3", "3.1", "4", "4.2", "5", "7.1", "7.2", "9"};
   const std::vector<std::string> delaunay_clauses{"1", "2.1", "2.2", "3", "3.1", "4", "4.1", "4.2", "6.1", "6.2", "7.1", "7.2", "9", "10"};
@@ -292,31 +313,14 @@ std::vector<SuiteCase> build_suite() {
   valid("p07-uniform-1023x2", "the widest uniform mesh", uniform_clauses, encoded(with_motion(uniform_plane(1023, 2, 1, 50, 2), 1, -3, 3, 7)));
   valid("p08-uniform-2x1023", "the tallest uniform mesh", uniform_clauses, encoded(with_motion(uniform_plane(2, 1023, 50, 1, 3), 1, -3, 3, 8)));
   valid("p09-uniform-rect-1-255", "mesh_rect_size at 1 and 255", uniform_clauses, encoded(with_motion(uniform_plane(8, 5, 1, 255, 0), 2, -9, 9, 9)));
-  for (uint32_t code = 1; code <= 3; ++code) {
-    const MotionRange range(code);
-    std::vector<MeshPlane> planes{uniform_plane(6, 6, 255, 255, 0)};
-    std::vector<Point> nodes = planes[0].nodes;
-    for (size_t i = 0; i < nodes.size(); ++i) {
-      nodes[i].x += i % 2 ? range.low : range.high;
-      nodes[i].y += i % 3 ? range.high : range.low;
-    }
-    planes.push_back(inter_plane(nodes));
+  for (uint32_t code = 1; code <= 3; ++code)
     valid("p" + std::to_string(9 + code) + "-range" + std::to_string(code) + "-limits",
-          "motion_range_code " + std::to_string(code) + " with vectors at low and high", uniform_clauses, encoded(planes));
-  }
-  for (uint32_t code = 1; code <= 3; ++code) {
-    const MotionRange range(code);
-    std::vector<MeshPlane> planes{uniform_plane(4, 4, 100, 100, 2)};
-    std::vector<Point> nodes = planes[0].nodes;
-    for (size_t i = 0; i < nodes.size(); ++i) {
-      const int v = i % 2 ? range.low + 1 : range.high - 1;
-      nodes[i].x += v;
-      nodes[i].y -= v;
-    }
-    planes.push_back(inter_plane(nodes, code));
+          "motion_range_code " + std::to_string(code) + " with vectors at low and high", uniform_clauses,
+          encoded(range_limit_planes(code)));
+  for (uint32_t code = 1; code <= 3; ++code)
     valid("p" + std::to_string(12 + code) + "-range" + std::to_string(code) + "-wrap",
-          "differences that wrap in both directions, range " + std::to_string(code), uniform_clauses, encoded(planes));
-  }
+          "differences that wrap in both directions, range " + std::to_string(code), uniform_clauses,
+          encoded(wrap_planes(code)));
   {
     std::vector<MeshPlane> planes{uniform_plane(40, 40, 8, 8, 0)};
     for (int k = 0; k < 3; ++k) planes.push_back(inter_plane(planes[0].nodes));

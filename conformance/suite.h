@@ -32,5 +32,9 @@ std::vector<Point> comb_boundary();    // a comb: notches cut up from the bottom
 std::vector<Point> spiral_boundary();  // a square spiral corridor, 20 wide
 // The 3×3 uniform mesh and two P-planes of tests/hand_stream_test.cc.
 std::vector<MeshPlane> hand_stream_planes();
+// A uniform mesh whose P-plane puts vectors at low and high of motion_range_code `code`.
+std::vector<MeshPlane> range_limit_planes(uint32_t code);
+// A P-plane (range `code`) whose neighbouring vectors make the differences wrap both ways.
+std::vector<MeshPlane> wrap_planes(uint32_t code);
 
 }  // namespace m4mesh

@@ -4,11 +4,11 @@
 
 #include <set>
 
+#include "conformance/suite.h"
 #include "decoder/decoder.h"
 #include "encoder/encoder.h"
 #include "mesh/decoded_text.h"
 #include "syntax/mesh_object.h"
-#include "syntax/values.h"
 #include "tests/test_util.h"
 
 namespace m4mesh {
@@ -84,14 +84,7 @@ TEST(Uniform, ExtremeShapes) {
 // Every motion_range_code, with vectors at low and at high.
 TEST(Motion, EveryRangeAtItsLimits) {
   for (uint32_t code = 1; code <= 3; ++code) {
-    const MotionRange range(code);
-    std::vector<MeshPlane> planes{uniform_plane(6, 6, 255, 255, 0)};
-    std::vector<Point> nodes = planes[0].nodes;
-    for (size_t i = 0; i < nodes.size(); ++i) {
-      nodes[i].x += i % 2 ? range.low : range.high;
-      nodes[i].y += i % 3 ? range.high : range.low;
-    }
-    planes.push_back(inter_plane(nodes));
+    const std::vector<MeshPlane> planes = range_limit_planes(code);
     const std::vector<uint8_t> stream = encode(planes).stream;
     expect_decodes_to(stream, planes);
     MeshObject object = syntax::read_mesh_object(stream);
@@ -99,19 +92,11 @@ TEST(Motion, EveryRangeAtItsLimits) {
   }
 }
 
+// Neighbouring vectors at opposite ends of the range make the difference
+// leave [low, high] both ways.
 TEST(Motion, WrappingInBothDirections) {
-  // Neighbouring vectors at opposite ends of the range make the difference
-  // leave [low, high] both ways.
   for (uint32_t code = 1; code <= 3; ++code) {
-    const MotionRange range(code);
-    std::vector<MeshPlane> planes{uniform_plane(4, 4, 100, 100, 0)};
-    std::vector<Point> nodes = planes[0].nodes;
-    for (size_t i = 0; i < nodes.size(); ++i) {
-      const int v = i % 2 ? range.low + 1 : range.high - 1;
-      nodes[i].x += v;
-      nodes[i].y -= v;
-    }
-    planes.push_back(inter_plane(nodes, code));
+    const std::vector<MeshPlane> planes = wrap_planes(code);
     expect_decodes_to(encode(planes).stream, planes);
   }
 }
