@@ -27,7 +27,8 @@ void progress(const char* what, size_t done, size_t total) {
 
 uint32_t codec_of(const std::string& name) {
   if (name == "bfs3d") return kCodecBfs3d;
-  throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "codec '" + name + "' is not implemented (available: bfs3d)");
+  if (name == "affine-octree") return kCodecAffineOctree;
+  throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "codec '" + name + "' is not implemented (available: bfs3d, affine-octree)");
 }
 
 }  // namespace
@@ -38,6 +39,10 @@ int run_encode3d(const Encode3dArgs& args) {
   options.codec_id = codec_of(args.codec);
   options.bits = args.bits;
   options.parallelogram = args.parallelogram;
+  options.max_error = args.max_error / 100;
+  options.matrix_bits = args.matrix_bits;
+  options.max_depth = args.max_depth;
+  options.intra_period = args.intra_period;
   options.hashes = !args.no_hash;
   options.frame_rate_num = static_cast<uint32_t>(args.fps);
   options.progress = [](size_t done, size_t total) { progress("encoding", done, total); };
@@ -52,6 +57,9 @@ int run_encode3d(const Encode3dArgs& args) {
               static_cast<unsigned long long>(result.frame_bytes),
               vertex_frames > 0 ? 8.0 * static_cast<double>(result.frame_bytes) / vertex_frames : 0.0,
               static_cast<unsigned long long>(result.other_bytes));
+  if (options.codec_id == kCodecAffineOctree)
+    std::printf("affine-octree: %llu matrices, %llu vertices coded directly\n", static_cast<unsigned long long>(result.matrices),
+                static_cast<unsigned long long>(result.direct_vertices));
   std::printf("encoded %zu frames of %u vertices in %.3f s (%.1f M vertices/s)\n", sequence.frames.size(), sequence.vertex_count,
               seconds, static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size()) / seconds / 1e6);
   return 0;
@@ -111,8 +119,9 @@ int run_info3d(const std::string& input) {
   const ContainerParts parts = split_container(stream);
   Mesh3dDecoder decoder(stream);
   const ObjectHeader& h = decoder.header();
-  std::printf("%s: %zu bytes, mesh3d container, codec_id %u (bfs3d), %u vertices, %u faces, %u frames at %u/%u fps\n",
-              input.c_str(), stream.size(), h.codec_id, h.vertex_count, h.face_count, h.frame_count, h.frame_rate_num,
+  const char* codec_names[] = {"", "bfs3d", "affine-octree", "lcc", "cpca-wpt"};
+  std::printf("%s: %zu bytes, mesh3d container, codec_id %u (%s), %u vertices, %u faces, %u frames at %u/%u fps\n",
+              input.c_str(), stream.size(), h.codec_id, codec_names[h.codec_id], h.vertex_count, h.face_count, h.frame_count, h.frame_rate_num,
               h.frame_rate_den);
   uint64_t sizes[4] = {0, 0, 0, 0};
   uint64_t counts[4] = {0, 0, 0, 0};

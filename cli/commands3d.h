@@ -11,6 +11,10 @@ struct Encode3dArgs {
   std::string codec = "bfs3d";
   int bits = 12;
   bool parallelogram = false;
+  double max_error = 1.0;  // affine-octree ME, in percent of the root cube
+  int matrix_bits = 16;
+  int max_depth = 16;
+  int intra_period = 0;
   bool no_hash = false;
   int fps = 25;
 };

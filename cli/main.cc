@@ -238,9 +238,17 @@ int main(int argc, char** argv) {
   CLI::App* encode3d_cmd = app.add_subcommand("encode3d", "Encode an animated 3D mesh (OBJ/OFF frames or .m4seq) into a mesh3d stream");
   encode3d_cmd->add_option("input", encode3d_args.input, "a folder of frames, a pattern with '*', or a .m4seq file")->required();
   encode3d_cmd->add_option("-o,--output", encode3d_args.output, "output stream (.m4m)")->required();
-  encode3d_cmd->add_option("--codec", encode3d_args.codec, "codec")->capture_default_str();
+  encode3d_cmd->add_option("--codec", encode3d_args.codec, "codec: bfs3d or affine-octree")->capture_default_str();
   encode3d_cmd->add_option("--bits", encode3d_args.bits, "quantization bits per coordinate")->check(CLI::Range(4, 24))->capture_default_str();
   encode3d_cmd->add_flag("--parallelogram", encode3d_args.parallelogram, "bfs3d: parallelogram prediction instead of the base-edge average");
+  encode3d_cmd->add_option("--me", encode3d_args.max_error, "affine-octree: ME, the largest vertex error of an affine cell, in % of the root cube")
+      ->check(CLI::Range(0.001, 100.0))->capture_default_str();
+  encode3d_cmd->add_option("--matrix-bits", encode3d_args.matrix_bits, "affine-octree: k, bits per matrix element")
+      ->check(CLI::Range(4, 24))->capture_default_str();
+  encode3d_cmd->add_option("--max-depth", encode3d_args.max_depth, "affine-octree: the deepest octree level")
+      ->check(CLI::Range(1, 20))->capture_default_str();
+  encode3d_cmd->add_option("--intra-period", encode3d_args.intra_period, "re-send the base mesh every N frames (0: only frame 0)")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
   encode3d_cmd->add_flag("--no-hash", encode3d_args.no_hash, "leave out the decoded-frame hash units");
   encode3d_cmd->add_option("--fps", encode3d_args.fps, "frame rate")->check(CLI::Range(1, 65535))->capture_default_str();
 

@@ -3,14 +3,14 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "decoder/codec3d.h"
 #include "mesh3d/quantization.h"
-#include "mesh3d/traversal3d.h"
-#include "syntax/bfs3d.h"
 #include "syntax/container.h"
 
 namespace m4mesh {
@@ -24,6 +24,8 @@ class Mesh3dDecoder {
 
   const ObjectHeader& header() const { return header_; }
   const std::vector<Triangle>& faces() const { return faces_; }
+  // The grid of the codec's integer positions.
+  const Grid& codec_grid() const { return codec_->grid(); }
 
   // Decodes the next frame; false after the last.
   bool next_frame();
@@ -35,20 +37,17 @@ class Mesh3dDecoder {
   bool has_end_code() const { return parts_.has_end_code; }
 
  private:
-  void decode_base(const ContainerUnit& unit);
+  void decode_base(const ContainerUnit& unit, uint32_t frame);
   void decode_frame(const ContainerUnit& unit, uint32_t frame);
   void check_hash();
-  [[noreturn]] void fail(ErrorKind kind, const ContainerUnit& unit, const char* element, const std::string& message) const;
+  [[noreturn]] void fail(ErrorKind kind, const ContainerUnit& unit, uint32_t frame, const char* element, const std::string& message) const;
 
   ContainerParts parts_;
   size_t next_unit_ = 0;
   ObjectHeader header_;
-  Bfs3dHeader codec_;
-  Grid grid_;
+  std::unique_ptr<CodecDecoder3d> codec_;
   std::vector<Triangle> faces_;
-  MotionOrder3d order_;
   std::vector<IntPoint3> quantized_;
-  std::vector<std::array<int64_t, 3>> motion_;
   std::vector<Float3> positions_;
   uint32_t frame_index_ = 0;
   bool started_ = false;

@@ -8,7 +8,7 @@
 
 namespace m4mesh {
 
-Grid Grid::over(const std::vector<Vec3>& frame, int bits) {
+Grid Grid::over(const std::vector<Vec3>& frame, int bits, bool equal_steps) {
   Vec3 lo = frame[0], hi = frame[0];
   for (const Vec3& v : frame) {
     lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
@@ -21,7 +21,7 @@ Grid Grid::over(const std::vector<Vec3>& frame, int bits) {
   const double low[3] = {lo.x, lo.y, lo.z};
   for (int axis = 0; axis < 3; ++axis) {
     grid.origin[axis] = static_cast<float>(low[axis]);
-    grid.step[axis] = static_cast<float>((extent[axis] > 0 ? extent[axis] : largest) / steps);
+    grid.step[axis] = static_cast<float>((extent[axis] > 0 && !equal_steps ? extent[axis] : largest) / steps);
     if (!(grid.step[axis] > 0)) grid.step[axis] = 1e-30f;
   }
   return grid;

@@ -23,8 +23,10 @@ struct Grid {
   std::array<float, 3> step{};
 
   // A grid of 2^bits − 1 steps per axis over the bounding box of `frame`
-  // (an axis without extent borrows the largest one).
-  static Grid over(const std::vector<Vec3>& frame, int bits);
+  // (an axis without extent borrows the largest one); with `equal_steps`,
+  // every axis takes the step of the largest extent, so that grid units
+  // are the same length on every axis.
+  static Grid over(const std::vector<Vec3>& frame, int bits, bool equal_steps = false);
 
   // Decoding: origin + q · step in binary64, rounded to binary32.
   float position(int axis, int64_t q) const {

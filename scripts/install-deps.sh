@@ -6,5 +6,5 @@ apt-get update -qq
 apt-get install -y -qq --no-install-recommends \
   g++ make cmake pkg-config clang libclang-rt-14-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
-  libcli11-dev libssl-dev libcgal-dev nlohmann-json3-dev libdraco-dev \
+  libcli11-dev libssl-dev libcgal-dev nlohmann-json3-dev libdraco-dev libeigen3-dev \
   > /dev/null

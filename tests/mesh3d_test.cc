@@ -17,6 +17,7 @@
 #include "mesh3d/sequence.h"
 #include "mesh3d/traversal3d.h"
 #include "syntax/bfs3d.h"
+#include "syntax/residual_coder.h"
 #include "syntax/container.h"
 #include "tests/test_util.h"
 
@@ -25,51 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A UV sphere (closed), a separate open sheet, and one isolated vertex, in motion.
-MeshSequence test_sequence(int frames, uint64_t seed) {
-  MeshSequence s;
-  std::vector<Vec3> base;
-  const int rings = 8, segments = 12;
-  base.push_back({0, 0, 1});
-  for (int r = 1; r < rings; ++r)
-    for (int k = 0; k < segments; ++k) {
-      const double theta = std::numbers::pi * r / rings, phi = 2 * std::numbers::pi * k / segments;
-      base.push_back({std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)});
-    }
-  base.push_back({0, 0, -1});
-  const NodeIndex south = static_cast<NodeIndex>(base.size() - 1);
-  auto ring = [&](int r, int k) { return static_cast<NodeIndex>(1 + (r - 1) * segments + (k % segments)); };
-  for (int k = 0; k < segments; ++k) s.faces.push_back({{0, ring(1, k), ring(1, k + 1)}});
-  for (int r = 1; r + 1 < rings; ++r)
-    for (int k = 0; k < segments; ++k) {
-      s.faces.push_back({{ring(r, k), ring(r + 1, k), ring(r + 1, k + 1)}});
-      s.faces.push_back({{ring(r, k), ring(r + 1, k + 1), ring(r, k + 1)}});
-    }
-  for (int k = 0; k < segments; ++k) s.faces.push_back({{south, ring(rings - 1, k + 1), ring(rings - 1, k)}});
-  const NodeIndex sheet = static_cast<NodeIndex>(base.size());
-  for (int y = 0; y < 4; ++y)
-    for (int x = 0; x < 5; ++x) base.push_back({2.0 + 0.3 * x, 0.3 * y, 0.0});
-  for (int y = 0; y + 1 < 4; ++y)
-    for (int x = 0; x + 1 < 5; ++x) {
-      const NodeIndex a = sheet + static_cast<NodeIndex>(y * 5 + x);
-      s.faces.push_back({{a, a + 1, a + 6}});
-      s.faces.push_back({{a, a + 6, a + 5}});
-    }
-  base.push_back({-3, 1, 0.5});  // in no face
-  s.vertex_count = static_cast<uint32_t>(base.size());
-  test::Random random(seed);
-  for (int f = 0; f < frames; ++f) {
-    std::vector<Vec3> frame = base;
-    for (size_t i = 0; i < frame.size(); ++i) {
-      const double t = 0.15 * f;
-      frame[i].x += 0.2 * std::sin(t + frame[i].y) + 1e-4 * random.uniform(-5, 5);
-      frame[i].y += 0.1 * std::cos(2 * t + frame[i].z);
-      frame[i].z += 0.05 * f;
-    }
-    s.frames.push_back(std::move(frame));
-  }
-  return s;
-}
+using test::test_sequence;
 
 TEST(Emulation, EscapedPayloadsNeverHoldAStartCodePrefix) {
   test::Random random(1);
@@ -138,14 +95,14 @@ TEST(Arithmetic, ResidualsOfEverySizeRoundTrip) {
   for (int i = 0; i < 3000; ++i) values.push_back(random.uniform(-3000, 3000) >> random.uniform(0, 10));
   ArithmeticEncoder encoder;
   BitWriter raw;
-  ResidualModel model;
+  ResidualCoder<3> model;
   for (size_t i = 0; i < values.size(); ++i) model.encode(encoder, raw, static_cast<int>(i % 3), values[i]);
   const std::vector<uint8_t> data = encoder.finish();
   raw.write(0, static_cast<int>((8 - raw.position() % 8) % 8));
   const std::vector<uint8_t> raw_bytes = raw.take_bytes();
   ArithmeticDecoder decoder(data);
   BitReader raw_reader(raw_bytes.data(), raw_bytes.size());
-  ResidualModel decoding;
+  ResidualCoder<3> decoding;
   for (size_t i = 0; i < values.size(); ++i) {
     int32_t r;
     ASSERT_TRUE(decoding.decode(decoder, raw_reader, static_cast<int>(i % 3), r));

@@ -8,6 +8,7 @@
 
 #include "common/random.h"
 #include "mesh/plane.h"
+#include "mesh3d/sequence.h"
 
 namespace m4mesh::test {
 
@@ -29,5 +30,8 @@ bool strictly_inside(const std::vector<Point>& nodes, uint32_t boundary, const P
 
 // §9 text of a stream's decoding.
 std::string decoded_text(const std::vector<uint8_t>& stream);
+
+// A UV sphere (closed), a separate open sheet, and one isolated vertex, in motion.
+MeshSequence test_sequence(int frames, uint64_t seed);
 
 }  // namespace m4mesh::test

@@ -1,0 +1,97 @@
+// Affine-Octree (codec_id 2) decoding (docs/codec_affine_octree.md): the
+// octree of the previous frame's vertices, each leaf moved by its affine
+// matrix or by its vertices' direct motion.
+#include "bitstream/bit_reader.h"
+#include "decoder/codec3d.h"
+#include "mesh3d/octree.h"
+#include "syntax/affine_octree.h"
+
+namespace m4mesh {
+
+namespace {
+
+// The bins and raw bits of one frame, read through AffineCellCoder::describe.
+class CellReader {
+ public:
+  CellReader(std::span<const uint8_t> bins, std::span<const uint8_t> raw) : bins_(bins), raw_(raw.data(), raw.size()) {}
+
+  void bin(BinContext& context, bool& value, const char*) { value = bins_.decode(context) != 0; }
+  void residual(ResidualCoder<kAffineChannels>& coder, int channel, int32_t& value, const char* element) {
+    if (!coder.decode(bins_, raw_, channel, value)) fail(ErrorKind::kInvalidCode, element, "a residual longer than 32 bits");
+  }
+  [[noreturn]] void fail(ErrorKind kind, const char* element, const std::string& message) { frame_data_error(kind, element, message); }
+  bool overrun() const { return bins_.overrun() != 0 || raw_.overrun(); }
+
+ private:
+  ArithmeticDecoder bins_;
+  BitReader raw_;
+};
+
+class AffineOctreeDecoder final : public CodecDecoder3d {
+ public:
+  explicit AffineOctreeDecoder(const AffineOctreeHeader& header) : header_(header) {
+    for (int axis = 0; axis < 3; ++axis) {
+      grid_.origin[axis] = header.origin_value(axis);
+      grid_.step[axis] = header.step_value();
+    }
+  }
+
+  const Grid& grid() const override { return grid_; }
+  void start(std::span<const Triangle>, uint32_t) override {}
+
+  void decode_frame(std::span<const uint8_t> data, std::vector<IntPoint3>& positions) override {
+    if (data.size() < 5) frame_data_error(ErrorKind::kTruncated, "arithmetic_bytes", "the frame's data ends early");
+    const uint32_t shift = data[0];
+    if (shift > kMaxDirectShift) frame_data_error(ErrorKind::kOutOfRange, "direct_shift", "above " + std::to_string(kMaxDirectShift));
+    const uint32_t length = uint32_t{data[1]} << 24 | uint32_t{data[2]} << 16 | uint32_t{data[3]} << 8 | data[4];
+    data = data.subspan(5);
+    if (length > data.size()) frame_data_error(ErrorKind::kOutOfRange, "arithmetic_bytes", "longer than the frame's data");
+    CellReader reader(data.first(length), data.subspan(length));
+    AffineCellCoder coder(header_);
+    const RootCube cube = root_cube(positions);
+    const int fraction_bits = header_.fraction_bits();
+    next_ = positions;
+    auto store = [&](uint32_t v, const std::array<int64_t, 3>& q) {
+      for (int axis = 0; axis < 3; ++axis) {
+        if (q[axis] > kMaxQuantized || q[axis] < -kMaxQuantized)
+          frame_data_error(ErrorKind::kOutOfRange, cell_.direct ? "direct_motion" : "matrix_residual",
+                           "vertex " + std::to_string(v) + " leaves ±2^26 grid steps");
+        next_[v][axis] = static_cast<int32_t>(q[axis]);
+      }
+    };
+    partition_.walk(positions, cube, [&](const OctreeCell& cell) {
+      coder.describe(reader, cell.depth, cell.vertices.size(), cell_);
+      if (cell_.split) return true;
+      if (cell_.direct) {
+        for (size_t k = 0; k < cell.vertices.size(); ++k) {
+          const IntPoint3& p = positions[cell.vertices[k]];
+          std::array<int64_t, 3> q;
+          for (int axis = 0; axis < 3; ++axis) q[axis] = p[axis] + (int64_t{cell_.motion[k][axis]} << shift);
+          store(cell.vertices[k], q);
+        }
+      } else {
+        for (uint32_t v : cell.vertices) store(v, apply_affine(cell_.matrix, fraction_bits, cell.corner, cube.side, positions[v]));
+      }
+      return false;
+    });
+    if (reader.overrun()) frame_data_error(ErrorKind::kTruncated, "matrix_residual", "the frame's data ends early");
+    positions.swap(next_);
+  }
+
+ private:
+  AffineOctreeHeader header_;
+  Grid grid_;
+  OctreePartition partition_;
+  AffineCell cell_;
+  std::vector<IntPoint3> next_;
+};
+
+}  // namespace
+
+std::unique_ptr<CodecDecoder3d> read_affine_octree_header(syntax::ReadIO& io) {
+  AffineOctreeHeader header;
+  syntax::describe(io, header);
+  return std::make_unique<AffineOctreeDecoder>(header);
+}
+
+}  // namespace m4mesh

@@ -1,0 +1,223 @@
+// Affine-Octree (codec_id 2) encoding (docs/codec_affine_octree.md): per cell the least-squares affine map from the previous decoded frame to
+// the current one, quantized; a cell splits while a vertex misses by more
+// than ME, and a cell of at most 4 vertices codes their motion directly.
+#include <Eigen/Dense>
+#include <bit>
+#include <cmath>
+
+#include "encoder/codec3d.h"
+#include "mesh3d/octree.h"
+#include "syntax/affine_octree.h"
+
+namespace m4mesh {
+
+namespace {
+
+// The bins and raw bits of one frame, written through AffineCellCoder::describe.
+class CellWriter {
+ public:
+  void bin(BinContext& context, bool& value, const char*) { bins_.encode(context, value); }
+  void residual(ResidualCoder<kAffineChannels>& coder, int channel, int32_t& value, const char*) {
+    coder.encode(bins_, raw_, channel, value);
+  }
+  [[noreturn]] void fail(ErrorKind kind, const char* element, const std::string& message) {
+    throw Error(kind, element, kNoPlane, kNoOffset, "encoder: " + message);
+  }
+
+  // direct_shift u(8), arithmetic_bytes u(32), the bins, the raw bits.
+  std::vector<uint8_t> finish(uint32_t direct_shift) {
+    const std::vector<uint8_t> bins = bins_.finish();
+    BitWriter head;
+    head.write(direct_shift, 8);
+    head.write(static_cast<uint32_t>(bins.size()), 32);
+    std::vector<uint8_t> data = head.take_bytes();
+    data.insert(data.end(), bins.begin(), bins.end());
+    raw_.write(0, static_cast<int>((8 - raw_.position() % 8) % 8));
+    const std::vector<uint8_t> raw = raw_.take_bytes();
+    data.insert(data.end(), raw.begin(), raw.end());
+    return data;
+  }
+
+ private:
+  ArithmeticEncoder bins_;
+  BitWriter raw_;
+};
+
+int32_t clamp_to(double value, int32_t lo, int32_t hi) {
+  const double rounded = std::nearbyint(value);
+  return rounded < lo ? lo : rounded > hi ? hi : static_cast<int32_t>(rounded);
+}
+
+class AffineOctreeEncoder final : public CodecEncoder3d {
+ public:
+  AffineOctreeEncoder(const MeshSequence& s, const Encode3dOptions& options)
+      : grid_(Grid::over(s.frames[0], options.bits, true)), max_error_(options.max_error) {
+    header_.bits = static_cast<uint32_t>(options.bits);
+    for (int axis = 0; axis < 3; ++axis) header_.origin[axis] = std::bit_cast<uint32_t>(grid_.origin[axis]);
+    header_.step = std::bit_cast<uint32_t>(grid_.step[0]);
+    header_.matrix_bits = static_cast<uint32_t>(options.matrix_bits);
+    header_.matrix_range_log2 = static_cast<uint32_t>(options.matrix_range_log2);
+    header_.max_depth = static_cast<uint32_t>(options.max_depth);
+  }
+
+  const Grid& grid() const override { return grid_; }
+  void write_header(syntax::WriteIO& io) override { syntax::describe(io, header_); }
+
+  std::vector<uint8_t> encode_frame(std::span<const Vec3> frame, size_t frame_index, std::vector<IntPoint3>& positions,
+                                    Encode3dResult& statistics) override {
+    quantize_frame(grid_, frame, frame_index, next_);  // checks that the frame fits the grid
+    target_.resize(frame.size());
+    const double step = grid_.step[0];
+    for (size_t i = 0; i < frame.size(); ++i)
+      target_[i] = {(frame[i].x - grid_.origin[0]) / step, (frame[i].y - grid_.origin[1]) / step, (frame[i].z - grid_.origin[2]) / step};
+    cube_ = root_cube(positions);
+    limit_ = max_error_ * static_cast<double>(cube_.side);
+    // Direct motion in steps of 2^shift grid units, at most a quarter of ME off.
+    uint32_t shift = 0;
+    while (shift < kMaxDirectShift && std::ldexp(std::sqrt(3.0) / 2, static_cast<int>(shift) + 1) <= limit_ / 4) ++shift;
+    shift_ = static_cast<int>(shift);
+
+    CellWriter writer;
+    AffineCellCoder coder(header_);
+    partition_.walk(positions, cube_, [&](const OctreeCell& cell) {
+      const size_t n = cell.vertices.size();
+      cell_.split = false;
+      cell_.direct = n <= kMaxDirectCellVertices;
+      if (!cell_.direct) {
+        const double error = fit(cell, positions);
+        if (error > limit_) {
+          if (cell.depth < static_cast<int>(header_.max_depth))
+            cell_.split = true;
+          else
+            cell_.direct = true;  // no deeper level left: the exact fallback
+        }
+      }
+      if (cell_.direct) direct_motion(cell, positions);
+      coder.describe(writer, cell.depth, n, cell_);
+      if (cell_.split) return true;
+      if (cell_.direct) {
+        statistics.direct_vertices += n;
+        for (size_t k = 0; k < n; ++k)
+          for (int axis = 0; axis < 3; ++axis)
+            next_[cell.vertices[k]][axis] = static_cast<int32_t>(positions[cell.vertices[k]][axis] + (int64_t{cell_.motion[k][axis]} << shift_));
+      } else {
+        ++statistics.matrices;
+        for (size_t k = 0; k < n; ++k)
+          for (int axis = 0; axis < 3; ++axis) next_[cell.vertices[k]][axis] = static_cast<int32_t>(fitted_[k][axis]);
+      }
+      return false;
+    });
+    positions.swap(next_);
+    return writer.finish(shift);
+  }
+
+ private:
+  // The least-squares affine map of the cell (in cell-local coordinates, as
+  // a deviation from identity, so that a singular cell's pseudo-inverse
+  // keeps identity along the directions it cannot see), quantized into
+  // cell_.matrix; returns the largest vertex error after reconstruction.
+  double fit(const OctreeCell& cell, std::span<const IntPoint3> positions) {
+    const double scale = static_cast<double>(std::max<int64_t>(cube_.side >> cell.depth, 1));
+    Eigen::Matrix4d moments = Eigen::Matrix4d::Zero();
+    Eigen::Matrix<double, 3, 4> cross = Eigen::Matrix<double, 3, 4>::Zero();
+    for (uint32_t v : cell.vertices) {
+      Eigen::Vector4d x;
+      Eigen::Vector3d y;
+      for (int axis = 0; axis < 3; ++axis) {
+        x(axis) = static_cast<double>(positions[v][axis] - cell.corner[axis]) / scale;
+        y(axis) = (target_[v][axis] - static_cast<double>(cell.corner[axis])) / scale - x(axis);
+      }
+      x(3) = 1;
+      moments += x * x.transpose();
+      cross += y * x.transpose();
+    }
+    // The pseudo-inverse without the null directions (coplanar or collinear
+    // points); when that still leaves the matrix range, the SVD keeps only
+    // the components holding 95 % of the energy.
+    Eigen::JacobiSVD<Eigen::Matrix4d> svd(moments, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    const Eigen::Vector4d& sigma = svd.singularValues();
+    int rank = 1;
+    while (rank < 4 && sigma(rank) > 1e-9 * sigma(0)) ++rank;
+    Eigen::Matrix<double, 3, 4> deviation = solve(svd, cross, rank);
+    const double range = std::ldexp(1.0, static_cast<int>(header_.matrix_range_log2) - 1);
+    bool out_of_range = false;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 4; ++j) out_of_range |= std::abs(deviation(i, j) + (i == j)) >= range;
+    if (out_of_range) {
+      const double total = sigma.sum();
+      int kept = 0;
+      for (double energy = 0; kept < rank && energy < 0.95 * total; ++kept) energy += sigma(kept);
+      deviation = solve(svd, cross, kept);
+    }
+    const int f = header_.fraction_bits();
+    const double one = std::ldexp(1.0, f);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        cell_.matrix[static_cast<size_t>(4 * i + j)] = clamp_to((deviation(i, j) + (i == j)) * one, header_.matrix_min(), header_.matrix_max());
+    // The translation again, for the quantized linear part: the mean remaining offset.
+    for (int i = 0; i < 3; ++i) {
+      double offset = 0;
+      for (uint32_t v : cell.vertices) {
+        double moved = 0;
+        for (int j = 0; j < 3; ++j) moved += cell_.matrix[static_cast<size_t>(4 * i + j)] * static_cast<double>(positions[v][j] - cell.corner[j]);
+        offset += target_[v][i] - static_cast<double>(cell.corner[i]) - moved / one;
+      }
+      offset /= static_cast<double>(cell.vertices.size());
+      cell_.matrix[static_cast<size_t>(4 * i + 3)] = clamp_to(offset * one / static_cast<double>(cube_.side), header_.matrix_min(), header_.matrix_max());
+    }
+    fitted_.resize(cell.vertices.size());
+    double worst = 0;
+    for (size_t k = 0; k < cell.vertices.size(); ++k) {
+      const uint32_t v = cell.vertices[k];
+      fitted_[k] = apply_affine(cell_.matrix, f, cell.corner, cube_.side, positions[v]);
+      double squared = 0;
+      for (int axis = 0; axis < 3; ++axis) {
+        const double d = static_cast<double>(fitted_[k][axis]) - target_[v][axis];
+        squared += d * d;
+      }
+      // A reconstruction off the grid's range counts as a miss.
+      for (int axis = 0; axis < 3; ++axis)
+        if (fitted_[k][axis] > kMaxQuantized || fitted_[k][axis] < -kMaxQuantized) squared = HUGE_VAL;
+      worst = std::max(worst, squared);
+    }
+    return std::sqrt(worst);
+  }
+
+  // cross · moments⁺ with the `kept` largest singular values.
+  static Eigen::Matrix<double, 3, 4> solve(const Eigen::JacobiSVD<Eigen::Matrix4d>& svd, const Eigen::Matrix<double, 3, 4>& cross,
+                                           int kept) {
+    Eigen::Vector4d inverse = Eigen::Vector4d::Zero();
+    for (int i = 0; i < kept; ++i)
+      inverse(i) = 1 / svd.singularValues()(i);
+    return cross * (svd.matrixV() * inverse.asDiagonal() * svd.matrixU().transpose());
+  }
+
+  void direct_motion(const OctreeCell& cell, std::span<const IntPoint3> positions) {
+    cell_.motion.resize(cell.vertices.size());
+    for (size_t k = 0; k < cell.vertices.size(); ++k)
+      for (int axis = 0; axis < 3; ++axis) {
+        const uint32_t v = cell.vertices[k];
+        cell_.motion[k][axis] = static_cast<int32_t>(std::nearbyint(std::ldexp(target_[v][axis] - positions[v][axis], -shift_)));
+      }
+  }
+
+  Grid grid_;
+  AffineOctreeHeader header_;
+  double max_error_;
+  OctreePartition partition_;
+  RootCube cube_;
+  double limit_ = 0;  // ME in grid units
+  int shift_ = 0;
+  AffineCell cell_;
+  std::vector<std::array<double, 3>> target_;
+  std::vector<std::array<int64_t, 3>> fitted_;
+  std::vector<IntPoint3> next_;
+};
+
+}  // namespace
+
+std::unique_ptr<CodecEncoder3d> make_affine_octree_encoder(const MeshSequence& sequence, const Encode3dOptions& options) {
+  return std::make_unique<AffineOctreeEncoder>(sequence, options);
+}
+
+}  // namespace m4mesh

@@ -1,0 +1,77 @@
+// bfs3d (codec_id 1) encoding: every frame on the grid, its motion predicted
+// breadth first and coded losslessly (docs/container3d.md).
+#include <bit>
+
+#include "encoder/codec3d.h"
+#include "mesh3d/traversal3d.h"
+#include "syntax/bfs3d.h"
+#include "syntax/residual_coder.h"
+
+namespace m4mesh {
+
+namespace {
+
+class Bfs3dEncoder final : public CodecEncoder3d {
+ public:
+  Bfs3dEncoder(const MeshSequence& s, const Encode3dOptions& options)
+      : grid_(Grid::over(s.frames[0], options.bits)), order_(bfs3d_order(s.faces, s.vertex_count)), motion_(s.vertex_count + size_t{1}) {
+    header_.bits = static_cast<uint32_t>(options.bits);
+    header_.prediction = options.parallelogram ? kPredictParallelogram : kPredictAverage;
+    for (int axis = 0; axis < 3; ++axis) {
+      header_.origin[axis] = std::bit_cast<uint32_t>(grid_.origin[axis]);
+      header_.step[axis] = std::bit_cast<uint32_t>(grid_.step[axis]);
+    }
+  }
+
+  const Grid& grid() const override { return grid_; }
+  void write_header(syntax::WriteIO& io) override { syntax::describe(io, header_); }
+
+  // arithmetic_bytes u(32) × 3, the three bin streams, the raw bits.
+  std::vector<uint8_t> encode_frame(std::span<const Vec3> frame, size_t frame_index, std::vector<IntPoint3>& positions,
+                                    Encode3dResult&) override {
+    quantize_frame(grid_, frame, frame_index, current_);
+    std::array<ArithmeticEncoder, 3> coders;
+    BitWriter raw;
+    ResidualCoder<3> model;
+    const bool parallelogram = header_.prediction == kPredictParallelogram;
+    for (size_t k = 0; k < order_.node.size(); ++k) {
+      const NodeIndex n = order_.node[k];
+      const auto &a = motion_[order_.pred_a[k]], &b = motion_[order_.pred_b[k]], &c = motion_[order_.pred_c[k]];
+      const bool use_parallelogram = parallelogram && order_.pred_c[k] != order_.zero_slot;
+      for (int axis = 0; axis < 3; ++axis) {
+        const int64_t v = int64_t{current_[n][axis]} - positions[n][axis];
+        const int64_t w = use_parallelogram ? a[axis] + b[axis] - c[axis] : (a[axis] + b[axis] + 1) >> 1;
+        model.encode(coders[axis], raw, axis, static_cast<int32_t>(v - w));
+        motion_[n][axis] = v;
+      }
+    }
+    positions.swap(current_);
+    std::array<std::vector<uint8_t>, 3> bins;
+    BitWriter lengths;
+    for (int axis = 0; axis < 3; ++axis) {
+      bins[axis] = coders[axis].finish();
+      lengths.write(static_cast<uint32_t>(bins[axis].size()), 32);
+    }
+    std::vector<uint8_t> data = lengths.take_bytes();
+    for (const std::vector<uint8_t>& b : bins) data.insert(data.end(), b.begin(), b.end());
+    raw.write(0, static_cast<int>((8 - raw.position() % 8) % 8));
+    const std::vector<uint8_t> bits = raw.take_bytes();
+    data.insert(data.end(), bits.begin(), bits.end());
+    return data;
+  }
+
+ private:
+  Grid grid_;
+  Bfs3dHeader header_;
+  MotionOrder3d order_;
+  std::vector<std::array<int64_t, 3>> motion_;
+  std::vector<IntPoint3> current_;
+};
+
+}  // namespace
+
+std::unique_ptr<CodecEncoder3d> make_bfs3d_encoder(const MeshSequence& sequence, const Encode3dOptions& options) {
+  return std::make_unique<Bfs3dEncoder>(sequence, options);
+}
+
+}  // namespace m4mesh
