@@ -68,7 +68,8 @@ int run_encode3d(const Encode3dArgs& args) {
 int run_decode3d(const Decode3dArgs& args) {
   const std::vector<uint8_t> stream = read_file(args.input);
   Mesh3dDecoder decoder(stream, args.verify);
-  const bool to_folder = fs::path(args.output).extension() != ".m4seq";
+  const std::string extension = fs::path(args.output).extension().string();
+  const bool to_folder = extension != ".m4seq" && extension != ".f32";
   // Frames go to a temporary folder that becomes the output only when all decoded.
   const fs::path temporary = args.output + ".partial";
   if (to_folder && fs::exists(args.output) && !fs::is_empty(args.output))
@@ -101,6 +102,15 @@ int run_decode3d(const Decode3dArgs& args) {
   if (to_folder) {
     fs::remove(args.output);
     fs::rename(temporary, args.output);
+  } else if (extension == ".f32") {
+    std::string bytes;
+    for (const std::vector<Vec3>& frame : sequence.frames) {
+      std::vector<Float3> positions;
+      for (const Vec3& v : frame) positions.push_back({static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)});
+      const std::vector<uint8_t> b = frame_bytes(positions);
+      bytes.append(b.begin(), b.end());
+    }
+    write_file_atomically(args.output, bytes);
   } else {
     sequence.faces = decoder.faces();
     write_binary_sequence(sequence, args.output);

@@ -13,6 +13,7 @@
 #include "conformance/checker.h"
 #include "conformance/manifest.h"
 #include "conformance/runner.h"
+#include "conformance/suite3d.h"
 #include "decoder/decoder.h"
 #include "encoder/encoder.h"
 #include "encoder/frame_input.h"
@@ -170,7 +171,7 @@ int run_check(const std::string& input) {
 }
 
 int run_conform(const ConformOptions& options) {
-  const ConformResult result = run_conformance(options, std::cout);
+  const ConformResult result = is_suite3d(options.suite) ? run_conformance3d(options, std::cout) : run_conformance(options, std::cout);
   return result.failed == 0 ? 0 : 1;
 }
 
@@ -180,6 +181,9 @@ int run_generate_suite(const std::string& folder) {
   for (const ManifestEntry& e : manifest.entries) valid += e.valid;
   std::printf("%s: %zu streams (%zu to decode, %zu to reject) and manifest.json\n", folder.c_str(), manifest.entries.size(),
               valid, manifest.entries.size() - valid);
+  const std::string folder3d = folder + "/mesh3d";
+  write_suite3d(folder3d);
+  std::printf("%s: the 3D container suite and its manifest.json\n", folder3d.c_str());
   return 0;
 }
 
@@ -228,7 +232,8 @@ int main(int argc, char** argv) {
   CLI::App* conform_cmd = app.add_subcommand("conform", "Run the conformance suite through m4mesh's or another decoder");
   conform_cmd->add_option("suite", conform_options.suite, "suite folder holding manifest.json")->capture_default_str();
   conform_cmd->add_option("--decoder", conform_options.decoder_command,
-                          "external decoder command: {in} stream, {out} §9 text to write, {method} 1 or 2");
+                          "external decoder command: {in} stream, {out} output to write (§9 text; for the 3D suite every frame's "
+                          "binary32 bytes, as decode3d -o FILE.f32), {method} 1 or 2");
 
   std::string suite_folder;
   CLI::App* generate_cmd = app.add_subcommand("generate-suite", "Regenerate the conformance streams and manifest");
@@ -255,7 +260,7 @@ int main(int argc, char** argv) {
   Decode3dArgs decode3d_args;
   CLI::App* decode3d_cmd = app.add_subcommand("decode3d", "Decode a mesh3d stream into OBJ frames or a .m4seq file");
   decode3d_cmd->add_option("input", decode3d_args.input, "mesh3d stream")->required();
-  decode3d_cmd->add_option("-o,--output", decode3d_args.output, "a folder for OBJ frames, or a .m4seq file")->required();
+  decode3d_cmd->add_option("-o,--output", decode3d_args.output, "a folder for OBJ frames, a .m4seq file, or a .f32 file (every frame's binary32 x, y, z, little-endian)")->required();
   decode3d_cmd->add_flag("--verify", decode3d_args.verify, "check every frame against its hash unit: OK or MISMATCH per frame");
 
   MetricsArgs metrics_args;

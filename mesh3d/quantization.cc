@@ -37,7 +37,7 @@ bool Grid::quantize(const Vec3& p, IntPoint3& q) const {
   return true;
 }
 
-std::string frame_md5(std::span<const Float3> positions) {
+std::vector<uint8_t> frame_bytes(std::span<const Float3> positions) {
   std::vector<uint8_t> bytes(positions.size() * 12);
   uint8_t* out = bytes.data();
   for (const Float3& p : positions)
@@ -49,6 +49,11 @@ std::string frame_md5(std::span<const Float3> positions) {
       *out++ = static_cast<uint8_t>(bits >> 16);
       *out++ = static_cast<uint8_t>(bits >> 24);
     }
+  return bytes;
+}
+
+std::string frame_md5(std::span<const Float3> positions) {
+  const std::vector<uint8_t> bytes = frame_bytes(positions);
   Md5 md5;
   md5.update(bytes.data(), bytes.size());
   return md5.hex_digest();

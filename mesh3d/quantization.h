@@ -36,7 +36,9 @@ struct Grid {
   bool quantize(const Vec3& p, IntPoint3& q) const;
 };
 
-// MD5 of the frame as binary32 x, y, z per vertex, little-endian.
+// A decoded frame's canonical bytes: binary32 x, y, z per vertex, little-endian.
+std::vector<uint8_t> frame_bytes(std::span<const Float3> positions);
+// Their MD5.
 std::string frame_md5(std::span<const Float3> positions);
 
 }  // namespace m4mesh

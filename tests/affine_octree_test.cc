@@ -5,7 +5,9 @@
 #include <cmath>
 #include <filesystem>
 
+#include "common/atomic_file.h"
 #include "common/error.h"
+#include "conformance/suite3d.h"
 #include "decoder/mesh3d_decoder.h"
 #include "encoder/mesh3d_encoder.h"
 #include "mesh3d/metrics.h"
@@ -201,6 +203,22 @@ TEST(AffineOctree, BadOptionsAreUsageErrors) {
   options.max_error = 0.01;
   options.matrix_bits = 2;
   EXPECT_THROW(encode_mesh3d(s, options), Error);
+}
+
+TEST(Conformance3d, RegenerationGivesIdenticalBytes) {
+  const fs::path suite = fs::path(M4MESH_CONFORMANCE_DIR) / "mesh3d";
+  const fs::path folder = fs::temp_directory_path() / "m4mesh-suite3d-regeneration";
+  fs::remove_all(folder);
+  write_suite3d(folder.string());
+  EXPECT_EQ(read_file((folder / "manifest.json").string()), read_file((suite / "manifest.json").string()))
+      << "the 3D suite changed: regenerate it (m4mesh generate-suite conformance) and say why";
+  size_t streams = 0;
+  for (const auto& entry : fs::directory_iterator(folder / "streams")) {
+    EXPECT_EQ(read_file(entry.path().string()), read_file((suite / "streams" / entry.path().filename()).string())) << entry.path();
+    ++streams;
+  }
+  EXPECT_GE(streams, 18u);
+  fs::remove_all(folder);
 }
 
 // ---- the paper's sequences (../shared/data) -----------------------------------

@@ -1,0 +1,368 @@
+#include "conformance/suite3d.h"
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "common/atomic_file.h"
+#include "common/md5.h"
+#include "decoder/mesh3d_decoder.h"
+#include "encoder/mesh3d_encoder.h"
+
+namespace m4mesh {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::ordered_json;
+
+// Inputs built with +, − and × of small rationals only, so that every
+// platform builds the same doubles: the surface of a box (closed, n × n
+// quads per side), a separate open sheet, and a vertex in no face, under a
+// polynomial twist and wave.
+MeshSequence box_and_sheet(int frames, int n) {
+  MeshSequence s;
+  std::vector<Vec3> base;
+  std::map<std::array<int, 3>, NodeIndex> index;
+  auto vertex = [&](std::array<int, 3> p) {
+    auto [it, added] = index.try_emplace(p, static_cast<NodeIndex>(base.size()));
+    if (added) base.push_back({static_cast<double>(p[0]) / n, static_cast<double>(p[1]) / n, static_cast<double>(p[2]) / n});
+    return it->second;
+  };
+  // Side (axis a fixed at 0 or n), outward orientation.
+  for (int a = 0; a < 3; ++a)
+    for (int high = 0; high < 2; ++high)
+      for (int u = 0; u < n; ++u)
+        for (int v = 0; v < n; ++v) {
+          auto at = [&](int du, int dv) {
+            std::array<int, 3> p;
+            p[a] = high * n;
+            p[(a + 1) % 3] = u + du;
+            p[(a + 2) % 3] = v + dv;
+            return vertex(p);
+          };
+          const NodeIndex p00 = at(0, 0), p10 = at(1, 0), p11 = at(1, 1), p01 = at(0, 1);
+          if (high) {
+            s.faces.push_back({{p00, p10, p11}});
+            s.faces.push_back({{p00, p11, p01}});
+          } else {
+            s.faces.push_back({{p00, p11, p10}});
+            s.faces.push_back({{p00, p01, p11}});
+          }
+        }
+  const NodeIndex sheet = static_cast<NodeIndex>(base.size());
+  for (int y = 0; y <= n; ++y)
+    for (int x = 0; x <= n; ++x) base.push_back({2.0 + 0.25 * x, 0.25 * y, 0.5});
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const NodeIndex a = sheet + static_cast<NodeIndex>(y * (n + 1) + x);
+      s.faces.push_back({{a, a + 1, a + static_cast<NodeIndex>(n + 2)}});
+      s.faces.push_back({{a, a + static_cast<NodeIndex>(n + 2), a + static_cast<NodeIndex>(n + 1)}});
+    }
+  base.push_back({-1.5, 0.75, 0.25});
+  s.vertex_count = static_cast<uint32_t>(base.size());
+  for (int f = 0; f < frames; ++f) {
+    const double t = 0.125 * f;
+    std::vector<Vec3> frame = base;
+    for (Vec3& p : frame) {
+      const Vec3 o = p;
+      p.x = o.x + t * 0.25 * o.y * o.z;
+      p.y = o.y + t * (0.125 * o.x * o.x - 0.0625);
+      p.z = o.z + t * t * 0.5 * (o.x - 1) * o.y + 0.03125 * f;
+    }
+    s.frames.push_back(std::move(frame));
+  }
+  return s;
+}
+
+// A flat sheet rotating in its plane by the exact rotation (3/5, 4/5) scaled down.
+MeshSequence rotating_sheet(int frames) {
+  MeshSequence s;
+  const int n = 9;
+  for (int y = 0; y + 1 < n; ++y)
+    for (int x = 0; x + 1 < n; ++x) {
+      const NodeIndex a = static_cast<NodeIndex>(y * n + x);
+      s.faces.push_back({{a, a + 1, a + static_cast<NodeIndex>(n + 1)}});
+      s.faces.push_back({{a, a + static_cast<NodeIndex>(n + 1), a + static_cast<NodeIndex>(n)}});
+    }
+  s.vertex_count = n * n;
+  std::vector<Vec3> frame;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) frame.push_back({static_cast<double>(x), static_cast<double>(y), 1});
+  for (int f = 0; f < frames; ++f) {
+    s.frames.push_back(frame);
+    // A small rotation: cos = 0.96, sin = 0.28 (7² + 24² = 25²).
+    for (Vec3& p : frame) p = {0.96 * p.x - 0.28 * p.y, 0.28 * p.x + 0.96 * p.y, p.z};
+  }
+  return s;
+}
+
+MeshSequence moving_tetrahedron(int frames) {
+  MeshSequence s;
+  s.vertex_count = 4;
+  s.faces = {{{0, 2, 1}}, {{0, 1, 3}}, {{1, 2, 3}}, {{2, 0, 3}}};
+  for (int f = 0; f < frames; ++f) {
+    const double t = 0.25 * f;
+    s.frames.push_back({{t, 0, 0}, {1 + t * t, 0, 0}, {0, 1 - 0.5 * t, 0}, {0.5 * t, 0, 1}});
+  }
+  return s;
+}
+
+Encode3dOptions affine(double me, int k = 16) {
+  Encode3dOptions o;
+  o.codec_id = kCodecAffineOctree;
+  o.max_error = me;
+  o.matrix_bits = k;
+  return o;
+}
+
+Suite3dCase valid(std::string id, std::string purpose, std::vector<std::string> clauses, const MeshSequence& s, const Encode3dOptions& o) {
+  return {std::move(id), std::move(purpose), std::move(clauses), encode_mesh3d(s, o).stream, true, ErrorKind::kTruncated, "", kNoPlane};
+}
+
+Suite3dCase invalid(std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream, ErrorKind kind,
+                    std::string element, int64_t frame) {
+  return {std::move(id), std::move(purpose), std::move(clauses), std::move(stream), false, kind, std::move(element), frame};
+}
+
+// A stream rebuilt from its parts after `edit` changed them.
+template <class Edit>
+std::vector<uint8_t> edited(const std::vector<uint8_t>& stream, Edit edit) {
+  ContainerParts parts = split_container(stream);
+  edit(parts);
+  ContainerWriter writer;
+  writer.object(parts.object_payload);
+  for (const ContainerUnit& unit : parts.units) writer.unit(unit.payload);
+  return writer.finish();
+}
+
+// The unit of frame `frame` with unit_type `type`.
+ContainerUnit& unit_of(ContainerParts& parts, UnitType type, uint32_t frame) {
+  for (ContainerUnit& unit : parts.units)
+    if (unit.payload[0] == static_cast<uint8_t>(type) && unit.payload[4] == frame && unit.payload[1] == 0 && unit.payload[2] == 0 &&
+        unit.payload[3] == 0)
+      return unit;
+  throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no such unit");
+}
+
+}  // namespace
+
+std::vector<Suite3dCase> build_suite3d() {
+  const MeshSequence shape = box_and_sheet(6, 4);
+  std::vector<Suite3dCase> suite;
+  suite.push_back(valid("ao-01-me1-k16", "affine-octree at the paper's settings: ME 1 %, k = 16", {"container", "ao-header", "ao-frame", "ao-cell"},
+                        shape, affine(0.01)));
+  {
+    Encode3dOptions o = affine(0.25, 8);
+    o.max_depth = 3;
+    suite.push_back(valid("ao-02-coarse", "ME 25 %, k = 8, octree depth at most 3", {"ao-header", "ao-cell"}, shape, o));
+  }
+  {
+    Encode3dOptions o = affine(0.001, 16);
+    o.bits = 16;
+    o.max_depth = 20;
+    suite.push_back(valid("ao-03-fine", "ME 0.1 %, 16-bit grid, octree depth up to 20", {"ao-cell", "ao-reconstruction"}, shape, o));
+  }
+  {
+    Encode3dOptions o = affine(0.02, 24);
+    o.matrix_range_log2 = 8;
+    suite.push_back(valid("ao-04-wide-matrices", "k = 24 over [−128, 128): the widest matrix elements", {"ao-header", "ao-reconstruction"},
+                          shape, o));
+  }
+  {
+    Encode3dOptions o = affine(0.01);
+    o.intra_period = 3;
+    suite.push_back(valid("ao-05-intra", "an intra base mesh every 3 frames", {"container-units", "ao-frame"}, box_and_sheet(7, 3), o));
+  }
+  suite.push_back(valid("ao-06-direct-root", "4 vertices: the root cell codes direct motion", {"ao-cell"}, moving_tetrahedron(5), affine(0.01)));
+  suite.push_back(valid("ao-07-coplanar", "a flat sheet rotating: singular cells, one matrix per frame", {"ao-cell", "ao-reconstruction"},
+                        rotating_sheet(5), affine(0.01)));
+  suite.push_back(valid("bfs3d-01-average", "bfs3d with base-edge average prediction", {"container", "bfs3d"}, shape, Encode3dOptions{}));
+  {
+    Encode3dOptions o;
+    o.parallelogram = true;
+    o.bits = 10;
+    o.intra_period = 4;
+    suite.push_back(valid("bfs3d-02-parallelogram-intra", "bfs3d, parallelogram prediction, 10 bits, intra every 4 frames",
+                          {"bfs3d", "container-units"}, shape, o));
+  }
+
+  const std::vector<uint8_t> base = suite[0].stream;
+  suite.push_back(invalid("x-01-codec-unknown", "codec_id 5 is not registered", {"container"},
+                          edited(base, [](ContainerParts& p) { p.object_payload[1] = 5; }), ErrorKind::kReservedValue, "codec_id", kNoPlane));
+  suite.push_back(invalid("x-02-codec-lcc", "codec_id 3 (lcc) is registered but not implemented", {"container"},
+                          edited(base, [](ContainerParts& p) { p.object_payload[1] = 3; }), ErrorKind::kLimit, "codec_id", kNoPlane));
+  // The object payload: 18 bytes of object header, quantization_bits, 3 origins, step, then matrix_bits.
+  suite.push_back(invalid("x-03-matrix-bits", "matrix_bits 30", {"ao-header"},
+                          edited(base, [](ContainerParts& p) { p.object_payload[18 + 1 + 12 + 4] = 30; }), ErrorKind::kOutOfRange,
+                          "matrix_bits", kNoPlane));
+  suite.push_back(invalid("x-04-direct-shift", "direct_shift 27", {"ao-frame"},
+                          edited(base, [](ContainerParts& p) { unit_of(p, UnitType::kFrame, 1).payload[5] = 27; }),
+                          ErrorKind::kOutOfRange, "direct_shift", 1));
+  suite.push_back(invalid("x-05-arithmetic-bytes", "arithmetic_bytes longer than the frame", {"ao-frame"},
+                          edited(base, [](ContainerParts& p) { unit_of(p, UnitType::kFrame, 2).payload[6] = 0x7F; }),
+                          ErrorKind::kOutOfRange, "arithmetic_bytes", 2));
+  suite.push_back(invalid("x-06-frame-cut", "a frame unit cut after 3 bytes of data", {"ao-frame"},
+                          edited(base, [](ContainerParts& p) { unit_of(p, UnitType::kFrame, 1).payload.resize(8); }),
+                          ErrorKind::kTruncated, "arithmetic_bytes", 1));
+  suite.push_back(invalid("x-07-frame-gap", "frame 2 labelled frame 3", {"container-units"},
+                          edited(base, [](ContainerParts& p) { unit_of(p, UnitType::kFrame, 2).payload[4] = 3; }),
+                          ErrorKind::kStructure, "frame_index", 2));
+  suite.push_back(invalid("x-08-missing-frames", "frame_count 6, the stream ends after frame 3", {"container-units"},
+                          edited(base, [](ContainerParts& p) {
+                            while (p.units.back().payload[4] > 3) p.units.pop_back();
+                          }),
+                          ErrorKind::kTruncated, "mesh3d_unit_start_code", 4));
+  {
+    // An intra base mesh whose faces are not frame 0's.
+    MeshSequence other = box_and_sheet(6, 4);
+    std::swap(other.faces[0], other.faces[1]);
+    const std::vector<uint8_t> other_stream = encode_mesh3d(other, affine(0.01)).stream;
+    const std::vector<uint8_t> intra = split_container(other_stream).units[0].payload;
+    suite.push_back(invalid("x-09-intra-other-faces", "an intra base mesh with other faces", {"container-units"},
+                            edited(base,
+                                   [&](ContainerParts& p) {
+                                     ContainerUnit& unit = unit_of(p, UnitType::kFrame, 2);
+                                     unit.payload = intra;
+                                     unit.payload[4] = 2;
+                                   }),
+                            ErrorKind::kStructure, "base_mesh", 2));
+  }
+  return suite;
+}
+
+std::vector<uint8_t> decoded_frames3d(const std::vector<uint8_t>& stream) {
+  Mesh3dDecoder decoder(stream, true);
+  std::vector<uint8_t> out;
+  while (decoder.next_frame()) {
+    if (decoder.hash_matches() == false)
+      throw Error(ErrorKind::kStructure, "frame_md5", decoder.frame_index(), kNoOffset, "the decoded frame does not match its hash");
+    const std::vector<uint8_t> bytes = frame_bytes(decoder.positions());
+    out.insert(out.end(), bytes.begin(), bytes.end());
+  }
+  return out;
+}
+
+namespace {
+
+std::string md5_of(const std::vector<uint8_t>& bytes) {
+  return md5_hex(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
+
+}  // namespace
+
+void write_suite3d(const std::string& folder) {
+  fs::create_directories(fs::path(folder) / "streams");
+  ordered_json manifest;
+  manifest["suite"] = "m4mesh conformance: 3D container (§12; docs/container3d.md, docs/codec_affine_octree.md)";
+  manifest["kind"] = "mesh3d";
+  manifest["decoded_output"] = "MD5 of every frame's binary32 x, y, z per vertex (little-endian), frame after frame";
+  manifest["streams"] = ordered_json::array();
+  for (const Suite3dCase& c : build_suite3d()) {
+    const std::string file = "streams/" + c.id + ".m4m";
+    write_file_atomically((fs::path(folder) / file).string(), std::string_view(reinterpret_cast<const char*>(c.stream.data()), c.stream.size()));
+    ordered_json j;
+    j["id"] = c.id;
+    j["file"] = file;
+    j["purpose"] = c.purpose;
+    j["clauses"] = c.clauses;
+    j["stream_md5"] = md5_of(c.stream);
+    j["expect"] = c.valid ? "decode" : "error";
+    if (c.valid) {
+      j["decoded_md5"] = md5_of(decoded_frames3d(c.stream));
+    } else {
+      j["error_kind"] = to_string(c.error_kind);
+      j["error_element"] = c.error_element;
+      j["error_frame"] = c.error_frame;
+    }
+    manifest["streams"].push_back(j);
+  }
+  write_file_atomically((fs::path(folder) / "manifest.json").string(), manifest.dump(2) + "\n");
+}
+
+namespace {
+
+ordered_json read_manifest3d(const fs::path& suite) {
+  const std::vector<uint8_t> text = read_file((suite / "manifest.json").string());
+  try {
+    return ordered_json::parse(text.begin(), text.end());
+  } catch (const std::exception& e) {
+    throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, (suite / "manifest.json").string() + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+bool is_suite3d(const std::string& folder) { return read_manifest3d(folder).value("kind", "") == "mesh3d"; }
+
+ConformResult run_conformance3d(const ConformOptions& options, std::ostream& out) {
+  const fs::path suite(options.suite);
+  const ordered_json manifest = read_manifest3d(suite);
+  ConformResult result;
+  char line[640];
+  std::snprintf(line, sizeof line, "%-36s %-7s %-6s %s\n", "stream", "expect", "result", "detail");
+  out << line;
+  for (const ordered_json& e : manifest.at("streams")) {
+    const std::string id = e.at("id").get<std::string>();
+    const std::string path = (suite / e.at("file").get<std::string>()).string();
+    const bool expect_decode = e.at("expect").get<std::string>() == "decode";
+    bool pass = false;
+    std::string detail;
+    try {
+      const std::vector<uint8_t> stream = read_file(path);
+      if (md5_of(stream) != e.at("stream_md5").get<std::string>()) {
+        detail = "the stream file's MD5 differs from the manifest's";
+      } else if (options.decoder_command.empty()) {
+        try {
+          const std::string md5 = md5_of(decoded_frames3d(stream));
+          pass = expect_decode && md5 == e.at("decoded_md5").get<std::string>();
+          detail = expect_decode ? (pass ? md5 : "decoded MD5 " + md5 + ", expected " + e.at("decoded_md5").get<std::string>())
+                                 : "decoded, expected " + e.at("error_kind").get<std::string>();
+        } catch (const Error& error) {
+          pass = !expect_decode && to_string(error.kind()) == e.at("error_kind").get<std::string>() &&
+                 error.element() == e.at("error_element").get<std::string>() && error.plane() == e.at("error_frame").get<int64_t>();
+          detail = std::string(to_string(error.kind())) + ": " + error.what();
+          if (!pass && !expect_decode)
+            detail += "; expected " + e.at("error_kind").get<std::string>() + " at frame " + std::to_string(e.at("error_frame").get<int64_t>()) +
+                      ", " + e.at("error_element").get<std::string>();
+        }
+      } else {
+        const fs::path output = fs::temp_directory_path() / ("m4mesh-conform3d-" + id + ".f32");
+        fs::remove(output);
+        std::string command = options.decoder_command;
+        auto substitute = [&](const std::string& key, const std::string& value) {
+          for (size_t at = command.find(key); at != std::string::npos; at = command.find(key, at + value.size()))
+            command.replace(at, key.size(), "'" + value + "'");
+        };
+        substitute("{in}", path);
+        substitute("{out}", output.string());
+        const int status = std::system((command + " > /dev/null 2>&1").c_str());
+        const bool ok = status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+        if (!expect_decode) {
+          pass = !ok;
+          detail = ok ? "exit status 0 for a stream that must be rejected" : "rejected";
+        } else if (!ok || !fs::exists(output)) {
+          detail = "the decoder failed or wrote nothing";
+        } else {
+          const std::string md5 = md5_of(read_file(output.string()));
+          pass = md5 == e.at("decoded_md5").get<std::string>();
+          detail = pass ? md5 : "decoded MD5 " + md5 + ", expected " + e.at("decoded_md5").get<std::string>();
+        }
+        fs::remove(output);
+      }
+    } catch (const std::exception& error) {
+      detail = error.what();
+    }
+    (pass ? result.passed : result.failed)++;
+    std::snprintf(line, sizeof line, "%-36s %-7s %-6s %.500s\n", id.c_str(), expect_decode ? "decode" : "reject", pass ? "pass" : "FAIL",
+                  detail.c_str());
+    out << line;
+  }
+  out << result.passed << " passed, " << result.failed << " failed\n";
+  return result;
+}
+
+}  // namespace m4mesh
