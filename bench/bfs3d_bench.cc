@@ -5,9 +5,8 @@
 
 #include <cmath>
 #include <filesystem>
-#include <map>
-#include <numbers>
 
+#include "bench/sequences.h"
 #include "decoder/mesh3d_decoder.h"
 #include "encoder/mesh3d_encoder.h"
 #include "mesh3d/draco_base.h"
@@ -18,40 +17,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kData = fs::path(M4MESH_SOURCE_DIR) / ".." / "shared" / "data";
-
-// A rippling 128×128 sheet, when the real data is absent.
-MeshSequence synthetic() {
-  MeshSequence s;
-  const int n = 128;
-  s.vertex_count = n * n;
-  for (int y = 0; y + 1 < n; ++y)
-    for (int x = 0; x + 1 < n; ++x) {
-      const NodeIndex a = static_cast<NodeIndex>(y * n + x);
-      s.faces.push_back({{a, a + 1, a + n + 1}});
-      s.faces.push_back({{a, a + n + 1, a + n}});
-    }
-  for (int f = 0; f < 40; ++f) {
-    std::vector<Vec3> frame;
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x)
-        frame.push_back({x / 64.0, y / 64.0, 0.1 * std::sin(0.2 * x + 0.3 * f) * std::cos(0.1 * y)});
-    s.frames.push_back(std::move(frame));
-  }
-  return s;
-}
-
-const MeshSequence& sequence(const std::string& name) {
-  static std::map<std::string, MeshSequence> cache;
-  auto it = cache.find(name);
-  if (it == cache.end()) {
-    const fs::path path = kData / name;
-    it = cache.emplace(name, fs::exists(path) ? load_sequence(path.string()) : synthetic()).first;
-  }
-  return it->second;
-}
-
-const char* kNames[] = {"horse-gallop", "pcow"};
+using bench::kData;
+using bench::kNames;
+using bench::sequence;
 
 void BM_Bfs3dDecode(benchmark::State& state) {
   const MeshSequence& s = sequence(kNames[state.range(0)]);
