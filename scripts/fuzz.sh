@@ -20,7 +20,9 @@ for stream in conformance/streams/p0*.m4m conformance/streams/p1*.m4m conformanc
   build-fuzz/cli/m4mesh decode "$stream" -o "$work/seeds-text/$(basename "$stream" .m4m).txt" > /dev/null 2>&1 || true
 done
 
-# Small 3D streams: the first frames of a test sequence, both predictions.
+# 3D streams: the 3D conformance suite (both codecs), and the first frames
+# of a test sequence with both bfs3d predictions.
+cp conformance/mesh3d/streams/*.m4m "$work/seeds-mesh3d/"
 for bits in 6 10; do
   build-fuzz/cli/m4mesh encode3d tests/data/tetra-frames -o "$work/seeds-mesh3d/tetra-$bits.m4m" --bits "$bits" > /dev/null 2>&1 || true
   build-fuzz/cli/m4mesh encode3d tests/data/tetra-frames -o "$work/seeds-mesh3d/tetra-$bits-p.m4m" --bits "$bits" --parallelogram > /dev/null 2>&1 || true
