@@ -50,7 +50,7 @@ class AffineOctreeDecoder final : public CodecDecoder3d {
     AffineCellCoder coder(header_);
     const RootCube cube = root_cube(positions);
     const int fraction_bits = header_.fraction_bits();
-    next_ = positions;
+    next_.resize(positions.size());  // every vertex lies in exactly one leaf, which sets it
     auto store = [&](uint32_t v, const std::array<int64_t, 3>& q) {
       for (int axis = 0; axis < 3; ++axis) {
         if (q[axis] > kMaxQuantized || q[axis] < -kMaxQuantized)

@@ -49,7 +49,7 @@ class Bfs3dDecoder final : public CodecDecoder3d {
       for (int axis = 0; axis < 3; ++axis) {
         int32_t r;
         if (!model.decode(bins[axis], raw, axis, r)) frame_data_error(ErrorKind::kInvalidCode, "motion_residual", "a residual longer than 32 bits");
-        const int64_t w = use_parallelogram ? a[axis] + b[axis] - c[axis] : (a[axis] + b[axis] + 1) >> 1;
+        const int64_t w = predict_motion(a[axis], b[axis], c[axis], use_parallelogram);
         const int64_t v = w + r;
         const int64_t q = positions[n][axis] + v;
         if (q > kMaxQuantized || q < -kMaxQuantized)

@@ -40,7 +40,7 @@ class Bfs3dEncoder final : public CodecEncoder3d {
       const bool use_parallelogram = parallelogram && order_.pred_c[k] != order_.zero_slot;
       for (int axis = 0; axis < 3; ++axis) {
         const int64_t v = int64_t{current_[n][axis]} - positions[n][axis];
-        const int64_t w = use_parallelogram ? a[axis] + b[axis] - c[axis] : (a[axis] + b[axis] + 1) >> 1;
+        const int64_t w = predict_motion(a[axis], b[axis], c[axis], use_parallelogram);
         model.encode(coders[axis], raw, axis, static_cast<int32_t>(v - w));
         motion_[n][axis] = v;
       }

@@ -20,6 +20,12 @@ inline constexpr size_t kArithmeticLengthBytes = 4;
 inline constexpr uint32_t kPredictAverage = 0;
 inline constexpr uint32_t kPredictParallelogram = 1;
 
+// A vertex's motion on one axis predicted from its base edge (a, b) and,
+// for the parallelogram, the vertex c across that edge.
+inline int64_t predict_motion(int64_t a, int64_t b, int64_t c, bool parallelogram) {
+  return parallelogram ? a + b - c : (a + b + 1) >> 1;
+}
+
 struct Bfs3dHeader {
   uint32_t bits = 12;  // quantization bits per coordinate over the first frame's box
   uint32_t prediction = kPredictAverage;
