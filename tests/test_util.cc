@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "decoder/decoder.h"
+#include "decoder/mesh3d_decoder.h"
 #include "encoder/encoder.h"
 #include "mesh/cdt.h"
 
@@ -132,6 +133,27 @@ MeshSequence test_sequence(int frames, uint64_t seed) {
     s.frames.push_back(std::move(frame));
   }
   return s;
+}
+
+int decode_damaged_mesh3d(const std::vector<uint8_t>& stream, size_t step, uint64_t seed) {
+  int rejected = 0;
+  for (size_t size = 0; size < stream.size(); size += step) {
+    try {
+      decode_mesh3d(std::vector<uint8_t>(stream.begin(), stream.begin() + static_cast<std::ptrdiff_t>(size)));
+    } catch (const Error&) {
+      ++rejected;
+    }
+  }
+  Random random(seed);
+  for (int trial = 0; trial < 300; ++trial) {
+    std::vector<uint8_t> bad = stream;
+    bad[static_cast<size_t>(random.uniform(0, static_cast<int32_t>(bad.size()) - 1))] ^= static_cast<uint8_t>(1 << random.uniform(0, 7));
+    try {
+      decode_mesh3d(bad);
+    } catch (const Error&) {
+    }
+  }
+  return rejected;
 }
 
 }  // namespace m4mesh::test

@@ -31,6 +31,11 @@ bool strictly_inside(const std::vector<Point>& nodes, uint32_t boundary, const P
 // §9 text of a stream's decoding.
 std::string decoded_text(const std::vector<uint8_t>& stream);
 
+// Decodes every prefix of a 3D stream (lengths 0, step, 2·step, …) and 300
+// copies with one flipped bit, each of which must decode or raise Error;
+// returns how many prefixes were rejected.
+int decode_damaged_mesh3d(const std::vector<uint8_t>& stream, size_t step, uint64_t seed);
+
 // A UV sphere (closed), a separate open sheet, and one isolated vertex, in motion.
 MeshSequence test_sequence(int frames, uint64_t seed);
 
