@@ -21,8 +21,4 @@ std::vector<uint8_t> ArithmeticEncoder::finish() {
   return std::move(out_);
 }
 
-ArithmeticDecoder::ArithmeticDecoder(std::span<const uint8_t> data) : data_(data) {
-  for (int i = 0; i < 5; ++i) code_ = (code_ << 8) | next_byte();
-}
-
 }  // namespace m4mesh

@@ -50,22 +50,31 @@ class ArithmeticEncoder {
 
 class ArithmeticDecoder {
  public:
-  explicit ArithmeticDecoder(std::span<const uint8_t> data);
+  explicit ArithmeticDecoder(std::span<const uint8_t> data) : data_(data) {
+    for (int i = 0; i < 5; ++i) code_ = (code_ << 8) | next_byte();
+  }
 
-  // Branch-free selection of the sub-range: mask is all ones for a 1.
   int decode(BinContext& context) {
     const uint32_t p0 = context.p0;
     const uint32_t bound = (range_ >> ArithmeticEncoder::kProbabilityBits) * p0;
-    const uint32_t mask = 0u - static_cast<uint32_t>(code_ >= bound);
-    code_ -= bound & mask;
-    range_ = (bound & ~mask) | ((range_ - bound) & mask);
-    const uint32_t toward = (ArithmeticEncoder::kOne & ~mask) + (mask & 31u);  // 1 → 31, 0 → 2048
-    context.p0 = static_cast<uint16_t>(p0 + ((static_cast<int32_t>(toward) - static_cast<int32_t>(p0)) >> ArithmeticEncoder::kAdaptShift));
-    while (range_ < ArithmeticEncoder::kTop) {
+    int bin;
+    if (code_ < bound) {
+      range_ = bound;
+      context.p0 = static_cast<uint16_t>(p0 + ((ArithmeticEncoder::kOne - p0) >> ArithmeticEncoder::kAdaptShift));
+      bin = 0;
+    } else {
+      code_ -= bound;
+      range_ -= bound;
+      context.p0 = static_cast<uint16_t>(p0 - (p0 >> ArithmeticEncoder::kAdaptShift));
+      bin = 1;
+    }
+    // One byte always restores range_ ≥ kTop: p0 stays within [31, 2017],
+    // so both sub-ranges keep at least 31/2048 of a range ≥ 2^24.
+    if (range_ < ArithmeticEncoder::kTop) {
       range_ <<= 8;
       code_ = (code_ << 8) | next_byte();
     }
-    return static_cast<int>(mask & 1u);
+    return bin;
   }
 
   // Bytes read past the end of the data (zeros were used): a sticky error.

@@ -31,8 +31,10 @@ class BitReader {
     cache_bits_ -= n;
   }
   uint32_t read(int n) {
-    uint32_t value = peek(n);
-    skip(n);
+    if (cache_bits_ < n) refill();
+    const uint32_t value = static_cast<uint32_t>((cache_ >> 1) >> (63 - n));  // n = 0 gives 0
+    cache_ <<= n;
+    cache_bits_ -= n;
     return value;
   }
   bool read_bit() { return read(1) != 0; }
@@ -41,7 +43,27 @@ class BitReader {
   void seek(uint64_t bit_position);
 
  private:
-  void refill();
+  // Fills the cache to at least 57 bits: eight bytes at once away from the
+  // end (bits past the counted bytes are the stream's next bits, so ORing
+  // them again later changes nothing), else one byte at a time.
+  void refill() {
+    if (consumed_bytes_ + 8 <= size_) {
+      const uint8_t* p = data_ + consumed_bytes_;
+      const uint64_t word = uint64_t{p[0]} << 56 | uint64_t{p[1]} << 48 | uint64_t{p[2]} << 40 | uint64_t{p[3]} << 32 |
+                            uint64_t{p[4]} << 24 | uint64_t{p[5]} << 16 | uint64_t{p[6]} << 8 | p[7];
+      cache_ |= word >> cache_bits_;
+      const int bytes = (63 - cache_bits_) >> 3;
+      consumed_bytes_ += static_cast<size_t>(bytes);
+      cache_bits_ += 8 * bytes;
+      return;
+    }
+    while (cache_bits_ <= 56) {
+      const uint64_t byte = consumed_bytes_ < size_ ? data_[consumed_bytes_] : 0;
+      cache_ |= byte << (56 - cache_bits_);
+      cache_bits_ += 8;
+      ++consumed_bytes_;
+    }
+  }
 
   const uint8_t* data_;
   size_t size_;

@@ -231,6 +231,14 @@ std::vector<Suite3dCase> build_suite3d() {
                                    }),
                             ErrorKind::kStructure, "base_mesh", 2));
   }
+  // bfs3d frame data: six u(32) lengths after the unit header, raw_bytes_z last.
+  const std::vector<uint8_t> bfs3d = suite[7].stream;
+  suite.push_back(invalid("x-10-bfs3d-lengths", "raw_bytes_z longer than the frame", {"bfs3d"},
+                          edited(bfs3d, [](ContainerParts& p) { unit_of(p, UnitType::kFrame, 1).payload[kUnitHeaderBytes + 20] = 0x7F; }),
+                          ErrorKind::kOutOfRange, "raw_bytes_z", 1));
+  suite.push_back(invalid("x-11-bfs3d-trailing", "a byte after the six streams", {"bfs3d"},
+                          edited(bfs3d, [](ContainerParts& p) { unit_of(p, UnitType::kFrame, 3).payload.push_back(0x55); }),
+                          ErrorKind::kStructure, "raw_bytes_z", 3));
   return suite;
 }
 

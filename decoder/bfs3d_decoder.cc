@@ -9,6 +9,17 @@ namespace m4mesh {
 
 namespace {
 
+// One axis's residuals, in coding order, from its own bin and raw streams.
+// The axis's state stays local so that the compiler keeps it in registers.
+void decode_axis(std::span<const uint8_t> bins, std::span<const uint8_t> raw_bytes, std::span<int32_t> residuals) {
+  ArithmeticDecoder coder(bins);
+  BitReader raw(raw_bytes.data(), raw_bytes.size());
+  ResidualCoder<1> model;
+  for (int32_t& r : residuals)
+    if (!model.decode(coder, raw, 0, r)) frame_data_error(ErrorKind::kInvalidCode, "motion_residual", "a residual longer than 32 bits");
+  if (coder.overrun() != 0 || raw.overrun()) frame_data_error(ErrorKind::kTruncated, "motion_residual", "the frame's data ends early");
+}
+
 class Bfs3dDecoder final : public CodecDecoder3d {
  public:
   explicit Bfs3dDecoder(const Bfs3dHeader& header) : header_(header) {
@@ -23,50 +34,49 @@ class Bfs3dDecoder final : public CodecDecoder3d {
   void start(std::span<const Triangle> faces, uint32_t vertex_count) override {
     order_ = bfs3d_order(faces, vertex_count);
     motion_.assign(vertex_count + size_t{1}, {0, 0, 0});
+    for (std::vector<int32_t>& r : residuals_) r.resize(vertex_count);
   }
 
   void decode_frame(std::span<const uint8_t> data, std::vector<IntPoint3>& positions) override {
-    if (data.size() < 3 * kArithmeticLengthBytes) frame_data_error(ErrorKind::kTruncated, "arithmetic_bytes", "the frame's data ends early");
-    std::array<uint32_t, 3> lengths;
+    BitReader reader(data.data(), data.size());
+    syntax::ReadIO io(reader);
+    Bfs3dFrameLengths lengths;
+    syntax::describe(io, lengths);
+    const uint64_t streams = lengths.streams_bytes();
+    if (streams != data.size() - kBfs3dLengthsBytes)
+      frame_data_error(streams > data.size() - kBfs3dLengthsBytes ? ErrorKind::kOutOfRange : ErrorKind::kStructure, "raw_bytes_z",
+                       "the streams' lengths add up to " + std::to_string(streams) + " bytes, the frame holds " +
+                           std::to_string(data.size() - kBfs3dLengthsBytes));
+    data = data.subspan(kBfs3dLengthsBytes);
     for (int axis = 0; axis < 3; ++axis) {
-      const uint8_t* p = data.data() + axis * kArithmeticLengthBytes;
-      lengths[axis] = uint32_t{p[0]} << 24 | uint32_t{p[1]} << 16 | uint32_t{p[2]} << 8 | p[3];
+      const std::span<const uint8_t> bins = data.first(lengths.arithmetic_bytes[axis]);
+      data = data.subspan(bins.size());
+      const std::span<const uint8_t> raw = data.first(lengths.raw_bytes[axis]);
+      data = data.subspan(raw.size());
+      decode_axis(bins, raw, residuals_[axis]);
     }
-    data = data.subspan(3 * kArithmeticLengthBytes);
-    std::array<ArithmeticDecoder, 3> bins{ArithmeticDecoder({}), ArithmeticDecoder({}), ArithmeticDecoder({})};
-    for (int axis = 0; axis < 3; ++axis) {
-      if (lengths[axis] > data.size()) frame_data_error(ErrorKind::kOutOfRange, "arithmetic_bytes", "longer than the frame's data");
-      bins[axis] = ArithmeticDecoder(data.first(lengths[axis]));
-      data = data.subspan(lengths[axis]);
-    }
-    BitReader raw(data.data(), data.size());
-    ResidualCoder<3> model;
     const bool parallelogram = header_.prediction == kPredictParallelogram;
     for (size_t k = 0; k < order_.node.size(); ++k) {
       const NodeIndex n = order_.node[k];
       const auto &a = motion_[order_.pred_a[k]], &b = motion_[order_.pred_b[k]], &c = motion_[order_.pred_c[k]];
       const bool use_parallelogram = parallelogram && order_.pred_c[k] != order_.zero_slot;
       for (int axis = 0; axis < 3; ++axis) {
-        int32_t r;
-        if (!model.decode(bins[axis], raw, axis, r)) frame_data_error(ErrorKind::kInvalidCode, "motion_residual", "a residual longer than 32 bits");
         const int64_t w = predict_motion(a[axis], b[axis], c[axis], use_parallelogram);
-        const int64_t v = w + r;
-        const int64_t q = positions[n][axis] + v;
+        const int64_t q = positions[n][axis] + w + residuals_[axis][k];
         if (q > kMaxQuantized || q < -kMaxQuantized)
           frame_data_error(ErrorKind::kOutOfRange, "motion_residual", "vertex " + std::to_string(n) + " leaves ±2^26 grid steps");
-        motion_[n][axis] = v;
+        motion_[n][axis] = static_cast<int32_t>(q - positions[n][axis]);
         positions[n][axis] = static_cast<int32_t>(q);
       }
     }
-    if (bins[0].overrun() + bins[1].overrun() + bins[2].overrun() != 0 || raw.overrun())
-      frame_data_error(ErrorKind::kTruncated, "motion_residual", "the frame's data ends early");
   }
 
  private:
   Bfs3dHeader header_;
   Grid grid_;
   MotionOrder3d order_;
-  std::vector<std::array<int64_t, 3>> motion_;
+  std::vector<std::array<int32_t, 3>> motion_;  // |motion| ≤ 2^27: both ends lie within ±2^26
+  std::array<std::vector<int32_t>, 3> residuals_;
 };
 
 }  // namespace

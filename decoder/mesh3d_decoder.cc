@@ -123,8 +123,9 @@ bool Mesh3dDecoder::next_frame() {
   started_ = true;
   frame_index_ = frame;
   positions_.resize(quantized_.size());
+  const Grid grid = codec_->grid();  // a copy, which the stores below cannot alias
   for (size_t i = 0; i < quantized_.size(); ++i)
-    for (int axis = 0; axis < 3; ++axis) positions_[i][axis] = codec_->grid().position(axis, quantized_[i][axis]);
+    for (int axis = 0; axis < 3; ++axis) positions_[i][axis] = grid.position(axis, quantized_[i][axis]);
   check_hash();
   return true;
 }

@@ -26,12 +26,12 @@ class Bfs3dEncoder final : public CodecEncoder3d {
   const Grid& grid() const override { return grid_; }
   void write_header(syntax::WriteIO& io) override { syntax::describe(io, header_); }
 
-  // arithmetic_bytes u(32) × 3, the three bin streams, the raw bits.
+  // The six lengths (syntax/bfs3d.h), then per axis its bins and raw bits.
   std::vector<uint8_t> encode_frame(std::span<const Vec3> frame, size_t frame_index, std::vector<IntPoint3>& positions,
                                     Encode3dResult&) override {
     quantize_frame(grid_, frame, frame_index, current_);
     std::array<ArithmeticEncoder, 3> coders;
-    BitWriter raw;
+    std::array<BitWriter, 3> raws;
     ResidualCoder<3> model;
     const bool parallelogram = header_.prediction == kPredictParallelogram;
     for (size_t k = 0; k < order_.node.size(); ++k) {
@@ -39,24 +39,27 @@ class Bfs3dEncoder final : public CodecEncoder3d {
       const auto &a = motion_[order_.pred_a[k]], &b = motion_[order_.pred_b[k]], &c = motion_[order_.pred_c[k]];
       const bool use_parallelogram = parallelogram && order_.pred_c[k] != order_.zero_slot;
       for (int axis = 0; axis < 3; ++axis) {
-        const int64_t v = int64_t{current_[n][axis]} - positions[n][axis];
+        const int32_t v = current_[n][axis] - positions[n][axis];
         const int64_t w = predict_motion(a[axis], b[axis], c[axis], use_parallelogram);
-        model.encode(coders[axis], raw, axis, static_cast<int32_t>(v - w));
+        model.encode(coders[axis], raws[axis], axis, static_cast<int32_t>(v - w));
         motion_[n][axis] = v;
       }
     }
     positions.swap(current_);
-    std::array<std::vector<uint8_t>, 3> bins;
-    BitWriter lengths;
+    std::array<std::vector<uint8_t>, 6> streams;
+    Bfs3dFrameLengths lengths;
     for (int axis = 0; axis < 3; ++axis) {
-      bins[axis] = coders[axis].finish();
-      lengths.write(static_cast<uint32_t>(bins[axis].size()), 32);
+      streams[2 * axis] = coders[axis].finish();
+      raws[axis].write(0, static_cast<int>((8 - raws[axis].position() % 8) % 8));
+      streams[2 * axis + 1] = raws[axis].take_bytes();
+      lengths.arithmetic_bytes[axis] = static_cast<uint32_t>(streams[2 * axis].size());
+      lengths.raw_bytes[axis] = static_cast<uint32_t>(streams[2 * axis + 1].size());
     }
-    std::vector<uint8_t> data = lengths.take_bytes();
-    for (const std::vector<uint8_t>& b : bins) data.insert(data.end(), b.begin(), b.end());
-    raw.write(0, static_cast<int>((8 - raw.position() % 8) % 8));
-    const std::vector<uint8_t> bits = raw.take_bytes();
-    data.insert(data.end(), bits.begin(), bits.end());
+    BitWriter head;
+    syntax::WriteIO io(head);
+    syntax::describe(io, lengths);
+    std::vector<uint8_t> data = head.take_bytes();
+    for (const std::vector<uint8_t>& stream : streams) data.insert(data.end(), stream.begin(), stream.end());
     return data;
   }
 
@@ -64,7 +67,7 @@ class Bfs3dEncoder final : public CodecEncoder3d {
   Grid grid_;
   Bfs3dHeader header_;
   MotionOrder3d order_;
-  std::vector<std::array<int64_t, 3>> motion_;
+  std::vector<std::array<int32_t, 3>> motion_;  // both ends lie within ±2^26 grid steps
   std::vector<IntPoint3> current_;
 };
 

@@ -11,11 +11,22 @@
 
 namespace m4mesh {
 
-// A frame unit's data: three arithmetic_bytes u(32), one per coordinate
-// axis, the three arithmetic-coded bin streams in that order (independent
-// engines, so a decoder can overlap them), then the raw bits (MSB first,
-// zero-padded to a byte).
-inline constexpr size_t kArithmeticLengthBytes = 4;
+// The lengths that open a frame unit's data. Each axis has its own
+// arithmetic-coded bin stream and its own raw bit stream (MSB first,
+// zero-padded to a byte), which follow the lengths in the order
+// bins x, raw x, bins y, raw y, bins z, raw z; a decoder can decode each
+// axis on its own.
+struct Bfs3dFrameLengths {
+  std::array<uint32_t, 3> arithmetic_bytes{};
+  std::array<uint32_t, 3> raw_bytes{};
+
+  uint64_t streams_bytes() const {
+    uint64_t total = 0;
+    for (int axis = 0; axis < 3; ++axis) total += uint64_t{arithmetic_bytes[axis]} + raw_bytes[axis];
+    return total;
+  }
+};
+inline constexpr size_t kBfs3dLengthsBytes = 24;
 
 inline constexpr uint32_t kPredictAverage = 0;
 inline constexpr uint32_t kPredictParallelogram = 1;
@@ -50,6 +61,16 @@ void describe(IO& io, Bfs3dHeader& h) {
     io.field(kStep[axis], 32, h.step[axis]);
     io.require(std::isfinite(h.step_value(axis)) && h.step_value(axis) > 0, ErrorKind::kOutOfRange, kStep[axis],
                "not a positive finite binary32");
+  }
+}
+
+template <class IO>
+void describe(IO& io, Bfs3dFrameLengths& l) {
+  static const char* const kArithmetic[3] = {"arithmetic_bytes_x", "arithmetic_bytes_y", "arithmetic_bytes_z"};
+  static const char* const kRaw[3] = {"raw_bytes_x", "raw_bytes_y", "raw_bytes_z"};
+  for (int axis = 0; axis < 3; ++axis) {
+    io.field(kArithmetic[axis], 32, l.arithmetic_bytes[axis]);
+    io.field(kRaw[axis], 32, l.raw_bytes[axis]);
   }
 }
 

@@ -13,12 +13,12 @@
 
 namespace m4mesh {
 
-// A zero flag per channel and class of the channel's previous residual,
-// then |r| − 1 in exp-Golomb of order k, where k follows a running mean of
-// the channel's magnitudes.
-// The zero flag and the prefix bins are arithmetic-coded with adaptive
-// contexts; the sign and the e + k suffix bits, equiprobable, are raw bits
-// in the frame's raw section.
+// A zero flag, then |r| − 1 in exp-Golomb of order k, where k follows a
+// running mean of the channel's magnitudes. The zero flag and the prefix
+// bins are arithmetic-coded with contexts per channel and class of the
+// channel's previous residual (0: zero, 1: prefix length e = 0, 2: e > 0),
+// a class known as soon as that residual's bins are decoded. The sign and
+// the e + k suffix bits, equiprobable, are raw bits.
 template <int kChannels>
 class ResidualCoder {
  public:
@@ -30,7 +30,7 @@ class ResidualCoder {
     const int cls = previous_[channel];
     coder.encode(nonzero_[channel][cls], r != 0);
     if (r == 0) {
-      update(channel, 0);
+      update(channel, 0, 0);
       return;
     }
     raw.write_bit(r < 0);
@@ -43,7 +43,7 @@ class ResidualCoder {
     coder.encode(prefix_[channel][cls][std::min(e, kPrefixContexts - 1)], 0);
     raw.write(high - (1u << e), e);
     raw.write(m & ((1u << k) - 1), k);
-    update(channel, magnitude);
+    update(channel, magnitude, e + 1);
   }
 
   // False when the residual would not fit 32 bits.
@@ -51,29 +51,32 @@ class ResidualCoder {
     const int cls = previous_[channel];
     if (!coder.decode(nonzero_[channel][cls])) {
       r = 0;
-      update(channel, 0);
+      update(channel, 0, 0);
       return true;
     }
-    const bool negative = raw.read_bit();
     const int k = order(channel);
     int e = 0;
     while (coder.decode(prefix_[channel][cls][std::min(e, kPrefixContexts - 1)]))
       if (++e + k > kMaxPrefix) return false;
-    const uint32_t high = (1u << e) + raw.read(e);
-    const uint32_t magnitude = (((high - 1) << k) | raw.read(k)) + 1;
-    r = negative ? -static_cast<int32_t>(magnitude) : static_cast<int32_t>(magnitude);
-    update(channel, magnitude);
+    // The sign, then the e + k suffix bits: at most 31 bits.
+    const uint32_t bits = raw.read(1 + e + k);
+    const uint32_t suffix = bits & ((1u << (e + k)) - 1);
+    const uint32_t magnitude = (((1u << e) - 1) << k) + suffix + 1;
+    r = bits >> (e + k) ? -static_cast<int32_t>(magnitude) : static_cast<int32_t>(magnitude);
+    update(channel, magnitude, e + 1);
     return true;
   }
 
  private:
-  // k from the running mean of magnitudes (sum_ ≈ 16 × mean).
+  // k ≈ log2 of 7/8 of the mean magnitude (sum_ ≈ 16 × mean): residuals
+  // mostly need one or two prefix bins.
   int order(int channel) const {
-    const int bits = std::bit_width(sum_[channel] >> 4);
-    return bits > 2 ? bits - 2 : 0;
+    const int bits = std::bit_width((7 * sum_[channel]) >> 7);
+    return bits > 1 ? bits - 1 : 0;
   }
-  void update(int channel, uint32_t magnitude) {
-    previous_[channel] = magnitude == 0 ? 0 : magnitude <= 2 ? 1 : 2;
+  // symbol: 0 for a zero residual, else e + 1.
+  void update(int channel, uint32_t magnitude, int symbol) {
+    previous_[channel] = std::min(symbol, kClasses - 1);
     sum_[channel] += std::min<uint32_t>(magnitude, 1u << 20) - (sum_[channel] >> 4);
   }
 

@@ -89,6 +89,33 @@ TEST(Arithmetic, RoundTripsBins) {
   EXPECT_GT(truncated.overrun(), 0u);
 }
 
+// The decoder renormalizes by at most one byte per bin; the least likely
+// bins at both probability limits (31 and 2017 of 2048) must still decode.
+TEST(Arithmetic, LeastLikelyBinsAtTheProbabilityLimitsRoundTrip) {
+  std::vector<int> bins;
+  for (int run = 0; run < 40; ++run) {
+    const int likely = run % 2;
+    bins.insert(bins.end(), 300 + 7 * run, likely);
+    bins.insert(bins.end(), 1 + run % 3, 1 - likely);
+  }
+  ArithmeticEncoder encoder;
+  BinContext context;
+  for (int bin : bins) encoder.encode(context, bin);
+  const std::vector<uint8_t> data = encoder.finish();
+  ArithmeticDecoder decoder(data);
+  BinContext decoding;
+  uint16_t lowest = decoding.p0, highest = decoding.p0;
+  for (size_t i = 0; i < bins.size(); ++i) {
+    lowest = std::min(lowest, decoding.p0);
+    highest = std::max(highest, decoding.p0);
+    ASSERT_EQ(decoder.decode(decoding), bins[i]) << "bin " << i;
+  }
+  EXPECT_EQ(lowest, 31);
+  EXPECT_EQ(highest, 2017);
+  EXPECT_EQ(decoder.overrun(), 0u);
+  EXPECT_EQ(decoder.position(), data.size());
+}
+
 TEST(Arithmetic, ResidualsOfEverySizeRoundTrip) {
   std::vector<int32_t> values{0, 1, -1, 2, -2, 3, 100, -100, 65535, -65536, (1 << 29), -(1 << 29), (1 << 30) + 7};
   test::Random random(3);
