@@ -2,6 +2,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -232,7 +233,8 @@ std::vector<Suite3dCase> build_suite3d() {
                             ErrorKind::kStructure, "base_mesh", 2));
   }
   // bfs3d frame data: six u(32) lengths after the unit header, raw_bytes_z last.
-  const std::vector<uint8_t> bfs3d = suite[7].stream;
+  const std::vector<uint8_t> bfs3d =
+      std::find_if(suite.begin(), suite.end(), [](const Suite3dCase& c) { return c.id == "bfs3d-01-average"; })->stream;
   suite.push_back(invalid("x-10-bfs3d-lengths", "raw_bytes_z longer than the frame", {"bfs3d"},
                           edited(bfs3d, [](ContainerParts& p) { unit_of(p, UnitType::kFrame, 1).payload[kUnitHeaderBytes + 20] = 0x7F; }),
                           ErrorKind::kOutOfRange, "raw_bytes_z", 1));
