@@ -44,9 +44,9 @@ class Bfs3dDecoder final : public CodecDecoder3d {
     syntax::describe(io, lengths);
     const uint64_t streams = lengths.streams_bytes();
     if (streams != data.size() - kBfs3dLengthsBytes)
-      frame_data_error(streams > data.size() - kBfs3dLengthsBytes ? ErrorKind::kOutOfRange : ErrorKind::kStructure, "raw_bytes_z",
-                       "the streams' lengths add up to " + std::to_string(streams) + " bytes, the frame holds " +
-                           std::to_string(data.size() - kBfs3dLengthsBytes));
+      io.fail(streams > data.size() - kBfs3dLengthsBytes ? ErrorKind::kOutOfRange : ErrorKind::kStructure, "raw_bytes_z",
+              "the streams' lengths add up to " + std::to_string(streams) + " bytes, the frame holds " +
+                  std::to_string(data.size() - kBfs3dLengthsBytes));
     data = data.subspan(kBfs3dLengthsBytes);
     for (int axis = 0; axis < 3; ++axis) {
       const std::span<const uint8_t> bins = data.first(lengths.arithmetic_bytes[axis]);

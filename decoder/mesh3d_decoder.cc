@@ -71,7 +71,10 @@ void Mesh3dDecoder::decode_frame(const ContainerUnit& unit, uint32_t frame) {
   try {
     codec_->decode_frame(std::span<const uint8_t>(unit.payload).subspan(kUnitHeaderBytes), quantized_);
   } catch (const Error& e) {
-    throw Error(e.kind(), e.element(), frame, static_cast<int64_t>(unit.byte_offset * 8), e.message());
+    // A codec's fixed fields carry their offset in the frame data; bins do not.
+    const int64_t unit_start = static_cast<int64_t>(unit.byte_offset * 8);
+    const int64_t at = e.bit_offset() == kNoOffset ? unit_start : unit_start + 32 + 8 * static_cast<int64_t>(kUnitHeaderBytes) + e.bit_offset();
+    throw Error(e.kind(), e.element(), frame, at, e.message());
   }
 }
 

@@ -2,6 +2,7 @@
 // the error bound ME, intra frames, and streams that must fail cleanly.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -201,6 +202,28 @@ TEST(Conformance3d, RegenerationGivesIdenticalBytes) {
   }
   EXPECT_GE(streams, 18u);
   fs::remove_all(folder);
+}
+
+// A codec's fixed fields are located to the bit: raw_bytes_z is the sixth
+// u(32) of frame 1's data, after the start code and the unit header.
+TEST(Conformance3d, Bfs3dLengthErrorGivesTheFieldsBitOffset) {
+  const std::vector<Suite3dCase> suite = build_suite3d();
+  const auto bad = std::find_if(suite.begin(), suite.end(), [](const Suite3dCase& c) { return c.id == "x-10-bfs3d-lengths"; });
+  ASSERT_NE(bad, suite.end());
+  uint64_t unit_start = 0;
+  for (const ContainerUnit& unit : split_container(bad->stream).units)
+    if (unit.payload[0] == static_cast<uint8_t>(UnitType::kFrame) && unit.payload[4] == 1) unit_start = unit.byte_offset;
+  ASSERT_NE(unit_start, 0u);
+  try {
+    Mesh3dDecoder decoder(bad->stream);
+    while (decoder.next_frame()) {
+    }
+    FAIL() << "decoded";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.element(), "raw_bytes_z");
+    EXPECT_EQ(e.plane(), 1);
+    EXPECT_EQ(e.bit_offset(), static_cast<int64_t>(8 * unit_start + 32 + 8 * kUnitHeaderBytes + 5 * 32));
+  }
 }
 
 // ---- the paper's sequences (../shared/data) -----------------------------------
