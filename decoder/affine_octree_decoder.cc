@@ -40,13 +40,14 @@ class AffineOctreeDecoder final : public CodecDecoder3d {
   void start(std::span<const Triangle>, uint32_t) override {}
 
   void decode_frame(std::span<const uint8_t> data, std::vector<IntPoint3>& positions) override {
-    if (data.size() < 5) frame_data_error(ErrorKind::kTruncated, "arithmetic_bytes", "the frame's data ends early");
-    const uint32_t shift = data[0];
-    if (shift > kMaxDirectShift) frame_data_error(ErrorKind::kOutOfRange, "direct_shift", "above " + std::to_string(kMaxDirectShift));
-    const uint32_t length = uint32_t{data[1]} << 24 | uint32_t{data[2]} << 16 | uint32_t{data[3]} << 8 | data[4];
-    data = data.subspan(5);
-    if (length > data.size()) frame_data_error(ErrorKind::kOutOfRange, "arithmetic_bytes", "longer than the frame's data");
-    CellReader reader(data.first(length), data.subspan(length));
+    BitReader fields(data.data(), data.size());
+    syntax::ReadIO io(fields);
+    AffineFrameHeader frame;
+    syntax::describe(io, frame);
+    const uint32_t shift = frame.direct_shift;
+    data = data.subspan(kAffineFrameHeaderBytes);
+    if (frame.arithmetic_bytes > data.size()) io.fail(ErrorKind::kOutOfRange, "arithmetic_bytes", "longer than the frame's data");
+    CellReader reader(data.first(frame.arithmetic_bytes), data.subspan(frame.arithmetic_bytes));
     AffineCellCoder coder(header_);
     const RootCube cube = root_cube(positions);
     const int fraction_bits = header_.fraction_bits();

@@ -24,12 +24,13 @@ class CellWriter {
     throw Error(kind, element, kNoPlane, kNoOffset, "encoder: " + message);
   }
 
-  // direct_shift u(8), arithmetic_bytes u(32), the bins, the raw bits.
+  // The frame header (syntax/affine_octree.h), the bins, the raw bits.
   std::vector<uint8_t> finish(uint32_t direct_shift) {
     const std::vector<uint8_t> bins = bins_.finish();
+    AffineFrameHeader frame{direct_shift, static_cast<uint32_t>(bins.size())};
     BitWriter head;
-    head.write(direct_shift, 8);
-    head.write(static_cast<uint32_t>(bins.size()), 32);
+    syntax::WriteIO io(head);
+    syntax::describe(io, frame);
     std::vector<uint8_t> data = head.take_bytes();
     data.insert(data.end(), bins.begin(), bins.end());
     raw_.write(0, static_cast<int>((8 - raw_.position() % 8) % 8));

@@ -41,7 +41,20 @@ inline constexpr int kAffineChannels = kAffineElements + 3;
 // A cell with at most this many vertices codes their motion directly.
 inline constexpr size_t kMaxDirectCellVertices = 4;
 
+// The fields that open a frame unit's data; the bins and the raw bits follow.
+struct AffineFrameHeader {
+  uint32_t direct_shift = 0;
+  uint32_t arithmetic_bytes = 0;
+};
+inline constexpr size_t kAffineFrameHeaderBytes = 5;
+
 namespace syntax {
+
+template <class IO>
+void describe(IO& io, AffineFrameHeader& h) {
+  io.field_in("direct_shift", 8, h.direct_shift, 0, kMaxDirectShift);
+  io.field("arithmetic_bytes", 32, h.arithmetic_bytes);
+}
 
 template <class IO>
 void describe(IO& io, AffineOctreeHeader& h) {
