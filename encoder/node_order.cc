@@ -9,21 +9,31 @@ namespace m4mesh {
 
 namespace {
 
-// Remaining interior nodes bucketed on a grid, for nearest-L1 queries.
+// Remaining interior nodes bucketed on a grid over their bounding box, for
+// nearest-L1 queries. Coordinates may be negative.
 class NodeGrid {
  public:
   NodeGrid(std::span<const Point> nodes, std::span<const NodeIndex> members) : nodes_(nodes) {
-    int32_t max_coordinate = 1;
-    for (NodeIndex i : members) max_coordinate = std::max({max_coordinate, nodes[i].x, nodes[i].y});
-    side_ = std::max<int32_t>(1, static_cast<int32_t>(std::sqrt(static_cast<double>(members.size()) / 2.0)));
-    cell_ = max_coordinate / side_ + 1;
+    if (!members.empty()) {
+      int64_t max_x = nodes[members[0]].x, max_y = nodes[members[0]].y;
+      min_x_ = max_x;
+      min_y_ = max_y;
+      for (NodeIndex i : members) {
+        min_x_ = std::min<int64_t>(min_x_, nodes[i].x);
+        min_y_ = std::min<int64_t>(min_y_, nodes[i].y);
+        max_x = std::max<int64_t>(max_x, nodes[i].x);
+        max_y = std::max<int64_t>(max_y, nodes[i].y);
+      }
+      side_ = std::max<int32_t>(1, static_cast<int32_t>(std::sqrt(static_cast<double>(members.size()) / 2.0)));
+      cell_ = std::max(max_x - min_x_, max_y - min_y_) / side_ + 1;
+    }
     cells_.resize(static_cast<size_t>(side_) * side_);
-    for (NodeIndex i : members) cells_[cell_of(nodes[i])].push_back(i);
+    for (NodeIndex i : members) cells_[static_cast<size_t>(row(nodes[i])) * side_ + column(nodes[i])].push_back(i);
   }
 
   // Removes and returns the node nearest to `from` (L1, then smaller y, then smaller x).
   NodeIndex take_nearest(const Point& from) {
-    const int32_t cx = std::clamp(from.x / cell_, 0, side_ - 1), cy = std::clamp(from.y / cell_, 0, side_ - 1);
+    const int32_t cx = column(from), cy = row(from);
     NodeIndex best = kNoNode;
     int64_t best_distance = 0;
     size_t best_cell = 0, best_slot = 0;
@@ -57,13 +67,14 @@ class NodeGrid {
   }
 
  private:
-  size_t cell_of(const Point& p) const {
-    return static_cast<size_t>(std::min(p.y / cell_, side_ - 1)) * side_ + std::min(p.x / cell_, side_ - 1);
-  }
+  // The grid column and row of a point, clamped to the grid.
+  int32_t column(const Point& p) const { return static_cast<int32_t>(std::clamp<int64_t>((p.x - min_x_) / cell_, 0, side_ - 1)); }
+  int32_t row(const Point& p) const { return static_cast<int32_t>(std::clamp<int64_t>((p.y - min_y_) / cell_, 0, side_ - 1)); }
 
   std::span<const Point> nodes_;
+  int64_t min_x_ = 0, min_y_ = 0;
   int32_t side_ = 1;
-  int32_t cell_ = 1;
+  int64_t cell_ = 1;
   std::vector<std::vector<NodeIndex>> cells_;
 };
 

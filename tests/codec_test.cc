@@ -2,7 +2,9 @@
 // zero runs, Method I, Delaunay meshes, byte identity and determinism.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
+#include <tuple>
 
 #include "conformance/suite.h"
 #include "decoder/decoder.h"
@@ -151,6 +153,33 @@ std::vector<Point> square_with_interior(int interior, uint64_t seed) {
     if (used.insert({p.x, p.y}).second) nodes.push_back(p);
   }
   return nodes;
+}
+
+// §10: after the boundary, each node is the remaining one nearest (L1, then
+// smaller y, then smaller x) to the previous; coordinates may be negative.
+TEST(Delaunay, NodeOrderMatchesTheDefinitionWithNegativeCoordinates) {
+  test::Random random(12);
+  std::vector<Point> nodes{{-500, -400}, {-500, 300}, {600, 300}, {600, -400}};
+  std::set<std::pair<int, int>> used;
+  for (const Point& p : nodes) used.insert({p.x, p.y});
+  while (nodes.size() < 400) {
+    const Point p{random.uniform(-499, 599), random.uniform(-399, 299)};
+    if (used.insert({p.x, p.y}).second) nodes.push_back(p);
+  }
+  const std::vector<NodeIndex> order = delaunay_node_order(nodes, 4);
+  std::vector<NodeIndex> expected(order.begin(), order.begin() + 4);
+  std::set<NodeIndex> remaining;
+  for (NodeIndex i = 4; i < nodes.size(); ++i) remaining.insert(i);
+  while (!remaining.empty()) {
+    const Point& from = nodes[expected.back()];
+    auto key = [&](NodeIndex i) {
+      return std::tuple(std::abs(nodes[i].x - from.x) + std::abs(nodes[i].y - from.y), nodes[i].y, nodes[i].x);
+    };
+    const NodeIndex best = *std::min_element(remaining.begin(), remaining.end(), [&](NodeIndex a, NodeIndex b) { return key(a) < key(b); });
+    expected.push_back(best);
+    remaining.erase(best);
+  }
+  EXPECT_EQ(order, expected);
 }
 
 TEST(Delaunay, RandomMotionRoundTrips) {
