@@ -3,8 +3,6 @@
 // 32-bit floats, PSNR) with KG error and STED, at ME = 1, 5, 10, 15 %.
 #include <benchmark/benchmark.h>
 
-#include <filesystem>
-
 #include "bench/sequences.h"
 #include "decoder/mesh3d_decoder.h"
 #include "encoder/mesh3d_encoder.h"
@@ -13,8 +11,6 @@
 namespace m4mesh {
 namespace {
 
-namespace fs = std::filesystem;
-using bench::kData;
 using bench::kNames;
 using bench::sequence;
 
@@ -28,7 +24,7 @@ Encode3dOptions options_for(int64_t me_percent, int64_t matrix_bits) {
 }
 
 std::string label(int64_t name, const Encode3dOptions& o) {
-  return std::string(fs::exists(kData / kNames[name]) ? kNames[name] : "synthetic") + " ME " +
+  return bench::label(name) + " ME " +
          std::to_string(static_cast<int>(o.max_error * 100 + 0.5)) + "% k " + std::to_string(o.matrix_bits);
 }
 

@@ -4,7 +4,6 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
-#include <filesystem>
 
 #include "bench/sequences.h"
 #include "decoder/mesh3d_decoder.h"
@@ -15,10 +14,8 @@
 namespace m4mesh {
 namespace {
 
-namespace fs = std::filesystem;
-
-using bench::kData;
 using bench::kNames;
+using bench::label;
 using bench::sequence;
 
 void BM_Bfs3dDecode(benchmark::State& state) {
@@ -33,7 +30,7 @@ void BM_Bfs3dDecode(benchmark::State& state) {
     state.ResumeTiming();
     while (decoder.next_frame()) benchmark::DoNotOptimize(decoder.positions().data());
   }
-  state.SetLabel(fs::exists(kData / kNames[state.range(0)]) ? kNames[state.range(0)] : "synthetic");
+  state.SetLabel(label(state.range(0)));
   state.counters["vertices/s"] = benchmark::Counter(
       static_cast<double>(state.iterations()) * s.vertex_count * static_cast<double>(s.frames.size() - 1), benchmark::Counter::kIsRate);
 }
@@ -44,7 +41,7 @@ void BM_Bfs3dEncode(benchmark::State& state) {
   Encode3dOptions options;
   options.bits = static_cast<int>(state.range(1));
   for (auto _ : state) benchmark::DoNotOptimize(encode_mesh3d(s, options).stream.data());
-  state.SetLabel(fs::exists(kData / kNames[state.range(0)]) ? kNames[state.range(0)] : "synthetic");
+  state.SetLabel(label(state.range(0)));
   state.counters["vertices/s"] = benchmark::Counter(
       static_cast<double>(state.iterations()) * s.vertex_count * static_cast<double>(s.frames.size()), benchmark::Counter::kIsRate);
 }
@@ -69,8 +66,7 @@ void BM_Bfs3dRate(benchmark::State& state) {
   }
   const double vertex_frames = static_cast<double>(s.vertex_count) * static_cast<double>(s.frames.size() - 1);
   const SequenceMetrics m = compare_sequences(s, decoded);
-  state.SetLabel(std::string(fs::exists(kData / kNames[state.range(0)]) ? kNames[state.range(0)] : "synthetic") +
-                 (options.parallelogram ? " parallelogram" : " average"));
+  state.SetLabel(label(state.range(0)) + (options.parallelogram ? " parallelogram" : " average"));
   state.counters["bpvf"] = 8.0 * static_cast<double>(encoded.frame_bytes) / vertex_frames;
   state.counters["draco_bpvf"] = draco_bits / vertex_frames;
   state.counters["base_bpv"] = 8.0 * static_cast<double>(encoded.base_bytes) / s.vertex_count;

@@ -48,4 +48,7 @@ inline const MeshSequence& sequence(const std::string& name) {
 
 inline const char* const kNames[] = {"horse-gallop", "pcow"};
 
+// The name of sequence kNames[index], or "synthetic" when its data is absent.
+inline std::string label(int64_t index) { return fs::exists(kData / kNames[index]) ? kNames[index] : "synthetic"; }
+
 }  // namespace m4mesh::bench

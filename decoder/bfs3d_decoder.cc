@@ -58,11 +58,9 @@ class Bfs3dDecoder final : public CodecDecoder3d {
     const bool parallelogram = header_.prediction == kPredictParallelogram;
     for (size_t k = 0; k < order_.node.size(); ++k) {
       const NodeIndex n = order_.node[k];
-      const auto &a = motion_[order_.pred_a[k]], &b = motion_[order_.pred_b[k]], &c = motion_[order_.pred_c[k]];
-      const bool use_parallelogram = parallelogram && order_.pred_c[k] != order_.zero_slot;
+      const std::array<int64_t, 3> w = predict_motion(order_, k, motion_, parallelogram);
       for (int axis = 0; axis < 3; ++axis) {
-        const int64_t w = predict_motion(a[axis], b[axis], c[axis], use_parallelogram);
-        const int64_t q = positions[n][axis] + w + residuals_[axis][k];
+        const int64_t q = positions[n][axis] + w[axis] + residuals_[axis][k];
         if (q > kMaxQuantized || q < -kMaxQuantized)
           frame_data_error(ErrorKind::kOutOfRange, "motion_residual", "vertex " + std::to_string(n) + " leaves ±2^26 grid steps");
         motion_[n][axis] = static_cast<int32_t>(q - positions[n][axis]);

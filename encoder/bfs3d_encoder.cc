@@ -36,12 +36,10 @@ class Bfs3dEncoder final : public CodecEncoder3d {
     const bool parallelogram = header_.prediction == kPredictParallelogram;
     for (size_t k = 0; k < order_.node.size(); ++k) {
       const NodeIndex n = order_.node[k];
-      const auto &a = motion_[order_.pred_a[k]], &b = motion_[order_.pred_b[k]], &c = motion_[order_.pred_c[k]];
-      const bool use_parallelogram = parallelogram && order_.pred_c[k] != order_.zero_slot;
+      const std::array<int64_t, 3> w = predict_motion(order_, k, motion_, parallelogram);
       for (int axis = 0; axis < 3; ++axis) {
         const int32_t v = current_[n][axis] - positions[n][axis];
-        const int64_t w = predict_motion(a[axis], b[axis], c[axis], use_parallelogram);
-        model.encode(coders[axis], raws[axis], axis, static_cast<int32_t>(v - w));
+        model.encode(coders[axis], raws[axis], axis, static_cast<int32_t>(v - w[axis]));
         motion_[n][axis] = v;
       }
     }

@@ -15,6 +15,14 @@ inline constexpr NodeIndex kNoNode = 0xFFFFFFFF;
 
 struct Triangle {
   std::array<NodeIndex, 3> v;
+
+  // The corner that holds node n (the last corner when none does).
+  int corner_of(NodeIndex n) const { return v[0] == n ? 0 : v[1] == n ? 1 : 2; }
+  // The node that is neither a nor b.
+  NodeIndex third(NodeIndex a, NodeIndex b) const {
+    return v[0] != a && v[0] != b ? v[0] : v[1] != a && v[1] != b ? v[1] : v[2];
+  }
+
   friend bool operator==(const Triangle&, const Triangle&) = default;
   friend auto operator<=>(const Triangle&, const Triangle&) = default;
 };

@@ -31,10 +31,6 @@ MotionOrder method2_order(std::span<const Triangle> triangles, const TriangleNei
     order.pred_b.push_back(b);
     done[node] = 1;
   };
-  auto slot = [&](uint32_t t, NodeIndex v) {
-    const Triangle& tri = triangles[t];
-    return tri.v[0] == v ? 0 : tri.v[1] == v ? 1 : 2;
-  };
 
   uint32_t start = kNoTriangle;
   for (uint32_t t = 0; t < triangles.size() && start == kNoTriangle; ++t)
@@ -50,15 +46,13 @@ MotionOrder method2_order(std::span<const Triangle> triangles, const TriangleNei
   std::vector<QueuedTriangle> queue;  // FIFO: a vector read from the front
   queue.reserve(triangles.size());
   labelled[start] = 1;
-  queue.push_back({first, second, triangles[start].v[(slot(start, second) + 1) % 3], start});
+  queue.push_back({first, second, triangles[start].v[(triangles[start].corner_of(second) + 1) % 3], start});
   // The neighbour of t across the edge (a, b) opposite `across`, with its far node.
   auto enqueue = [&](uint32_t t, NodeIndex across, NodeIndex base0, NodeIndex base1) {
-    const uint32_t next = neighbours[t][slot(t, across)];
+    const uint32_t next = neighbours[t][triangles[t].corner_of(across)];
     if (next == kNoTriangle || labelled[next]) return;
     labelled[next] = 1;
-    const Triangle& tri = triangles[next];
-    const NodeIndex far = tri.v[0] != base0 && tri.v[0] != base1 ? tri.v[0] : tri.v[1] != base0 && tri.v[1] != base1 ? tri.v[1] : tri.v[2];
-    queue.push_back({base0, base1, far, next});
+    queue.push_back({base0, base1, triangles[next].third(base0, base1), next});
   };
   for (size_t head = 0; head < queue.size(); ++head) {
     const QueuedTriangle t = queue[head];

@@ -25,17 +25,14 @@ MotionOrder3d bfs3d_order(std::span<const Triangle> faces, size_t vertex_count) 
     order.pred_c.push_back(c);
   };
   const TriangleNeighbours neighbours = triangle_neighbours(faces, vertex_count);
-  auto slot = [&](uint32_t f, NodeIndex v) { return faces[f].v[0] == v ? 0 : faces[f].v[1] == v ? 1 : 2; };
   std::vector<uint8_t> labelled(faces.size(), 0);
   std::vector<Queued> queue;
   queue.reserve(faces.size());
   auto enqueue = [&](uint32_t f, NodeIndex across, NodeIndex base0, NodeIndex base1) {
-    const uint32_t next = neighbours[f][slot(f, across)];
+    const uint32_t next = neighbours[f][faces[f].corner_of(across)];
     if (next == kNoTriangle || labelled[next]) return;
     labelled[next] = 1;
-    const Triangle& t = faces[next];
-    const NodeIndex far = t.v[0] != base0 && t.v[0] != base1 ? t.v[0] : t.v[1] != base0 && t.v[1] != base1 ? t.v[1] : t.v[2];
-    queue.push_back({base0, base1, far, across, next});
+    queue.push_back({base0, base1, faces[next].third(base0, base1), across, next});
   };
   for (uint32_t start = 0; start < faces.size(); ++start) {
     if (labelled[start]) continue;

@@ -6,7 +6,9 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <span>
 
+#include "mesh3d/traversal3d.h"
 #include "syntax/io.h"
 
 namespace m4mesh {
@@ -31,10 +33,17 @@ inline constexpr size_t kBfs3dLengthsBytes = 24;
 inline constexpr uint32_t kPredictAverage = 0;
 inline constexpr uint32_t kPredictParallelogram = 1;
 
-// A vertex's motion on one axis predicted from its base edge (a, b) and,
-// for the parallelogram, the vertex c across that edge.
-inline int64_t predict_motion(int64_t a, int64_t b, int64_t c, bool parallelogram) {
-  return parallelogram ? a + b - c : (a + b + 1) >> 1;
+// The predicted motion of the k-th coded vertex from the motion of the
+// vertices coded before it: the average of its base edge's ends (a, b), or
+// with `parallelogram` and a vertex c across that edge, a + b − c.
+inline std::array<int64_t, 3> predict_motion(const MotionOrder3d& order, size_t k, std::span<const std::array<int32_t, 3>> motion,
+                                             bool parallelogram) {
+  const auto &a = motion[order.pred_a[k]], &b = motion[order.pred_b[k]], &c = motion[order.pred_c[k]];
+  const bool use_parallelogram = parallelogram && order.pred_c[k] != order.zero_slot;
+  std::array<int64_t, 3> w;
+  for (int axis = 0; axis < 3; ++axis)
+    w[axis] = use_parallelogram ? int64_t{a[axis]} + b[axis] - c[axis] : (int64_t{a[axis]} + b[axis] + 1) >> 1;
+  return w;
 }
 
 struct Bfs3dHeader {
