@@ -4,8 +4,8 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/sequences.h"
-#include "decoder/mesh3d_decoder.h"
-#include "encoder/mesh3d_encoder.h"
+#include "decoder/mesh3d/container_decoder.h"
+#include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/metrics.h"
 
 namespace m4mesh {
@@ -16,16 +16,14 @@ using bench::sequence;
 
 Encode3dOptions options_for(int64_t me_percent, int64_t matrix_bits) {
   Encode3dOptions options;
-  options.codec_id = kCodecAffineOctree;
-  options.max_error = static_cast<double>(me_percent) / 100;
-  options.matrix_bits = static_cast<int>(matrix_bits);
+  options.codec = "affine-octree";
+  options.codec_options = {{"me", std::to_string(me_percent)}, {"matrix-bits", std::to_string(matrix_bits)}};
   options.hashes = false;
   return options;
 }
 
 std::string label(int64_t name, const Encode3dOptions& o) {
-  return bench::label(name) + " ME " +
-         std::to_string(static_cast<int>(o.max_error * 100 + 0.5)) + "% k " + std::to_string(o.matrix_bits);
+  return bench::label(name) + " ME " + o.codec_options.at("me") + "% k " + o.codec_options.at("matrix-bits");
 }
 
 void BM_AffineOctreeDecode(benchmark::State& state) {
@@ -65,10 +63,9 @@ void BM_AffineOctreeTable(benchmark::State& state) {
   const SequenceMetrics m = compare_sequences(s, decode_mesh3d(encoded.stream));
   const double raw = 12.0 * s.vertex_count * static_cast<double>(s.frames.size());
   state.SetLabel(label(state.range(0), options));
-  state.counters["matrices"] = static_cast<double>(encoded.matrices);
-  state.counters["direct"] = static_cast<double>(encoded.direct_vertices);
+  for (const auto& [name, value] : encoded.statistics) state.counters[name] = static_cast<double>(value);
   state.counters["bytes"] = static_cast<double>(encoded.stream.size());
-  state.counters["base_bytes"] = static_cast<double>(encoded.base_bytes);
+  state.counters["base_bytes"] = static_cast<double>(encoded.base_bytes());
   state.counters["ratio"] = raw / static_cast<double>(encoded.stream.size());
   state.counters["psnr"] = m.psnr;
   state.counters["kg"] = m.kg_error;

@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "bench/sequences.h"
-#include "decoder/mesh3d_decoder.h"
-#include "encoder/mesh3d_encoder.h"
+#include "decoder/mesh3d/container_decoder.h"
+#include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/draco_base.h"
 #include "mesh3d/metrics.h"
 
@@ -21,7 +21,7 @@ using bench::sequence;
 void BM_Bfs3dDecode(benchmark::State& state) {
   const MeshSequence& s = sequence(kNames[state.range(0)]);
   Encode3dOptions options;
-  options.bits = static_cast<int>(state.range(1));
+  options.codec_options["bits"] = std::to_string(state.range(1));
   const std::vector<uint8_t> stream = encode_mesh3d(s, options).stream;
   for (auto _ : state) {
     state.PauseTiming();
@@ -39,7 +39,7 @@ BENCHMARK(BM_Bfs3dDecode)->ArgsProduct({{0, 1}, {12}})->Unit(benchmark::kMillise
 void BM_Bfs3dEncode(benchmark::State& state) {
   const MeshSequence& s = sequence(kNames[state.range(0)]);
   Encode3dOptions options;
-  options.bits = static_cast<int>(state.range(1));
+  options.codec_options["bits"] = std::to_string(state.range(1));
   for (auto _ : state) benchmark::DoNotOptimize(encode_mesh3d(s, options).stream.data());
   state.SetLabel(label(state.range(0)));
   state.counters["vertices/s"] = benchmark::Counter(
@@ -52,9 +52,11 @@ BENCHMARK(BM_Bfs3dEncode)->ArgsProduct({{0, 1}, {12}})->Unit(benchmark::kMillise
 // same quantization, KG error and STED.
 void BM_Bfs3dRate(benchmark::State& state) {
   const MeshSequence& s = sequence(kNames[state.range(0)]);
+  const int bits = static_cast<int>(state.range(1));
+  const bool parallelogram = state.range(2) != 0;
   Encode3dOptions options;
-  options.bits = static_cast<int>(state.range(1));
-  options.parallelogram = state.range(2) != 0;
+  options.codec_options["bits"] = std::to_string(bits);
+  if (parallelogram) options.codec_options["parallelogram"] = "1";
   Encode3dResult encoded;
   for (auto _ : state) encoded = encode_mesh3d(s, options);
   const MeshSequence decoded = decode_mesh3d(encoded.stream);
@@ -62,14 +64,14 @@ void BM_Bfs3dRate(benchmark::State& state) {
   for (size_t f = 1; f < s.frames.size(); ++f) {
     std::vector<std::array<float, 3>> p;
     for (const Vec3& v : s.frames[f]) p.push_back({static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)});
-    draco_bits += 8.0 * static_cast<double>(draco_frame_size(s.faces, p, options.bits));
+    draco_bits += 8.0 * static_cast<double>(draco_frame_size(s.faces, p, bits));
   }
   const double vertex_frames = static_cast<double>(s.vertex_count) * static_cast<double>(s.frames.size() - 1);
   const SequenceMetrics m = compare_sequences(s, decoded);
-  state.SetLabel(label(state.range(0)) + (options.parallelogram ? " parallelogram" : " average"));
-  state.counters["bpvf"] = 8.0 * static_cast<double>(encoded.frame_bytes) / vertex_frames;
+  state.SetLabel(label(state.range(0)) + (parallelogram ? " parallelogram" : " average"));
+  state.counters["bpvf"] = 8.0 * static_cast<double>(encoded.frame_bytes()) / vertex_frames;
   state.counters["draco_bpvf"] = draco_bits / vertex_frames;
-  state.counters["base_bpv"] = 8.0 * static_cast<double>(encoded.base_bytes) / s.vertex_count;
+  state.counters["base_bpv"] = 8.0 * static_cast<double>(encoded.base_bytes()) / s.vertex_count;
   state.counters["kg"] = m.kg_error;
   state.counters["sted"] = m.sted;
 }

@@ -12,6 +12,7 @@ class BitReader {
  public:
   BitReader(const uint8_t* data, size_t size) : data_(data), size_(size) { refill(); }
 
+  const uint8_t* data() const { return data_; }
   // Bits consumed so far (may exceed size_bits() after an overrun).
   uint64_t position() const { return consumed_bytes_ * 8 - cache_bits_; }
   uint64_t size_bits() const { return static_cast<uint64_t>(size_) * 8; }

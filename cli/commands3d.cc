@@ -2,15 +2,20 @@
 
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <iostream>
+#include <set>
 
+#include "codecs3d/registry.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
-#include "decoder/mesh3d_decoder.h"
-#include "encoder/mesh3d_encoder.h"
+#include "decoder/mesh3d/container_decoder.h"
+#include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/metrics.h"
+#include "mesh3d/quantization.h"
 
 namespace m4mesh {
 
@@ -25,49 +30,69 @@ void progress(const char* what, size_t done, size_t total) {
   if (done == total) std::fprintf(stderr, "\n");
 }
 
-uint32_t codec_of(const std::string& name) {
-  if (name == "bfs3d") return kCodecBfs3d;
-  if (name == "affine-octree") return kCodecAffineOctree;
-  throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "codec '" + name + "' is not implemented (available: bfs3d, affine-octree)");
-}
-
 }  // namespace
+
+void add_codec_options(CLI::App& command, Encode3dArgs& args) {
+  std::string names;
+  for (const Codec3d& c : codecs3d())
+    if (c.make_encoder) names += (names.empty() ? "" : ", ") + c.name;
+  command.add_option("--codec", args.codec, "codec: " + names)->capture_default_str();
+  // One flag per option name; codecs that share a name share the flag.
+  std::set<std::string> added;
+  for (const Codec3d& c : codecs3d())
+    for (const CodecOption& o : c.options) {
+      if (!added.insert(o.name).second) continue;
+      std::string owners;
+      for (const Codec3d& other : codecs3d())
+        for (const CodecOption& p : other.options)
+          if (p.name == o.name) owners += (owners.empty() ? "" : ", ") + other.name;
+      const std::string help = o.help + " [" + owners + "]" + (o.default_value.empty() ? "" : " (default " + o.default_value + ")");
+      const std::string name = o.name;
+      if (o.kind == OptionKind::kFlag)
+        command.add_flag_function("--" + name, [&args, name](int64_t) { args.codec_options[name] = "1"; }, help);
+      else
+        command.add_option_function<std::string>("--" + name, [&args, name](const std::string& v) { args.codec_options[name] = v; }, help);
+    }
+}
 
 int run_encode3d(const Encode3dArgs& args) {
   const MeshSequence sequence = load_sequence(args.input, true);
+  Trace trace(std::cout);
   Encode3dOptions options;
-  options.codec_id = codec_of(args.codec);
-  options.bits = args.bits;
-  options.parallelogram = args.parallelogram;
-  options.max_error = args.max_error / 100;
-  options.matrix_bits = args.matrix_bits;
-  options.max_depth = args.max_depth;
-  options.intra_period = args.intra_period;
+  options.codec = args.codec;
+  options.codec_options = args.codec_options;
   options.hashes = !args.no_hash;
   options.frame_rate_num = static_cast<uint32_t>(args.fps);
+  options.trace = args.trace ? &trace : nullptr;
   options.progress = [](size_t done, size_t total) { progress("encoding", done, total); };
   const auto start = std::chrono::steady_clock::now();
   const Encode3dResult result = encode_mesh3d(sequence, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_file_atomically(args.output, std::string_view(reinterpret_cast<const char*>(result.stream.data()), result.stream.size()));
+  // The summary goes to standard error when the trace fills standard output.
+  std::FILE* summary = args.trace ? stderr : stdout;
   const double vertex_frames = static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size() - 1);
-  std::printf("%s: %zu bytes: base mesh %llu bytes (%.2f bits/vertex), frames %llu bytes (%.3f bits/vertex/frame), other %llu bytes\n",
-              args.output.c_str(), result.stream.size(), static_cast<unsigned long long>(result.base_bytes),
-              8.0 * static_cast<double>(result.base_bytes) / sequence.vertex_count,
-              static_cast<unsigned long long>(result.frame_bytes),
-              vertex_frames > 0 ? 8.0 * static_cast<double>(result.frame_bytes) / vertex_frames : 0.0,
-              static_cast<unsigned long long>(result.other_bytes));
-  if (options.codec_id == kCodecAffineOctree)
-    std::printf("affine-octree: %llu matrices, %llu vertices coded directly\n", static_cast<unsigned long long>(result.matrices),
-                static_cast<unsigned long long>(result.direct_vertices));
-  std::printf("encoded %zu frames of %u vertices in %.3f s (%.1f M vertices/s)\n", sequence.frames.size(), sequence.vertex_count,
-              seconds, static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size()) / seconds / 1e6);
+  std::fprintf(summary, "%s: %zu bytes: base mesh %llu bytes (%.2f bits/vertex), frames %llu bytes (%.3f bits/vertex/frame), other %llu bytes\n",
+               args.output.c_str(), result.stream.size(), static_cast<unsigned long long>(result.base_bytes()),
+               8.0 * static_cast<double>(result.base_bytes()) / sequence.vertex_count, static_cast<unsigned long long>(result.frame_bytes()),
+               vertex_frames > 0 ? 8.0 * static_cast<double>(result.frame_bytes()) / vertex_frames : 0.0,
+               static_cast<unsigned long long>(result.stream.size() - result.base_bytes() - result.frame_bytes()));
+  if (!result.statistics.empty()) {
+    std::string line = args.codec + ":";
+    for (size_t i = 0; i < result.statistics.size(); ++i)
+      line += (i ? ", " : " ") + std::to_string(result.statistics[i].second) + " " + result.statistics[i].first;
+    std::fprintf(summary, "%s\n", line.c_str());
+  }
+  std::fprintf(summary, "encoded %zu frames of %u vertices in %.3f s (%.1f M vertices/s)\n", sequence.frames.size(), sequence.vertex_count,
+               seconds, static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size()) / seconds / 1e6);
   return 0;
 }
 
 int run_decode3d(const Decode3dArgs& args) {
   const std::vector<uint8_t> stream = read_file(args.input);
-  Mesh3dDecoder decoder(stream, args.verify);
+  Decode3dOptions options;
+  options.verify = args.verify;
+  Mesh3dDecoder decoder(stream, options);
   const std::string extension = fs::path(args.output).extension().string();
   const bool to_folder = extension != ".m4seq" && extension != ".f32";
   // Frames go to a temporary folder that becomes the output only when all decoded.
@@ -129,28 +154,39 @@ int run_info3d(const std::string& input) {
   const ContainerParts parts = split_container(stream);
   Mesh3dDecoder decoder(stream);
   const ObjectHeader& h = decoder.header();
-  const char* codec_names[] = {"", "bfs3d", "affine-octree", "lcc", "cpca-wpt"};
-  std::printf("%s: %zu bytes, mesh3d container, codec_id %u (%s), %u vertices, %u faces, %u frames at %u/%u fps\n",
-              input.c_str(), stream.size(), h.codec_id, codec_names[h.codec_id], h.vertex_count, h.face_count, h.frame_count, h.frame_rate_num,
+  std::printf("%s: %zu bytes, mesh3d container, codec_id %u (%s), %u vertices, %u faces, %u frames at %u/%u fps\n", input.c_str(),
+              stream.size(), h.codec_id, decoder.codec().name.c_str(), h.vertex_count, h.face_count, h.frame_count, h.frame_rate_num,
               h.frame_rate_den);
-  uint64_t sizes[4] = {0, 0, 0, 0};
-  uint64_t counts[4] = {0, 0, 0, 0};
+  uint64_t sizes[kUnitTypes] = {};
+  uint64_t counts[kUnitTypes] = {};
   for (size_t k = 0; k < parts.units.size(); ++k) {
     const uint64_t end = k + 1 < parts.units.size() ? parts.units[k + 1].byte_offset : stream.size() - (parts.has_end_code ? 4 : 0);
-    const uint32_t type = parts.units[k].payload.empty() ? 0 : parts.units[k].payload[0];
-    if (type < 4) {
+    const uint32_t type = parts.units[k].payload.empty() ? kUnitTypes : parts.units[k].payload[0];
+    if (type < kUnitTypes) {
       sizes[type] += end - parts.units[k].byte_offset;
       ++counts[type];
     }
   }
-  const char* names[4] = {"base mesh", "frame", "refinement", "frame hash"};
-  for (int t = 0; t < 4; ++t)
-    if (counts[t]) std::printf("  %-10s units: %llu, %llu bytes\n", names[t], static_cast<unsigned long long>(counts[t]),
-                               static_cast<unsigned long long>(sizes[t]));
-  if (h.frame_count > 1)
+  for (uint32_t t = 0; t < kUnitTypes; ++t)
+    if (counts[t])
+      std::printf("  %-10s units: %llu, %llu bytes\n", unit_type_name(static_cast<UnitType>(t)), static_cast<unsigned long long>(counts[t]),
+                  static_cast<unsigned long long>(sizes[t]));
+  const uint32_t frame_units = static_cast<uint32_t>(UnitType::kFrame);
+  if (h.frame_count > 1 && counts[frame_units])
     std::printf("  frames: %.3f bits/vertex/frame\n",
-                8.0 * static_cast<double>(sizes[1]) / (static_cast<double>(h.vertex_count) * (h.frame_count - 1)));
+                8.0 * static_cast<double>(sizes[frame_units]) / (static_cast<double>(h.vertex_count) * (h.frame_count - 1)));
   std::printf("  end code %s\n", parts.has_end_code ? "present" : "MISSING");
+  return 0;
+}
+
+int run_trace3d(const std::string& input) {
+  const std::vector<uint8_t> stream = read_file(input);
+  Trace trace(std::cout);
+  Decode3dOptions options;
+  options.trace = &trace;
+  Mesh3dDecoder decoder(stream, options);
+  while (decoder.next_unit()) {
+  }
   return 0;
 }
 

@@ -3,21 +3,25 @@
 
 #include <string>
 
+#include "encoder/mesh3d/options.h"
+
+namespace CLI {
+class App;
+}
+
 namespace m4mesh {
 
 struct Encode3dArgs {
   std::string input;
   std::string output;
   std::string codec = "bfs3d";
-  int bits = 12;
-  bool parallelogram = false;
-  double max_error = 1.0;  // affine-octree ME, in percent of the root cube
-  int matrix_bits = 16;
-  int max_depth = 16;
-  int intra_period = 0;
+  CodecOptionValues codec_options;  // only those given
   bool no_hash = false;
   int fps = 25;
+  bool trace = false;
 };
+// Adds --codec and every registered codec's own options to `command`.
+void add_codec_options(CLI::App& command, Encode3dArgs& args);
 int run_encode3d(const Encode3dArgs& args);
 
 struct Decode3dArgs {
@@ -28,6 +32,8 @@ struct Decode3dArgs {
 int run_decode3d(const Decode3dArgs& args);
 
 int run_info3d(const std::string& input);
+// Every element of a 3D stream, as `encode3d --trace` prints them.
+int run_trace3d(const std::string& input);
 
 struct MetricsArgs {
   std::string original;

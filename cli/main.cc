@@ -18,7 +18,7 @@
 #include "encoder/encoder.h"
 #include "encoder/frame_input.h"
 #include "mesh/decoded_text.h"
-#include "syntax/container.h"
+#include "syntax/mesh3d/container.h"
 #include "syntax/mesh_object.h"
 
 namespace m4mesh {
@@ -122,6 +122,7 @@ int run_decode(const DecodeArgs& args) {
 
 int run_trace(const std::string& input) {
   const std::vector<uint8_t> stream = read_file(input);
+  if (is_mesh3d_stream(stream)) return run_trace3d(input);
   Trace trace(std::cout);
   syntax::read_mesh_object(stream, &trace);
   return 0;
@@ -162,10 +163,11 @@ int run_info(const std::string& input) {
 
 int run_check(const std::string& input) {
   const std::vector<uint8_t> stream = read_file(input);
-  const CheckReport report = check_stream(stream);
+  const bool mesh3d = is_mesh3d_stream(stream);
+  const CheckReport report = mesh3d ? check_mesh3d(stream) : check_stream(stream);
   for (const Finding& f : report.findings) std::printf("%s\n", format_finding(f).c_str());
   const size_t errors = report.errors();
-  std::printf("%s: %lld planes, %zu errors, %zu warnings: %s\n", input.c_str(), static_cast<long long>(report.planes), errors,
+  std::printf("%s: %lld %s, %zu errors, %zu warnings: %s\n", input.c_str(), static_cast<long long>(report.planes), mesh3d ? "units" : "planes", errors,
               report.findings.size() - errors, report.conformant() ? "conformant" : "NOT conformant");
   return report.conformant() ? 0 : 1;
 }
@@ -216,7 +218,7 @@ int main(int argc, char** argv) {
                        "on an error, keep the planes decoded before it (the output then lacks its final 'end' line)");
 
   std::string trace_input;
-  CLI::App* trace_cmd = app.add_subcommand("trace", "Print every syntax element: bit offset, name, bit count, value");
+  CLI::App* trace_cmd = app.add_subcommand("trace", "Print every syntax element of a 2D or 3D stream: bit offset, name, bit count, value");
   trace_cmd->add_option("input", trace_input, "mesh stream")->required();
 
   std::string info_input;
@@ -243,19 +245,10 @@ int main(int argc, char** argv) {
   CLI::App* encode3d_cmd = app.add_subcommand("encode3d", "Encode an animated 3D mesh (OBJ/OFF frames or .m4seq) into a mesh3d stream");
   encode3d_cmd->add_option("input", encode3d_args.input, "a folder of frames, a pattern with '*', or a .m4seq file")->required();
   encode3d_cmd->add_option("-o,--output", encode3d_args.output, "output stream (.m4m)")->required();
-  encode3d_cmd->add_option("--codec", encode3d_args.codec, "codec: bfs3d or affine-octree")->capture_default_str();
-  encode3d_cmd->add_option("--bits", encode3d_args.bits, "quantization bits per coordinate")->check(CLI::Range(4, 24))->capture_default_str();
-  encode3d_cmd->add_flag("--parallelogram", encode3d_args.parallelogram, "bfs3d: parallelogram prediction instead of the base-edge average");
-  encode3d_cmd->add_option("--me", encode3d_args.max_error, "affine-octree: ME, the largest vertex error of an affine cell, in % of the root cube")
-      ->check(CLI::Range(0.001, 100.0))->capture_default_str();
-  encode3d_cmd->add_option("--matrix-bits", encode3d_args.matrix_bits, "affine-octree: k, bits per matrix element")
-      ->check(CLI::Range(4, 24))->capture_default_str();
-  encode3d_cmd->add_option("--max-depth", encode3d_args.max_depth, "affine-octree: the deepest octree level")
-      ->check(CLI::Range(1, 20))->capture_default_str();
-  encode3d_cmd->add_option("--intra-period", encode3d_args.intra_period, "re-send the base mesh every N frames (0: only frame 0)")
-      ->check(CLI::NonNegativeNumber)->capture_default_str();
+  add_codec_options(*encode3d_cmd, encode3d_args);
   encode3d_cmd->add_flag("--no-hash", encode3d_args.no_hash, "leave out the decoded-frame hash units");
   encode3d_cmd->add_option("--fps", encode3d_args.fps, "frame rate")->check(CLI::Range(1, 65535))->capture_default_str();
+  encode3d_cmd->add_flag("--trace", encode3d_args.trace, "print every syntax element written, as `m4mesh trace` prints them");
 
   Decode3dArgs decode3d_args;
   CLI::App* decode3d_cmd = app.add_subcommand("decode3d", "Decode a mesh3d stream into OBJ frames or a .m4seq file");

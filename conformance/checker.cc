@@ -24,12 +24,12 @@ class Checker {
   CheckReport run();
 
  private:
-  void error(const Error& e) { report_.findings.push_back({true, e.kind(), e.plane(), e.element(), e.bit_offset(), e.message()}); }
+  void error(const Error& e) { report_.findings.push_back({true, e.kind(), e.plane(), e.element(), e.bit_offset(), e.message(), false, std::nullopt}); }
   void error(ErrorKind kind, int64_t plane, const std::string& element, uint64_t bit, const std::string& message) {
-    report_.findings.push_back({true, kind, plane, element, static_cast<int64_t>(bit), message});
+    report_.findings.push_back({true, kind, plane, element, static_cast<int64_t>(bit), message, false, std::nullopt});
   }
   void warning(int64_t plane, const std::string& element, uint64_t bit, const std::string& message) {
-    report_.findings.push_back({false, ErrorKind::kStructure, plane, element, static_cast<int64_t>(bit), message});
+    report_.findings.push_back({false, ErrorKind::kStructure, plane, element, static_cast<int64_t>(bit), message, false, std::nullopt});
   }
   // Continues at the next plane or end code after `bit`; false when there is none.
   bool resync(uint64_t bit) {
@@ -128,8 +128,15 @@ size_t CheckReport::errors() const {
 CheckReport check_stream(std::span<const uint8_t> stream) { return Checker(stream).run(); }
 
 std::string format_finding(const Finding& f) {
+  const std::string kind = f.error ? "error: " : "warning: ";
+  if (f.mesh3d) {
+    std::string where = f.unit ? "unit " + std::to_string(*f.unit) : "";
+    if (f.plane != kNoPlane) where += (where.empty() ? "" : ", ") + std::string("frame ") + std::to_string(f.plane);
+    const Error located(f.kind, f.element, kNoPlane, f.bit_offset, f.message);
+    return kind + where + (where.empty() ? "" : ", ") + located.what();
+  }
   const Error located(f.kind, f.element, f.plane, f.bit_offset, f.message);
-  return std::string(f.error ? "error: " : "warning: ") + located.what();
+  return kind + located.what();
 }
 
 std::vector<uint64_t> start_code_emulations(std::span<const uint8_t> stream, uint64_t from, uint64_t to) {

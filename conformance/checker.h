@@ -1,8 +1,10 @@
-// `m4mesh check`: every violation of the specification in a stream (§11),
-// each with its plane, element and bit offset, plus the warnings.
+// `m4mesh check`: every violation of the specification in a stream (§11;
+// §12 for 3D streams), each with its plane (3D: unit and frame), element
+// and bit offset, plus the warnings.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -18,6 +20,8 @@ struct Finding {
   std::string element;
   int64_t bit_offset;
   std::string message;
+  bool mesh3d = false;          // plane is then the frame
+  std::optional<size_t> unit;   // 3D: the unit's index in the stream
 };
 
 struct CheckReport {
@@ -28,8 +32,12 @@ struct CheckReport {
 };
 
 CheckReport check_stream(std::span<const uint8_t> stream);
+// A 3D stream: every unit is decoded, and after an error in one the check
+// carries on at the next; `planes` counts the units.
+CheckReport check_mesh3d(std::span<const uint8_t> stream);
 
-// "error: plane K, ELEMENT at bit N: MESSAGE" (or "warning: …").
+// "error: plane K, ELEMENT at bit N: MESSAGE" (or "warning: …"); 3D:
+// "error: unit U, frame F, ELEMENT at bit N: MESSAGE".
 std::string format_finding(const Finding& finding);
 
 // Bit offsets of every 23 zero bits followed by a '1' whose '1' lies in [from, to) (§2.3).

@@ -10,8 +10,9 @@
 
 #include "common/atomic_file.h"
 #include "common/md5.h"
-#include "decoder/mesh3d_decoder.h"
-#include "encoder/mesh3d_encoder.h"
+#include "decoder/mesh3d/container_decoder.h"
+#include "encoder/mesh3d/container_encoder.h"
+#include "mesh3d/quantization.h"
 
 namespace m4mesh {
 
@@ -112,11 +113,11 @@ MeshSequence moving_tetrahedron(int frames) {
   return s;
 }
 
-Encode3dOptions affine(double me, int k = 16) {
+// Affine-Octree at ME `me` percent and k bits per matrix element.
+Encode3dOptions affine(const std::string& me, int k = 16) {
   Encode3dOptions o;
-  o.codec_id = kCodecAffineOctree;
-  o.max_error = me;
-  o.matrix_bits = k;
+  o.codec = "affine-octree";
+  o.codec_options = {{"me", me}, {"matrix-bits", std::to_string(k)}};
   return o;
 }
 
@@ -155,38 +156,36 @@ std::vector<Suite3dCase> build_suite3d() {
   const MeshSequence shape = box_and_sheet(6, 4);
   std::vector<Suite3dCase> suite;
   suite.push_back(valid("ao-01-me1-k16", "affine-octree at the paper's settings: ME 1 %, k = 16", {"container", "ao-header", "ao-frame", "ao-cell"},
-                        shape, affine(0.01)));
+                        shape, affine("1")));
   {
-    Encode3dOptions o = affine(0.25, 8);
-    o.max_depth = 3;
+    Encode3dOptions o = affine("25", 8);
+    o.codec_options["max-depth"] = "3";
     suite.push_back(valid("ao-02-coarse", "ME 25 %, k = 8, octree depth at most 3", {"ao-header", "ao-cell"}, shape, o));
   }
   {
-    Encode3dOptions o = affine(0.001, 16);
-    o.bits = 16;
-    o.max_depth = 20;
+    Encode3dOptions o = affine("0.1", 16);
+    o.codec_options["bits"] = "16";
+    o.codec_options["max-depth"] = "20";
     suite.push_back(valid("ao-03-fine", "ME 0.1 %, 16-bit grid, octree depth up to 20", {"ao-cell", "ao-reconstruction"}, shape, o));
   }
   {
-    Encode3dOptions o = affine(0.02, 24);
-    o.matrix_range_log2 = 8;
+    Encode3dOptions o = affine("2", 24);
+    o.codec_options["matrix-range-log2"] = "8";
     suite.push_back(valid("ao-04-wide-matrices", "k = 24 over [−128, 128): the widest matrix elements", {"ao-header", "ao-reconstruction"},
                           shape, o));
   }
   {
-    Encode3dOptions o = affine(0.01);
-    o.intra_period = 3;
+    Encode3dOptions o = affine("1");
+    o.codec_options["intra-period"] = "3";
     suite.push_back(valid("ao-05-intra", "an intra base mesh every 3 frames", {"container-units", "ao-frame"}, box_and_sheet(7, 3), o));
   }
-  suite.push_back(valid("ao-06-direct-root", "4 vertices: the root cell codes direct motion", {"ao-cell"}, moving_tetrahedron(5), affine(0.01)));
+  suite.push_back(valid("ao-06-direct-root", "4 vertices: the root cell codes direct motion", {"ao-cell"}, moving_tetrahedron(5), affine("1")));
   suite.push_back(valid("ao-07-coplanar", "a flat sheet rotating: singular cells, one matrix per frame", {"ao-cell", "ao-reconstruction"},
-                        rotating_sheet(5), affine(0.01)));
+                        rotating_sheet(5), affine("1")));
   suite.push_back(valid("bfs3d-01-average", "bfs3d with base-edge average prediction", {"container", "bfs3d"}, shape, Encode3dOptions{}));
   {
     Encode3dOptions o;
-    o.parallelogram = true;
-    o.bits = 10;
-    o.intra_period = 4;
+    o.codec_options = {{"parallelogram", "1"}, {"bits", "10"}, {"intra-period", "4"}};
     suite.push_back(valid("bfs3d-02-parallelogram-intra", "bfs3d, parallelogram prediction, 10 bits, intra every 4 frames",
                           {"bfs3d", "container-units"}, shape, o));
   }
@@ -221,7 +220,7 @@ std::vector<Suite3dCase> build_suite3d() {
     // An intra base mesh whose faces are not frame 0's.
     MeshSequence other = box_and_sheet(6, 4);
     std::swap(other.faces[0], other.faces[1]);
-    const std::vector<uint8_t> other_stream = encode_mesh3d(other, affine(0.01)).stream;
+    const std::vector<uint8_t> other_stream = encode_mesh3d(other, affine("1")).stream;
     const std::vector<uint8_t> intra = split_container(other_stream).units[0].payload;
     suite.push_back(invalid("x-09-intra-other-faces", "an intra base mesh with other faces", {"container-units"},
                             edited(base,
@@ -236,7 +235,7 @@ std::vector<Suite3dCase> build_suite3d() {
   const std::vector<uint8_t> bfs3d =
       std::find_if(suite.begin(), suite.end(), [](const Suite3dCase& c) { return c.id == "bfs3d-01-average"; })->stream;
   suite.push_back(invalid("x-10-bfs3d-lengths", "raw_bytes_z longer than the frame", {"bfs3d"},
-                          edited(bfs3d, [](ContainerParts& p) { unit_of(p, UnitType::kFrame, 1).payload[kUnitHeaderBytes + 20] = 0x7F; }),
+                          edited(bfs3d, [](ContainerParts& p) { unit_of(p, UnitType::kFrame, 1).payload[(syntax::unit_data_offset() - 32) / 8 + 20] = 0x7F; }),
                           ErrorKind::kOutOfRange, "raw_bytes_z", 1));
   suite.push_back(invalid("x-11-bfs3d-trailing", "a byte after the six streams", {"bfs3d"},
                           edited(bfs3d, [](ContainerParts& p) { unit_of(p, UnitType::kFrame, 3).payload.push_back(0x55); }),
@@ -245,7 +244,9 @@ std::vector<Suite3dCase> build_suite3d() {
 }
 
 std::vector<uint8_t> decoded_frames3d(const std::vector<uint8_t>& stream) {
-  Mesh3dDecoder decoder(stream, true);
+  Decode3dOptions options;
+  options.verify = true;
+  Mesh3dDecoder decoder(stream, options);
   std::vector<uint8_t> out;
   while (decoder.next_frame()) {
     if (decoder.hash_matches() == false)

@@ -9,11 +9,10 @@
 #include <span>
 #include <vector>
 
+#include "common/point3.h"
 #include "mesh/topology.h"
 
 namespace m4mesh {
-
-using IntPoint3 = std::array<int32_t, 3>;
 
 std::vector<uint8_t> encode_base_mesh(std::span<const Triangle> faces, std::span<const IntPoint3> positions);
 

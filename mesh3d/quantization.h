@@ -7,12 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "common/point3.h"
 #include "mesh3d/draco_base.h"
 #include "mesh3d/sequence.h"
 
 namespace m4mesh {
-
-using Float3 = std::array<float, 3>;
 
 // Quantized coordinates stay within ±2^26 steps, so that motion residuals
 // fit 32 bits with any prediction.

@@ -1,10 +1,14 @@
-// I/O policies for the descriptions of syntax/describe.h: ReadIO parses
-// and range-checks, WriteIO writes (and refuses values the syntax does not
-// allow), CountIO counts bits. ReadIO and WriteIO trace when given a Trace.
+// I/O policies for the descriptions of syntax/describe.h and
+// syntax/mesh3d/: ReadIO parses and range-checks, WriteIO writes (and
+// refuses values the syntax does not allow), CountIO counts bits. ReadIO
+// and WriteIO trace when given a Trace. Byte sections (arithmetic-coded
+// data, raw bits, a Draco mesh, a digest) are placed by `section`; their
+// contents are described with syntax/mesh3d/entropy_io.h.
 #pragma once
 
 #include <cstdint>
 #include <cstdio>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -24,6 +28,7 @@ class IOBase {
  public:
   void set_plane(int64_t plane) { plane_ = plane; }
   int64_t plane() const { return plane_; }
+  Trace* trace() const { return trace_; }
 
   [[noreturn]] void fail(ErrorKind kind, const char* element, const std::string& message) const {
     throw Error(kind, element, plane_, static_cast<int64_t>(element_start_), message);
@@ -40,6 +45,7 @@ class IOBase {
 
 class ReadIO : public IOBase {
  public:
+  static constexpr bool kReading = true;
   explicit ReadIO(BitReader& reader, Trace* trace = nullptr) : reader_(reader) { trace_ = trace; }
 
   BitReader& reader() { return reader_; }
@@ -110,6 +116,34 @@ class ReadIO : public IOBase {
     items.resize(count);
   }
 
+  // The next `length` bytes (byte-aligned).
+  void section(const char* name, uint64_t length, std::span<const uint8_t>& bytes) {
+    element_start_ = reader_.position();
+    require(reader_.byte_aligned(), ErrorKind::kStructure, name, "a byte section not byte-aligned");
+    if (length > reader_.bits_left() / 8)
+      fail(ErrorKind::kTruncated, name, std::to_string(length) + " bytes where " + std::to_string(reader_.bits_left() / 8) + " are left");
+    bytes = std::span<const uint8_t>(reader_.data() + element_start_ / 8, static_cast<size_t>(length));
+    reader_.seek(element_start_ + 8 * length);
+    if (trace_) trace_->bytes(element_start_, name, bytes);
+  }
+  // The bytes up to the end of the payload.
+  void tail_section(const char* name, std::span<const uint8_t>& bytes) { section(name, reader_.bits_left() / 8, bytes); }
+
+  // The payload's remaining bytes must be exactly `expected` (named after
+  // the last field read): more is out of range, fewer leaves bytes over.
+  void require_remaining_bytes(const char* element, uint64_t expected) const {
+    const uint64_t left = reader_.bits_left() / 8;
+    if (expected > left)
+      fail(ErrorKind::kOutOfRange, element, std::to_string(expected) + " bytes where the unit holds " + std::to_string(left));
+    if (expected < left)
+      fail(ErrorKind::kStructure, element, std::to_string(left - expected) + " bytes left over after " + std::to_string(expected));
+  }
+  // A length field must not exceed the bytes left.
+  void require_length(const char* element, uint64_t length) const {
+    if (length > reader_.bits_left() / 8)
+      fail(ErrorKind::kOutOfRange, element, std::to_string(length) + " bytes where the unit holds " + std::to_string(reader_.bits_left() / 8));
+  }
+
  private:
   [[noreturn]] void truncated(const char* name) const { fail(ErrorKind::kTruncated, name, "the data ends inside this element"); }
 
@@ -118,6 +152,7 @@ class ReadIO : public IOBase {
 
 class WriteIO : public IOBase {
  public:
+  static constexpr bool kReading = false;
   explicit WriteIO(BitWriter& writer, Trace* trace = nullptr) : writer_(writer) { trace_ = trace; }
 
   template <class T>
@@ -173,6 +208,17 @@ class WriteIO : public IOBase {
            "holds " + std::to_string(items.size()) + " items where the syntax needs " + std::to_string(count));
   }
 
+  void section(const char* name, uint64_t length, std::span<const uint8_t>& bytes) {
+    element_start_ = writer_.position();
+    if (!writer_.byte_aligned()) fail(ErrorKind::kStructure, name, "a byte section not byte-aligned");
+    if (bytes.size() != length) fail(ErrorKind::kStructure, name, "the section's length differs from its length field");
+    for (uint8_t b : bytes) writer_.write(b, 8);
+    if (trace_) trace_->bytes(element_start_, name, bytes);
+  }
+  void tail_section(const char* name, std::span<const uint8_t>& bytes) { section(name, bytes.size(), bytes); }
+  void require_remaining_bytes(const char*, uint64_t) const {}
+  void require_length(const char*, uint64_t) const {}
+
  private:
   BitWriter& writer_;
 };
@@ -180,6 +226,7 @@ class WriteIO : public IOBase {
 // Counts the bits a structure takes, with the writer's checks.
 class CountIO : public IOBase {
  public:
+  static constexpr bool kReading = false;
   uint64_t bits() const { return bits_; }
 
   template <class T>
@@ -200,6 +247,10 @@ class CountIO : public IOBase {
   void resize(std::vector<T>& items, uint32_t count, const char* element, int = 1) {
     if (items.size() != count) fail(ErrorKind::kStructure, element, "item count differs from the syntax");
   }
+  void section(const char*, uint64_t length, std::span<const uint8_t>&) { bits_ += 8 * length; }
+  void tail_section(const char*, std::span<const uint8_t>& bytes) { bits_ += 8 * bytes.size(); }
+  void require_remaining_bytes(const char*, uint64_t) const {}
+  void require_length(const char*, uint64_t) const {}
 
  private:
   uint64_t bits_ = 0;

@@ -1,10 +1,15 @@
 // Run-time trace of syntax elements: one line per element with its bit
 // offset, name, bit count and value. The reader and the writer print the
 // same lines for the same stream, so `diff` finds the first divergence.
+// 3D lines start with their location ("unit 7 frame 3") and count offsets
+// from the unit's start code; symbols of an arithmetic-coded section are
+// placed by section and index ("bins_x:17"), raw bits by section and bit.
 #pragma once
 
 #include <cstdint>
 #include <ostream>
+#include <span>
+#include <string>
 #include <string_view>
 
 namespace m4mesh {
@@ -12,14 +17,35 @@ namespace m4mesh {
 class Trace {
  public:
   explicit Trace(std::ostream& out) : out_(out) {}
+  // A trace into `out` with the location of `like`.
+  Trace(std::ostream& out, const Trace& like) : out_(out), location_(like.location_), offset_base_(like.offset_base_) {}
+
+  // Starts a 3D payload (or the end code, with no payload): its location
+  // and its start code at offset 0; the payload's offsets count from bit 32.
+  void begin_payload(std::string location, std::string_view start_code_name, uint32_t code) {
+    location_ = std::move(location);
+    offset_base_ = 0;
+    start_code(0, start_code_name, code);
+    offset_base_ = 32;
+  }
+  std::ostream& stream() { return out_; }
 
   void element(uint64_t offset, std::string_view name, int bits, int64_t value);
   void start_code(uint64_t offset, std::string_view name, uint32_t value);
   void bit_string(uint64_t offset, std::string_view name, int bits, uint32_t value);
+  // A byte section: its length, and its bytes in hex when it holds at most 16.
+  void bytes(uint64_t offset, std::string_view name, std::span<const uint8_t> data);
+  // An arithmetic-coded bin: its section, index there, context number and value.
+  void bin(std::string_view section, uint64_t index, std::string_view name, int context, int value);
+  // Raw bits: the section, the bit offset in it, the count and the value.
+  void raw(std::string_view section, uint64_t bit, std::string_view name, int bits, int64_t value);
 
  private:
+  void prefix(std::string_view position, std::string_view name, std::string_view size);
   void prefix(uint64_t offset, std::string_view name, int bits);
   std::ostream& out_;
+  std::string location_;
+  uint64_t offset_base_ = 0;
 };
 
 }  // namespace m4mesh

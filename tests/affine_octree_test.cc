@@ -9,11 +9,12 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "conformance/suite3d.h"
-#include "decoder/mesh3d_decoder.h"
-#include "encoder/mesh3d_encoder.h"
+#include "decoder/mesh3d/container_decoder.h"
+#include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/metrics.h"
-#include "mesh3d/octree.h"
-#include "syntax/affine_octree.h"
+#include "mesh3d/quantization.h"
+#include "mesh3d/affine_octree.h"
+#include "syntax/mesh3d/affine_octree.h"
 #include "tests/test_util.h"
 
 namespace m4mesh {
@@ -61,16 +62,30 @@ double cube_side(const std::vector<Float3>& p) {
   return side;
 }
 
+Encode3dOptions affine(const std::string& me_percent = "1", int k = 16) {
+  Encode3dOptions options;
+  options.codec = "affine-octree";
+  options.codec_options = {{"me", me_percent}, {"matrix-bits", std::to_string(k)}};
+  return options;
+}
+
+int64_t statistic(const Encode3dResult& result, const std::string& name) {
+  for (const auto& [key, value] : result.statistics)
+    if (key == name) return static_cast<int64_t>(value);
+  return -1;
+}
+
 // Every decoded vertex lies within ME of the original (plus the grid's rounding).
 void expect_within_me(const MeshSequence& s, const Encode3dOptions& options) {
   const Encode3dResult encoded = encode_mesh3d(s, options);
-  Mesh3dDecoder decoder(encoded.stream, true);
+  Mesh3dDecoder decoder(encoded.stream, test::verifying());
   std::vector<Float3> previous;
   uint32_t frames = 0;
+  const double step = Grid::over(s.frames[0], 12, true).step[0];
+  const double me = std::stod(options.codec_options.at("me")) / 100;
   while (decoder.next_frame()) {
     ASSERT_TRUE(decoder.hash_matches().value_or(false)) << "frame " << frames;
-    const double step = decoder.codec_grid().step[0];
-    const double bound = frames == 0 ? step : options.max_error * cube_side(previous) + 2 * step;
+    const double bound = frames == 0 ? step : me * cube_side(previous) + 2 * step;
     for (uint32_t i = 0; i < s.vertex_count; ++i) {
       const Float3& p = decoder.positions()[i];
       const Vec3& o = s.frames[frames][i];
@@ -85,27 +100,18 @@ void expect_within_me(const MeshSequence& s, const Encode3dOptions& options) {
 
 TEST(AffineOctree, EveryVertexWithinMe) {
   const MeshSequence s = test::test_sequence(8, 11);
-  for (double me : {0.002, 0.01, 0.05, 0.25})
-    for (int k : {10, 16}) {
-      Encode3dOptions options;
-      options.codec_id = kCodecAffineOctree;
-      options.max_error = me;
-      options.matrix_bits = k;
-      expect_within_me(s, options);
-    }
+  for (const char* me : {"0.2", "1", "5", "25"})
+    for (int k : {10, 16}) expect_within_me(s, affine(me, k));
 }
 
 TEST(AffineOctree, LargerMeCostsFewerBytesAndMatrices) {
   const MeshSequence s = test::test_sequence(8, 12);
-  Encode3dOptions options;
-  options.codec_id = kCodecAffineOctree;
-  options.max_error = 0.002;
-  const Encode3dResult fine = encode_mesh3d(s, options);
-  options.max_error = 0.1;
-  const Encode3dResult coarse = encode_mesh3d(s, options);
-  EXPECT_LT(coarse.frame_bytes, fine.frame_bytes);
-  EXPECT_GT(coarse.matrices, 0u);
-  EXPECT_LT(coarse.matrices + coarse.direct_vertices, fine.matrices + fine.direct_vertices);
+  const Encode3dResult fine = encode_mesh3d(s, affine("0.2"));
+  const Encode3dResult coarse = encode_mesh3d(s, affine("10"));
+  EXPECT_LT(coarse.frame_bytes(), fine.frame_bytes());
+  EXPECT_GT(statistic(coarse, "matrices"), 0);
+  EXPECT_LT(statistic(coarse, "matrices") + statistic(coarse, "vertices coded directly"),
+            statistic(fine, "matrices") + statistic(fine, "vertices coded directly"));
 }
 
 // A flat sheet: every cell's points are coplanar, so every fit is singular.
@@ -126,21 +132,17 @@ TEST(AffineOctree, CoplanarCellsUseTheTruncatedSvd) {
       for (int x = 0; x < n; ++x) frame.push_back({std::cos(angle) * x - std::sin(angle) * y, std::sin(angle) * x + std::cos(angle) * y, 0});
     s.frames.push_back(std::move(frame));
   }
-  Encode3dOptions options;
-  options.codec_id = kCodecAffineOctree;
-  options.max_error = 0.01;
+  const Encode3dOptions options = affine();
   const Encode3dResult encoded = encode_mesh3d(s, options);
-  EXPECT_GT(encoded.matrices, 0u);
   // A rotation of a flat sheet: one matrix per frame suffices.
-  EXPECT_EQ(encoded.matrices, 5u);
+  EXPECT_EQ(statistic(encoded, "matrices"), 5);
   expect_within_me(s, options);
 }
 
 TEST(AffineOctree, IntraFramesResendTheBaseMesh) {
   const MeshSequence s = test::test_sequence(7, 13);
-  Encode3dOptions options;
-  options.codec_id = kCodecAffineOctree;
-  options.intra_period = 3;
+  Encode3dOptions options = affine();
+  options.codec_options["intra-period"] = "3";
   const Encode3dResult encoded = encode_mesh3d(s, options);
   const ContainerParts parts = split_container(encoded.stream);
   std::vector<uint32_t> intra;
@@ -148,8 +150,8 @@ TEST(AffineOctree, IntraFramesResendTheBaseMesh) {
     if (unit.payload[0] == static_cast<uint8_t>(UnitType::kBaseMesh)) intra.push_back(unit.payload[4]);
   EXPECT_EQ(intra, (std::vector<uint32_t>{0, 3, 6}));
   // An intra frame decodes to the quantized original exactly.
-  Mesh3dDecoder decoder(encoded.stream, true);
-  const Grid grid = Grid::over(s.frames[0], options.bits, true);
+  Mesh3dDecoder decoder(encoded.stream, test::verifying());
+  const Grid grid = Grid::over(s.frames[0], 12, true);
   while (decoder.next_frame()) {
     ASSERT_TRUE(decoder.hash_matches().value_or(false));
     if (decoder.frame_index() % 3 != 0) continue;
@@ -164,27 +166,20 @@ TEST(AffineOctree, IntraFramesResendTheBaseMesh) {
 
 TEST(AffineOctree, EncoderIsDeterministic) {
   const MeshSequence s = test::test_sequence(5, 14);
-  Encode3dOptions options;
-  options.codec_id = kCodecAffineOctree;
-  EXPECT_EQ(encode_mesh3d(s, options).stream, encode_mesh3d(s, options).stream);
+  EXPECT_EQ(encode_mesh3d(s, affine()).stream, encode_mesh3d(s, affine()).stream);
 }
 
 TEST(AffineOctree, CorruptAndTruncatedStreamsFailCleanly) {
   const MeshSequence s = test::test_sequence(4, 15);
-  Encode3dOptions options;
-  options.codec_id = kCodecAffineOctree;
-  options.max_error = 0.005;
-  EXPECT_GT(test::decode_damaged_mesh3d(encode_mesh3d(s, options).stream, 5, 15), 0);
+  EXPECT_GT(test::decode_damaged_mesh3d(encode_mesh3d(s, affine("0.5")).stream, 5, 15), 0);
 }
 
 TEST(AffineOctree, BadOptionsAreUsageErrors) {
   const MeshSequence s = test::test_sequence(2, 16);
-  Encode3dOptions options;
-  options.codec_id = kCodecAffineOctree;
-  options.max_error = 0;
-  EXPECT_THROW(encode_mesh3d(s, options), Error);
-  options.max_error = 0.01;
-  options.matrix_bits = 2;
+  EXPECT_THROW(encode_mesh3d(s, affine("0")), Error);
+  EXPECT_THROW(encode_mesh3d(s, affine("1", 2)), Error);
+  Encode3dOptions options = affine();
+  options.codec_options["parallelogram"] = "1";  // bfs3d's
   EXPECT_THROW(encode_mesh3d(s, options), Error);
 }
 
@@ -222,7 +217,7 @@ TEST(Conformance3d, Bfs3dLengthErrorGivesTheFieldsBitOffset) {
   } catch (const Error& e) {
     EXPECT_EQ(e.element(), "raw_bytes_z");
     EXPECT_EQ(e.plane(), 1);
-    EXPECT_EQ(e.bit_offset(), static_cast<int64_t>(8 * unit_start + 32 + 8 * kUnitHeaderBytes + 5 * 32));
+    EXPECT_EQ(e.bit_offset(), static_cast<int64_t>(8 * unit_start + syntax::unit_data_offset() + 5 * 32));
   }
 }
 
@@ -234,10 +229,7 @@ const fs::path kData = fs::path(M4MESH_SOURCE_DIR) / ".." / "shared" / "data";
 TEST(RealData, CowAtMe15BeatsThePapersRatioAndPsnr) {
   if (!fs::exists(kData / "pcow")) GTEST_SKIP() << "../shared/data/pcow is absent";
   const MeshSequence cow = load_sequence((kData / "pcow").string());
-  Encode3dOptions options;
-  options.codec_id = kCodecAffineOctree;
-  options.max_error = 0.15;
-  options.matrix_bits = 12;
+  Encode3dOptions options = affine("15", 12);
   options.hashes = false;
   const Encode3dResult encoded = encode_mesh3d(cow, options);
   const double raw = 12.0 * cow.vertex_count * static_cast<double>(cow.frames.size());

@@ -10,15 +10,17 @@
 #include "bitstream/arithmetic.h"
 #include "bitstream/emulation.h"
 #include "common/error.h"
-#include "decoder/mesh3d_decoder.h"
-#include "encoder/mesh3d_encoder.h"
+#include "decoder/mesh3d/container_decoder.h"
+#include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/draco_base.h"
 #include "mesh3d/metrics.h"
+#include "mesh3d/quantization.h"
 #include "mesh3d/sequence.h"
-#include "mesh3d/traversal3d.h"
-#include "syntax/bfs3d.h"
-#include "syntax/residual_coder.h"
-#include "syntax/container.h"
+#include "mesh3d/bfs3d.h"
+#include "syntax/mesh3d/bfs3d.h"
+#include "syntax/mesh3d/entropy_io.h"
+#include "syntax/mesh3d/residual.h"
+#include "syntax/mesh3d/container.h"
 #include "tests/test_util.h"
 
 namespace m4mesh {
@@ -27,6 +29,7 @@ namespace {
 namespace fs = std::filesystem;
 
 using test::test_sequence;
+using test::verifying;
 
 TEST(Emulation, EscapedPayloadsNeverHoldAStartCodePrefix) {
   test::Random random(1);
@@ -120,22 +123,20 @@ TEST(Arithmetic, ResidualsOfEverySizeRoundTrip) {
   std::vector<int32_t> values{0, 1, -1, 2, -2, 3, 100, -100, 65535, -65536, (1 << 29), -(1 << 29), (1 << 30) + 7};
   test::Random random(3);
   for (int i = 0; i < 3000; ++i) values.push_back(random.uniform(-3000, 3000) >> random.uniform(0, 10));
-  ArithmeticEncoder encoder;
-  BitWriter raw;
-  ResidualCoder<3> model;
-  for (size_t i = 0; i < values.size(); ++i) model.encode(encoder, raw, static_cast<int>(i % 3), values[i]);
-  const std::vector<uint8_t> data = encoder.finish();
-  raw.write(0, static_cast<int>((8 - raw.position() % 8) % 8));
-  const std::vector<uint8_t> raw_bytes = raw.take_bytes();
-  ArithmeticDecoder decoder(data);
-  BitReader raw_reader(raw_bytes.data(), raw_bytes.size());
-  ResidualCoder<3> decoding;
+  const syntax::SectionPlace place;
+  syntax::EntropyWriteIO<false> writer(place);
+  syntax::ResidualCoder<3> model;
+  for (size_t i = 0; i < values.size(); ++i) model.describe(writer, static_cast<int>(i % 3), values[i], syntax::kMotionResidual);
+  const std::vector<uint8_t> data = writer.finish_bins();
+  const std::vector<uint8_t> raw_bytes = writer.finish_raw();
+  syntax::EntropyReadIO<false> reader(data, raw_bytes, place);
+  syntax::ResidualCoder<3> decoding;
   for (size_t i = 0; i < values.size(); ++i) {
-    int32_t r;
-    ASSERT_TRUE(decoding.decode(decoder, raw_reader, static_cast<int>(i % 3), r));
+    int32_t r = 0;
+    decoding.describe(reader, static_cast<int>(i % 3), r, syntax::kMotionResidual);
     ASSERT_EQ(r, values[i]);
   }
-  EXPECT_FALSE(raw_reader.overrun());
+  EXPECT_NO_THROW(reader.finish("motion_residual"));
 }
 
 TEST(Traversal3d, EveryVertexOnceAndPredictorsBeforeUse) {
@@ -164,10 +165,10 @@ TEST(DracoBase, KeepsVertexAndFaceOrder) {
   EXPECT_THROW(decode_base_mesh(data, s.vertex_count + 1, static_cast<uint32_t>(s.faces.size())), Error);
 }
 
-void expect_round_trip(const MeshSequence& s, const Encode3dOptions& options) {
+void expect_round_trip(const MeshSequence& s, const Encode3dOptions& options, int bits) {
   const Encode3dResult encoded = encode_mesh3d(s, options);
-  Mesh3dDecoder decoder(encoded.stream, true);
-  const Grid grid = Grid::over(s.frames[0], options.bits);
+  Mesh3dDecoder decoder(encoded.stream, verifying());
+  const Grid grid = Grid::over(s.frames[0], bits);
   uint32_t frames = 0;
   while (decoder.next_frame()) {
     ASSERT_EQ(decoder.frame_index(), frames);
@@ -181,7 +182,9 @@ void expect_round_trip(const MeshSequence& s, const Encode3dOptions& options) {
   }
   EXPECT_EQ(frames, s.frames.size());
   EXPECT_TRUE(decoder.has_end_code());
-  EXPECT_EQ(encoded.base_bytes + encoded.frame_bytes + encoded.other_bytes, encoded.stream.size());
+  uint64_t total = encoded.other_bytes;
+  for (uint64_t bytes : encoded.unit_bytes) total += bytes;
+  EXPECT_EQ(total, encoded.stream.size());
 }
 
 TEST(Bfs3d, RoundTripsWithBothPredictions) {
@@ -189,9 +192,8 @@ TEST(Bfs3d, RoundTripsWithBothPredictions) {
   for (bool parallelogram : {false, true})
     for (int bits : {8, 12, 16}) {
       Encode3dOptions options;
-      options.bits = bits;
-      options.parallelogram = parallelogram;
-      expect_round_trip(s, options);
+      options.codec_options = {{"bits", std::to_string(bits)}, {"parallelogram", parallelogram ? "1" : "0"}};
+      expect_round_trip(s, options, bits);
     }
 }
 
@@ -217,7 +219,7 @@ TEST(Bfs3d, EncoderIsDeterministicAndHashesCatchChanges) {
   moved.object(writer.take_bytes());
   for (const ContainerUnit& unit : parts.units) moved.unit(unit.payload);
   const std::vector<uint8_t> moved_stream = moved.finish();
-  Mesh3dDecoder decoder(moved_stream, true);
+  Mesh3dDecoder decoder(moved_stream, verifying());
   int mismatches = 0;
   while (decoder.next_frame()) mismatches += !decoder.hash_matches().value_or(true);
   EXPECT_EQ(mismatches, 4);
@@ -345,7 +347,7 @@ TEST(RealData, CowAt12BitsBeatsDracoPerFrameWithSmallKgError) {
   const Encode3dResult encoded = encode_mesh3d(cow, options);
   const MeshSequence decoded = decode_mesh3d(encoded.stream);
   EXPECT_LE(kg_error(cow, decoded), 0.05);
-  const double ours = 8.0 * static_cast<double>(encoded.frame_bytes) / (cow.vertex_count * 19.0);
+  const double ours = 8.0 * static_cast<double>(encoded.frame_bytes()) / (cow.vertex_count * 19.0);
   double draco = 0;
   for (size_t f = 1; f < cow.frames.size(); ++f) {
     std::vector<std::array<float, 3>> p;

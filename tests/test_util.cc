@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "decoder/decoder.h"
-#include "decoder/mesh3d_decoder.h"
+#include "decoder/mesh3d/container_decoder.h"
 #include "encoder/encoder.h"
 #include "mesh/cdt.h"
 

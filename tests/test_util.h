@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/random.h"
+#include "decoder/mesh3d/container_decoder.h"
 #include "mesh/plane.h"
 #include "mesh3d/sequence.h"
 
@@ -35,6 +36,13 @@ std::string decoded_text(const std::vector<uint8_t>& stream);
 // copies with one flipped bit, each of which must decode or raise Error;
 // returns how many prefixes were rejected.
 int decode_damaged_mesh3d(const std::vector<uint8_t>& stream, size_t step, uint64_t seed);
+
+// 3D decoding that checks every frame against its hash unit.
+inline Decode3dOptions verifying() {
+  Decode3dOptions options;
+  options.verify = true;
+  return options;
+}
 
 // A UV sphere (closed), a separate open sheet, and one isolated vertex, in motion.
 MeshSequence test_sequence(int frames, uint64_t seed);

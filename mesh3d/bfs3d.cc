@@ -1,4 +1,4 @@
-#include "mesh3d/traversal3d.h"
+#include "mesh3d/bfs3d.h"
 
 namespace m4mesh {
 

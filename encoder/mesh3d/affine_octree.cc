@@ -1,71 +1,59 @@
-// Affine-Octree (codec_id 2) encoding (docs/codec_affine_octree.md): per cell the least-squares affine map from the previous decoded frame to
+// Affine-Octree (codec_id 2) encoding (docs/codec_affine_octree.md): per
+// cell the least-squares affine map from the previous decoded frame to
 // the current one, quantized; a cell splits while a vertex misses by more
 // than ME, and a cell of at most 4 vertices codes their motion directly.
 #include <Eigen/Dense>
 #include <bit>
 #include <cmath>
 
-#include "encoder/codec3d.h"
-#include "mesh3d/octree.h"
-#include "syntax/affine_octree.h"
+#include "encoder/mesh3d/grid_frame_encoder.h"
+#include "encoder/mesh3d/options.h"
+#include "mesh3d/affine_octree.h"
+#include "syntax/mesh3d/affine_octree.h"
+#include "syntax/mesh3d/entropy_io.h"
 
 namespace m4mesh {
 
 namespace {
-
-// The bins and raw bits of one frame, written through AffineCellCoder::describe.
-class CellWriter {
- public:
-  void bin(BinContext& context, bool& value, const char*) { bins_.encode(context, value); }
-  void residual(ResidualCoder<kAffineChannels>& coder, int channel, int32_t& value, const char*) {
-    coder.encode(bins_, raw_, channel, value);
-  }
-  [[noreturn]] void fail(ErrorKind kind, const char* element, const std::string& message) {
-    throw Error(kind, element, kNoPlane, kNoOffset, "encoder: " + message);
-  }
-
-  // The frame header (syntax/affine_octree.h), the bins, the raw bits.
-  std::vector<uint8_t> finish(uint32_t direct_shift) {
-    const std::vector<uint8_t> bins = bins_.finish();
-    AffineFrameHeader frame{direct_shift, static_cast<uint32_t>(bins.size())};
-    BitWriter head;
-    syntax::WriteIO io(head);
-    syntax::describe(io, frame);
-    std::vector<uint8_t> data = head.take_bytes();
-    data.insert(data.end(), bins.begin(), bins.end());
-    raw_.write(0, static_cast<int>((8 - raw_.position() % 8) % 8));
-    const std::vector<uint8_t> raw = raw_.take_bytes();
-    data.insert(data.end(), raw.begin(), raw.end());
-    return data;
-  }
-
- private:
-  ArithmeticEncoder bins_;
-  BitWriter raw_;
-};
 
 int32_t clamp_to(double value, int32_t lo, int32_t hi) {
   const double rounded = std::nearbyint(value);
   return rounded < lo ? lo : rounded > hi ? hi : static_cast<int32_t>(rounded);
 }
 
-class AffineOctreeEncoder final : public CodecEncoder3d {
+class AffineOctreeEncoder final : public GridFrameEncoder {
  public:
-  AffineOctreeEncoder(const MeshSequence& s, const Encode3dOptions& options)
-      : grid_(Grid::over(s.frames[0], options.bits, true)), max_error_(options.max_error) {
-    header_.bits = static_cast<uint32_t>(options.bits);
+  AffineOctreeEncoder(const MeshSequence& s, const CodecSettings& settings)
+      : GridFrameEncoder(Grid::over(s.frames[0], settings.integer("bits"), true), settings.integer("intra-period")),
+        max_error_(settings.number("me") / 100) {
+    header_.bits = static_cast<uint32_t>(settings.integer("bits"));
     for (int axis = 0; axis < 3; ++axis) header_.origin[axis] = std::bit_cast<uint32_t>(grid_.origin[axis]);
     header_.step = std::bit_cast<uint32_t>(grid_.step[0]);
-    header_.matrix_bits = static_cast<uint32_t>(options.matrix_bits);
-    header_.matrix_range_log2 = static_cast<uint32_t>(options.matrix_range_log2);
-    header_.max_depth = static_cast<uint32_t>(options.max_depth);
+    header_.matrix_bits = static_cast<uint32_t>(settings.integer("matrix-bits"));
+    header_.matrix_range_log2 = static_cast<uint32_t>(settings.integer("matrix-range-log2"));
+    header_.max_depth = static_cast<uint32_t>(settings.integer("max-depth"));
+    if (header_.matrix_range_log2 >= header_.matrix_bits)
+      throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--matrix-range-log2 must be below --matrix-bits (affine-octree)");
   }
 
-  const Grid& grid() const override { return grid_; }
   void write_header(syntax::WriteIO& io) override { syntax::describe(io, header_); }
+  std::vector<CodecStatistic> statistics() const override { return {{"matrices", matrices_}, {"vertices coded directly", direct_vertices_}}; }
 
-  std::vector<uint8_t> encode_frame(std::span<const Vec3> frame, size_t frame_index, std::vector<IntPoint3>& positions,
-                                    Encode3dResult& statistics) override {
+ private:
+  void encode_frame(syntax::WriteIO& io, std::span<const Vec3> frame, size_t frame_index, std::vector<IntPoint3>& positions) override {
+    const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane()};
+    if (io.trace()) {
+      syntax::EntropyWriteIO<true> cells(place, io.trace());
+      encode_cells(io, cells, frame, frame_index, positions);
+    } else {
+      syntax::EntropyWriteIO<false> cells(place);
+      encode_cells(io, cells, frame, frame_index, positions);
+    }
+  }
+
+  // The cells through `cells`, then the frame's data into `io`.
+  template <class CellIO>
+  void encode_cells(syntax::WriteIO& io, CellIO& cells, std::span<const Vec3> frame, size_t frame_index, std::vector<IntPoint3>& positions) {
     quantize_frame(grid_, frame, frame_index, next_);  // checks that the frame fits the grid
     target_.resize(frame.size());
     const double step = grid_.step[0];
@@ -78,7 +66,6 @@ class AffineOctreeEncoder final : public CodecEncoder3d {
     while (shift < kMaxDirectShift && std::ldexp(std::sqrt(3.0) / 2, static_cast<int>(shift) + 1) <= limit_ / 4) ++shift;
     shift_ = static_cast<int>(shift);
 
-    CellWriter writer;
     AffineCellCoder coder(header_);
     partition_.walk(positions, cube_, [&](const OctreeCell& cell) {
       const size_t n = cell.vertices.size();
@@ -94,25 +81,27 @@ class AffineOctreeEncoder final : public CodecEncoder3d {
         }
       }
       if (cell_.direct) direct_motion(cell, positions);
-      coder.describe(writer, cell.depth, n, cell_);
+      coder.describe(cells, cell.depth, n, cell_);
       if (cell_.split) return true;
       if (cell_.direct) {
-        statistics.direct_vertices += n;
+        direct_vertices_ += n;
         for (size_t k = 0; k < n; ++k)
           for (int axis = 0; axis < 3; ++axis)
             next_[cell.vertices[k]][axis] = static_cast<int32_t>(positions[cell.vertices[k]][axis] + (int64_t{cell_.motion[k][axis]} << shift_));
       } else {
-        ++statistics.matrices;
+        ++matrices_;
         for (size_t k = 0; k < n; ++k)
           for (int axis = 0; axis < 3; ++axis) next_[cell.vertices[k]][axis] = static_cast<int32_t>(fitted_[k][axis]);
       }
       return false;
     });
     positions.swap(next_);
-    return writer.finish(shift);
+    const std::vector<uint8_t> bins = cells.finish_bins(), raw = cells.finish_raw();
+    AffineFrame data{shift, static_cast<uint32_t>(bins.size()), bins, raw};
+    syntax::describe(io, data);
+    if (io.trace()) io.trace()->stream() << cells.trace_text();
   }
 
- private:
   // The least-squares affine map of the cell (in cell-local coordinates, as
   // a deviation from identity, so that a singular cell's pseudo-inverse
   // keeps identity along the directions it cannot see), quantized into
@@ -202,7 +191,6 @@ class AffineOctreeEncoder final : public CodecEncoder3d {
       }
   }
 
-  Grid grid_;
   AffineOctreeHeader header_;
   double max_error_;
   OctreePartition partition_;
@@ -213,12 +201,23 @@ class AffineOctreeEncoder final : public CodecEncoder3d {
   std::vector<std::array<double, 3>> target_;
   std::vector<std::array<int64_t, 3>> fitted_;
   std::vector<IntPoint3> next_;
+  uint64_t matrices_ = 0;         // affine leaves in all frames
+  uint64_t direct_vertices_ = 0;  // vertices coded by direct motion
 };
 
 }  // namespace
 
-std::unique_ptr<CodecEncoder3d> make_affine_octree_encoder(const MeshSequence& sequence, const Encode3dOptions& options) {
-  return std::make_unique<AffineOctreeEncoder>(sequence, options);
+std::vector<CodecOption> affine_octree_options() {
+  return {bits_option("quantization bits per coordinate"),
+          {"me", "affine-octree: ME, the largest vertex error of an affine cell, in % of the root cube", OptionKind::kNumber, "1", 0.001, 100},
+          {"matrix-bits", "affine-octree: k, bits per matrix element", OptionKind::kInteger, "16", 4, 24},
+          {"matrix-range-log2", "affine-octree: matrix elements lie in [−2^(r−1), 2^(r−1))", OptionKind::kInteger, "2", 1, 8},
+          {"max-depth", "affine-octree: the deepest octree level", OptionKind::kInteger, "16", 1, kMaxOctreeDepth},
+          intra_period_option()};
+}
+
+std::unique_ptr<CodecEncoder3d> make_affine_octree_encoder(const MeshSequence& sequence, const CodecSettings& settings) {
+  return std::make_unique<AffineOctreeEncoder>(sequence, settings);
 }
 
 }  // namespace m4mesh

@@ -13,12 +13,9 @@
 
 namespace m4mesh {
 
-inline constexpr uint32_t kCodecBfs3d = 1;
-inline constexpr uint32_t kCodecAffineOctree = 2;
-inline constexpr uint32_t kCodecLcc = 3;
-inline constexpr uint32_t kCodecCpcaWpt = 4;
-
 enum class UnitType : uint32_t { kBaseMesh = 0, kFrame = 1, kRefinement = 2, kFrameHash = 3 };
+inline constexpr uint32_t kUnitTypes = 4;
+const char* unit_type_name(UnitType type);
 
 struct ObjectHeader {
   uint32_t version = 1;
@@ -33,10 +30,20 @@ struct ObjectHeader {
 struct UnitHeader {
   uint32_t unit_type = 0;
   uint32_t frame_index = 0;
+
+  UnitType type() const { return static_cast<UnitType>(unit_type); }
 };
 
-// unit_type u(8) and frame_index u(32).
-inline constexpr size_t kUnitHeaderBytes = 5;
+// A base mesh unit's data: a Draco mesh (docs/container3d.md).
+struct BaseMeshData {
+  std::span<const uint8_t> draco_mesh;
+};
+
+// A frame hash unit's data: the MD5 of the decoded frame's canonical bytes.
+struct FrameHash {
+  std::span<const uint8_t> md5;
+};
+inline constexpr uint64_t kFrameMd5Bytes = 16;
 
 // Limits m4mesh enforces before allocating (docs/container3d.md).
 inline constexpr uint32_t kMaxVertices3d = 1u << 24;
@@ -48,9 +55,7 @@ template <class IO>
 void describe(IO& io, ObjectHeader& h) {
   io.field("version", 8, h.version);
   io.require(h.version == 1, ErrorKind::kReservedValue, "version", "only version 1 is defined");
-  io.field("codec_id", 8, h.codec_id);
-  io.require(h.codec_id >= kCodecBfs3d && h.codec_id <= kCodecCpcaWpt, ErrorKind::kReservedValue, "codec_id",
-             "unknown codec");
+  io.field("codec_id", 8, h.codec_id);  // checked against the registry (codecs3d/registry.h)
   io.field_in("vertex_count", 32, h.vertex_count, 3, kMaxVertices3d);
   io.field_in("face_count", 32, h.face_count, 1, kMaxFaces3d);
   io.field("frame_count", 32, h.frame_count);
@@ -60,8 +65,27 @@ void describe(IO& io, ObjectHeader& h) {
 
 template <class IO>
 void describe(IO& io, UnitHeader& h) {
-  io.field_in("unit_type", 8, h.unit_type, 0, 3);
+  io.field_in("unit_type", 8, h.unit_type, 0, kUnitTypes - 1);
   io.field("frame_index", 32, h.frame_index);
+}
+
+template <class IO>
+void describe(IO& io, BaseMeshData& b) {
+  io.tail_section("draco_mesh", b.draco_mesh);
+}
+
+template <class IO>
+void describe(IO& io, FrameHash& h) {
+  io.require_remaining_bytes("frame_md5", kFrameMd5Bytes);
+  io.section("frame_md5", kFrameMd5Bytes, h.md5);
+}
+
+// The bit offset of the unit's data after its start code and header.
+inline uint64_t unit_data_offset() {
+  CountIO count;
+  UnitHeader header;
+  describe(count, header);
+  return 32 + count.bits();
 }
 
 }  // namespace syntax

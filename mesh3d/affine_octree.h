@@ -1,5 +1,5 @@
-// The normative geometry of the Affine-Octree codec (docs/codec_affine_octree.md),
-// shared by its encoder and decoder: the root cube of the previous decoded
+// The normative process of the Affine-Octree codec (codec_id 2,
+// docs/codec_affine_octree.md), shared by its encoder and decoder: the root cube of the previous decoded
 // frame, the octree cells its vertices fall into, and the integer affine
 // reconstruction. Integers only, so every platform finds the same cells.
 #pragma once
@@ -9,12 +9,10 @@
 #include <span>
 #include <vector>
 
-#include "mesh3d/draco_base.h"
+#include "common/point3.h"
+#include "syntax/mesh3d/affine_octree.h"
 
 namespace m4mesh {
-
-inline constexpr int kAffineElements = 12;  // a 3 × 4 matrix, row-major; column 3 is the translation
-using AffineMatrix = std::array<int32_t, kAffineElements>;
 
 // The tight bounding cube of a frame in grid units: the per-axis minimum and
 // the largest extent (at least 1) as the side.

@@ -1,9 +1,14 @@
-#include "syntax/container.h"
+#include "syntax/mesh3d/container.h"
 
 #include "bitstream/emulation.h"
 #include "bitstream/start_codes.h"
 
 namespace m4mesh {
+
+const char* unit_type_name(UnitType type) {
+  static const char* const kNames[kUnitTypes] = {"base mesh", "frame", "refinement", "frame hash"};
+  return static_cast<uint32_t>(type) < kUnitTypes ? kNames[static_cast<uint32_t>(type)] : "unknown";
+}
 
 namespace {
 

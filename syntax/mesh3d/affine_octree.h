@@ -1,6 +1,7 @@
 // Affine-Octree (codec_id 2) syntax (docs/codec_affine_octree.md): the codec
-// header, the frame data's fixed fields, and the syntax of one octree cell,
-// described once for the bin writer and the bin reader.
+// header, a frame unit's data (fixed fields, a bin section and a raw bit
+// section) and the syntax of one octree cell, each described once for
+// reading, writing, counting and tracing.
 #pragma once
 
 #include <algorithm>
@@ -8,13 +9,16 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <vector>
 
-#include "mesh3d/octree.h"
 #include "syntax/io.h"
-#include "syntax/residual_coder.h"
+#include "syntax/mesh3d/residual.h"
 
 namespace m4mesh {
+
+inline constexpr int kAffineElements = 12;  // a 3 × 4 matrix, row-major; column 3 is the translation
+using AffineMatrix = std::array<int32_t, kAffineElements>;
 
 struct AffineOctreeHeader {
   uint32_t bits = 12;                // quantization bits of the grid over the first frame's box
@@ -41,19 +45,26 @@ inline constexpr int kAffineChannels = kAffineElements + 3;
 // A cell with at most this many vertices codes their motion directly.
 inline constexpr size_t kMaxDirectCellVertices = 4;
 
-// The fields that open a frame unit's data; the bins and the raw bits follow.
-struct AffineFrameHeader {
+// A frame unit's data: two fields, the bins, the raw bits to the end.
+struct AffineFrame {
   uint32_t direct_shift = 0;
   uint32_t arithmetic_bytes = 0;
+  std::span<const uint8_t> bins;
+  std::span<const uint8_t> raw;
 };
-inline constexpr size_t kAffineFrameHeaderBytes = 5;
 
 namespace syntax {
 
+inline constexpr ResidualNames kMatrixResidual{"matrix_nonzero", "matrix_prefix", "matrix_sign_suffix", "matrix_residual"};
+inline constexpr ResidualNames kDirectMotion{"direct_nonzero", "direct_prefix", "direct_sign_suffix", "direct_motion"};
+
 template <class IO>
-void describe(IO& io, AffineFrameHeader& h) {
-  io.field_in("direct_shift", 8, h.direct_shift, 0, kMaxDirectShift);
-  io.field("arithmetic_bytes", 32, h.arithmetic_bytes);
+void describe(IO& io, AffineFrame& f) {
+  io.field_in("direct_shift", 8, f.direct_shift, 0, kMaxDirectShift);
+  io.field("arithmetic_bytes", 32, f.arithmetic_bytes);
+  io.require_length("arithmetic_bytes", f.arithmetic_bytes);
+  io.section("bins", f.arithmetic_bytes, f.bins);
+  io.tail_section("raw", f.raw);
 }
 
 template <class IO>
@@ -93,19 +104,18 @@ class AffineCellCoder {
     for (int i = 0; i < 3; ++i) identity_[static_cast<size_t>(5 * i)] = int32_t{1} << header.fraction_bits();
   }
 
-  // The syntax of a cell with `count` ≥ 1 vertices at `depth`. IO provides
-  // bin(BinContext&, bool&, element), residual(ResidualCoder&, channel, int32_t&, element)
-  // and fail(kind, element, message).
+  // The syntax of a cell with `count` ≥ 1 vertices at `depth`, through an
+  // IO of syntax/mesh3d/entropy_io.h.
   template <class IO>
   void describe(IO& io, int depth, size_t count, AffineCell& cell) {
     const int context = std::min(depth, kDepthContexts - 1);
     if (count > kMaxDirectCellVertices) {
       if (depth < static_cast<int>(header_.max_depth))
-        io.bin(split_[context], cell.split, "split_flag");
+        io.bin("split_flag", split_[context], context, cell.split);
       else
         cell.split = false;
       if (cell.split) return;
-      io.bin(leaf_[context], cell.direct, "direct_flag");
+      io.bin("direct_flag", leaf_[context], context, cell.direct);
     } else {
       cell.split = false;
       cell.direct = true;
@@ -114,7 +124,7 @@ class AffineCellCoder {
       for (int e = 0; e < kAffineElements; ++e) {
         const size_t element = static_cast<size_t>(e);
         int32_t residual = cell.matrix[element] - identity_[element];
-        io.residual(residuals_, e, residual, "matrix_residual");
+        residuals_.describe(io, e, residual, syntax::kMatrixResidual);
         const int64_t value = int64_t{identity_[element]} + residual;
         if (value < header_.matrix_min() || value > header_.matrix_max())
           io.fail(ErrorKind::kOutOfRange, "matrix_residual", "a matrix element outside matrix_bits");
@@ -124,14 +134,14 @@ class AffineCellCoder {
     }
     cell.motion.resize(count);
     for (std::array<int32_t, 3>& motion : cell.motion)
-      for (int axis = 0; axis < 3; ++axis) io.residual(residuals_, kDirectChannel + axis, motion[static_cast<size_t>(axis)], "direct_motion");
+      for (int axis = 0; axis < 3; ++axis) residuals_.describe(io, kDirectChannel + axis, motion[static_cast<size_t>(axis)], syntax::kDirectMotion);
   }
 
  private:
   const AffineOctreeHeader& header_;
   BinContext split_[kDepthContexts];
   BinContext leaf_[kDepthContexts];
-  ResidualCoder<kAffineChannels> residuals_;
+  syntax::ResidualCoder<kAffineChannels> residuals_;
   AffineMatrix identity_;
 };
 

@@ -1,4 +1,4 @@
-#include "mesh3d/octree.h"
+#include "mesh3d/affine_octree.h"
 
 #include <algorithm>
 

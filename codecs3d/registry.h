@@ -1,0 +1,44 @@
+// The table of 3D codecs: one row per codec_id, with everything the rest
+// of m4mesh needs to know of a codec. The container decoder and encoder,
+// `info`, the command line's options and the conformance tooling read it;
+// nothing else compares codec ids. Adding a codec: docs/architecture.md.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "decoder/mesh3d/codec.h"
+#include "encoder/mesh3d/codec.h"
+#include "encoder/mesh3d/options.h"
+
+namespace m4mesh {
+
+struct Codec3d {
+  uint32_t id = 0;  // codec_id
+  std::string name;
+  std::string summary;
+  std::string doc;  // its specification, under docs/
+  // The unit types it uses besides frame hash units (any other is an error).
+  std::vector<UnitType> unit_types;
+  std::vector<CodecOption> options;
+  // Reads the codec header (after the object header) and makes the
+  // decoder; empty for a registered codec m4mesh does not implement.
+  std::function<std::unique_ptr<CodecDecoder3d>(const ObjectHeader&, syntax::ReadIO&)> make_decoder;
+  std::function<std::unique_ptr<CodecEncoder3d>(const MeshSequence&, const CodecSettings&)> make_encoder;
+
+  bool uses(UnitType type) const;
+};
+
+std::span<const Codec3d> codecs3d();
+// nullptr for an unregistered id.
+const Codec3d* find_codec3d(uint32_t id);
+// A usage error lists the registered names.
+const Codec3d& codec3d_by_name(const std::string& name);
+// Adds a row at run time (a codec of a test); its id must be free.
+void register_codec3d(Codec3d codec);
+
+}  // namespace m4mesh

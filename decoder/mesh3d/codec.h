@@ -1,0 +1,53 @@
+// The decoding half of a 3D codec, unit by unit. The container decoder
+// (container_decoder.h) splits the stream, reads each unit's header and
+// hands the codec every unit but hash units; the codec says which frames
+// that unit (re)decoded and gives their positions. Frame-by-frame,
+// out-of-order, progressive (every unit refines every frame) and
+// floating-point codecs all fit this interface.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "common/point3.h"
+#include "mesh/topology.h"
+#include "mesh3d/draco_base.h"
+#include "syntax/io.h"
+#include "syntax/mesh3d/container.h"
+
+namespace m4mesh {
+
+class CodecDecoder3d {
+ public:
+  virtual ~CodecDecoder3d() = default;
+
+  // Decodes a unit's data: `io` reads the unit payload from just after its
+  // header, with the frame set for errors (offsets count from the payload's
+  // start; the container adds the unit's). Appends every frame whose
+  // decoded state the unit set or changed to `decoded`.
+  virtual void decode_unit(const UnitHeader& unit, syntax::ReadIO& io, std::vector<uint32_t>& decoded) = 0;
+
+  // The connectivity, known after the first unit.
+  virtual const std::vector<Triangle>& faces() const = 0;
+  // A frame's decoded positions. Valid for the frames the last unit
+  // reported; with holds_all_frames(), for every frame reported so far.
+  virtual void frame(uint32_t index, std::span<Float3> positions) const = 0;
+  // Whether the codec keeps every frame (a progressive codec, whose units
+  // refine frames already decoded); otherwise the container copies each
+  // reported frame out before the next unit.
+  virtual bool holds_all_frames() const { return false; }
+
+  // Symbols of arithmetic-coded sections are traced here when set.
+  void set_trace(Trace* trace) { trace_ = trace; }
+
+ protected:
+  Trace* trace_ = nullptr;
+};
+
+// A base mesh unit's data: the faces and the first frame's grid positions,
+// checked against the object header's counts (docs/container3d.md).
+BaseMesh read_base_mesh(syntax::ReadIO& io, const ObjectHeader& header);
+
+}  // namespace m4mesh

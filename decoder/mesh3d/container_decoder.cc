@@ -1,0 +1,227 @@
+#include "decoder/mesh3d/container_decoder.h"
+
+#include <algorithm>
+
+#include "bitstream/bit_reader.h"
+#include "codecs3d/registry.h"
+#include "mesh3d/quantization.h"
+
+namespace m4mesh {
+
+namespace {
+
+// An error inside a payload, moved to the stream: its offset counted from
+// the payload start becomes one from the stream start (the payload follows
+// a 32-bit start code); `frame` is used when the error names none.
+Error located(const Error& e, uint64_t start_code_byte, int64_t frame) {
+  const int64_t start = static_cast<int64_t>(start_code_byte * 8);
+  const int64_t at = e.bit_offset() == kNoOffset ? start : start + 32 + e.bit_offset();
+  return Error(e.kind(), e.element(), e.plane() == kNoPlane ? frame : e.plane(), at, e.message());
+}
+
+}  // namespace
+
+Mesh3dDecoder::Mesh3dDecoder(std::span<const uint8_t> stream, const Decode3dOptions& options)
+    : parts_(split_container(stream)), options_(options) {
+  BitReader reader(parts_.object_payload.data(), parts_.object_payload.size());
+  syntax::ReadIO io(reader, options_.trace);
+  if (options_.trace) options_.trace->begin_payload("object", "mesh3d_object_start_code", kMesh3dObjectStartCode);
+  try {
+    syntax::describe(io, header_);
+    codec_row_ = find_codec3d(header_.codec_id);
+    if (!codec_row_) throw Error(ErrorKind::kReservedValue, "codec_id", kNoPlane, 8, "unknown codec " + std::to_string(header_.codec_id));
+    if (!codec_row_->make_decoder)
+      throw Error(ErrorKind::kLimit, "codec_id", kNoPlane, 8,
+                  "codec " + std::to_string(header_.codec_id) + " (" + codec_row_->name + ") is registered but this decoder does not implement it yet");
+    codec_ = codec_row_->make_decoder(header_, io);
+    codec_->set_trace(options_.trace);
+  } catch (const Error& e) {
+    throw located(e, 0, kNoPlane);
+  }
+  decoded_.resize(header_.frame_count);
+}
+
+void Mesh3dDecoder::fail(ErrorKind kind, size_t index, int64_t frame, const char* element, const std::string& message) const {
+  throw Error(kind, element, frame, static_cast<int64_t>(parts_.units[index].byte_offset * 8), message);
+}
+
+UnitHeader Mesh3dDecoder::read_unit_header(size_t index, bool traced) {
+  const ContainerUnit& unit = parts_.units[index];
+  BitReader reader(unit.payload.data(), unit.payload.size());
+  syntax::ReadIO io(reader, traced ? options_.trace : nullptr);
+  const int64_t frame = unit_.frames.empty() ? 0 : unit_.frames.back() + int64_t{1};
+  io.set_plane(frame);
+  UnitHeader header;
+  try {
+    syntax::describe(io, header);
+  } catch (const Error& e) {
+    throw located(e, unit.byte_offset, frame);
+  }
+  return header;
+}
+
+void Mesh3dDecoder::decode_unit(size_t index) {
+  const ContainerUnit& unit = parts_.units[index];
+  unit_.frames.clear();
+  UnitHeader header = read_unit_header(index, false);
+  if (options_.trace) {
+    options_.trace->begin_payload("unit " + std::to_string(index) + " frame " + std::to_string(header.frame_index), "mesh3d_unit_start_code",
+                                  kMesh3dUnitStartCode);
+    read_unit_header(index, true);
+  }
+  const int64_t frame = header.frame_index;
+  if (index == 0 && (header.type() != UnitType::kBaseMesh || header.frame_index != 0))
+    fail(ErrorKind::kStructure, index, 0, "unit_type", "the first unit must be the base mesh of frame 0");
+  if (header.type() == UnitType::kFrameHash)
+    fail(ErrorKind::kStructure, index, frame, "unit_type", "a hash unit for a frame the unit before it did not decode");
+  if (!codec_row_->uses(header.type()))
+    fail(ErrorKind::kStructure, index, frame, "unit_type",
+         std::string("unit_type ") + std::to_string(header.unit_type) + " (" + unit_type_name(header.type()) + ") is not used by " +
+             codec_row_->name);
+  if (header_.frame_count != 0 && header.frame_index >= header_.frame_count)
+    fail(ErrorKind::kStructure, index, frame, "frame_index", "more frames than the object header's frame_count");
+
+  BitReader reader(unit.payload.data(), unit.payload.size());
+  reader.seek(syntax::unit_data_offset() - 32);
+  syntax::ReadIO io(reader, options_.trace);
+  io.set_plane(frame);
+  unit_.index = index;
+  unit_.header = header;
+  unit_.byte_offset = unit.byte_offset;
+  try {
+    codec_->decode_unit(header, io, unit_.frames);
+  } catch (const Error& e) {
+    throw located(e, unit.byte_offset, frame);
+  }
+  for (uint32_t f : unit_.frames) {
+    if (f >= decoded_.size()) decoded_.resize(f + size_t{1});
+    decoded_[f] = true;
+  }
+}
+
+void Mesh3dDecoder::check_hash(size_t index) {
+  const ContainerUnit& unit = parts_.units[index];
+  const UnitHeader header = read_unit_header(index, false);
+  if (options_.trace) {
+    options_.trace->begin_payload("unit " + std::to_string(index) + " frame " + std::to_string(header.frame_index), "mesh3d_unit_start_code",
+                                  kMesh3dUnitStartCode);
+    read_unit_header(index, true);
+  }
+  const uint32_t frame = header.frame_index;
+  const bool covered = codec_->holds_all_frames() ? frame < decoded_.size() && decoded_[frame]
+                                                  : std::find(unit_.frames.begin(), unit_.frames.end(), frame) != unit_.frames.end();
+  if (!covered) fail(ErrorKind::kStructure, index, frame, "frame_index", "a hash unit for a frame the unit before it did not decode");
+  BitReader reader(unit.payload.data(), unit.payload.size());
+  reader.seek(syntax::unit_data_offset() - 32);
+  syntax::ReadIO io(reader, options_.trace);
+  io.set_plane(frame);
+  FrameHash hash;
+  try {
+    syntax::describe(io, hash);
+  } catch (const Error& e) {
+    throw located(e, unit.byte_offset, frame);
+  }
+  if (!options_.verify) return;
+  std::vector<Float3> positions(header_.vertex_count);
+  if (auto it = ready_.find(frame); it != ready_.end())
+    positions = it->second;
+  else
+    codec_->frame(frame, positions);
+  static const char kHex[] = "0123456789abcdef";
+  std::string expected;
+  for (uint8_t b : hash.md5) {
+    expected += kHex[b >> 4];
+    expected += kHex[b & 15];
+  }
+  hash_results_[frame] = expected == frame_md5(positions);
+}
+
+void Mesh3dDecoder::finish() {
+  if (finished_) return;
+  finished_ = true;
+  if (parts_.units.empty()) throw Error(ErrorKind::kTruncated, "base_mesh", 0, kNoOffset, "the stream has no base mesh unit");
+  for (uint32_t f = 0; f < header_.frame_count; ++f)
+    if (!decoded_[f])
+      throw Error(ErrorKind::kTruncated, "mesh3d_unit_start_code", f, kNoOffset,
+                  "the stream ends before frame " + std::to_string(f) + " of " + std::to_string(header_.frame_count) + " is decoded");
+  if (options_.trace && parts_.has_end_code) options_.trace->begin_payload("end", "mesh_object_end_code", kMeshObjectEndCode);
+}
+
+bool Mesh3dDecoder::next_unit() {
+  if (next_unit_ >= parts_.units.size()) {
+    finish();
+    return false;
+  }
+  const size_t index = next_unit_++;
+  decode_unit(index);
+  if (!codec_->holds_all_frames()) {
+    for (uint32_t f : unit_.frames) {
+      std::vector<Float3>& slot = ready_[f];
+      if (slot.empty() && !spare_.empty()) {
+        slot = std::move(spare_.back());
+        spare_.pop_back();
+      }
+      slot.resize(header_.vertex_count);
+      codec_->frame(f, slot);
+    }
+  }
+  while (next_unit_ < parts_.units.size() && !parts_.units[next_unit_].payload.empty() &&
+         parts_.units[next_unit_].payload[0] == static_cast<uint8_t>(UnitType::kFrameHash))
+    check_hash(next_unit_++);
+  return true;
+}
+
+void Mesh3dDecoder::resume() {
+  for (uint32_t f : unit_.frames) {
+    if (f >= decoded_.size()) decoded_.resize(f + size_t{1});
+    decoded_[f] = true;
+  }
+  while (next_unit_ < parts_.units.size() && !parts_.units[next_unit_].payload.empty() &&
+         parts_.units[next_unit_].payload[0] == static_cast<uint8_t>(UnitType::kFrameHash))
+    ++next_unit_;
+}
+
+std::optional<bool> Mesh3dDecoder::hash_result(uint32_t frame) const {
+  auto it = hash_results_.find(frame);
+  if (it == hash_results_.end()) return std::nullopt;
+  return it->second;
+}
+
+bool Mesh3dDecoder::next_frame() {
+  for (;;) {
+    if (auto it = ready_.find(next_display_); it != ready_.end()) {
+      spare_.push_back(std::move(positions_));
+      positions_ = std::move(it->second);
+      ready_.erase(it);
+      frame_index_ = next_display_++;
+      return true;
+    }
+    if (!next_unit()) {
+      if (!codec_->holds_all_frames() || next_display_ >= decoded_.size()) return false;
+      positions_.resize(header_.vertex_count);
+      codec_->frame(next_display_, positions_);
+      frame_index_ = next_display_++;
+      return true;
+    }
+  }
+}
+
+MeshSequence decode_mesh3d(std::span<const uint8_t> stream) {
+  Decode3dOptions options;
+  options.verify = true;
+  Mesh3dDecoder decoder(stream, options);
+  MeshSequence s;
+  s.vertex_count = decoder.header().vertex_count;
+  while (decoder.next_frame()) {
+    if (decoder.hash_matches() == false)
+      throw Error(ErrorKind::kStructure, "frame_md5", decoder.frame_index(), kNoOffset, "the decoded frame does not match its hash");
+    std::vector<Vec3> frame;
+    frame.reserve(decoder.positions().size());
+    for (const Float3& p : decoder.positions()) frame.push_back({p[0], p[1], p[2]});
+    s.frames.push_back(std::move(frame));
+  }
+  s.faces = decoder.faces();
+  return s;
+}
+
+}  // namespace m4mesh

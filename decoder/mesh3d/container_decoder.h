@@ -1,0 +1,105 @@
+// The decoder of §12 containers. It splits the stream, reads the object
+// header, finds the codec in the registry (codecs3d/registry.h), enforces
+// the container's rules on units and hands every unit but hash units to
+// the codec; hash units are checked against the frames they cover.
+// Two ways to consume it: unit by unit (next_unit(), then frame() for the
+// frames the unit decoded), or frame by frame in display order
+// (next_frame()). Use one of them per decoder.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "decoder/mesh3d/codec.h"
+#include "mesh3d/sequence.h"
+#include "syntax/mesh3d/container.h"
+#include "syntax/trace.h"
+
+namespace m4mesh {
+
+struct Codec3d;
+
+struct Decode3dOptions {
+  bool verify = false;    // compare every hashed frame with its hash unit
+  Trace* trace = nullptr;  // print every element read
+};
+
+// What the last next_unit() decoded.
+struct DecodedUnit {
+  size_t index = 0;  // among the stream's units, hash units included
+  UnitHeader header;
+  uint64_t byte_offset = 0;      // of its start code
+  std::vector<uint32_t> frames;  // frames it (re)decoded
+};
+
+class Mesh3dDecoder {
+ public:
+  // The stream is not copied: it must outlive the decoder.
+  explicit Mesh3dDecoder(std::span<const uint8_t> stream, const Decode3dOptions& options = {});
+  Mesh3dDecoder(std::vector<uint8_t>&&, const Decode3dOptions& = {}) = delete;
+
+  const ObjectHeader& header() const { return header_; }
+  const Codec3d& codec() const { return *codec_row_; }
+  const std::vector<Triangle>& faces() const { return codec_->faces(); }
+  bool has_end_code() const { return parts_.has_end_code; }
+
+  // Decodes the next unit that is not a hash unit, then the hash units
+  // that follow it; false after the last (when the stream's frames are
+  // all decoded, else an error).
+  bool next_unit();
+  const DecodedUnit& unit() const { return unit_; }
+  // After next_unit() failed: counts the frames the codec took the failed
+  // unit for as consumed and skips its hash units, so that next_unit() carries on with the next
+  // unit from the state the failed one left (`m4mesh check`).
+  void resume();
+  // Units taken so far, hash units included (after an error in a unit, the
+  // failed one is the last taken).
+  size_t units_taken() const { return next_unit_; }
+  // A frame the last unit decoded (or, for a codec that holds every
+  // frame, any frame decoded so far).
+  void frame(uint32_t index, std::span<Float3> positions) const { codec_->frame(index, positions); }
+  // Each frame's last hash check: absent when no hash unit covered it
+  // (or verification is off), else whether it matched.
+  std::optional<bool> hash_result(uint32_t frame) const;
+
+  // Decodes the next frame in display order, once no later unit can
+  // change it; false after the last.
+  bool next_frame();
+  uint32_t frame_index() const { return frame_index_; }
+  const std::vector<Float3>& positions() const { return positions_; }
+  std::optional<bool> hash_matches() const { return hash_result(frame_index_); }
+
+ private:
+  UnitHeader read_unit_header(size_t index, bool traced);
+  void decode_unit(size_t index);
+  void check_hash(size_t index);
+  void finish();
+  [[noreturn]] void fail(ErrorKind kind, size_t index, int64_t frame, const char* element, const std::string& message) const;
+
+  ContainerParts parts_;
+  Decode3dOptions options_;
+  ObjectHeader header_;
+  const Codec3d* codec_row_ = nullptr;
+  std::unique_ptr<CodecDecoder3d> codec_;
+  size_t next_unit_ = 0;
+  DecodedUnit unit_;
+  std::vector<bool> decoded_;  // frames decoded at least once
+  std::map<uint32_t, bool> hash_results_;
+  // Display order: frames copied out of the codec until their turn.
+  std::map<uint32_t, std::vector<Float3>> ready_;
+  std::vector<std::vector<Float3>> spare_;
+  uint32_t next_display_ = 0;
+  uint32_t frame_index_ = 0;
+  std::vector<Float3> positions_;
+  bool finished_ = false;
+};
+
+// The whole sequence (tests, tools); fails on a hash mismatch.
+MeshSequence decode_mesh3d(std::span<const uint8_t> stream);
+
+}  // namespace m4mesh

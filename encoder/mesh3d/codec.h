@@ -1,0 +1,51 @@
+// The encoding half of a 3D codec, unit by unit, mirroring
+// decoder/mesh3d/codec.h: the codec sees the whole sequence and emits its
+// units through a UnitSink, which the container encoder
+// (container_encoder.h) implements: it writes the unit headers, the hash
+// units of the frames the codec reports decoded, and the trace.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "common/point3.h"
+#include "mesh3d/sequence.h"
+#include "syntax/io.h"
+#include "syntax/mesh3d/container.h"
+
+namespace m4mesh {
+
+class UnitSink {
+ public:
+  virtual ~UnitSink() = default;
+  // Writes a unit: its header, then its data through `write`, whose io
+  // counts offsets from the payload's start and traces in the unit's place.
+  virtual void unit(UnitType type, uint32_t frame, const std::function<void(syntax::WriteIO&)>& write) = 0;
+  // The decoder's state of a frame after the last unit (the closed loop):
+  // hashed when the stream carries hash units.
+  virtual void decoded(uint32_t frame, std::span<const Float3> positions) = 0;
+  virtual void progress(size_t done, size_t total) = 0;
+};
+
+// A codec's own figure for the summary ("matrices", 1234).
+using CodecStatistic = std::pair<std::string, uint64_t>;
+
+class CodecEncoder3d {
+ public:
+  virtual ~CodecEncoder3d() = default;
+  // The codec header after the object header.
+  virtual void write_header(syntax::WriteIO& io) = 0;
+  // Emits every unit of the sequence.
+  virtual void encode(const MeshSequence& sequence, UnitSink& sink) = 0;
+  virtual std::vector<CodecStatistic> statistics() const { return {}; }
+};
+
+// A base mesh unit's data: the faces and grid positions as a Draco mesh.
+void write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions);
+
+}  // namespace m4mesh

@@ -1,0 +1,96 @@
+#include "encoder/mesh3d/container_encoder.h"
+
+#include "codecs3d/registry.h"
+#include "common/error.h"
+#include "mesh3d/draco_base.h"
+#include "mesh3d/quantization.h"
+
+namespace m4mesh {
+
+namespace {
+
+Error encode_error(const std::string& message) { return Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, message); }
+
+class ContainerSink final : public UnitSink {
+ public:
+  ContainerSink(ContainerWriter& container, const Encode3dOptions& options, Encode3dResult& result)
+      : container_(container), options_(options), result_(result) {}
+
+  void unit(UnitType type, uint32_t frame, const std::function<void(syntax::WriteIO&)>& write) override {
+    if (options_.trace)
+      options_.trace->begin_payload("unit " + std::to_string(units_) + " frame " + std::to_string(frame), "mesh3d_unit_start_code",
+                                    kMesh3dUnitStartCode);
+    BitWriter writer;
+    syntax::WriteIO io(writer, options_.trace);
+    io.set_plane(frame);
+    UnitHeader header{static_cast<uint32_t>(type), frame};
+    syntax::describe(io, header);
+    write(io);
+    const size_t before = container_.size();
+    container_.unit(writer.take_bytes());
+    result_.unit_bytes[static_cast<uint32_t>(type)] += container_.size() - before;
+    ++units_;
+  }
+
+  void decoded(uint32_t frame, std::span<const Float3> positions) override {
+    if (!options_.hashes) return;
+    const std::string hex = frame_md5(positions);
+    std::vector<uint8_t> digest;
+    for (size_t i = 0; i < hex.size(); i += 2) digest.push_back(static_cast<uint8_t>(std::stoul(hex.substr(i, 2), nullptr, 16)));
+    unit(UnitType::kFrameHash, frame, [&](syntax::WriteIO& io) {
+      FrameHash hash{digest};
+      syntax::describe(io, hash);
+    });
+  }
+
+  void progress(size_t done, size_t total) override {
+    if (options_.progress) options_.progress(done, total);
+  }
+
+ private:
+  ContainerWriter& container_;
+  const Encode3dOptions& options_;
+  Encode3dResult& result_;
+  uint64_t units_ = 0;
+};
+
+}  // namespace
+
+void write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions) {
+  const std::vector<uint8_t> draco = encode_base_mesh(faces, positions);
+  BaseMeshData data{draco};
+  syntax::describe(io, data);
+}
+
+Encode3dResult encode_mesh3d(const MeshSequence& s, const Encode3dOptions& options) {
+  if (s.frames.empty() || s.vertex_count < 3 || s.faces.empty()) throw encode_error("a sequence needs frames, vertices and faces");
+  if (s.vertex_count > kMaxVertices3d || s.faces.size() > kMaxFaces3d) throw encode_error("the mesh exceeds the container's limits");
+  const Codec3d& codec = codec3d_by_name(options.codec);
+  if (!codec.make_encoder)
+    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "codec " + codec.name + " is registered but not implemented yet");
+  const CodecSettings settings(codec.name, codec.options, options.codec_options);
+  std::unique_ptr<CodecEncoder3d> encoder = codec.make_encoder(s, settings);
+
+  ContainerWriter container;
+  Encode3dResult result;
+  {
+    if (options.trace) options.trace->begin_payload("object", "mesh3d_object_start_code", kMesh3dObjectStartCode);
+    BitWriter writer;
+    syntax::WriteIO io(writer, options.trace);
+    ObjectHeader header{1, codec.id, s.vertex_count, static_cast<uint32_t>(s.faces.size()), static_cast<uint32_t>(s.frames.size()),
+                        options.frame_rate_num, options.frame_rate_den};
+    syntax::describe(io, header);
+    encoder->write_header(io);
+    container.object(writer.take_bytes());
+  }
+  ContainerSink sink(container, options, result);
+  encoder->encode(s, sink);
+  if (options.trace) options.trace->begin_payload("end", "mesh_object_end_code", kMeshObjectEndCode);
+  result.stream = container.finish();
+  result.other_bytes = result.stream.size();
+  for (uint64_t bytes : result.unit_bytes) result.other_bytes -= bytes;
+  result.statistics = encoder->statistics();
+  return result;
+}
+
+}  // namespace m4mesh

@@ -1,0 +1,40 @@
+// The encoder of §12 containers: the object header and the codec's header,
+// the codec's units (codecs3d/registry.h finds the codec), a hash unit
+// after every frame the codec reports decoded, the end code.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "encoder/mesh3d/codec.h"
+#include "encoder/mesh3d/options.h"
+#include "mesh3d/sequence.h"
+#include "syntax/trace.h"
+
+namespace m4mesh {
+
+struct Encode3dOptions {
+  std::string codec = "bfs3d";   // a name of the registry
+  CodecOptionValues codec_options;  // the codec's own (encoder/mesh3d/options.h)
+  bool hashes = true;            // a decoded-frame hash unit after every decoded frame
+  uint32_t frame_rate_num = 25;
+  uint32_t frame_rate_den = 1;
+  Trace* trace = nullptr;        // every element written, as `m4mesh trace` prints it
+  std::function<void(size_t done, size_t total)> progress;
+};
+
+struct Encode3dResult {
+  std::vector<uint8_t> stream;
+  uint64_t unit_bytes[kUnitTypes] = {};  // per unit_type, start codes included
+  uint64_t other_bytes = 0;              // object payload and end code
+  std::vector<CodecStatistic> statistics;  // the codec's own
+
+  uint64_t base_bytes() const { return unit_bytes[static_cast<uint32_t>(UnitType::kBaseMesh)]; }
+  uint64_t frame_bytes() const { return unit_bytes[static_cast<uint32_t>(UnitType::kFrame)]; }
+};
+
+Encode3dResult encode_mesh3d(const MeshSequence& sequence, const Encode3dOptions& options = {});
+
+}  // namespace m4mesh

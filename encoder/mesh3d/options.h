@@ -1,0 +1,46 @@
+// A 3D codec's own encoder options: declared by the codec (name, help,
+// default, range), given as text by the user (`encode3d --NAME VALUE`),
+// checked and typed here. The command line is built from the declarations
+// of every registered codec (codecs3d/registry.h).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace m4mesh {
+
+enum class OptionKind { kInteger, kNumber, kFlag, kText };
+
+struct CodecOption {
+  std::string name;  // the flag without "--"
+  std::string help;
+  OptionKind kind = OptionKind::kInteger;
+  std::string default_value;  // "" for a flag (off)
+  double min = 0, max = 0;    // inclusive, for integers and numbers
+};
+
+// Option name → value as text ("1" for a flag that is set).
+using CodecOptionValues = std::map<std::string, std::string>;
+
+// The values of one codec's options: every given value checked against
+// its declaration (a usage error names the option), defaults for the rest.
+class CodecSettings {
+ public:
+  CodecSettings(const std::string& codec, const std::vector<CodecOption>& options, const CodecOptionValues& values);
+
+  int integer(const std::string& name) const;
+  double number(const std::string& name) const;
+  bool flag(const std::string& name) const;
+  const std::string& text(const std::string& name) const;
+
+ private:
+  const std::string& value(const std::string& name) const;
+  std::map<std::string, std::string> values_;
+};
+
+// The options every frame-by-frame grid codec declares.
+CodecOption bits_option(const std::string& help);
+CodecOption intra_period_option();
+
+}  // namespace m4mesh

@@ -1,0 +1,103 @@
+// Adaptive binarization of signed residuals shared by the 3D codecs, one
+// description for both directions: per channel (a coordinate axis, a
+// matrix element, ...) a zero flag, then exp-Golomb bins with adaptive
+// contexts and an adaptive order. The IO is syntax/mesh3d/entropy_io.h's.
+#pragma once
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+
+#include "bitstream/arithmetic.h"
+#include "common/error.h"
+
+namespace m4mesh::syntax {
+
+// The names a residual's symbols are traced and reported under.
+struct ResidualNames {
+  const char* nonzero;
+  const char* prefix;
+  const char* sign_suffix;
+  const char* element;  // the residual as a whole, for errors
+};
+
+// A zero flag, then |r| − 1 in exp-Golomb of order k, where k follows a
+// running mean of the channel's magnitudes. The zero flag and the prefix
+// bins are arithmetic-coded with contexts per channel and class of the
+// channel's previous residual (0: zero, 1: prefix length e = 0, 2: e > 0),
+// a class known as soon as that residual's bins are decoded. The sign and
+// the e + k suffix bits, equiprobable, are one raw field.
+template <int kChannels>
+class ResidualCoder {
+ public:
+  static constexpr int kClasses = 3;
+  static constexpr int kPrefixContexts = 12;
+  static constexpr int kMaxPrefix = 30;  // |r| < 2^31
+
+  // Trace context numbers: nonzero (channel · 3 + class) · 13, prefix bin i
+  // the same + 1 + min(i, 11).
+  template <class IO>
+  void describe(IO& io, int channel, int32_t& r, const ResidualNames& names) {
+    const int cls = previous_[channel];
+    const int context = (channel * kClasses + cls) * (kPrefixContexts + 1);
+    bool nonzero = false;
+    if constexpr (!IO::kReading) nonzero = r != 0;
+    io.bin(names.nonzero, nonzero_[channel][cls], context, nonzero);
+    if (!nonzero) {
+      r = 0;
+      update(channel, 0, 0);
+      return;
+    }
+    const int k = order(channel);
+    uint32_t magnitude = 0, m = 0, high = 0;
+    int e = 0;
+    if constexpr (!IO::kReading) {
+      magnitude = static_cast<uint32_t>(r < 0 ? -static_cast<int64_t>(r) : r);
+      m = magnitude - 1;
+      high = (m >> k) + 1;  // ≥ 1
+      e = std::bit_width(high) - 1;
+    }
+    // e bins '1', then a bin '0'.
+    for (int i = 0;; ++i) {
+      bool one = i < e;
+      const int slot = std::min(i, kPrefixContexts - 1);
+      io.bin(names.prefix, prefix_[channel][cls][slot], context + 1 + slot, one);
+      if (!one) {
+        e = i;
+        break;
+      }
+      if (i + 1 + k > kMaxPrefix) io.fail(ErrorKind::kInvalidCode, names.element, "a residual longer than 32 bits");
+    }
+    // The sign (1: negative), then e bits of h − 2^e and k bits of m mod 2^k: at most 31 bits.
+    uint32_t bits = 0;
+    if constexpr (!IO::kReading)
+      bits = (r < 0 ? 1u << (e + k) : 0u) | ((high - (1u << e)) << k) | (m & ((1u << k) - 1));
+    io.raw(names.sign_suffix, 1 + e + k, bits);
+    if constexpr (IO::kReading) {
+      const uint32_t suffix = bits & ((1u << (e + k)) - 1);
+      magnitude = (((1u << e) - 1) << k) + suffix + 1;
+      r = bits >> (e + k) ? -static_cast<int32_t>(magnitude) : static_cast<int32_t>(magnitude);
+    }
+    update(channel, magnitude, e + 1);
+  }
+
+ private:
+  // k ≈ log2 of 7/8 of the mean magnitude (sum_ ≈ 16 × mean): residuals
+  // mostly need one or two prefix bins.
+  int order(int channel) const {
+    const int bits = std::bit_width((7 * sum_[channel]) >> 7);
+    return bits > 1 ? bits - 1 : 0;
+  }
+  // symbol: 0 for a zero residual, else e + 1.
+  void update(int channel, uint32_t magnitude, int symbol) {
+    previous_[channel] = std::min(symbol, kClasses - 1);
+    sum_[channel] += std::min<uint32_t>(magnitude, 1u << 20) - (sum_[channel] >> 4);
+  }
+
+  BinContext nonzero_[kChannels][kClasses];
+  BinContext prefix_[kChannels][kClasses][kPrefixContexts];
+  int previous_[kChannels] = {};
+  uint32_t sum_[kChannels] = {};
+};
+
+}  // namespace m4mesh::syntax
