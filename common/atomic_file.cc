@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 
 #include "common/error.h"
@@ -47,6 +48,8 @@ void AtomicFile::commit() {
 }
 
 std::vector<uint8_t> read_file(const std::string& path) {
+  std::error_code ignored;
+  if (std::filesystem::is_directory(path, ignored)) throw io_error(path, "a folder, not a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw io_error(path, "cannot open");
   std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -1,11 +1,17 @@
-// The conformance manifest (conformance/manifest.json): one entry per stream.
+// The conformance manifest (manifest.json of a suite folder), one schema
+// for the 2D suite (conformance/) and the 3D suite (conformance/mesh3d/):
+// the suite's kind, then one entry per stream.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "conformance/suite.h"
+
 namespace m4mesh {
+
+enum class SuiteKind { kMesh2d, kMesh3d };
 
 struct ManifestEntry {
   std::string id;
@@ -13,27 +19,34 @@ struct ManifestEntry {
   std::string purpose;
   std::vector<std::string> clauses;
   std::string stream_md5;
-  int method = 2;
+  int method = 2;  // 2D: the motion vector prediction the stream needs
   bool valid = true;
   // Valid streams.
-  std::string decoded_md5;  // MD5 of the §9 text
-  int64_t planes = 0;
-  std::vector<std::string> classes;   // value classes (conformance/coverage.h)
+  std::string decoded_md5;  // MD5 of the decoded output (decoded_output_md5)
+  int64_t planes = 0;       // planes (2D) or frames (3D) decoded
+  std::vector<std::string> classes;   // 2D: value classes (conformance/coverage.h)
   std::vector<std::string> warnings;  // what `m4mesh check` warns about
   // Negative streams.
   std::string error_kind;
   std::string error_element;
-  int64_t error_plane = -1;
+  int64_t error_plane = -1;  // 3D: the frame
 };
 
 struct Manifest {
+  SuiteKind kind = SuiteKind::kMesh2d;
   std::vector<ManifestEntry> entries;
 };
 
 Manifest read_manifest(const std::string& path);
 std::string manifest_json(const Manifest& manifest);
 
-// Builds every stream of the suite, writes it and manifest.json under `folder`.
-Manifest generate_suite(const std::string& folder);
+// The MD5 of a stream's decoded output: the §9 text (2D), or every frame's
+// binary32 bytes (3D); an Error when the stream does not decode.
+std::string decoded_output_md5(SuiteKind kind, const std::vector<uint8_t>& stream, int method);
+
+// Writes the cases as FOLDER/streams/*.m4m and FOLDER/manifest.json.
+Manifest write_suite(const std::string& folder, SuiteKind kind, const std::vector<SuiteCase>& cases);
+// Both suites: FOLDER (2D) and FOLDER/mesh3d (3D).
+void generate_suites(const std::string& folder);
 
 }  // namespace m4mesh

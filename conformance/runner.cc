@@ -1,20 +1,23 @@
 #include "conformance/runner.h"
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/md5.h"
 #include "conformance/manifest.h"
-#include "decoder/decoder.h"
 
 namespace m4mesh {
 
 namespace {
+
+namespace fs = std::filesystem;
 
 struct Outcome {
   enum { kPass, kFail, kSkip } status;
@@ -28,43 +31,75 @@ std::string replace_all(std::string text, const std::string& from, const std::st
 
 std::string quoted(const std::string& path) { return "'" + replace_all(path, "'", "'\\''") + "'"; }
 
-Outcome run_ours(const ManifestEntry& e, const std::vector<uint8_t>& stream) {
-  DecoderOptions options;
-  options.method = e.method == 1 ? MotionMethod::kMethod1 : MotionMethod::kMethod2;
+std::string md5_of(const std::vector<uint8_t>& bytes) {
+  return md5_hex(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
+
+Outcome run_ours(SuiteKind kind, const ManifestEntry& e, const std::vector<uint8_t>& stream) {
+  const char* unit = kind == SuiteKind::kMesh3d ? "frame " : "plane ";
   try {
-    const std::string md5 = decode_to_text(stream, options, {});
+    const std::string md5 = decoded_output_md5(kind, stream, e.method);
     if (!e.valid) return {Outcome::kFail, "decoded, expected " + e.error_kind + " at " + e.error_element};
     if (md5 != e.decoded_md5) return {Outcome::kFail, "decoded MD5 " + md5 + ", expected " + e.decoded_md5};
     return {Outcome::kPass, md5};
   } catch (const Error& error) {
     if (e.valid) return {Outcome::kFail, error.what()};
     if (to_string(error.kind()) != e.error_kind || error.element() != e.error_element || error.plane() != e.error_plane)
-      return {Outcome::kFail, std::string(to_string(error.kind())) + ": " + error.what() + "; expected " + e.error_kind +
-                                  " at plane " + std::to_string(e.error_plane) + ", " + e.error_element};
+      return {Outcome::kFail, std::string(to_string(error.kind())) + ": " + error.what() + "; expected " + e.error_kind + " at " + unit +
+                                  std::to_string(e.error_plane) + ", " + e.error_element};
     return {Outcome::kPass, std::string(to_string(error.kind())) + ": " + error.what()};
   }
 }
 
-Outcome run_external(const ManifestEntry& e, const std::string& stream_path, const std::string& command_template) {
-  if (e.method != 2 && command_template.find("{method}") == std::string::npos)
+// A folder of the run's own for the external decoder's outputs, removed at the end.
+class TemporaryFolder {
+ public:
+  TemporaryFolder() {
+    std::string pattern = (fs::temp_directory_path() / "m4mesh-conform-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, "cannot create a temporary folder in " + pattern);
+    path_ = pattern;
+  }
+  ~TemporaryFolder() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+// The decoder's standard error, shortened, for a failed case.
+std::string stderr_of(const fs::path& file) {
+  if (!fs::exists(file)) return "";
+  std::vector<uint8_t> text = read_file(file.string());
+  if (text.size() > 300) text.resize(300);
+  std::string s(text.begin(), text.end());
+  for (char& c : s)
+    if (c == '\n') c = ' ';
+  return s.empty() ? "" : "; its stderr: " + s;
+}
+
+Outcome run_external(SuiteKind kind, const ManifestEntry& e, const std::string& stream_path, const std::string& command_template,
+                     const fs::path& folder) {
+  if (kind == SuiteKind::kMesh2d && e.method != 2 && command_template.find("{method}") == std::string::npos)
     return {Outcome::kSkip, "needs Method I: put {method} in the decoder command"};
-  const std::filesystem::path out = std::filesystem::temp_directory_path() / ("m4mesh-conform-" + e.id + ".txt");
-  std::filesystem::remove(out);
+  // The extension tells a decoder such as m4mesh which output to write.
+  const fs::path out = folder / (e.id + (kind == SuiteKind::kMesh3d ? ".f32" : ".txt")), err = folder / (e.id + ".stderr");
   std::string command = replace_all(command_template, "{in}", quoted(stream_path));
   command = replace_all(command, "{out}", quoted(out.string()));
   command = replace_all(command, "{method}", std::to_string(e.method));
-  const int status = std::system((command + " > /dev/null 2>&1").c_str());
-  const bool ok = status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
-  if (!e.valid) {
-    std::filesystem::remove(out);
-    return ok ? Outcome{Outcome::kFail, "exit status 0 for a stream that must be rejected (" + e.error_kind + ")"}
-              : Outcome{Outcome::kPass, "rejected"};
-  }
-  if (!ok) return {Outcome::kFail, "the decoder failed (status " + std::to_string(status) + ")"};
-  if (!std::filesystem::exists(out)) return {Outcome::kFail, "the decoder wrote no output"};
-  const std::vector<uint8_t> text = read_file(out.string());
-  std::filesystem::remove(out);
-  const std::string md5 = md5_hex(std::string_view(reinterpret_cast<const char*>(text.data()), text.size()));
+  // A subshell, so that the command's own redirections win over these.
+  const int status = std::system(("( " + command + " ) > /dev/null 2> " + quoted(err.string())).c_str());
+  const int code = status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (code == 126 || code == 127)
+    return {Outcome::kFail, "exit " + std::to_string(code) + (code == 127 ? ": command not found" : ": command not executable") + stderr_of(err)};
+  if (!e.valid)
+    return code == 0 ? Outcome{Outcome::kFail, "exit status 0 for a stream that must be rejected (" + e.error_kind + ")"}
+                     : Outcome{Outcome::kPass, "rejected (exit " + std::to_string(code) + ")"};
+  if (code != 0) return {Outcome::kFail, "the decoder failed (exit " + std::to_string(code) + ")" + stderr_of(err)};
+  if (!fs::exists(out)) return {Outcome::kFail, "the decoder wrote no output" + stderr_of(err)};
+  const std::string md5 = md5_of(read_file(out.string()));
   if (md5 != e.decoded_md5) return {Outcome::kFail, "decoded MD5 " + md5 + ", expected " + e.decoded_md5};
   return {Outcome::kPass, md5};
 }
@@ -72,10 +107,12 @@ Outcome run_external(const ManifestEntry& e, const std::string& stream_path, con
 }  // namespace
 
 ConformResult run_conformance(const ConformOptions& options, std::ostream& out) {
-  const std::filesystem::path suite(options.suite);
+  const fs::path suite(options.suite);
   const Manifest manifest = read_manifest((suite / "manifest.json").string());
+  std::optional<TemporaryFolder> folder;
+  if (!options.decoder_command.empty()) folder.emplace();
   ConformResult result;
-  char line[512];
+  char line[640];
   std::snprintf(line, sizeof line, "%-36s %-7s %-6s %s\n", "stream", "expect", "result", "detail");
   out << line;
   for (const ManifestEntry& e : manifest.entries) {
@@ -83,18 +120,19 @@ ConformResult run_conformance(const ConformOptions& options, std::ostream& out) 
     Outcome outcome;
     try {
       const std::vector<uint8_t> stream = read_file(path);
-      const std::string md5 = md5_hex(std::string_view(reinterpret_cast<const char*>(stream.data()), stream.size()));
+      const std::string md5 = md5_of(stream);
       if (md5 != e.stream_md5)
         outcome = {Outcome::kFail, "the stream file's MD5 is " + md5 + ", the manifest says " + e.stream_md5};
+      else if (folder)
+        outcome = run_external(manifest.kind, e, path, options.decoder_command, folder->path());
       else
-        outcome = options.decoder_command.empty() ? run_ours(e, stream) : run_external(e, path, options.decoder_command);
-    } catch (const Error& error) {
+        outcome = run_ours(manifest.kind, e, stream);
+    } catch (const std::exception& error) {
       outcome = {Outcome::kFail, error.what()};
     }
     const char* status = outcome.status == Outcome::kPass ? "pass" : outcome.status == Outcome::kFail ? "FAIL" : "skip";
     (outcome.status == Outcome::kPass ? result.passed : outcome.status == Outcome::kFail ? result.failed : result.skipped)++;
-    std::snprintf(line, sizeof line, "%-36s %-7s %-6s %.400s\n", e.id.c_str(), e.valid ? "decode" : "reject", status,
-                  outcome.detail.c_str());
+    std::snprintf(line, sizeof line, "%-36s %-7s %-6s %.500s\n", e.id.c_str(), e.valid ? "decode" : "reject", status, outcome.detail.c_str());
     out << line;
   }
   out << result.passed << " passed, " << result.failed << " failed";

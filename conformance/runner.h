@@ -1,4 +1,5 @@
-// `m4mesh conform`: runs every stream of a suite through a decoder.
+// `m4mesh conform`: runs every stream of a suite (2D or 3D, from its
+// manifest's kind) through m4mesh's decoder or an external one.
 #pragma once
 
 #include <ostream>
@@ -8,8 +9,11 @@ namespace m4mesh {
 
 struct ConformOptions {
   std::string suite;  // folder with manifest.json
-  // External decoder, e.g. "mydec {in} {out}" ({method} becomes 1 or 2);
-  // empty: m4mesh's own decoder.
+  // External decoder, e.g. "mydec {in} {out}": {in} is the stream, {out}
+  // the file to write (2D: the §9 text; 3D: every frame's binary32 bytes,
+  // as decode3d -o FILE.f32), {method} 1 or 2 (2D). Each is single-quoted
+  // for the shell; the command's own redirections are left alone. Empty:
+  // m4mesh's own decoder.
   std::string decoder_command;
 };
 

@@ -278,48 +278,59 @@ std::vector<uint8_t> bits_to_bytes(const std::string& bits) {
 
 }  // namespace
 
-std::vector<SuiteCase> build_suite() {
-  std::vector<SuiteCase> suite;
-  auto valid = [&](std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream,
-                   MotionMethod method = MotionMethod::kMethod2) {
+namespace {
+
+// Collects a group's cases.
+class CaseList {
+ public:
+  void valid(std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream,
+             MotionMethod method = MotionMethod::kMethod2) {
     SuiteCase c;
     c.id = std::move(id);
     c.purpose = std::move(purpose);
     c.clauses = std::move(clauses);
     c.stream = std::move(stream);
     c.method = method;
-    suite.push_back(std::move(c));
-  };
-  auto invalid = [&](std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream,
-                     ErrorKind kind, std::string element, int64_t plane) {
+    cases_.push_back(std::move(c));
+  }
+  void invalid(std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream, ErrorKind kind,
+               std::string element, int64_t plane) {
     valid(std::move(id), std::move(purpose), std::move(clauses), std::move(stream));
-    SuiteCase& c = suite.back();
+    SuiteCase& c = cases_.back();
     c.valid = false;
     c.error_kind = kind;
     c.error_element = std::move(element);
     c.error_plane = plane;
-  };
-  const std::vector<std::string> uniform_clauses{"1", "2.1", "2.2", "3", "3.1", "4", "4.2", "5", "7.1", "7.2", "9"};
-  const std::vector<std::string> delaunay_clauses{"1", "2.1", "2.2", "3", "3.1", "4", "4.1", "4.2", "6.1", "6.2", "7.1", "7.2", "9", "10"};
+  }
+  std::vector<SuiteCase> take() { return std::move(cases_); }
 
-  // ---- uniform meshes -----------------------------------------------------
-  valid("p01-hand-3x3", "the 3×3 stream worked out by hand in tests/hand_stream_test.cc", uniform_clauses,
+ private:
+  std::vector<SuiteCase> cases_;
+};
+
+const std::vector<std::string> kUniformClauses{"1", "2.1", "2.2", "3", "3.1", "4", "4.2", "5", "7.1", "7.2", "9"};
+const std::vector<std::string> kDelaunayClauses{"1", "2.1", "2.2", "3", "3.1", "4", "4.1", "4.2", "6.1", "6.2", "7.1", "7.2", "9", "10"};
+
+// Uniform meshes: splits, sizes, motion ranges and wraps, emulation, intra changes.
+std::vector<SuiteCase> uniform_cases() {
+  CaseList suite;
+  suite.valid("p01-hand-3x3", "the 3×3 stream worked out by hand in tests/hand_stream_test.cc", kUniformClauses,
         encoded(hand_stream_planes()));
   for (uint32_t split = 0; split < 4; ++split)
-    valid("p0" + std::to_string(2 + split) + "-uniform-split" + std::to_string(split),
+    suite.valid("p0" + std::to_string(2 + split) + "-uniform-split" + std::to_string(split),
           "triangle_split_code '" + std::string(split < 2 ? "0" : "1") + (split % 2 ? "1" : "0") + "' on a 6×5 mesh with motion",
-          uniform_clauses, encoded(with_motion(uniform_plane(6, 5, 20, 18, split), 3, -20, 20, 100 + split)));
-  valid("p06-uniform-2x2", "the smallest uniform mesh", uniform_clauses, encoded(with_motion(uniform_plane(2, 2, 100, 100, 1), 2, -30, 30, 6)));
-  valid("p07-uniform-1023x2", "the widest uniform mesh", uniform_clauses, encoded(with_motion(uniform_plane(1023, 2, 1, 50, 2), 1, -3, 3, 7)));
-  valid("p08-uniform-2x1023", "the tallest uniform mesh", uniform_clauses, encoded(with_motion(uniform_plane(2, 1023, 50, 1, 3), 1, -3, 3, 8)));
-  valid("p09-uniform-rect-1-255", "mesh_rect_size at 1 and 255", uniform_clauses, encoded(with_motion(uniform_plane(8, 5, 1, 255, 0), 2, -9, 9, 9)));
+          kUniformClauses, encoded(with_motion(uniform_plane(6, 5, 20, 18, split), 3, -20, 20, 100 + split)));
+  suite.valid("p06-uniform-2x2", "the smallest uniform mesh", kUniformClauses, encoded(with_motion(uniform_plane(2, 2, 100, 100, 1), 2, -30, 30, 6)));
+  suite.valid("p07-uniform-1023x2", "the widest uniform mesh", kUniformClauses, encoded(with_motion(uniform_plane(1023, 2, 1, 50, 2), 1, -3, 3, 7)));
+  suite.valid("p08-uniform-2x1023", "the tallest uniform mesh", kUniformClauses, encoded(with_motion(uniform_plane(2, 1023, 50, 1, 3), 1, -3, 3, 8)));
+  suite.valid("p09-uniform-rect-1-255", "mesh_rect_size at 1 and 255", kUniformClauses, encoded(with_motion(uniform_plane(8, 5, 1, 255, 0), 2, -9, 9, 9)));
   for (uint32_t code = 1; code <= 3; ++code)
-    valid("p" + std::to_string(9 + code) + "-range" + std::to_string(code) + "-limits",
-          "motion_range_code " + std::to_string(code) + " with vectors at low and high", uniform_clauses,
+    suite.valid("p" + std::to_string(9 + code) + "-range" + std::to_string(code) + "-limits",
+          "motion_range_code " + std::to_string(code) + " with vectors at low and high", kUniformClauses,
           encoded(range_limit_planes(code)));
   for (uint32_t code = 1; code <= 3; ++code)
-    valid("p" + std::to_string(12 + code) + "-range" + std::to_string(code) + "-wrap",
-          "differences that wrap in both directions, range " + std::to_string(code), uniform_clauses,
+    suite.valid("p" + std::to_string(12 + code) + "-range" + std::to_string(code) + "-wrap",
+          "differences that wrap in both directions, range " + std::to_string(code), kUniformClauses,
           encoded(wrap_planes(code)));
   {
     std::vector<MeshPlane> planes{uniform_plane(40, 40, 8, 8, 0)};
@@ -327,24 +338,29 @@ std::vector<SuiteCase> build_suite() {
     std::vector<Point> moved = planes[0].nodes;
     moved[1599].y -= 1;
     planes.push_back(inter_plane(moved));
-    auto clauses = uniform_clauses;
+    auto clauses = kUniformClauses;
     clauses.push_back("2.3");
-    valid("p16-zero-motion-runs", "long runs of node_motion_vector_flag '0': start-code emulation inside planes", clauses, encoded(planes));
+    suite.valid("p16-zero-motion-runs", "long runs of node_motion_vector_flag '0': start-code emulation inside planes", clauses, encoded(planes));
   }
   {
     std::vector<MeshPlane> planes = with_motion(uniform_plane(5, 4, 30, 30, 1), 2, -10, 10, 17);
     std::vector<MeshPlane> second = with_motion(delaunay_plane(concat(box_boundary(100, 100, 500, 500, 2), random_inside(20, 100, 100, 500, 500, 17)), 8), 2, -10, 10, 18);
     planes.insert(planes.end(), second.begin(), second.end());
     planes.push_back(uniform_plane(3, 7, 9, 9, 3));
-    auto clauses = delaunay_clauses;
+    auto clauses = kDelaunayClauses;
     clauses.push_back("5");
-    valid("p17-repeated-intra", "I-planes that change the topology: uniform, Delaunay, uniform", clauses, encoded(planes));
+    suite.valid("p17-repeated-intra", "I-planes that change the topology: uniform, Delaunay, uniform", clauses, encoded(planes));
   }
-  valid("p18-no-end-code", "a stream without mesh_object_end_code (a warning, not an error)", uniform_clauses,
+  suite.valid("p18-no-end-code", "a stream without mesh_object_end_code (a warning, not an error)", kUniformClauses,
         encoded(with_motion(uniform_plane(4, 3, 12, 12, 0), 2, -5, 5, 18), MotionMethod::kMethod2, false));
 
-  // ---- Delaunay meshes ----------------------------------------------------
-  valid("p19-delaunay-convex", "a square boundary with 200 interior nodes and motion", delaunay_clauses,
+  return suite.take();
+}
+
+// Delaunay meshes: convex, non-convex and degenerate boundaries, node orders.
+std::vector<SuiteCase> delaunay_cases() {
+  CaseList suite;
+  suite.valid("p19-delaunay-convex", "a square boundary with 200 interior nodes and motion", kDelaunayClauses,
         encoded(with_motion(delaunay_plane(concat(box_boundary(50, 60, 950, 940, 1), random_inside(200, 50, 60, 950, 940, 19)), 4), 3, -25, 25, 19)));
   {
     std::vector<Point> comb = comb_boundary();
@@ -352,30 +368,30 @@ std::vector<SuiteCase> build_suite() {
     std::set<std::pair<int, int>> used;
     for (const Point& p : comb) used.insert({p.x, p.y});
     comb = concat(comb, random_inside(60, 0, 0, 1000, 200, 20, used));
-    valid("p20-delaunay-nonconvex", "a non-convex comb boundary with interior nodes", delaunay_clauses,
+    suite.valid("p20-delaunay-nonconvex", "a non-convex comb boundary with interior nodes", kDelaunayClauses,
           encoded(with_motion(delaunay_plane(comb, b), 2, -8, 8, 20)));
   }
   {
     std::vector<Point> nodes = box_boundary(0, 0, 1000, 1000, 40);
     const uint32_t b = static_cast<uint32_t>(nodes.size());
     nodes = concat(nodes, random_inside(300, 0, 0, 1000, 1000, 21));
-    valid("p21-delaunay-collinear", "collinear boundary runs (160 boundary nodes on a square)", delaunay_clauses,
+    suite.valid("p21-delaunay-collinear", "collinear boundary runs (160 boundary nodes on a square)", kDelaunayClauses,
           encoded(with_motion(delaunay_plane(nodes, b), 2, -5, 5, 21)));
   }
   {
     std::vector<Point> nodes{{0, 0}, {0, 300}, {300, 300}, {300, 0}};
     for (int y = 1; y < 30; ++y)
       for (int x = 1; x < 30; ++x) nodes.push_back({x * 10, y * 10});
-    valid("p22-delaunay-cocircular-lattice", "a lattice: every cell cocircular, the §6.2 fan rule everywhere", delaunay_clauses,
+    suite.valid("p22-delaunay-cocircular-lattice", "a lattice: every cell cocircular, the §6.2 fan rule everywhere", kDelaunayClauses,
           encoded(with_motion(delaunay_plane(nodes, 4), 1, -2, 2, 22)));
   }
   {
     std::vector<Point> ring{{495, 500}, {496, 503}, {497, 504}, {500, 505}, {503, 504}, {504, 503},
                             {505, 500}, {504, 497}, {503, 496}, {500, 495}, {497, 496}, {496, 497}};
-    valid("p23-delaunay-circle", "twelve nodes on one circle: a fan from node 0", delaunay_clauses,
+    suite.valid("p23-delaunay-circle", "twelve nodes on one circle: a fan from node 0", kDelaunayClauses,
           encoded(with_motion(delaunay_plane(ring, 12), 1, -3, 3, 23)));
   }
-  valid("p24-delaunay-3-nodes", "the smallest Delaunay mesh", delaunay_clauses,
+  suite.valid("p24-delaunay-3-nodes", "the smallest Delaunay mesh", kDelaunayClauses,
         encoded(with_motion(delaunay_plane({{10, 10}, {10, 500}, {600, 20}}, 3), 2, -60, 60, 24)));
   {
     std::vector<Point> nodes = star_boundary(1023, 420, 511, 25);
@@ -386,18 +402,18 @@ std::vector<SuiteCase> build_suite() {
     std::vector<Point> moved = nodes;
     for (size_t i = 0; i < moved.size(); i += 97) moved[i].x += 3;
     planes.push_back(inter_plane(moved));
-    valid("p25-delaunay-65535-nodes", "the largest Delaunay mesh: 65,535 nodes, 1,023 of them on the boundary", delaunay_clauses, encoded(planes));
+    suite.valid("p25-delaunay-65535-nodes", "the largest Delaunay mesh: 65,535 nodes, 1,023 of them on the boundary", kDelaunayClauses, encoded(planes));
   }
   {
     std::vector<Point> nodes = star_boundary(1023, 300, 500, 26);
     std::set<std::pair<int, int>> used;
     for (const Point& p : nodes) used.insert({p.x, p.y});
-    valid("p26-delaunay-1023-boundary", "1,023 boundary nodes on a star-shaped polygon", delaunay_clauses,
+    suite.valid("p26-delaunay-1023-boundary", "1,023 boundary nodes on a star-shaped polygon", kDelaunayClauses,
           encoded(with_motion(delaunay_plane(concat(nodes, random_inside(100, 312, 312, 712, 712, 26, used)), 1023), 1, -4, 4, 26)));
   }
   {
     std::vector<Point> nodes{{0, 0}, {0, 1023}, {1023, 1023}, {1023, 0}, {1, 1}, {1022, 1022}, {1, 1022}, {1022, 1}};
-    valid("p27-delaunay-coordinate-extremes", "node coordinates at 0 and 1023", delaunay_clauses,
+    suite.valid("p27-delaunay-coordinate-extremes", "node coordinates at 0 and 1023", kDelaunayClauses,
           encoded(with_motion(delaunay_plane(nodes, 4), 1, -2, 2, 27)));
   }
   {
@@ -409,12 +425,12 @@ std::vector<SuiteCase> build_suite() {
     const uint32_t b = static_cast<uint32_t>(nodes.size());
     std::set<std::pair<int, int>> used;
     for (const Point& p : nodes) used.insert({p.x, p.y});
-    valid("p28-delaunay-delta-lengths", "node deltas of every length 0 … 10 (11 cannot occur in a valid stream)", delaunay_clauses,
+    suite.valid("p28-delaunay-delta-lengths", "node deltas of every length 0 … 10 (11 cannot occur in a valid stream)", kDelaunayClauses,
           encoded(with_motion(delaunay_plane(concat(nodes, random_inside(40, 0, 0, 1023, 1023, 28, used)), b), 1, -3, 3, 28)));
   }
   {
     const std::vector<Point> spiral = spiral_boundary();
-    valid("p29-delaunay-spiral", "a spiral corridor boundary", delaunay_clauses,
+    suite.valid("p29-delaunay-spiral", "a spiral corridor boundary", kDelaunayClauses,
           encoded(with_motion(delaunay_plane(spiral, static_cast<uint32_t>(spiral.size())), 1, -5, 5, 29)));
   }
   {
@@ -430,7 +446,7 @@ std::vector<SuiteCase> build_suite() {
       next[5].x = planes.back().nodes[5].x + limit;
       planes.push_back(inter_plane(next));
     }
-    valid("p30-delaunay-all-ranges", "Method II on a Delaunay mesh with each motion_range_code", delaunay_clauses, encoded(planes));
+    suite.valid("p30-delaunay-all-ranges", "Method II on a Delaunay mesh with each motion_range_code", kDelaunayClauses, encoded(planes));
   }
   {
     std::vector<MeshPlane> planes{delaunay_plane(concat(box_boundary(0, 0, 200, 200, 1), random_inside(30, 0, 0, 200, 200, 31)), 4)};
@@ -442,23 +458,23 @@ std::vector<SuiteCase> build_suite() {
       }
       planes.push_back(inter_plane(next));
     }
-    valid("p31-positions-outside", "P-planes that move nodes to negative coordinates (positions are not range-limited)",
-          delaunay_clauses, encoded(planes));
+    suite.valid("p31-positions-outside", "P-planes that move nodes to negative coordinates (positions are not range-limited)",
+          kDelaunayClauses, encoded(planes));
   }
-  valid("p32-intra-only", "a single uniform I-plane", uniform_clauses, encoded({uniform_plane(9, 9, 7, 11, 2)}));
+  suite.valid("p32-intra-only", "a single uniform I-plane", kUniformClauses, encoded({uniform_plane(9, 9, 7, 11, 2)}));
   {
-    auto clauses = uniform_clauses;
+    auto clauses = kUniformClauses;
     clauses.push_back("8");
-    valid("p33-method1-uniform", "Method I on a uniform mesh (decode with Method I)", clauses,
+    suite.valid("p33-method1-uniform", "Method I on a uniform mesh (decode with Method I)", clauses,
           encoded(with_motion(uniform_plane(7, 6, 14, 14, 2), 3, -15, 15, 33), MotionMethod::kMethod1), MotionMethod::kMethod1);
-    auto dclauses = delaunay_clauses;
+    auto dclauses = kDelaunayClauses;
     dclauses.push_back("8");
-    valid("p34-method1-delaunay", "Method I on a Delaunay mesh (decode with Method I)", dclauses,
+    suite.valid("p34-method1-delaunay", "Method I on a Delaunay mesh (decode with Method I)", dclauses,
           encoded(with_motion(delaunay_plane(concat(box_boundary(0, 0, 400, 400, 2), random_inside(50, 0, 0, 400, 400, 34)), 8), 3, -15, 15, 34),
                   MotionMethod::kMethod1),
           MotionMethod::kMethod1);
   }
-  valid("p35-long-sequence", "100 P-planes of small motion", uniform_clauses, encoded(with_motion(uniform_plane(5, 5, 20, 20, 3), 100, -2, 2, 35)));
+  suite.valid("p35-long-sequence", "100 P-planes of small motion", kUniformClauses, encoded(with_motion(uniform_plane(5, 5, 20, 20, 3), 100, -2, 2, 35)));
   {
     std::vector<MeshPlane> planes{delaunay_plane(concat(box_boundary(0, 0, 300, 300, 1), random_inside(40, 0, 0, 300, 300, 36)), 4)};
     std::vector<Point> moved = planes[0].nodes;
@@ -466,75 +482,80 @@ std::vector<SuiteCase> build_suite() {
     planes.push_back(inter_plane(moved));
     for (Point& p : moved) p.y += 100;
     planes.push_back(inter_plane(moved));
-    valid("p36-delaunay-refresh", "motion beyond the largest range, coded as a new Delaunay I-plane (§10)", delaunay_clauses, encoded(planes));
+    suite.valid("p36-delaunay-refresh", "motion beyond the largest range, coded as a new Delaunay I-plane (§10)", kDelaunayClauses, encoded(planes));
   }
   {
     std::vector<Point> nodes = box_boundary(0, 0, 1016, 1016, 128);
-    valid("p37-node0-origin", "node 0 at (0, 0) after 512 boundary nodes: 29 zero bits in a row (start-code emulation)",
+    suite.valid("p37-node0-origin", "node 0 at (0, 0) after 512 boundary nodes: 29 zero bits in a row (start-code emulation)",
           [&] {
-            auto c = delaunay_clauses;
+            auto c = kDelaunayClauses;
             c.push_back("2.3");
             return c;
           }(),
           encoded(with_motion(delaunay_plane(concat(nodes, random_inside(100, 0, 0, 1016, 1016, 37)), 512), 1, -1, 1, 37)));
   }
-  valid("p38-range3-residuals", "large motion: range 3 with every residual value", uniform_clauses,
+  suite.valid("p38-range3-residuals", "large motion: range 3 with every residual value", kUniformClauses,
         encoded(with_motion(uniform_plane(10, 10, 60, 60, 0), 3, -128, 127, 38)));
-  valid("p39-uniform-odd-checkerboard", "split '10' on odd node counts", uniform_clauses, encoded(with_motion(uniform_plane(7, 3, 33, 21, 2), 2, -12, 12, 39)));
-  valid("p40-uniform-even-checkerboard", "split '11' on even node counts", uniform_clauses, encoded(with_motion(uniform_plane(8, 4, 21, 33, 3), 2, -12, 12, 40)));
-  valid("p41-delaunay-square-centre", "a square with one interior node", delaunay_clauses,
+  suite.valid("p39-uniform-odd-checkerboard", "split '10' on odd node counts", kUniformClauses, encoded(with_motion(uniform_plane(7, 3, 33, 21, 2), 2, -12, 12, 39)));
+  suite.valid("p40-uniform-even-checkerboard", "split '11' on even node counts", kUniformClauses, encoded(with_motion(uniform_plane(8, 4, 21, 33, 3), 2, -12, 12, 40)));
+  suite.valid("p41-delaunay-square-centre", "a square with one interior node", kDelaunayClauses,
         encoded(with_motion(delaunay_plane({{0, 0}, {0, 10}, {10, 10}, {10, 0}, {5, 5}}, 4), 2, -4, 4, 41)));
-  valid("p42-uniform-max-rect", "mesh_rect_size 255 both ways with range 3 motion", uniform_clauses,
+  suite.valid("p42-uniform-max-rect", "mesh_rect_size 255 both ways with range 3 motion", kUniformClauses,
         encoded(with_motion(uniform_plane(5, 5, 255, 255, 1), 2, -100, 100, 42)));
 
-  // ---- negative streams ---------------------------------------------------
+  return suite.take();
+}
+
+// Streams a decoder must reject, each with the error it must report.
+std::vector<SuiteCase> rejected_cases() {
+  CaseList suite;
   const std::vector<uint8_t> small = encoded(with_motion(uniform_plane(4, 3, 16, 16, 0), 2, -20, 20, 50));
   const std::vector<uint8_t> large_motion = encoded(with_motion(uniform_plane(4, 3, 16, 16, 0), 1, -100, 100, 51));
   const std::vector<uint8_t> small_delaunay =
       encoded(with_motion(delaunay_plane(concat(box_boundary(0, 0, 100, 100, 1), random_inside(10, 0, 0, 100, 100, 52)), 4), 1, -5, 5, 52));
-  invalid("n01-truncated-start-code", "the data ends inside mesh_object_start_code", {"2.1", "11"},
+  suite.invalid("n01-truncated-start-code", "the data ends inside mesh_object_start_code", {"2.1", "11"},
           std::vector<uint8_t>(small.begin(), small.begin() + 3), ErrorKind::kTruncated, "mesh_object_start_code", kNoPlane);
   for (const auto& [id, element, occurrence, base] :
        {std::tuple{"n02-truncated-uniform", "nr_of_mesh_nodes_verti", 0, &small},
         std::tuple{"n03-truncated-delaunay", "delta_x", 4, &small_delaunay},
         std::tuple{"n04-truncated-motion", "delta_mv_x_vlc", 3, &large_motion}}) {
     const Cut cut = cut_inside(*base, element, static_cast<size_t>(occurrence));
-    invalid(id, std::string("the data ends inside ") + element, {"3", "11"}, cut.stream, ErrorKind::kTruncated, element, cut.plane);
+    suite.invalid(id, std::string("the data ends inside ") + element, {"3", "11"}, cut.stream, ErrorKind::kTruncated, element, cut.plane);
   }
-  invalid("n05-truncated-plane-start-code", "the data ends inside a plane start code", {"2.1", "11"},
+  suite.invalid("n05-truncated-plane-start-code", "the data ends inside a plane start code", {"2.1", "11"},
           cut_inside(small, "mesh_object_plane_start_code", 2).stream, ErrorKind::kTruncated, "mesh_object_end_code", kNoPlane);
-  invalid("n06-mesh-type-10", "reserved mesh_type_code '10'", {"4", "11"}, patched(small, "mesh_type_code", 0, 2),
+  suite.invalid("n06-mesh-type-10", "reserved mesh_type_code '10'", {"4", "11"}, patched(small, "mesh_type_code", 0, 2),
           ErrorKind::kReservedValue, "mesh_type_code", 0);
-  invalid("n07-mesh-type-11", "reserved mesh_type_code '11'", {"4", "11"}, patched(small, "mesh_type_code", 0, 3),
+  suite.invalid("n07-mesh-type-11", "reserved mesh_type_code '11'", {"4", "11"}, patched(small, "mesh_type_code", 0, 3),
           ErrorKind::kReservedValue, "mesh_type_code", 0);
-  invalid("n08-motion-range-code-0", "reserved motion_range_code 0", {"4", "4.2", "11"}, patched(small, "motion_range_code", 1, 0),
+  suite.invalid("n08-motion-range-code-0", "reserved motion_range_code 0", {"4", "4.2", "11"}, patched(small, "motion_range_code", 1, 0),
           ErrorKind::kReservedValue, "motion_range_code", 2);
   {
     const TracedElement stuffing = trace_elements(small).at("next_start_code").at(0);
-    invalid("n09-bad-stuffing", "next_start_code() bits that are not '0' then '1's", {"2.2", "11"},
+    suite.invalid("n09-bad-stuffing", "next_start_code() bits that are not '0' then '1's", {"2.2", "11"},
             patched(small, "next_start_code", 0, stuffing_pattern(stuffing.bits) ^ 1), ErrorKind::kBadStuffing, "next_start_code", 0);
   }
-  invalid("n10-nodes-hori-1", "nr_of_mesh_nodes_hori 1", {"4", "11"}, patched(small, "nr_of_mesh_nodes_hori", 0, 1),
+  suite.invalid("n10-nodes-hori-1", "nr_of_mesh_nodes_hori 1", {"4", "11"}, patched(small, "nr_of_mesh_nodes_hori", 0, 1),
           ErrorKind::kOutOfRange, "nr_of_mesh_nodes_hori", 0);
-  invalid("n11-rect-size-0", "mesh_rect_size_verti 0", {"4", "11"}, patched(small, "mesh_rect_size_verti", 0, 0),
+  suite.invalid("n11-rect-size-0", "mesh_rect_size_verti 0", {"4", "11"}, patched(small, "mesh_rect_size_verti", 0, 0),
           ErrorKind::kOutOfRange, "mesh_rect_size_verti", 0);
-  invalid("n12-nodes-2", "nr_of_mesh_nodes 2", {"4", "11"}, patched(small_delaunay, "nr_of_mesh_nodes", 0, 2),
+  suite.invalid("n12-nodes-2", "nr_of_mesh_nodes 2", {"4", "11"}, patched(small_delaunay, "nr_of_mesh_nodes", 0, 2),
           ErrorKind::kOutOfRange, "nr_of_mesh_nodes", 0);
-  invalid("n13-boundary-exceeds-nodes", "nr_of_boundary_nodes above nr_of_mesh_nodes", {"4", "11"},
+  suite.invalid("n13-boundary-exceeds-nodes", "nr_of_boundary_nodes above nr_of_mesh_nodes", {"4", "11"},
           patched(small_delaunay, "nr_of_boundary_nodes", 0, 15), ErrorKind::kOutOfRange, "nr_of_boundary_nodes", 0);
-  invalid("n14-boundary-2", "nr_of_boundary_nodes 2", {"4", "11"}, patched(small_delaunay, "nr_of_boundary_nodes", 0, 2),
+  suite.invalid("n14-boundary-2", "nr_of_boundary_nodes 2", {"4", "11"}, patched(small_delaunay, "nr_of_boundary_nodes", 0, 2),
           ErrorKind::kOutOfRange, "nr_of_boundary_nodes", 0);
-  invalid("n15-clockwise-boundary", "a clockwise boundary", {"6.1", "11"},
+  suite.invalid("n15-clockwise-boundary", "a clockwise boundary", {"6.1", "11"},
           unchecked_delaunay({{0, 0}, {100, 0}, {100, 100}, {0, 100}, {50, 50}}, 4), ErrorKind::kGeometry, "MeshGeometry", 0);
-  invalid("n16-self-intersecting-boundary", "boundary edges that cross", {"6.1", "11"},
+  suite.invalid("n16-self-intersecting-boundary", "boundary edges that cross", {"6.1", "11"},
           unchecked_delaunay({{0, 0}, {0, 200}, {100, 0}, {120, 140}}, 4), ErrorKind::kGeometry, "MeshGeometry", 0);
-  invalid("n17-interior-node-outside", "an interior node outside the boundary", {"6.1", "11"},
+  suite.invalid("n17-interior-node-outside", "an interior node outside the boundary", {"6.1", "11"},
           unchecked_delaunay({{0, 0}, {0, 100}, {100, 100}, {100, 0}, {150, 50}}, 4), ErrorKind::kGeometry, "MeshGeometry", 0);
-  invalid("n18-interior-node-on-boundary", "an interior node on a boundary edge", {"6.1", "11"},
+  suite.invalid("n18-interior-node-on-boundary", "an interior node on a boundary edge", {"6.1", "11"},
           unchecked_delaunay({{0, 0}, {0, 100}, {100, 100}, {100, 0}, {100, 50}}, 4), ErrorKind::kGeometry, "MeshGeometry", 0);
-  invalid("n19-duplicate-nodes", "two nodes at the same place", {"6.1", "11"},
+  suite.invalid("n19-duplicate-nodes", "two nodes at the same place", {"6.1", "11"},
           unchecked_delaunay({{0, 0}, {0, 100}, {100, 100}, {100, 0}, {50, 50}, {50, 50}}, 4), ErrorKind::kGeometry, "MeshGeometry", 0);
-  invalid("n20-node0-not-top-left", "node 0 is not the top-left node", {"6.1", "11"},
+  suite.invalid("n20-node0-not-top-left", "node 0 is not the top-left node", {"6.1", "11"},
           unchecked_delaunay({{50, 50}, {0, 100}, {100, 100}, {100, 0}}, 4), ErrorKind::kGeometry, "MeshGeometry", 0);
   {
     // 3 nodes, node0 (0, 0), then nine '1's: a dmv_length of 12 or more.
@@ -552,39 +573,48 @@ std::vector<SuiteCase> build_suite() {
     bits += "0000000000000000000000";
     while (bits.size() % 8) bits += '0';
     put(kMeshObjectEndCode, 32);
-    invalid("n21-delta-length-12", "delta_x_len_vlc '1111111110': length 12 is not part of this syntax", {"4.1", "11"},
+    suite.invalid("n21-delta-length-12", "delta_x_len_vlc '1111111110': length 12 is not part of this syntax", {"4.1", "11"},
             bits_to_bytes(bits), ErrorKind::kInvalidCode, "delta_x_len_vlc", 0);
   }
-  invalid("n22-coordinate-past-1023", "a node x coordinate of 1024", {"4", "4.1", "11"},
+  suite.invalid("n22-coordinate-past-1023", "a node x coordinate of 1024", {"4", "4.1", "11"},
           unchecked_delaunay(3, 3, {0, 0}, {{0, 1000}, {1024, -1000}}), ErrorKind::kOutOfRange, "delta_x", 0);
-  invalid("n23-coordinate-below-0", "a node y coordinate of −1", {"4", "4.1", "11"},
+  suite.invalid("n23-coordinate-below-0", "a node y coordinate of −1", {"4", "4.1", "11"},
           unchecked_delaunay(3, 3, {5, 0}, {{-5, -1}, {10, 10}}), ErrorKind::kOutOfRange, "delta_y", 0);
   {
     // The P-plane of `small` with the I-plane removed.
     const auto starts = trace_elements(small).at("mesh_object_plane_start_code");
     std::vector<uint8_t> stream(small.begin(), small.begin() + 4);
     stream.insert(stream.end(), small.begin() + static_cast<std::ptrdiff_t>(starts[1].offset / 8), small.end());
-    invalid("n24-p-plane-first", "a P-plane before any I-plane", {"3.1", "11"}, stream, ErrorKind::kStructure, "new_mesh_flag", 0);
+    suite.invalid("n24-p-plane-first", "a P-plane before any I-plane", {"3.1", "11"}, stream, ErrorKind::kStructure, "new_mesh_flag", 0);
   }
   {
     std::vector<uint8_t> stream = small;
     stream.push_back(0x00);
-    invalid("n25-trailing-data", "a byte after mesh_object_end_code", {"3.1", "11"}, stream, ErrorKind::kTrailingData,
+    suite.invalid("n25-trailing-data", "a byte after mesh_object_end_code", {"3.1", "11"}, stream, ErrorKind::kTrailingData,
             "mesh_object_end_code", kNoPlane);
   }
-  invalid("n26-missing-object-start-code", "a stream that starts with a plane start code", {"2.1", "3", "11"},
+  suite.invalid("n26-missing-object-start-code", "a stream that starts with a plane start code", {"2.1", "3", "11"},
           std::vector<uint8_t>(small.begin() + 4, small.end()), ErrorKind::kMissingStartCode, "mesh_object_start_code", kNoPlane);
-  invalid("n27-invalid-motion-code", "delta_mv_x_vlc of twelve '0' bits: no motion code starts so", {"4.2", "11"},
+  suite.invalid("n27-invalid-motion-code", "delta_mv_x_vlc of twelve '0' bits: no motion code starts so", {"4.2", "11"},
           overwritten(small, "delta_mv_x_vlc", 0, 12, 0), ErrorKind::kInvalidCode, "delta_mv_x_vlc", 1);
-  invalid("n28-huge-count", "nr_of_mesh_nodes 65535 with a few bytes of data: rejected before allocating", {"4", "11"},
+  suite.invalid("n28-huge-count", "nr_of_mesh_nodes 65535 with a few bytes of data: rejected before allocating", {"4", "11"},
           patched(small_delaunay, "nr_of_mesh_nodes", 0, 65535), ErrorKind::kTruncated, "delta_x_len_vlc", 0);
-  invalid("n29-garbage-start-code", "a start code that is neither a plane nor the end code", {"2.1", "3", "11"},
+  suite.invalid("n29-garbage-start-code", "a start code that is neither a plane nor the end code", {"2.1", "3", "11"},
           [&] {
             std::vector<uint8_t> s = small;
             s[s.size() - 1] = 0xB6;
             return s;
           }(),
           ErrorKind::kMissingStartCode, "mesh_object_end_code", kNoPlane);
+  return suite.take();
+}
+
+}  // namespace
+
+std::vector<SuiteCase> build_suite() {
+  std::vector<SuiteCase> suite;
+  for (auto group : {uniform_cases, delaunay_cases, rejected_cases})
+    for (SuiteCase& c : group()) suite.push_back(std::move(c));
   return suite;
 }
 

@@ -1,5 +1,6 @@
-// The conformance suite generator: every stream of conformance/streams,
+// The 2D conformance suite generator: every stream of conformance/streams,
 // built deterministically so that the committed suite can be regenerated.
+// SuiteCase is the case of both suites (conformance/suite3d.h).
 #pragma once
 
 #include <cstdint>
@@ -17,14 +18,16 @@ struct SuiteCase {
   std::string purpose;
   std::vector<std::string> clauses;  // specification clauses exercised
   std::vector<uint8_t> stream;
-  MotionMethod method = MotionMethod::kMethod2;
+  MotionMethod method = MotionMethod::kMethod2;  // 2D: the motion vector prediction it needs
   bool valid = true;
-  // Negative streams: what a decoder must report.
+  // Negative streams: what a decoder must report (3D: the frame as the plane).
   ErrorKind error_kind = ErrorKind::kTruncated;
   std::string error_element;
   int64_t error_plane = kNoPlane;
+  std::string encoder_trace;  // 3D, when built with traces: what the encoder printed while writing it
 };
 
+// The cases in groups: uniform, Delaunay, rejected.
 std::vector<SuiteCase> build_suite();
 
 // Shapes of the suite that the tests use too.

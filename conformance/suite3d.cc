@@ -1,12 +1,10 @@
 #include "conformance/suite3d.h"
 
-#include <sys/wait.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "common/atomic_file.h"
 #include "common/md5.h"
@@ -18,8 +16,6 @@ namespace m4mesh {
 
 namespace {
 
-namespace fs = std::filesystem;
-using nlohmann::ordered_json;
 
 // Inputs built with +, − and × of small rationals only, so that every
 // platform builds the same doubles: the surface of a box (closed, n × n
@@ -121,13 +117,34 @@ Encode3dOptions affine(const std::string& me, int k = 16) {
   return o;
 }
 
-Suite3dCase valid(std::string id, std::string purpose, std::vector<std::string> clauses, const MeshSequence& s, const Encode3dOptions& o) {
-  return {std::move(id), std::move(purpose), std::move(clauses), encode_mesh3d(s, o).stream, true, ErrorKind::kTruncated, "", kNoPlane};
+// A stream to decode; with `traced`, the encoder's trace of it is kept.
+SuiteCase valid(std::string id, std::string purpose, std::vector<std::string> clauses, const MeshSequence& s, Encode3dOptions o,
+                bool traced) {
+  std::ostringstream text;
+  Trace trace(text);
+  if (traced) o.trace = &trace;
+  SuiteCase c;
+  c.id = std::move(id);
+  c.purpose = std::move(purpose);
+  c.clauses = std::move(clauses);
+  c.stream = encode_mesh3d(s, o).stream;
+  c.encoder_trace = text.str();
+  return c;
 }
 
-Suite3dCase invalid(std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream, ErrorKind kind,
-                    std::string element, int64_t frame) {
-  return {std::move(id), std::move(purpose), std::move(clauses), std::move(stream), false, kind, std::move(element), frame};
+// A stream to reject with the error a decoder must report (the frame as its plane).
+SuiteCase invalid(std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream, ErrorKind kind,
+                  std::string element, int64_t frame) {
+  SuiteCase c;
+  c.id = std::move(id);
+  c.purpose = std::move(purpose);
+  c.clauses = std::move(clauses);
+  c.stream = std::move(stream);
+  c.valid = false;
+  c.error_kind = kind;
+  c.error_element = std::move(element);
+  c.error_plane = frame;
+  return c;
 }
 
 // A stream rebuilt from its parts after `edit` changed them.
@@ -150,47 +167,65 @@ ContainerUnit& unit_of(ContainerParts& parts, UnitType type, uint32_t frame) {
   throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no such unit");
 }
 
-}  // namespace
+const std::vector<uint8_t>& find(const std::vector<SuiteCase>& cases, const std::string& id) {
+  for (const SuiteCase& c : cases)
+    if (c.id == id) return c.stream;
+  throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no case " + id);
+}
 
-std::vector<Suite3dCase> build_suite3d() {
+// Affine-Octree streams: the paper's settings and the extremes of each header field.
+std::vector<SuiteCase> affine_octree_cases(bool traced) {
   const MeshSequence shape = box_and_sheet(6, 4);
-  std::vector<Suite3dCase> suite;
+  std::vector<SuiteCase> suite;
   suite.push_back(valid("ao-01-me1-k16", "affine-octree at the paper's settings: ME 1 %, k = 16", {"container", "ao-header", "ao-frame", "ao-cell"},
-                        shape, affine("1")));
+                        shape, affine("1"), traced));
   {
     Encode3dOptions o = affine("25", 8);
     o.codec_options["max-depth"] = "3";
-    suite.push_back(valid("ao-02-coarse", "ME 25 %, k = 8, octree depth at most 3", {"ao-header", "ao-cell"}, shape, o));
+    suite.push_back(valid("ao-02-coarse", "ME 25 %, k = 8, octree depth at most 3", {"ao-header", "ao-cell"}, shape, o, traced));
   }
   {
     Encode3dOptions o = affine("0.1", 16);
     o.codec_options["bits"] = "16";
     o.codec_options["max-depth"] = "20";
-    suite.push_back(valid("ao-03-fine", "ME 0.1 %, 16-bit grid, octree depth up to 20", {"ao-cell", "ao-reconstruction"}, shape, o));
+    suite.push_back(valid("ao-03-fine", "ME 0.1 %, 16-bit grid, octree depth up to 20", {"ao-cell", "ao-reconstruction"}, shape, o, traced));
   }
   {
     Encode3dOptions o = affine("2", 24);
     o.codec_options["matrix-range-log2"] = "8";
     suite.push_back(valid("ao-04-wide-matrices", "k = 24 over [−128, 128): the widest matrix elements", {"ao-header", "ao-reconstruction"},
-                          shape, o));
+                          shape, o, traced));
   }
   {
     Encode3dOptions o = affine("1");
     o.codec_options["intra-period"] = "3";
-    suite.push_back(valid("ao-05-intra", "an intra base mesh every 3 frames", {"container-units", "ao-frame"}, box_and_sheet(7, 3), o));
+    suite.push_back(valid("ao-05-intra", "an intra base mesh every 3 frames", {"container-units", "ao-frame"}, box_and_sheet(7, 3), o, traced));
   }
-  suite.push_back(valid("ao-06-direct-root", "4 vertices: the root cell codes direct motion", {"ao-cell"}, moving_tetrahedron(5), affine("1")));
+  suite.push_back(valid("ao-06-direct-root", "4 vertices: the root cell codes direct motion", {"ao-cell"}, moving_tetrahedron(5), affine("1"), traced));
   suite.push_back(valid("ao-07-coplanar", "a flat sheet rotating: singular cells, one matrix per frame", {"ao-cell", "ao-reconstruction"},
-                        rotating_sheet(5), affine("1")));
-  suite.push_back(valid("bfs3d-01-average", "bfs3d with base-edge average prediction", {"container", "bfs3d"}, shape, Encode3dOptions{}));
+                        rotating_sheet(5), affine("1"), traced));
+  return suite;
+}
+
+// bfs3d streams: both predictions, intra frames.
+std::vector<SuiteCase> bfs3d_cases(bool traced) {
+  const MeshSequence shape = box_and_sheet(6, 4);
+  std::vector<SuiteCase> suite;
+  suite.push_back(valid("bfs3d-01-average", "bfs3d with base-edge average prediction", {"container", "bfs3d"}, shape, Encode3dOptions{}, traced));
   {
     Encode3dOptions o;
     o.codec_options = {{"parallelogram", "1"}, {"bits", "10"}, {"intra-period", "4"}};
     suite.push_back(valid("bfs3d-02-parallelogram-intra", "bfs3d, parallelogram prediction, 10 bits, intra every 4 frames",
-                          {"bfs3d", "container-units"}, shape, o));
+                          {"bfs3d", "container-units"}, shape, o, traced));
   }
 
-  const std::vector<uint8_t> base = suite[0].stream;
+  return suite;
+}
+
+// Streams to reject, each made from a valid one.
+std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
+  std::vector<SuiteCase> suite;
+  const std::vector<uint8_t> base = find(valid, "ao-01-me1-k16");
   suite.push_back(invalid("x-01-codec-unknown", "codec_id 5 is not registered", {"container"},
                           edited(base, [](ContainerParts& p) { p.object_payload[1] = 5; }), ErrorKind::kReservedValue, "codec_id", kNoPlane));
   suite.push_back(invalid("x-02-codec-lcc", "codec_id 3 (lcc) is registered but not implemented", {"container"},
@@ -232,14 +267,22 @@ std::vector<Suite3dCase> build_suite3d() {
                             ErrorKind::kStructure, "base_mesh", 2));
   }
   // bfs3d frame data: six u(32) lengths after the unit header, raw_bytes_z last.
-  const std::vector<uint8_t> bfs3d =
-      std::find_if(suite.begin(), suite.end(), [](const Suite3dCase& c) { return c.id == "bfs3d-01-average"; })->stream;
+  const std::vector<uint8_t> bfs3d = find(valid, "bfs3d-01-average");
   suite.push_back(invalid("x-10-bfs3d-lengths", "raw_bytes_z longer than the frame", {"bfs3d"},
                           edited(bfs3d, [](ContainerParts& p) { unit_of(p, UnitType::kFrame, 1).payload[(syntax::unit_data_offset() - 32) / 8 + 20] = 0x7F; }),
                           ErrorKind::kOutOfRange, "raw_bytes_z", 1));
   suite.push_back(invalid("x-11-bfs3d-trailing", "a byte after the six streams", {"bfs3d"},
                           edited(bfs3d, [](ContainerParts& p) { unit_of(p, UnitType::kFrame, 3).payload.push_back(0x55); }),
                           ErrorKind::kStructure, "raw_bytes_z", 3));
+  return suite;
+}
+
+}  // namespace
+
+std::vector<SuiteCase> build_suite3d(bool traced) {
+  std::vector<SuiteCase> suite = affine_octree_cases(traced);
+  for (SuiteCase& c : bfs3d_cases(traced)) suite.push_back(std::move(c));
+  for (SuiteCase& c : rejected_cases(suite)) suite.push_back(std::move(c));
   return suite;
 }
 
@@ -255,125 +298,6 @@ std::vector<uint8_t> decoded_frames3d(const std::vector<uint8_t>& stream) {
     out.insert(out.end(), bytes.begin(), bytes.end());
   }
   return out;
-}
-
-namespace {
-
-std::string md5_of(const std::vector<uint8_t>& bytes) {
-  return md5_hex(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
-}
-
-}  // namespace
-
-void write_suite3d(const std::string& folder) {
-  fs::create_directories(fs::path(folder) / "streams");
-  ordered_json manifest;
-  manifest["suite"] = "m4mesh conformance: 3D container (§12; docs/container3d.md, docs/codec_affine_octree.md)";
-  manifest["kind"] = "mesh3d";
-  manifest["decoded_output"] = "MD5 of every frame's binary32 x, y, z per vertex (little-endian), frame after frame";
-  manifest["streams"] = ordered_json::array();
-  for (const Suite3dCase& c : build_suite3d()) {
-    const std::string file = "streams/" + c.id + ".m4m";
-    write_file_atomically((fs::path(folder) / file).string(), std::string_view(reinterpret_cast<const char*>(c.stream.data()), c.stream.size()));
-    ordered_json j;
-    j["id"] = c.id;
-    j["file"] = file;
-    j["purpose"] = c.purpose;
-    j["clauses"] = c.clauses;
-    j["stream_md5"] = md5_of(c.stream);
-    j["expect"] = c.valid ? "decode" : "error";
-    if (c.valid) {
-      j["decoded_md5"] = md5_of(decoded_frames3d(c.stream));
-    } else {
-      j["error_kind"] = to_string(c.error_kind);
-      j["error_element"] = c.error_element;
-      j["error_frame"] = c.error_frame;
-    }
-    manifest["streams"].push_back(j);
-  }
-  write_file_atomically((fs::path(folder) / "manifest.json").string(), manifest.dump(2) + "\n");
-}
-
-namespace {
-
-ordered_json read_manifest3d(const fs::path& suite) {
-  const std::vector<uint8_t> text = read_file((suite / "manifest.json").string());
-  try {
-    return ordered_json::parse(text.begin(), text.end());
-  } catch (const std::exception& e) {
-    throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, (suite / "manifest.json").string() + ": " + e.what());
-  }
-}
-
-}  // namespace
-
-bool is_suite3d(const std::string& folder) { return read_manifest3d(folder).value("kind", "") == "mesh3d"; }
-
-ConformResult run_conformance3d(const ConformOptions& options, std::ostream& out) {
-  const fs::path suite(options.suite);
-  const ordered_json manifest = read_manifest3d(suite);
-  ConformResult result;
-  char line[640];
-  std::snprintf(line, sizeof line, "%-36s %-7s %-6s %s\n", "stream", "expect", "result", "detail");
-  out << line;
-  for (const ordered_json& e : manifest.at("streams")) {
-    const std::string id = e.at("id").get<std::string>();
-    const std::string path = (suite / e.at("file").get<std::string>()).string();
-    const bool expect_decode = e.at("expect").get<std::string>() == "decode";
-    bool pass = false;
-    std::string detail;
-    try {
-      const std::vector<uint8_t> stream = read_file(path);
-      if (md5_of(stream) != e.at("stream_md5").get<std::string>()) {
-        detail = "the stream file's MD5 differs from the manifest's";
-      } else if (options.decoder_command.empty()) {
-        try {
-          const std::string md5 = md5_of(decoded_frames3d(stream));
-          pass = expect_decode && md5 == e.at("decoded_md5").get<std::string>();
-          detail = expect_decode ? (pass ? md5 : "decoded MD5 " + md5 + ", expected " + e.at("decoded_md5").get<std::string>())
-                                 : "decoded, expected " + e.at("error_kind").get<std::string>();
-        } catch (const Error& error) {
-          pass = !expect_decode && to_string(error.kind()) == e.at("error_kind").get<std::string>() &&
-                 error.element() == e.at("error_element").get<std::string>() && error.plane() == e.at("error_frame").get<int64_t>();
-          detail = std::string(to_string(error.kind())) + ": " + error.what();
-          if (!pass && !expect_decode)
-            detail += "; expected " + e.at("error_kind").get<std::string>() + " at frame " + std::to_string(e.at("error_frame").get<int64_t>()) +
-                      ", " + e.at("error_element").get<std::string>();
-        }
-      } else {
-        const fs::path output = fs::temp_directory_path() / ("m4mesh-conform3d-" + id + ".f32");
-        fs::remove(output);
-        std::string command = options.decoder_command;
-        auto substitute = [&](const std::string& key, const std::string& value) {
-          for (size_t at = command.find(key); at != std::string::npos; at = command.find(key, at + value.size()))
-            command.replace(at, key.size(), "'" + value + "'");
-        };
-        substitute("{in}", path);
-        substitute("{out}", output.string());
-        const int status = std::system((command + " > /dev/null 2>&1").c_str());
-        const bool ok = status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
-        if (!expect_decode) {
-          pass = !ok;
-          detail = ok ? "exit status 0 for a stream that must be rejected" : "rejected";
-        } else if (!ok || !fs::exists(output)) {
-          detail = "the decoder failed or wrote nothing";
-        } else {
-          const std::string md5 = md5_of(read_file(output.string()));
-          pass = md5 == e.at("decoded_md5").get<std::string>();
-          detail = pass ? md5 : "decoded MD5 " + md5 + ", expected " + e.at("decoded_md5").get<std::string>();
-        }
-        fs::remove(output);
-      }
-    } catch (const std::exception& error) {
-      detail = error.what();
-    }
-    (pass ? result.passed : result.failed)++;
-    std::snprintf(line, sizeof line, "%-36s %-7s %-6s %.500s\n", id.c_str(), expect_decode ? "decode" : "reject", pass ? "pass" : "FAIL",
-                  detail.c_str());
-    out << line;
-  }
-  out << result.passed << " passed, " << result.failed << " failed\n";
-  return result;
 }
 
 }  // namespace m4mesh

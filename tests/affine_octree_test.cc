@@ -183,27 +183,11 @@ TEST(AffineOctree, BadOptionsAreUsageErrors) {
   EXPECT_THROW(encode_mesh3d(s, options), Error);
 }
 
-TEST(Conformance3d, RegenerationGivesIdenticalBytes) {
-  const fs::path suite = fs::path(M4MESH_CONFORMANCE_DIR) / "mesh3d";
-  const fs::path folder = fs::temp_directory_path() / "m4mesh-suite3d-regeneration";
-  fs::remove_all(folder);
-  write_suite3d(folder.string());
-  EXPECT_EQ(read_file((folder / "manifest.json").string()), read_file((suite / "manifest.json").string()))
-      << "the 3D suite changed: regenerate it (m4mesh generate-suite conformance) and say why";
-  size_t streams = 0;
-  for (const auto& entry : fs::directory_iterator(folder / "streams")) {
-    EXPECT_EQ(read_file(entry.path().string()), read_file((suite / "streams" / entry.path().filename()).string())) << entry.path();
-    ++streams;
-  }
-  EXPECT_GE(streams, 18u);
-  fs::remove_all(folder);
-}
-
 // A codec's fixed fields are located to the bit: raw_bytes_z is the sixth
 // u(32) of frame 1's data, after the start code and the unit header.
 TEST(Conformance3d, Bfs3dLengthErrorGivesTheFieldsBitOffset) {
-  const std::vector<Suite3dCase> suite = build_suite3d();
-  const auto bad = std::find_if(suite.begin(), suite.end(), [](const Suite3dCase& c) { return c.id == "x-10-bfs3d-lengths"; });
+  const std::vector<SuiteCase> suite = build_suite3d();
+  const auto bad = std::find_if(suite.begin(), suite.end(), [](const SuiteCase& c) { return c.id == "x-10-bfs3d-lengths"; });
   ASSERT_NE(bad, suite.end());
   uint64_t unit_start = 0;
   for (const ContainerUnit& unit : split_container(bad->stream).units)

@@ -25,17 +25,21 @@ const fs::path kSpec = fs::path(M4MESH_SOURCE_DIR) / ".." / "shared" / "spec" / 
 
 std::vector<uint8_t> stream_of(const ManifestEntry& e) { return read_file((kSuite / e.file).string()); }
 
+// Both suites, 2D and 3D: every stream and manifest regenerates byte for byte.
 TEST(Conformance, RegenerationGivesIdenticalBytes) {
-  const fs::path folder = fs::temp_directory_path() / "m4mesh-suite-regenerated";
+  const fs::path folder = fs::temp_directory_path() / "m4mesh-suites-regenerated";
   fs::remove_all(folder);
-  const Manifest regenerated = generate_suite(folder.string());
-  EXPECT_EQ(read_file((folder / "manifest.json").string()), read_file((kSuite / "manifest.json").string()))
-      << "manifest.json differs: run `m4mesh generate-suite conformance` and review the change";
-  for (const ManifestEntry& e : regenerated.entries)
-    EXPECT_EQ(read_file((folder / e.file).string()), stream_of(e)) << e.id << " differs from the committed stream";
-  size_t committed = 0;
-  for (const auto& entry : fs::directory_iterator(kSuite / "streams")) committed += entry.path().extension() == ".m4m";
-  EXPECT_EQ(committed, regenerated.entries.size()) << "streams/ holds files the manifest does not list";
+  generate_suites(folder.string());
+  for (const char* sub : {".", "mesh3d"}) {
+    EXPECT_EQ(read_file((folder / sub / "manifest.json").string()), read_file((kSuite / sub / "manifest.json").string()))
+        << sub << "/manifest.json differs: run `m4mesh generate-suite conformance` and review the change";
+    const Manifest regenerated = read_manifest((folder / sub / "manifest.json").string());
+    for (const ManifestEntry& e : regenerated.entries)
+      EXPECT_EQ(read_file((folder / sub / e.file).string()), read_file((kSuite / sub / e.file).string())) << e.id << " differs from the committed stream";
+    size_t committed = 0;
+    for (const auto& entry : fs::directory_iterator(kSuite / sub / "streams")) committed += entry.path().extension() == ".m4m";
+    EXPECT_EQ(committed, regenerated.entries.size()) << sub << "/streams holds files the manifest does not list";
+  }
   fs::remove_all(folder);
 }
 

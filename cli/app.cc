@@ -1,0 +1,299 @@
+// The m4mesh command line: every subcommand, its options and its errors.
+#include "cli/app.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <optional>
+
+#include "cli/commands3d.h"
+#include "cli/demo.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "conformance/checker.h"
+#include "conformance/manifest.h"
+#include "conformance/runner.h"
+#include "decoder/decoder.h"
+#include "encoder/encoder.h"
+#include "encoder/frame_input.h"
+#include "mesh/decoded_text.h"
+#include "syntax/mesh3d/container.h"
+#include "syntax/mesh_object.h"
+
+namespace m4mesh {
+namespace {
+
+MotionMethod method_of(int method) { return method == 1 ? MotionMethod::kMethod1 : MotionMethod::kMethod2; }
+
+bool is_decoded_text(const std::string& path) {
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) return false;
+  char header[17] = {};
+  const size_t n = std::fread(header, 1, 16, file);
+  std::fclose(file);
+  return n == 16 && std::string(header) == "m4mesh-decoded 1";
+}
+
+struct EncodeArgs {
+  std::string input;
+  std::string output;
+  int method = 2;
+  bool keep_order = false;
+  bool no_end_code = false;
+  bool trace = false;
+  double scale = 1.0;
+};
+
+int run_encode(const EncodeArgs& args) {
+  std::vector<MeshPlane> planes;
+  if (is_decoded_text(args.input)) {
+    const std::vector<uint8_t> bytes = read_file(args.input);
+    planes = parse_decoded_text(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), args.input);
+  } else {
+    const std::vector<std::string> files = frame_files(args.input);
+    std::vector<ObjFrame> frames;
+    for (size_t k = 0; k < files.size(); ++k) {
+      frames.push_back(read_obj(files[k]));
+      if (files.size() > 20 && (k + 1) % 20 == 0) std::fprintf(stderr, "read %zu/%zu frames\r", k + 1, files.size());
+    }
+    planes = planes_from_frames(frames, files, args.scale).planes;
+  }
+  Trace trace(std::cout);
+  EncoderOptions options;
+  options.method = method_of(args.method);
+  options.keep_node_order = args.keep_order;
+  options.end_code = !args.no_end_code;
+  options.trace = args.trace ? &trace : nullptr;
+  options.report = [&](const std::string& message) { std::fprintf(stderr, "note: %s: %s\n", args.input.c_str(), message.c_str()); };
+  const EncodeResult result = encode(planes, options);
+  write_file_atomically(args.output, std::string_view(reinterpret_cast<const char*>(result.stream.data()), result.stream.size()));
+  std::fprintf(stderr, "%s: %zu bytes, %lld I-planes, %lld P-planes\n", args.output.c_str(), result.stream.size(),
+               static_cast<long long>(result.intra_planes), static_cast<long long>(result.inter_planes));
+  return 0;
+}
+
+struct DecodeArgs {
+  std::string input;
+  std::string output;
+  int method = 2;
+  bool md5_only = false;
+  bool keep_going = false;
+};
+
+int run_decode(const DecodeArgs& args) {
+  const std::vector<uint8_t> stream = read_file(args.input);
+  DecoderOptions options;
+  options.method = method_of(args.method);
+  Decoder decoder(stream, options);
+  std::optional<AtomicFile> file;
+  if (!args.output.empty()) file.emplace(args.output);
+  DecodedTextWriter writer([&](std::string_view text) {
+    if (file) file->write(text);
+  });
+  int64_t planes = 0;
+  try {
+    while (decoder.next()) {
+      writer.plane(decoder.info(), decoder.nodes(), decoder.info().intra ? decoder.triangles() : std::span<const Triangle>{});
+      ++planes;
+    }
+  } catch (const Error& e) {
+    if (!args.keep_going) throw;
+    std::fprintf(stderr, "error: %s: %s\n", args.input.c_str(), e.what());
+    if (file) {
+      writer.finish_incomplete();
+      file->commit();
+    }
+    std::fprintf(stderr, "%s: decoded %lld complete planes before the error%s\n", args.input.c_str(),
+                 static_cast<long long>(planes),
+                 file ? ("; " + args.output + " holds them, without the final 'end' line").c_str() : "");
+    return 1;
+  }
+  const std::string md5 = writer.finish();
+  if (file) file->commit();
+  for (const syntax::Warning& w : decoder.warnings())
+    std::fprintf(stderr, "warning: %s: bit %lld: %s\n", args.input.c_str(), static_cast<long long>(w.bit_offset), w.message.c_str());
+  if (args.md5_only)
+    std::printf("%s\n", md5.c_str());
+  else
+    std::printf("%s  %s (%lld planes)\n", md5.c_str(), args.input.c_str(), static_cast<long long>(planes));
+  return 0;
+}
+
+int run_trace(const std::string& input) {
+  const std::vector<uint8_t> stream = read_file(input);
+  if (is_mesh3d_stream(stream)) return run_trace3d(input);
+  Trace trace(std::cout);
+  syntax::read_mesh_object(stream, &trace);
+  return 0;
+}
+
+int run_info(const std::string& input) {
+  const std::vector<uint8_t> stream = read_file(input);
+  if (is_mesh3d_stream(stream)) return run_info3d(input);
+  syntax::MeshObjectReader reader(stream);
+  MeshObjectPlane plane;
+  std::printf("%s: %zu bytes, 2D mesh object\n", input.c_str(), stream.size());
+  uint64_t start = reader.position();
+  std::map<std::string, int64_t> counts;
+  while (reader.next(plane)) {
+    const uint64_t bits = reader.position() - start;
+    std::string kind;
+    if (!plane.new_mesh_flag) {
+      kind = "P range=" + std::to_string(plane.motion.motion_range_code);
+    } else if (plane.geometry.mesh_type_code == kMeshTypeUniform) {
+      const UniformGeometry& u = plane.geometry.uniform;
+      kind = "I uniform " + std::to_string(u.nr_of_mesh_nodes_hori) + "x" + std::to_string(u.nr_of_mesh_nodes_verti) +
+             " split=" + std::to_string(u.triangle_split_code);
+    } else {
+      kind = "I delaunay boundary=" + std::to_string(plane.geometry.delaunay.nr_of_boundary_nodes);
+    }
+    ++counts[plane.new_mesh_flag ? "I" : "P"];
+    std::printf("plane %lld at bit %llu: %s, %u nodes, %llu bits (%.3f bits/node)\n",
+                static_cast<long long>(reader.planes_read() - 1), static_cast<unsigned long long>(start), kind.c_str(),
+                reader.mesh_nodes(), static_cast<unsigned long long>(bits),
+                static_cast<double>(bits) / reader.mesh_nodes());
+    start = reader.position();
+  }
+  std::printf("%lld planes (%lld I, %lld P), end code %s\n", static_cast<long long>(reader.planes_read()),
+              static_cast<long long>(counts["I"]), static_cast<long long>(counts["P"]),
+              reader.has_end_code() ? "present" : "MISSING");
+  return 0;
+}
+
+int run_check(const std::string& input) {
+  const std::vector<uint8_t> stream = read_file(input);
+  const bool mesh3d = is_mesh3d_stream(stream);
+  const CheckReport report = mesh3d ? check_mesh3d(stream) : check_stream(stream);
+  for (const Finding& f : report.findings) std::printf("%s\n", format_finding(f).c_str());
+  const size_t errors = report.errors();
+  std::printf("%s: %lld %s, %zu errors, %zu warnings: %s\n", input.c_str(), static_cast<long long>(report.planes), mesh3d ? "units" : "planes", errors,
+              report.findings.size() - errors, report.conformant() ? "conformant" : "NOT conformant");
+  return report.conformant() ? 0 : 1;
+}
+
+int run_conform(const ConformOptions& options) {
+  const ConformResult result = run_conformance(options, std::cout);
+  return result.failed == 0 ? 0 : 1;
+}
+
+int run_generate_suite(const std::string& folder) {
+  generate_suites(folder);
+  std::printf("%s: the 2D suite; %s/mesh3d: the 3D suite; each with streams/ and manifest.json\n", folder.c_str(), folder.c_str());
+  return 0;
+}
+
+}  // namespace
+}  // namespace m4mesh
+
+namespace m4mesh {
+
+int run_m4mesh(int argc, const char* const* argv) {
+  CLI::App app{"m4mesh: MPEG-4-style 2D mesh object encoder, decoder and tools"};
+  app.require_subcommand(1);
+
+  EncodeArgs encode_args;
+  CLI::App* encode_cmd = app.add_subcommand("encode", "Encode §9 text or OBJ frames into a mesh stream");
+  encode_cmd->add_option("input", encode_args.input, "§9 decoded text, an OBJ file, a folder of OBJ frames or a pattern with '*'")->required();
+  encode_cmd->add_option("-o,--output", encode_args.output, "output stream (.m4m)")->required();
+  encode_cmd->add_option("--method", encode_args.method, "motion vector prediction: 2 (breadth-first, normative) or 1 (linear)")
+      ->check(CLI::IsMember({1, 2}));
+  encode_cmd->add_flag("--keep-order", encode_args.keep_order, "code Delaunay nodes in the input order instead of §10's");
+  encode_cmd->add_option("--scale", encode_args.scale, "OBJ input: multiply x and y by this to get half pixels");
+  encode_cmd->add_flag("--no-end-code", encode_args.no_end_code, "leave out mesh_object_end_code");
+  encode_cmd->add_flag("--trace", encode_args.trace, "print every syntax element written");
+
+  DecodeArgs decode_args;
+  CLI::App* decode_cmd = app.add_subcommand("decode", "Decode a mesh stream to §9 text and print its MD5");
+  decode_cmd->add_option("input", decode_args.input, "mesh stream")->required();
+  decode_cmd->add_option("-o,--output", decode_args.output, "§9 text output (written only when decoding succeeds)");
+  decode_cmd->add_option("--method", decode_args.method, "motion vector prediction: 2 or 1")->check(CLI::IsMember({1, 2}));
+  decode_cmd->add_flag("--md5", decode_args.md5_only, "print only the MD5 of the decoded text");
+  decode_cmd->add_flag("--keep-going", decode_args.keep_going,
+                       "on an error, keep the planes decoded before it (the output then lacks its final 'end' line)");
+
+  std::string trace_input;
+  CLI::App* trace_cmd = app.add_subcommand("trace", "Print every syntax element of a 2D or 3D stream: bit offset, name, bit count, value");
+  trace_cmd->add_option("input", trace_input, "mesh stream")->required();
+
+  std::string info_input;
+  CLI::App* info_cmd = app.add_subcommand("info", "Summarise a 2D mesh stream plane by plane, or a 3D stream unit by unit");
+  info_cmd->add_option("input", info_input, "mesh stream")->required();
+
+  std::string check_input;
+  CLI::App* check_cmd = app.add_subcommand("check", "List every violation of the specification in a stream (exit 0 only if conformant)");
+  check_cmd->add_option("input", check_input, "mesh stream")->required();
+
+  ConformOptions conform_options;
+  conform_options.suite = M4MESH_CONFORMANCE_DIR;
+  CLI::App* conform_cmd = app.add_subcommand("conform", "Run the conformance suite through m4mesh's or another decoder");
+  conform_cmd->add_option("suite", conform_options.suite, "suite folder holding manifest.json")->capture_default_str();
+  conform_cmd->add_option("--decoder", conform_options.decoder_command,
+                          "external decoder command: {in} stream, {out} output to write (§9 text; for the 3D suite every frame's "
+                          "binary32 bytes, as decode3d -o FILE.f32), {method} 1 or 2");
+
+  std::string suite_folder;
+  CLI::App* generate_cmd = app.add_subcommand("generate-suite", "Regenerate the conformance streams and manifest");
+  generate_cmd->add_option("folder", suite_folder, "output folder")->required();
+
+  Encode3dArgs encode3d_args;
+  CLI::App* encode3d_cmd = app.add_subcommand("encode3d", "Encode an animated 3D mesh (OBJ/OFF frames or .m4seq) into a mesh3d stream");
+  encode3d_cmd->add_option("input", encode3d_args.input, "a folder of frames, a pattern with '*', or a .m4seq file")->required();
+  encode3d_cmd->add_option("-o,--output", encode3d_args.output, "output stream (.m4m)")->required();
+  add_codec_options(*encode3d_cmd, encode3d_args);
+  encode3d_cmd->add_flag("--no-hash", encode3d_args.no_hash, "leave out the decoded-frame hash units");
+  encode3d_cmd->add_option("--fps", encode3d_args.fps, "frame rate")->check(CLI::Range(1, 65535))->capture_default_str();
+  encode3d_cmd->add_flag("--trace", encode3d_args.trace, "print every syntax element written, as `m4mesh trace` prints them");
+
+  Decode3dArgs decode3d_args;
+  CLI::App* decode3d_cmd = app.add_subcommand("decode3d", "Decode a mesh3d stream into OBJ frames or a .m4seq file");
+  decode3d_cmd->add_option("input", decode3d_args.input, "mesh3d stream")->required();
+  decode3d_cmd->add_option("-o,--output", decode3d_args.output, "a folder for OBJ frames, a .m4seq file, or a .f32 file (every frame's binary32 x, y, z, little-endian)")->required();
+  decode3d_cmd->add_flag("--verify", decode3d_args.verify, "check every frame against its hash unit: OK or MISMATCH per frame");
+
+  MetricsArgs metrics_args;
+  CLI::App* metrics_cmd = app.add_subcommand("metrics", "KG error, RMSE, max error, PSNR and STED between two sequences");
+  metrics_cmd->add_option("original", metrics_args.original, "original frames or .m4seq")->required();
+  metrics_cmd->add_option("decoded", metrics_args.decoded, "decoded frames, .m4seq, or a mesh3d stream")->required();
+  metrics_cmd->add_option("--stream", metrics_args.stream, "the stream, to report bits per vertex per frame");
+
+  std::string convert_input, convert_output;
+  CLI::App* convert_cmd = app.add_subcommand("convert", "Convert a frame sequence to .m4seq or to OBJ frames");
+  convert_cmd->add_option("input", convert_input, "frames or .m4seq")->required();
+  convert_cmd->add_option("output", convert_output, "a .m4seq file or a folder")->required();
+
+  DemoOptions demo_options;
+  CLI::App* demo_cmd = app.add_subcommand("demo", "Encode and decode an embedded waving-flag animation, check bit-exactness");
+  demo_cmd->add_option("--cols", demo_options.cols, "nodes per row")->check(CLI::Range(2, 1023));
+  demo_cmd->add_option("--rows", demo_options.rows, "nodes per column")->check(CLI::Range(2, 1023));
+  demo_cmd->add_option("--frames", demo_options.frames, "planes")->check(CLI::Range(1, 100000));
+
+  CLI11_PARSE(app, argc, argv);
+  std::string current_file;
+  try {
+    if (*encode_cmd) return current_file = encode_args.input, run_encode(encode_args);
+    if (*decode_cmd) return current_file = decode_args.input, run_decode(decode_args);
+    if (*trace_cmd) return current_file = trace_input, run_trace(trace_input);
+    if (*info_cmd) return current_file = info_input, run_info(info_input);
+    if (*check_cmd) return current_file = check_input, run_check(check_input);
+    if (*conform_cmd) return run_conform(conform_options);
+    if (*generate_cmd) return run_generate_suite(suite_folder);
+    if (*encode3d_cmd) return current_file = encode3d_args.input, run_encode3d(encode3d_args);
+    if (*decode3d_cmd) return current_file = decode3d_args.input, run_decode3d(decode3d_args);
+    if (*metrics_cmd) return run_metrics(metrics_args);
+    if (*convert_cmd) return run_convert(convert_input, convert_output);
+    if (*demo_cmd) return run_demo(demo_options);
+  } catch (const Error& e) {
+    std::cout.flush();
+    // Input and file errors name their own file (and line).
+    if (e.kind() == ErrorKind::kInput || e.kind() == ErrorKind::kIo || current_file.empty())
+      std::fprintf(stderr, "error: %s\n", e.what());
+    else
+      std::fprintf(stderr, "error: %s: %s\n", current_file.c_str(), e.what());
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace m4mesh
