@@ -286,8 +286,8 @@ int run_m4mesh(int argc, const char* const* argv) {
     if (*demo_cmd) return run_demo(demo_options);
   } catch (const Error& e) {
     std::cout.flush();
-    // Input and file errors name their own file (and line).
-    if (e.kind() == ErrorKind::kInput || e.kind() == ErrorKind::kIo || current_file.empty())
+    // Input and file errors name their own file (and line); usage errors concern no file.
+    if (e.kind() == ErrorKind::kInput || e.kind() == ErrorKind::kIo || e.kind() == ErrorKind::kUsage || current_file.empty())
       std::fprintf(stderr, "error: %s\n", e.what());
     else
       std::fprintf(stderr, "error: %s: %s\n", current_file.c_str(), e.what());

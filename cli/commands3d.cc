@@ -72,16 +72,28 @@ int run_encode3d(const Encode3dArgs& args) {
   // The summary goes to standard error when the trace fills standard output.
   std::FILE* summary = args.trace ? stderr : stdout;
   const double vertex_frames = static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size() - 1);
-  std::fprintf(summary, "%s: %zu bytes: base mesh %llu bytes (%.2f bits/vertex), frames %llu bytes (%.3f bits/vertex/frame), other %llu bytes\n",
-               args.output.c_str(), result.stream.size(), static_cast<unsigned long long>(result.base_bytes()),
-               8.0 * static_cast<double>(result.base_bytes()) / sequence.vertex_count, static_cast<unsigned long long>(result.frame_bytes()),
-               vertex_frames > 0 ? 8.0 * static_cast<double>(result.frame_bytes()) / vertex_frames : 0.0,
-               static_cast<unsigned long long>(result.stream.size() - result.base_bytes() - result.frame_bytes()));
+  std::string line = args.output + ": " + std::to_string(result.stream.size()) + " bytes";
+  char figure[160];
+  for (uint32_t t = 0; t < kUnitTypes; ++t) {
+    const uint64_t bytes = result.unit_bytes[t];
+    if (bytes == 0) continue;
+    std::snprintf(figure, sizeof figure, ", %s units %llu", unit_type_name(static_cast<UnitType>(t)), static_cast<unsigned long long>(bytes));
+    line += figure;
+    if (static_cast<UnitType>(t) == UnitType::kBaseMesh)
+      std::snprintf(figure, sizeof figure, " (%.2f bits/vertex)", 8.0 * static_cast<double>(bytes) / sequence.vertex_count);
+    else if (static_cast<UnitType>(t) == UnitType::kFrame && vertex_frames > 0)
+      std::snprintf(figure, sizeof figure, " (%.3f bits/vertex/frame)", 8.0 * static_cast<double>(bytes) / vertex_frames);
+    else
+      figure[0] = '\0';
+    line += figure;
+  }
+  line += ", other " + std::to_string(result.other_bytes);
+  std::fprintf(summary, "%s\n", line.c_str());
   if (!result.statistics.empty()) {
-    std::string line = args.codec + ":";
+    std::string figures = args.codec + ":";
     for (size_t i = 0; i < result.statistics.size(); ++i)
-      line += (i ? ", " : " ") + std::to_string(result.statistics[i].second) + " " + result.statistics[i].first;
-    std::fprintf(summary, "%s\n", line.c_str());
+      figures += (i ? ", " : " ") + std::to_string(result.statistics[i].second) + " " + result.statistics[i].first;
+    std::fprintf(summary, "%s\n", figures.c_str());
   }
   std::fprintf(summary, "encoded %zu frames of %u vertices in %.3f s (%.1f M vertices/s)\n", sequence.frames.size(), sequence.vertex_count,
                seconds, static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size()) / seconds / 1e6);
