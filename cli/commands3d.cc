@@ -77,7 +77,7 @@ int run_encode3d(const Encode3dArgs& args) {
   for (uint32_t t = 0; t < kUnitTypes; ++t) {
     const uint64_t bytes = result.unit_bytes[t];
     if (bytes == 0) continue;
-    std::snprintf(figure, sizeof figure, ", %s units %llu", unit_type_name(static_cast<UnitType>(t)), static_cast<unsigned long long>(bytes));
+    std::snprintf(figure, sizeof figure, ", %s %llu bytes", unit_type_name(static_cast<UnitType>(t)), static_cast<unsigned long long>(bytes));
     line += figure;
     if (static_cast<UnitType>(t) == UnitType::kBaseMesh)
       std::snprintf(figure, sizeof figure, " (%.2f bits/vertex)", 8.0 * static_cast<double>(bytes) / sequence.vertex_count);

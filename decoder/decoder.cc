@@ -69,20 +69,9 @@ void Decoder::decode_geometry(const MeshGeometry& g, uint64_t plane_start) {
 }
 
 void Decoder::build_order() {
-  const NodeIndex count = static_cast<NodeIndex>(nodes_.size());
-  if (options_.method == MotionMethod::kMethod2) {
-    const bool uniform = intra_info_.kind == MeshKind::kUniform;
-    if (uniform && mesh_.triangles.empty()) mesh_ = uniform_topology(intra_info_.uniform);
-    // §7.1: from the top-left node to the next clockwise boundary node.
-    const NodeIndex second = uniform ? 1 : intra_info_.boundary - 1;
-    order_ = method2_order(mesh_.triangles, mesh_.neighbours, count, 0, second);
-  } else if (intra_info_.kind == MeshKind::kUniform) {
-    order_ = method1_order(boustrophedon(intra_info_.uniform.cols, intra_info_.uniform.rows));
-  } else {
-    std::vector<NodeIndex> sequence(count);
-    for (NodeIndex i = 0; i < count; ++i) sequence[i] = i;
-    order_ = method1_order(sequence);
-  }
+  const bool uniform = intra_info_.kind == MeshKind::kUniform;
+  if (uniform && options_.method == MotionMethod::kMethod2 && mesh_.triangles.empty()) mesh_ = uniform_topology(intra_info_.uniform);
+  order_ = plane_motion_order(options_.method, mesh_, nodes_.size(), uniform ? &intra_info_.uniform : nullptr, intra_info_.boundary);
   order_ready_ = true;
 }
 
@@ -103,8 +92,6 @@ void Decoder::decode_motion(const MeshMotion& motion, uint64_t plane_start) {
   const MotionRange range(motion.motion_range_code);
   const size_t count = order_.node.size();
   const NodeIndex* node = order_.node.data();
-  const NodeIndex* pred_a = order_.pred_a.data();
-  const NodeIndex* pred_b = order_.pred_b.data();
   const NodeMotion* coded = motion.nodes.data();
   Point* v = vectors_.data();
   Point* p = nodes_.data();
@@ -113,10 +100,9 @@ void Decoder::decode_motion(const MeshMotion& motion, uint64_t plane_start) {
     const NodeIndex n = node[k];
     Point vector{0, 0};
     if (coded[k].node_motion_vector_flag) {
-      const Point& a = v[pred_a[k]];
-      const Point& b = v[pred_b[k]];
-      vector.x = range.wrap(((a.x + b.x + 1) >> 1) + range.difference(coded[k].delta_mv_x, coded[k].delta_mv_x_res));
-      vector.y = range.wrap(((a.y + b.y + 1) >> 1) + range.difference(coded[k].delta_mv_y, coded[k].delta_mv_y_res));
+      const Point w = predicted_vector(order_, k, v);
+      vector.x = range.wrap(w.x + range.difference(coded[k].delta_mv_x, coded[k].delta_mv_x_res));
+      vector.y = range.wrap(w.y + range.difference(coded[k].delta_mv_y, coded[k].delta_mv_y_res));
     }
     v[n] = vector;
     p[n].x += vector.x;

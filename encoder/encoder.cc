@@ -30,7 +30,7 @@ class PlaneEncoder {
   void report(const std::string& message) const {
     if (options_.report) options_.report(message);
   }
-  void set_order(const MeshTopology& mesh, NodeIndex second);
+  void set_order(const MeshTopology& mesh, const UniformParams* uniform, uint32_t boundary);
 
   const EncoderOptions& options_;
   syntax::MeshObjectWriter writer_;
@@ -42,18 +42,9 @@ class PlaneEncoder {
   std::vector<Point> vectors_;
 };
 
-void PlaneEncoder::set_order(const MeshTopology& mesh, NodeIndex second) {
-  const size_t count = current_.size();
-  if (options_.method == MotionMethod::kMethod2) {
-    order_ = method2_order(mesh.triangles, mesh.neighbours, count, 0, second);
-  } else {
-    std::vector<NodeIndex> sequence(count);
-    for (NodeIndex i = 0; i < count; ++i) sequence[i] = i;
-    order_ = method1_order(kind_ == MeshKind::kUniform ? boustrophedon(syntax_.geometry.uniform.nr_of_mesh_nodes_hori,
-                                                                         syntax_.geometry.uniform.nr_of_mesh_nodes_verti)
-                                                       : sequence);
-  }
-  vectors_.assign(count + 1, Point{});
+void PlaneEncoder::set_order(const MeshTopology& mesh, const UniformParams* uniform, uint32_t boundary) {
+  order_ = plane_motion_order(options_.method, mesh, current_.size(), uniform, boundary);
+  vectors_.assign(current_.size() + 1, Point{});
 }
 
 void PlaneEncoder::intra(const MeshPlane& plane, int64_t index) {
@@ -74,7 +65,7 @@ void PlaneEncoder::intra(const MeshPlane& plane, int64_t index) {
     if (!plane.triangles.empty() && canonical_triangles(plane.triangles, current_) != canonical_triangles(mesh.triangles, current_))
       report("plane " + std::to_string(index) + ": the input triangles differ from the uniform split; the split code wins");
     writer_.write(syntax_);
-    set_order(mesh, 1);
+    set_order(mesh, &u, 0);
     return;
   }
 
@@ -124,7 +115,7 @@ void PlaneEncoder::intra(const MeshPlane& plane, int64_t index) {
   for (size_t n = 1; n < count; ++n)
     d.deltas[n - 1] = NodeDelta{delta_code(current_[n].x - current_[n - 1].x), delta_code(current_[n].y - current_[n - 1].y)};
   writer_.write(syntax_);
-  set_order(mesh, boundary - 1);
+  set_order(mesh, nullptr, boundary);
 }
 
 bool PlaneEncoder::inter(const MeshPlane& plane, int64_t index) {
@@ -161,10 +152,9 @@ bool PlaneEncoder::inter(const MeshPlane& plane, int64_t index) {
     NodeMotion& coded = m.nodes[k];
     coded.node_motion_vector_flag = vector.x != 0 || vector.y != 0;
     if (coded.node_motion_vector_flag) {
-      const Point& a = v[order_.pred_a[k]];
-      const Point& b = v[order_.pred_b[k]];
-      range.code(range.wrap(vector.x - ((a.x + b.x + 1) >> 1)), coded.delta_mv_x, coded.delta_mv_x_res);
-      range.code(range.wrap(vector.y - ((a.y + b.y + 1) >> 1)), coded.delta_mv_y, coded.delta_mv_y_res);
+      const Point w = predicted_vector(order_, k, v);
+      range.code(range.wrap(vector.x - w.x), coded.delta_mv_x, coded.delta_mv_x_res);
+      range.code(range.wrap(vector.y - w.y), coded.delta_mv_y, coded.delta_mv_y_res);
     } else {
       coded = NodeMotion{};
     }

@@ -88,4 +88,13 @@ std::vector<NodeIndex> boustrophedon(uint32_t cols, uint32_t rows) {
   return sequence;
 }
 
+MotionOrder plane_motion_order(MotionMethod method, const MeshTopology& mesh, size_t node_count, const UniformParams* uniform,
+                               uint32_t boundary) {
+  if (method == MotionMethod::kMethod2) return method2_order(mesh.triangles, mesh.neighbours, node_count, 0, uniform ? 1 : boundary - 1);
+  if (uniform) return method1_order(boustrophedon(uniform->cols, uniform->rows));
+  std::vector<NodeIndex> sequence(node_count);
+  for (size_t i = 0; i < node_count; ++i) sequence[i] = static_cast<NodeIndex>(i);
+  return method1_order(sequence);
+}
+
 }  // namespace m4mesh

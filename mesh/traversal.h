@@ -8,7 +8,9 @@
 #include <span>
 #include <vector>
 
+#include "mesh/geometry.h"
 #include "mesh/topology.h"
+#include "mesh/uniform.h"
 
 namespace m4mesh {
 
@@ -33,5 +35,20 @@ MotionOrder method2_order(std::span<const Triangle> triangles, const TriangleNei
 MotionOrder method1_order(std::span<const NodeIndex> sequence);
 // §8's uniform order: row 0 left to right, row 1 right to left, …
 std::vector<NodeIndex> boustrophedon(uint32_t cols, uint32_t rows);
+
+// The order of the P-planes after an I-plane, one rule for the encoder and
+// the decoder. Method II starts at the top-left node 0 and the next
+// clockwise boundary node (§7.1): node 1 of a uniform mesh (`uniform`
+// given), node boundary − 1 of a Delaunay one. Method I follows the
+// boustrophedon of a uniform mesh, the node order of a Delaunay one.
+MotionOrder plane_motion_order(MotionMethod method, const MeshTopology& mesh, size_t node_count, const UniformParams* uniform,
+                               uint32_t boundary);
+
+// The prediction of the k-th coded node's vector (§7.2, §8).
+inline Point predicted_vector(const MotionOrder& order, size_t k, const Point* vectors) {
+  const Point& a = vectors[order.pred_a[k]];
+  const Point& b = vectors[order.pred_b[k]];
+  return {(a.x + b.x + 1) >> 1, (a.y + b.y + 1) >> 1};
+}
 
 }  // namespace m4mesh

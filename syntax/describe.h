@@ -105,20 +105,4 @@ void describe(IO& io, MeshObjectPlane& p, uint32_t& mesh_nodes) {
   io.next_start_code();
 }
 
-// The whole MeshObject (§3), for tools that hold a stream in memory.
-template <class IO>
-void describe(IO& io, MeshObject& object) {
-  io.start_code("mesh_object_start_code", kMeshObjectStartCode);
-  uint32_t mesh_nodes = 0;
-  size_t k = 0;
-  do {
-    io.set_plane(static_cast<int64_t>(k));
-    io.resize_at_least(object.planes, k + 1);
-    describe(io, object.planes[k], mesh_nodes);
-    ++k;
-  } while (io.next_is(kMeshObjectPlaneStartCode, k < object.planes.size()));
-  io.set_plane(kNoPlane);
-  io.end_code(object.has_end_code);
-}
-
 }  // namespace m4mesh::syntax
