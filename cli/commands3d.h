@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "encoder/mesh3d/options.h"
+#include "codecs3d/options.h"
 
 namespace CLI {
 class App;

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "decoder/mesh3d/codec.h"
-#include "encoder/mesh3d/codec.h"
-#include "encoder/mesh3d/options.h"
+#include "codecs3d/codec_decoder.h"
+#include "codecs3d/codec_encoder.h"
+#include "codecs3d/options.h"
 
 namespace m4mesh {
 

@@ -1,5 +1,5 @@
 // The base mesh unit's data (docs/container3d.md), for every codec that sends one.
-#include "decoder/mesh3d/codec.h"
+#include "codecs3d/codec_decoder.h"
 #include "mesh3d/quantization.h"
 
 namespace m4mesh {

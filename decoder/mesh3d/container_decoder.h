@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "decoder/mesh3d/codec.h"
+#include "codecs3d/codec_decoder.h"
 #include "mesh3d/sequence.h"
 #include "syntax/mesh3d/container.h"
 #include "syntax/trace.h"

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "decoder/mesh3d/codec.h"
+#include "codecs3d/codec_decoder.h"
 #include "mesh3d/quantization.h"
 
 namespace m4mesh {

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "encoder/mesh3d/grid_frame_encoder.h"
-#include "encoder/mesh3d/options.h"
+#include "codecs3d/options.h"
 #include "mesh3d/affine_octree.h"
 #include "syntax/mesh3d/affine_octree.h"
 #include "syntax/mesh3d/entropy_io.h"

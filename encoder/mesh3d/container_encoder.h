@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "encoder/mesh3d/codec.h"
-#include "encoder/mesh3d/options.h"
+#include "codecs3d/codec_encoder.h"
+#include "codecs3d/options.h"
 #include "mesh3d/sequence.h"
 #include "syntax/trace.h"
 
@@ -17,7 +17,7 @@ namespace m4mesh {
 
 struct Encode3dOptions {
   std::string codec = "bfs3d";   // a name of the registry
-  CodecOptionValues codec_options;  // the codec's own (encoder/mesh3d/options.h)
+  CodecOptionValues codec_options;  // the codec's own (codecs3d/options.h)
   bool hashes = true;            // a decoded-frame hash unit after every decoded frame
   uint32_t frame_rate_num = 25;
   uint32_t frame_rate_den = 1;

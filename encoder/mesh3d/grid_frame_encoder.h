@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "encoder/mesh3d/codec.h"
+#include "codecs3d/codec_encoder.h"
 #include "mesh3d/quantization.h"
 
 namespace m4mesh {

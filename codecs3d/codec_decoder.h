@@ -1,5 +1,5 @@
 // The decoding half of a 3D codec, unit by unit. The container decoder
-// (container_decoder.h) splits the stream, reads each unit's header and
+// (decoder/mesh3d/container_decoder.h) splits the stream, reads each unit's header and
 // hands the codec every unit but hash units; the codec says which frames
 // that unit (re)decoded and gives their positions. Frame-by-frame,
 // out-of-order, progressive (every unit refines every frame) and

@@ -1,7 +1,7 @@
 // The encoding half of a 3D codec, unit by unit, mirroring
-// decoder/mesh3d/codec.h: the codec sees the whole sequence and emits its
+// codecs3d/codec_decoder.h: the codec sees the whole sequence and emits its
 // units through a UnitSink, which the container encoder
-// (container_encoder.h) implements: it writes the unit headers, the hash
+// (encoder/mesh3d/container_encoder.h) implements: it writes the unit headers, the hash
 // units of the frames the codec reports decoded, and the trace.
 #pragma once
 

@@ -1,4 +1,4 @@
-#include "encoder/mesh3d/options.h"
+#include "codecs3d/options.h"
 
 #include <cmath>
 #include <cstdlib>
