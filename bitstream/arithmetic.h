@@ -80,6 +80,7 @@ class ArithmeticDecoder {
   // Bytes read past the end of the data (zeros were used): a sticky error.
   uint64_t overrun() const { return overrun_; }
   uint64_t position() const { return position_; }
+  uint64_t size() const { return data_.size(); }
 
  private:
   uint32_t next_byte() {

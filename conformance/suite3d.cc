@@ -167,6 +167,22 @@ ContainerUnit& unit_of(ContainerParts& parts, UnitType type, uint32_t frame) {
   throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no such unit");
 }
 
+// A bfs3d frame unit's payload with a zero byte after its section k (0 bins
+// x, 1 raw x, …, 5 raw z), whose length field grows by one.
+std::vector<uint8_t> with_extra_byte(std::vector<uint8_t> payload, int k) {
+  const size_t data = (syntax::unit_data_offset() - 32) / 8;
+  const size_t field = data + 4 * static_cast<size_t>(k);
+  size_t end = data + 24;
+  for (int i = 0; i <= k; ++i) {
+    const size_t at = data + 4 * static_cast<size_t>(i);
+    end += uint32_t{payload[at]} << 24 | uint32_t{payload[at + 1]} << 16 | uint32_t{payload[at + 2]} << 8 | payload[at + 3];
+  }
+  payload.insert(payload.begin() + static_cast<std::ptrdiff_t>(end), 0x00);
+  for (size_t i = field + 3;; --i)
+    if (++payload[i] != 0 || i == field) break;  // + 1, big-endian
+  return payload;
+}
+
 const std::vector<uint8_t>& find(const std::vector<SuiteCase>& cases, const std::string& id) {
   for (const SuiteCase& c : cases)
     if (c.id == id) return c.stream;
@@ -274,6 +290,20 @@ std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
   suite.push_back(invalid("x-11-bfs3d-trailing", "a byte after the six streams", {"bfs3d"},
                           edited(bfs3d, [](ContainerParts& p) { unit_of(p, UnitType::kFrame, 3).payload.push_back(0x55); }),
                           ErrorKind::kStructure, "raw_bytes_z", 3));
+  suite.push_back(invalid("x-12-bfs3d-bins-left-over", "a byte after the last bin of bins_x, counted by arithmetic_bytes_x", {"bfs3d"},
+                          edited(bfs3d,
+                                 [](ContainerParts& p) {
+                                   ContainerUnit& unit = unit_of(p, UnitType::kFrame, 2);
+                                   unit.payload = with_extra_byte(unit.payload, 0);
+                                 }),
+                          ErrorKind::kStructure, "motion_residual", 2));
+  suite.push_back(invalid("x-13-bfs3d-raw-left-over", "a byte after the last raw bits of raw_y, counted by raw_bytes_y", {"bfs3d"},
+                          edited(bfs3d,
+                                 [](ContainerParts& p) {
+                                   ContainerUnit& unit = unit_of(p, UnitType::kFrame, 2);
+                                   unit.payload = with_extra_byte(unit.payload, 3);
+                                 }),
+                          ErrorKind::kStructure, "motion_residual", 2));
   return suite;
 }
 

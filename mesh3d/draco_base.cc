@@ -1,5 +1,7 @@
 #include "mesh3d/draco_base.h"
 
+#include <algorithm>
+
 #include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
@@ -40,6 +42,10 @@ std::vector<uint8_t> encode_base_mesh(std::span<const Triangle> faces, std::span
 }
 
 BaseMesh decode_base_mesh(std::span<const uint8_t> data, uint32_t vertex_count, uint32_t face_count) {
+  // "DRACO", bitstream version 2.2, a triangular mesh (1), sequential connectivity (0).
+  static const uint8_t kHeader[9] = {'D', 'R', 'A', 'C', 'O', 2, 2, 1, 0};
+  if (data.size() < sizeof kHeader || !std::equal(kHeader, kHeader + sizeof kHeader, data.begin()))
+    throw base_error("not a Draco 2.2 mesh with sequential connectivity");
   draco::DecoderBuffer buffer;
   buffer.Init(reinterpret_cast<const char*>(data.data()), data.size());
   draco::Decoder decoder;
@@ -51,8 +57,8 @@ BaseMesh decode_base_mesh(std::span<const uint8_t> data, uint32_t vertex_count, 
                      std::to_string(mesh->num_faces()) + " faces where the object header says " +
                      std::to_string(vertex_count) + " and " + std::to_string(face_count));
   const draco::PointAttribute* position = mesh->GetNamedAttribute(draco::GeometryAttribute::POSITION);
-  if (position == nullptr || position->data_type() != draco::DT_INT32 || position->num_components() != 3)
-    throw base_error("the base mesh lacks 3 integer position components");
+  if (mesh->num_attributes() != 1 || position == nullptr || position->data_type() != draco::DT_INT32 || position->num_components() != 3)
+    throw base_error("the base mesh must have one attribute: POSITION, 3 × INT32");
   BaseMesh base;
   base.positions.resize(vertex_count);
   for (uint32_t i = 0; i < vertex_count; ++i) {

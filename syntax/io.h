@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <span>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -227,10 +228,16 @@ class WriteIO : public IOBase {
 class CountIO : public IOBase {
  public:
   static constexpr bool kReading = false;
+  // With `watched`, offset_of_watched() is where the first field of that name starts.
+  explicit CountIO(const char* watched = nullptr) : watched_(watched) {}
   uint64_t bits() const { return bits_; }
+  uint64_t offset_of_watched() const { return watched_offset_; }
 
   template <class T>
-  void field(const char*, int bits, T&) { bits_ += static_cast<uint64_t>(bits); }
+  void field(const char* name, int bits, T&) {
+    if (watched_ && watched_offset_ == kNotSeen && std::string_view(name) == watched_) watched_offset_ = bits_;
+    bits_ += static_cast<uint64_t>(bits);
+  }
   template <class T>
   void field_in(const char* name, int bits, T& value, uint32_t lo, uint32_t hi) {
     if (value < lo || value > hi) fail(ErrorKind::kOutOfRange, name, "value out of range");
@@ -253,7 +260,10 @@ class CountIO : public IOBase {
   void require_length(const char*, uint64_t) const {}
 
  private:
+  static constexpr uint64_t kNotSeen = ~uint64_t{0};
   uint64_t bits_ = 0;
+  const char* watched_;
+  uint64_t watched_offset_ = kNotSeen;
 };
 
 }  // namespace m4mesh::syntax

@@ -139,6 +139,41 @@ TEST(Arithmetic, ResidualsOfEverySizeRoundTrip) {
   EXPECT_NO_THROW(reader.finish("motion_residual"));
 }
 
+// After the last symbol: no bin bytes left over, zero padding, no raw bytes left over.
+TEST(Arithmetic, SectionsEndExactly) {
+  const syntax::SectionPlace place;
+  syntax::EntropyWriteIO<false> writer(place);
+  syntax::ResidualCoder<1> model;
+  std::vector<int32_t> values{5, -3, 0, 17};
+  for (int32_t& v : values) model.describe(writer, 0, v, syntax::kMotionResidual);
+  const std::vector<uint8_t> bins = writer.finish_bins(), raw = writer.finish_raw();
+  auto decode = [&](const std::vector<uint8_t>& b, const std::vector<uint8_t>& r) {
+    syntax::EntropyReadIO<false> reader(b, r, place);
+    syntax::ResidualCoder<1> decoding;
+    for (int32_t expected : values) {
+      int32_t v = 0;
+      decoding.describe(reader, 0, v, syntax::kMotionResidual);
+      EXPECT_EQ(v, expected);
+    }
+    reader.finish("motion_residual");
+  };
+  EXPECT_NO_THROW(decode(bins, raw));
+  std::vector<uint8_t> more_bins = bins;
+  more_bins.push_back(0);
+  EXPECT_THROW(decode(more_bins, raw), Error);
+  std::vector<uint8_t> more_raw = raw;
+  more_raw.push_back(0);
+  EXPECT_THROW(decode(bins, more_raw), Error);
+  std::vector<uint8_t> padded = raw;
+  padded.back() |= 1;  // the raw bits do not fill their last byte: its last bit is padding
+  try {
+    decode(bins, padded);
+    FAIL() << "nonzero padding accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.element(), "raw_padding");
+  }
+}
+
 TEST(Traversal3d, EveryVertexOnceAndPredictorsBeforeUse) {
   const MeshSequence s = test_sequence(1, 4);
   const MotionOrder3d order = bfs3d_order(s.faces, s.vertex_count);

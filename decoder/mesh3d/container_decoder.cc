@@ -34,6 +34,9 @@ Mesh3dDecoder::Mesh3dDecoder(std::span<const uint8_t> stream, const Decode3dOpti
       throw Error(ErrorKind::kLimit, "codec_id", kNoPlane, 8,
                   "codec " + std::to_string(header_.codec_id) + " (" + codec_row_->name + ") is registered but this decoder does not implement it yet");
     codec_ = codec_row_->make_decoder(header_, io);
+    if (reader.bits_left() != 0)
+      throw Error(ErrorKind::kStructure, "object_payload", kNoPlane, static_cast<int64_t>(reader.position()),
+                  std::to_string(reader.bits_left() / 8) + " bytes left over after the " + codec_row_->name + " header");
     codec_->set_trace(options_.trace);
   } catch (const Error& e) {
     throw located(e, 0, kNoPlane);
@@ -42,7 +45,7 @@ Mesh3dDecoder::Mesh3dDecoder(std::span<const uint8_t> stream, const Decode3dOpti
 }
 
 void Mesh3dDecoder::fail(ErrorKind kind, size_t index, int64_t frame, const char* element, const std::string& message) const {
-  throw Error(kind, element, frame, static_cast<int64_t>(parts_.units[index].byte_offset * 8), message);
+  throw Error(kind, element, frame, static_cast<int64_t>(parts_.units[index].byte_offset * 8 + syntax::unit_header_offset(element)), message);
 }
 
 UnitHeader Mesh3dDecoder::read_unit_header(size_t index, bool traced) {

@@ -79,6 +79,7 @@ class Mesh3dDecoder {
   void decode_unit(size_t index);
   void check_hash(size_t index);
   void finish();
+  // An error of a unit header's element (unit_type, frame_index).
   [[noreturn]] void fail(ErrorKind kind, size_t index, int64_t frame, const char* element, const std::string& message) const;
 
   ContainerParts parts_;

@@ -87,6 +87,13 @@ inline uint64_t unit_data_offset() {
   describe(count, header);
   return 32 + count.bits();
 }
+// The bit offset of a unit header's element after the unit's start code.
+inline uint64_t unit_header_offset(const char* element) {
+  CountIO count(element);
+  UnitHeader header;
+  describe(count, header);
+  return 32 + count.offset_of_watched();
+}
 
 }  // namespace syntax
 

@@ -52,13 +52,23 @@ class EntropyReadIO {
   [[noreturn]] void fail(ErrorKind kind, const char* element, const std::string& message) const {
     entropy_error(kind, element, message, place_.frame, place_.bins_offset + 8 * bins_.position());
   }
-  // After the last symbol: neither section may have been read past its end.
-  void finish(const char* element) const {
-    if (bins_.overrun() != 0)
-      entropy_error(ErrorKind::kTruncated, element, "the arithmetic-coded section ends early", place_.frame,
-                    place_.bins_offset + 8 * bins_.position());
+  // After the last symbol: the decoder has read exactly the bin section's
+  // bytes, and the raw bits up to their last byte, whose padding is zeros.
+  void finish(const char* element) {
+    const uint64_t bins_end = place_.bins_offset + 8 * bins_.position();
+    if (bins_.overrun() != 0) entropy_error(ErrorKind::kTruncated, element, "the arithmetic-coded section ends early", place_.frame, bins_end);
+    if (bins_.position() != bins_.size())
+      entropy_error(ErrorKind::kStructure, element,
+                    std::to_string(bins_.size() - bins_.position()) + " bytes of the arithmetic-coded section left over", place_.frame, bins_end);
     if (raw_.overrun())
       entropy_error(ErrorKind::kTruncated, element, "the raw bit section ends early", place_.frame, place_.raw_offset + raw_.position());
+    const int padding = static_cast<int>((8 - raw_.position() % 8) % 8);
+    const uint64_t padding_at = place_.raw_offset + raw_.position();
+    if (raw_.read(padding) != 0)
+      entropy_error(ErrorKind::kStructure, "raw_padding", "padding bits that are not zero", place_.frame, padding_at);
+    if (raw_.bits_left() != 0)
+      entropy_error(ErrorKind::kStructure, element, std::to_string(raw_.bits_left() / 8) + " bytes of the raw bit section left over",
+                    place_.frame, place_.raw_offset + raw_.position());
   }
 
  private:

@@ -1,0 +1,52 @@
+// A policy that writes the syntax table of a description, in the style of
+// the specification's §3: one row per element, in the order the
+// description reads them, with its descriptor and allowed range. The docs
+// hold these tables, and tests/docs_test.cc checks them against the code.
+#pragma once
+
+#include <cstdio>
+#include <span>
+#include <string>
+
+#include "syntax/io.h"
+
+namespace m4mesh::syntax {
+
+class TableIO : public IOBase {
+ public:
+  static constexpr bool kReading = false;
+
+  template <class T>
+  void field(const char* name, int bits, T&) {
+    row(name, "u(" + std::to_string(bits) + ")", "");
+  }
+  template <class T>
+  void field_in(const char* name, int bits, T&, uint32_t lo, uint32_t hi) {
+    row(name, "u(" + std::to_string(bits) + ")", std::to_string(lo) + " … " + std::to_string(hi));
+  }
+  // A length the syntax fixes (the description's own structure holds zero
+  // for lengths read from fields) is printed.
+  void section(const char* name, uint64_t length, std::span<const uint8_t>&) {
+    row(name, length ? "b(" + std::to_string(length) + ")" : "bytes", "");
+  }
+  void tail_section(const char* name, std::span<const uint8_t>&) { row(name, "bytes", "to the end of the unit"); }
+  // Constraints between fields are the prose's, not the table's.
+  void require(bool, ErrorKind, const char*, const char*) const {}
+  void require_remaining_bytes(const char*, uint64_t) const {}
+  void require_length(const char*, uint64_t) const {}
+
+  // "title() {", the rows, "}".
+  std::string table(const std::string& title) const { return title + "() {\n" + rows_ + "}\n"; }
+
+ private:
+  void row(const char* name, const std::string& descriptor, const std::string& range) {
+    char line[160];
+    std::snprintf(line, sizeof line, "    %-28s %-8s %s", name, descriptor.c_str(), range.c_str());
+    std::string text(line);
+    text.erase(text.find_last_not_of(' ') + 1);
+    rows_ += text + "\n";
+  }
+  std::string rows_;
+};
+
+}  // namespace m4mesh::syntax

@@ -1,0 +1,93 @@
+// The 3D documents and the code cannot drift: every syntax table in the
+// docs is the one the description writes (syntax/table_io.h), and every
+// symbol of the arithmetic-coded data is named in its document.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <functional>
+
+#include "codecs3d/registry.h"
+#include "common/atomic_file.h"
+#include "syntax/mesh3d/affine_octree.h"
+#include "syntax/mesh3d/bfs3d.h"
+#include "syntax/mesh3d/container.h"
+#include "syntax/table_io.h"
+
+namespace m4mesh {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string document(const std::string& name) {
+  const std::vector<uint8_t> text = read_file((fs::path(M4MESH_SOURCE_DIR) / "docs" / name).string());
+  return std::string(text.begin(), text.end());
+}
+
+std::string table(const std::string& title, const std::function<void(syntax::TableIO&)>& describe) {
+  syntax::TableIO io;
+  describe(io);
+  return io.table(title);
+}
+
+void expect_table(const std::string& doc, const std::string& title, const std::function<void(syntax::TableIO&)>& describe) {
+  const std::string expected = table(title, describe);
+  EXPECT_NE(document(doc).find("```\n" + expected + "```"), std::string::npos)
+      << "docs/" << doc << " lacks the table of " << title << "; the code describes it as:\n```\n" << expected << "```";
+}
+
+TEST(Docs, ContainerTablesMatchTheDescriptions) {
+  expect_table("container3d.md", "object_header", [](syntax::TableIO& io) {
+    ObjectHeader h;
+    syntax::describe(io, h);
+  });
+  expect_table("container3d.md", "unit_header", [](syntax::TableIO& io) {
+    UnitHeader h;
+    syntax::describe(io, h);
+  });
+  expect_table("container3d.md", "base_mesh_data", [](syntax::TableIO& io) {
+    BaseMeshData b;
+    syntax::describe(io, b);
+  });
+  expect_table("container3d.md", "frame_hash_data", [](syntax::TableIO& io) {
+    FrameHash h;
+    syntax::describe(io, h);
+  });
+}
+
+TEST(Docs, CodecTablesMatchTheDescriptions) {
+  expect_table("codec_bfs3d.md", "bfs3d_header", [](syntax::TableIO& io) {
+    Bfs3dHeader h;
+    syntax::describe(io, h);
+  });
+  expect_table("codec_bfs3d.md", "bfs3d_frame_data", [](syntax::TableIO& io) {
+    Bfs3dFrame f;
+    syntax::describe(io, f);
+  });
+  expect_table("codec_affine_octree.md", "affine_octree_header", [](syntax::TableIO& io) {
+    AffineOctreeHeader h;
+    syntax::describe(io, h);
+  });
+  expect_table("codec_affine_octree.md", "affine_octree_frame_data", [](syntax::TableIO& io) {
+    AffineFrame f;
+    syntax::describe(io, f);
+  });
+}
+
+TEST(Docs, EverySymbolOfTheCodedDataIsNamed) {
+  for (const syntax::ResidualNames& n : {syntax::kMotionResidual})
+    for (const char* name : {n.nonzero, n.prefix, n.sign_suffix, n.element}) EXPECT_NE(document("codec_bfs3d.md").find(name), std::string::npos) << name;
+  for (const syntax::ResidualNames& n : {syntax::kMatrixResidual, syntax::kDirectMotion})
+    for (const char* name : {n.nonzero, n.prefix, n.sign_suffix, n.element})
+      EXPECT_NE(document("codec_affine_octree.md").find(name), std::string::npos) << name;
+  for (const char* name : {"split_flag", "direct_flag"}) EXPECT_NE(document("codec_affine_octree.md").find(name), std::string::npos) << name;
+}
+
+TEST(Docs, EveryCodecHasItsDocument) {
+  for (const Codec3d& c : codecs3d()) {
+    if (!c.make_decoder || c.doc.rfind("docs/", 0) != 0) continue;
+    EXPECT_TRUE(fs::exists(fs::path(M4MESH_SOURCE_DIR) / c.doc)) << c.name << ": " << c.doc;
+  }
+}
+
+}  // namespace
+}  // namespace m4mesh
