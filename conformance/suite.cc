@@ -285,22 +285,12 @@ class CaseList {
  public:
   void valid(std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream,
              MotionMethod method = MotionMethod::kMethod2) {
-    SuiteCase c;
-    c.id = std::move(id);
-    c.purpose = std::move(purpose);
-    c.clauses = std::move(clauses);
-    c.stream = std::move(stream);
-    c.method = method;
-    cases_.push_back(std::move(c));
+    cases_.push_back(decode_case(std::move(id), std::move(purpose), std::move(clauses), std::move(stream)));
+    cases_.back().method = method;
   }
   void invalid(std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream, ErrorKind kind,
                std::string element, int64_t plane) {
-    valid(std::move(id), std::move(purpose), std::move(clauses), std::move(stream));
-    SuiteCase& c = cases_.back();
-    c.valid = false;
-    c.error_kind = kind;
-    c.error_element = std::move(element);
-    c.error_plane = plane;
+    cases_.push_back(reject_case(std::move(id), std::move(purpose), std::move(clauses), std::move(stream), kind, std::move(element), plane));
   }
   std::vector<SuiteCase> take() { return std::move(cases_); }
 
@@ -610,6 +600,25 @@ std::vector<SuiteCase> rejected_cases() {
 }
 
 }  // namespace
+
+SuiteCase decode_case(std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream) {
+  SuiteCase c;
+  c.id = std::move(id);
+  c.purpose = std::move(purpose);
+  c.clauses = std::move(clauses);
+  c.stream = std::move(stream);
+  return c;
+}
+
+SuiteCase reject_case(std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream, ErrorKind kind,
+                      std::string element, int64_t plane) {
+  SuiteCase c = decode_case(std::move(id), std::move(purpose), std::move(clauses), std::move(stream));
+  c.valid = false;
+  c.error_kind = kind;
+  c.error_element = std::move(element);
+  c.error_plane = plane;
+  return c;
+}
 
 std::vector<SuiteCase> build_suite() {
   std::vector<SuiteCase> suite;

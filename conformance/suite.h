@@ -27,6 +27,11 @@ struct SuiteCase {
   std::string encoder_trace;  // 3D, when built with traces: what the encoder printed while writing it
 };
 
+// A case to decode, and one to reject with the error a decoder must report.
+SuiteCase decode_case(std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream);
+SuiteCase reject_case(std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream, ErrorKind kind,
+                      std::string element, int64_t plane);
+
 // The cases in groups: uniform, Delaunay, rejected.
 std::vector<SuiteCase> build_suite();
 

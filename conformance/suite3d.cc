@@ -123,11 +123,7 @@ SuiteCase valid(std::string id, std::string purpose, std::vector<std::string> cl
   std::ostringstream text;
   Trace trace(text);
   if (traced) o.trace = &trace;
-  SuiteCase c;
-  c.id = std::move(id);
-  c.purpose = std::move(purpose);
-  c.clauses = std::move(clauses);
-  c.stream = encode_mesh3d(s, o).stream;
+  SuiteCase c = decode_case(std::move(id), std::move(purpose), std::move(clauses), encode_mesh3d(s, o).stream);
   c.encoder_trace = text.str();
   return c;
 }
@@ -135,16 +131,7 @@ SuiteCase valid(std::string id, std::string purpose, std::vector<std::string> cl
 // A stream to reject with the error a decoder must report (the frame as its plane).
 SuiteCase invalid(std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream, ErrorKind kind,
                   std::string element, int64_t frame) {
-  SuiteCase c;
-  c.id = std::move(id);
-  c.purpose = std::move(purpose);
-  c.clauses = std::move(clauses);
-  c.stream = std::move(stream);
-  c.valid = false;
-  c.error_kind = kind;
-  c.error_element = std::move(element);
-  c.error_plane = frame;
-  return c;
+  return reject_case(std::move(id), std::move(purpose), std::move(clauses), std::move(stream), kind, std::move(element), frame);
 }
 
 // A stream rebuilt from its parts after `edit` changed them.
@@ -290,20 +277,20 @@ std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
   suite.push_back(invalid("x-11-bfs3d-trailing", "a byte after the six streams", {"bfs3d"},
                           edited(bfs3d, [](ContainerParts& p) { unit_of(p, UnitType::kFrame, 3).payload.push_back(0x55); }),
                           ErrorKind::kStructure, "raw_bytes_z", 3));
-  suite.push_back(invalid("x-12-bfs3d-bins-left-over", "a byte after the last bin of bins_x, counted by arithmetic_bytes_x", {"bfs3d"},
-                          edited(bfs3d,
-                                 [](ContainerParts& p) {
-                                   ContainerUnit& unit = unit_of(p, UnitType::kFrame, 2);
-                                   unit.payload = with_extra_byte(unit.payload, 0);
-                                 }),
-                          ErrorKind::kStructure, "motion_residual", 2));
-  suite.push_back(invalid("x-13-bfs3d-raw-left-over", "a byte after the last raw bits of raw_y, counted by raw_bytes_y", {"bfs3d"},
-                          edited(bfs3d,
-                                 [](ContainerParts& p) {
-                                   ContainerUnit& unit = unit_of(p, UnitType::kFrame, 2);
-                                   unit.payload = with_extra_byte(unit.payload, 3);
-                                 }),
-                          ErrorKind::kStructure, "motion_residual", 2));
+  const struct {
+    const char* id;
+    const char* purpose;
+    int section;
+  } left_over[] = {{"x-12-bfs3d-bins-left-over", "a byte after the last bin of bins_x, counted by arithmetic_bytes_x", 0},
+                   {"x-13-bfs3d-raw-left-over", "a byte after the last raw bits of raw_y, counted by raw_bytes_y", 3}};
+  for (const auto& c : left_over)
+    suite.push_back(invalid(c.id, c.purpose, {"bfs3d"},
+                            edited(bfs3d,
+                                   [&](ContainerParts& p) {
+                                     ContainerUnit& unit = unit_of(p, UnitType::kFrame, 2);
+                                     unit.payload = with_extra_byte(unit.payload, c.section);
+                                   }),
+                            ErrorKind::kStructure, "motion_residual", 2));
   return suite;
 }
 

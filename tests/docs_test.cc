@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <functional>
 
 #include "codecs3d/registry.h"
 #include "common/atomic_file.h"
@@ -23,54 +22,34 @@ std::string document(const std::string& name) {
   return std::string(text.begin(), text.end());
 }
 
-std::string table(const std::string& title, const std::function<void(syntax::TableIO&)>& describe) {
+// The table the description of T writes.
+template <class T>
+std::string table(const std::string& title) {
   syntax::TableIO io;
-  describe(io);
+  T value;
+  syntax::describe(io, value);
   return io.table(title);
 }
 
-void expect_table(const std::string& doc, const std::string& title, const std::function<void(syntax::TableIO&)>& describe) {
-  const std::string expected = table(title, describe);
+template <class T>
+void expect_table(const std::string& doc, const std::string& title) {
+  const std::string expected = table<T>(title);
   EXPECT_NE(document(doc).find("```\n" + expected + "```"), std::string::npos)
       << "docs/" << doc << " lacks the table of " << title << "; the code describes it as:\n```\n" << expected << "```";
 }
 
 TEST(Docs, ContainerTablesMatchTheDescriptions) {
-  expect_table("container3d.md", "object_header", [](syntax::TableIO& io) {
-    ObjectHeader h;
-    syntax::describe(io, h);
-  });
-  expect_table("container3d.md", "unit_header", [](syntax::TableIO& io) {
-    UnitHeader h;
-    syntax::describe(io, h);
-  });
-  expect_table("container3d.md", "base_mesh_data", [](syntax::TableIO& io) {
-    BaseMeshData b;
-    syntax::describe(io, b);
-  });
-  expect_table("container3d.md", "frame_hash_data", [](syntax::TableIO& io) {
-    FrameHash h;
-    syntax::describe(io, h);
-  });
+  expect_table<ObjectHeader>("container3d.md", "object_header");
+  expect_table<UnitHeader>("container3d.md", "unit_header");
+  expect_table<BaseMeshData>("container3d.md", "base_mesh_data");
+  expect_table<FrameHash>("container3d.md", "frame_hash_data");
 }
 
 TEST(Docs, CodecTablesMatchTheDescriptions) {
-  expect_table("codec_bfs3d.md", "bfs3d_header", [](syntax::TableIO& io) {
-    Bfs3dHeader h;
-    syntax::describe(io, h);
-  });
-  expect_table("codec_bfs3d.md", "bfs3d_frame_data", [](syntax::TableIO& io) {
-    Bfs3dFrame f;
-    syntax::describe(io, f);
-  });
-  expect_table("codec_affine_octree.md", "affine_octree_header", [](syntax::TableIO& io) {
-    AffineOctreeHeader h;
-    syntax::describe(io, h);
-  });
-  expect_table("codec_affine_octree.md", "affine_octree_frame_data", [](syntax::TableIO& io) {
-    AffineFrame f;
-    syntax::describe(io, f);
-  });
+  expect_table<Bfs3dHeader>("codec_bfs3d.md", "bfs3d_header");
+  expect_table<Bfs3dFrame>("codec_bfs3d.md", "bfs3d_frame_data");
+  expect_table<AffineOctreeHeader>("codec_affine_octree.md", "affine_octree_header");
+  expect_table<AffineFrame>("codec_affine_octree.md", "affine_octree_frame_data");
 }
 
 TEST(Docs, EverySymbolOfTheCodedDataIsNamed) {

@@ -245,20 +245,11 @@ TEST(Registry, ToyCodecOnTheCommandLineAndInTheConformanceRunner) {
   EXPECT_EQ(cli({"check", stream}), 0);
 
   const std::vector<uint8_t> toy = read_file(stream);
-  auto make = [](std::string id, std::vector<uint8_t> bytes) {
-    SuiteCase c;
-    c.id = std::move(id);
-    c.purpose = "the toy codec";
-    c.clauses = {"container"};
-    c.stream = std::move(bytes);
-    return c;
-  };
-  const SuiteCase fine = make("toy-01-fine", toy), coarse = make("toy-02-coarse", prefix(toy, 2));
-  SuiteCase bad = make("toy-03-no-refinement", prefix(toy, 1));
-  bad.valid = false;
-  bad.error_element = "mesh3d_unit_start_code";
-  bad.error_plane = 0;
-  write_suite((folder / "suite").string(), SuiteKind::kMesh3d, {fine, coarse, bad});
+  write_suite((folder / "suite").string(), SuiteKind::kMesh3d,
+              {decode_case("toy-01-fine", "both refinements", {"container"}, toy),
+               decode_case("toy-02-coarse", "the prefix after the first refinement", {"container"}, prefix(toy, 2)),
+               reject_case("toy-03-no-refinement", "the prefix before any refinement", {"container"}, prefix(toy, 1), ErrorKind::kTruncated,
+                           "mesh3d_unit_start_code", 0)});
   std::ostringstream report;
   const ConformResult result = run_conformance({(folder / "suite").string(), ""}, report);
   EXPECT_EQ(result.passed, 3) << report.str();

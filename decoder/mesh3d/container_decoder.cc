@@ -63,15 +63,34 @@ UnitHeader Mesh3dDecoder::read_unit_header(size_t index, bool traced) {
   return header;
 }
 
-void Mesh3dDecoder::decode_unit(size_t index) {
-  const ContainerUnit& unit = parts_.units[index];
-  unit_.frames.clear();
-  UnitHeader header = read_unit_header(index, false);
+UnitHeader Mesh3dDecoder::begin_unit(size_t index) {
+  const UnitHeader header = read_unit_header(index, false);
   if (options_.trace) {
+    // The location names the frame, which the header gives: read it again, traced.
     options_.trace->begin_payload("unit " + std::to_string(index) + " frame " + std::to_string(header.frame_index), "mesh3d_unit_start_code",
                                   kMesh3dUnitStartCode);
     read_unit_header(index, true);
   }
+  return header;
+}
+
+template <class Read>
+void Mesh3dDecoder::read_unit_data(size_t index, int64_t frame, Read&& read) {
+  const ContainerUnit& unit = parts_.units[index];
+  BitReader reader(unit.payload.data(), unit.payload.size());
+  reader.seek(syntax::unit_data_offset() - 32);
+  syntax::ReadIO io(reader, options_.trace);
+  io.set_plane(frame);
+  try {
+    read(io);
+  } catch (const Error& e) {
+    throw located(e, unit.byte_offset, frame);
+  }
+}
+
+void Mesh3dDecoder::decode_unit(size_t index) {
+  unit_.frames.clear();
+  const UnitHeader header = begin_unit(index);
   const int64_t frame = header.frame_index;
   if (index == 0 && (header.type() != UnitType::kBaseMesh || header.frame_index != 0))
     fail(ErrorKind::kStructure, index, 0, "unit_type", "the first unit must be the base mesh of frame 0");
@@ -83,19 +102,10 @@ void Mesh3dDecoder::decode_unit(size_t index) {
              codec_row_->name);
   if (header_.frame_count != 0 && header.frame_index >= header_.frame_count)
     fail(ErrorKind::kStructure, index, frame, "frame_index", "more frames than the object header's frame_count");
-
-  BitReader reader(unit.payload.data(), unit.payload.size());
-  reader.seek(syntax::unit_data_offset() - 32);
-  syntax::ReadIO io(reader, options_.trace);
-  io.set_plane(frame);
   unit_.index = index;
   unit_.header = header;
-  unit_.byte_offset = unit.byte_offset;
-  try {
-    codec_->decode_unit(header, io, unit_.frames);
-  } catch (const Error& e) {
-    throw located(e, unit.byte_offset, frame);
-  }
+  unit_.byte_offset = parts_.units[index].byte_offset;
+  read_unit_data(index, frame, [&](syntax::ReadIO& io) { codec_->decode_unit(header, io, unit_.frames); });
   for (uint32_t f : unit_.frames) {
     if (f >= decoded_.size()) decoded_.resize(f + size_t{1});
     decoded_[f] = true;
@@ -103,27 +113,13 @@ void Mesh3dDecoder::decode_unit(size_t index) {
 }
 
 void Mesh3dDecoder::check_hash(size_t index) {
-  const ContainerUnit& unit = parts_.units[index];
-  const UnitHeader header = read_unit_header(index, false);
-  if (options_.trace) {
-    options_.trace->begin_payload("unit " + std::to_string(index) + " frame " + std::to_string(header.frame_index), "mesh3d_unit_start_code",
-                                  kMesh3dUnitStartCode);
-    read_unit_header(index, true);
-  }
+  const UnitHeader header = begin_unit(index);
   const uint32_t frame = header.frame_index;
   const bool covered = codec_->holds_all_frames() ? frame < decoded_.size() && decoded_[frame]
                                                   : std::find(unit_.frames.begin(), unit_.frames.end(), frame) != unit_.frames.end();
   if (!covered) fail(ErrorKind::kStructure, index, frame, "frame_index", "a hash unit for a frame the unit before it did not decode");
-  BitReader reader(unit.payload.data(), unit.payload.size());
-  reader.seek(syntax::unit_data_offset() - 32);
-  syntax::ReadIO io(reader, options_.trace);
-  io.set_plane(frame);
   FrameHash hash;
-  try {
-    syntax::describe(io, hash);
-  } catch (const Error& e) {
-    throw located(e, unit.byte_offset, frame);
-  }
+  read_unit_data(index, frame, [&](syntax::ReadIO& io) { syntax::describe(io, hash); });
   if (!options_.verify) return;
   std::vector<Float3> positions(header_.vertex_count);
   if (auto it = ready_.find(frame); it != ready_.end())

@@ -76,6 +76,11 @@ class Mesh3dDecoder {
 
  private:
   UnitHeader read_unit_header(size_t index, bool traced);
+  // The unit's header, traced with the unit's location when tracing.
+  UnitHeader begin_unit(size_t index);
+  // Runs read(io) on the unit's data; errors are located in the stream.
+  template <class Read>
+  void read_unit_data(size_t index, int64_t frame, Read&& read);
   void decode_unit(size_t index);
   void check_hash(size_t index);
   void finish();
