@@ -1,19 +1,35 @@
-// libFuzzer target: the 3D container, the Draco base mesh and every registered 3D codec's decoder.
+// libFuzzer target: the 3D container, the Draco base mesh and every
+// registered 3D codec's decoder, plain, traced, and in the checker's
+// carry-on mode.
 #include <cstddef>
 #include <cstdint>
+#include <sstream>
 
 #include "common/error.h"
+#include "conformance/checker.h"
 #include "decoder/mesh3d/container_decoder.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace m4mesh;
+  const std::span<const uint8_t> stream(data, size);
   try {
     Decode3dOptions options;
     options.verify = true;
-    Mesh3dDecoder decoder({data, size}, options);
+    Mesh3dDecoder decoder(stream, options);
     while (decoder.next_frame()) {
     }
   } catch (const Error&) {
   }
+  try {
+    std::ostringstream text;
+    Trace trace(text);
+    Decode3dOptions options;
+    options.trace = &trace;
+    Mesh3dDecoder decoder(stream, options);
+    while (decoder.next_unit()) {
+    }
+  } catch (const Error&) {
+  }
+  check_mesh3d(stream);
   return 0;
 }

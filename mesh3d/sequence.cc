@@ -38,7 +38,8 @@ void put_f32(std::string& out, float f) {
 
 class ByteReader {
  public:
-  ByteReader(const std::vector<uint8_t>& bytes, const std::string& path) : bytes_(bytes), path_(path) {}
+  ByteReader(const std::vector<uint8_t>& bytes, const std::string& path, const char* format)
+      : bytes_(bytes), path_(path), format_(format) {}
   uint32_t u32() {
     need(4);
     uint32_t v = 0;
@@ -52,7 +53,7 @@ class ByteReader {
     return f;
   }
   void need(uint64_t n) const {
-    if (pos_ + n > bytes_.size()) throw io(path_, "truncated .m4seq file");
+    if (pos_ + n > bytes_.size()) throw io(path_, std::string("truncated ") + format_ + " file");
   }
   size_t position() const { return pos_; }
   void skip(size_t n) {
@@ -63,8 +64,19 @@ class ByteReader {
  private:
   const std::vector<uint8_t>& bytes_;
   const std::string& path_;
+  const char* format_;
   size_t pos_ = 0;
 };
+
+// A frame's positions, every one finite.
+void read_positions(ByteReader& r, std::vector<Vec3>& frame, const std::string& path) {
+  for (Vec3& v : frame) {
+    v.x = r.f32();
+    v.y = r.f32();
+    v.z = r.f32();
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) throw io(path, "non-finite position");
+  }
+}
 
 // The vertex count, faces and, on mismatch, the frame named.
 void check_same_connectivity(const MeshSequence& s, const MeshFrame& frame, const std::string& name) {
@@ -154,6 +166,7 @@ MeshFrame read_off(const std::string& path) {
 MeshSequence load_sequence(const std::string& path, bool progress) {
   namespace fs = std::filesystem;
   if (fs::is_regular_file(path) && fs::path(path).extension() == ".m4seq") return read_binary_sequence(path);
+  if (fs::is_regular_file(path) && fs::path(path).extension() == ".pc2") return read_pc2_sequence(path);
   std::string extension = ".obj";
   if (fs::is_directory(path)) {
     for (const auto& entry : fs::directory_iterator(path))
@@ -198,7 +211,7 @@ void write_binary_sequence(const MeshSequence& s, const std::string& path) {
 
 MeshSequence read_binary_sequence(const std::string& path) {
   const std::vector<uint8_t> bytes = read_file(path);
-  ByteReader r(bytes, path);
+  ByteReader r(bytes, path, ".m4seq");
   r.need(kMagicSize);
   if (std::memcmp(bytes.data(), kMagic, kMagicSize) != 0) throw io(path, "not a .m4seq file");
   r.skip(kMagicSize);
@@ -217,14 +230,42 @@ MeshSequence read_binary_sequence(const std::string& path) {
   s.frames.resize(frame_count);
   for (std::vector<Vec3>& frame : s.frames) {
     frame.resize(s.vertex_count);
-    for (Vec3& v : frame) {
-      v.x = r.f32();
-      v.y = r.f32();
-      v.z = r.f32();
-      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) throw io(path, "non-finite position");
-    }
+    read_positions(r, frame, path);
   }
   if (r.position() != bytes.size()) throw io(path, "bytes after the last frame");
+  return s;
+}
+
+MeshSequence read_pc2_sequence(const std::string& path) {
+  namespace fs = std::filesystem;
+  const std::string obj = fs::path(path).replace_extension(".obj").string();
+  if (!fs::is_regular_file(obj)) throw io(path, "a PC2 file takes its faces from " + obj + ", which is missing");
+  const MeshFrame first = read_obj_frame(obj);
+  const std::vector<uint8_t> bytes = read_file(path);
+  ByteReader r(bytes, path, "PC2");
+  static const char kSignature[12] = {'P', 'O', 'I', 'N', 'T', 'C', 'A', 'C', 'H', 'E', '2', '\0'};
+  r.need(sizeof kSignature);
+  if (std::memcmp(bytes.data(), kSignature, sizeof kSignature) != 0) throw io(path, "not a PC2 file (no POINTCACHE2 signature)");
+  r.skip(sizeof kSignature);
+  if (r.u32() != 1) throw io(path, "PC2 version other than 1");
+  const uint32_t points = r.u32();
+  r.f32();  // start frame
+  r.f32();  // sample rate
+  const uint32_t samples = r.u32();
+  if (points != first.vertices.size())
+    throw io(path, std::to_string(points) + " points where " + obj + " has " + std::to_string(first.vertices.size()) + " vertices");
+  if (points < 3 || first.faces.empty()) throw input_error(obj, 0, "a mesh needs vertices and faces");
+  if (samples == 0) throw io(path, "no samples");
+  r.need(uint64_t{samples} * points * 12);
+  MeshSequence s;
+  s.vertex_count = points;
+  s.faces = first.faces;
+  s.frames.resize(samples);
+  for (std::vector<Vec3>& frame : s.frames) {
+    frame.resize(points);
+    read_positions(r, frame, path);
+  }
+  if (r.position() != bytes.size()) throw io(path, "bytes after the last sample");
   return s;
 }
 

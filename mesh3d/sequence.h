@@ -24,7 +24,7 @@ struct MeshSequence {
 };
 
 // A folder of frames (.obj or .off), a pattern with '*', a single frame
-// file, or a .m4seq file. Every frame must have the first frame's vertex
+// file, a .m4seq file, or a .pc2 file with its faces in the .obj beside it. Every frame must have the first frame's vertex
 // count and faces; the error names the first frame that differs.
 MeshSequence load_sequence(const std::string& path, bool report_progress = false);
 
@@ -33,6 +33,13 @@ MeshSequence load_sequence(const std::string& path, bool report_progress = false
 // vertex); all little-endian.
 void write_binary_sequence(const MeshSequence& sequence, const std::string& path);
 MeshSequence read_binary_sequence(const std::string& path);
+
+// PC2 (Point Cache 2, the vertex cache of Blender, 3ds Max and Maya):
+// "POINTCACHE2\0", int32 version 1, int32 point count, float32 start frame,
+// float32 sample rate, int32 sample count, then samples × points × 3
+// float32, little-endian; one frame per sample. The faces come from the OBJ
+// of the same name beside it (flag.pc2 → flag.obj), with as many vertices.
+MeshSequence read_pc2_sequence(const std::string& path);
 
 // Frames as OBJ files 0001.obj, 0002.obj, … in a folder (created if needed).
 void write_obj_frames(const MeshSequence& sequence, const std::string& folder);
