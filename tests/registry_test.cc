@@ -106,6 +106,67 @@ class ToyEncoder final : public CodecEncoder3d {
   uint32_t levels_;
 };
 
+// A codec that decodes frames out of display order: after the base mesh
+// (frame 0), the last frame, then the others; each frame unit carries every
+// position as 16 bits, and the decoder keeps only the frame it decoded last.
+template <class IO>
+void describe_toy_frame(IO& io, std::vector<uint32_t>& q, uint32_t count) {
+  io.resize(q, count, "toy_position", 16);
+  for (uint32_t& v : q) io.field("toy_position", 16, v);
+}
+
+class ReorderedDecoder final : public CodecDecoder3d {
+ public:
+  explicit ReorderedDecoder(const ObjectHeader& header) : header_(header) {}
+  void decode_unit(const UnitHeader& unit, syntax::ReadIO& io, std::vector<uint32_t>& decoded) override {
+    if (unit.type() == UnitType::kBaseMesh) {
+      const BaseMesh base = read_base_mesh(io, header_);
+      faces_ = base.faces;
+      q_.clear();
+      for (const IntPoint3& p : base.positions)
+        for (int32_t c : p) q_.push_back(static_cast<uint32_t>(c));
+    } else {
+      describe_toy_frame(io, q_, header_.vertex_count * 3);
+    }
+    decoded.push_back(unit.frame_index);
+  }
+  const std::vector<Triangle>& faces() const override { return faces_; }
+  void frame(uint32_t, std::span<Float3> positions) const override {
+    for (size_t v = 0; v < positions.size(); ++v)
+      for (int axis = 0; axis < 3; ++axis) positions[v][axis] = toy_position(q_[v * 3 + static_cast<size_t>(axis)]);
+  }
+
+ private:
+  ObjectHeader header_;
+  std::vector<Triangle> faces_;
+  std::vector<uint32_t> q_;
+};
+
+class ReorderedEncoder final : public CodecEncoder3d {
+ public:
+  void write_header(syntax::WriteIO&) override {}
+  void encode(const MeshSequence& s, UnitSink& sink) override {
+    std::vector<uint32_t> order{0};
+    if (s.frames.size() > 1) order.push_back(static_cast<uint32_t>(s.frames.size() - 1));
+    for (uint32_t f = 1; f + 1 < s.frames.size(); ++f) order.push_back(f);
+    for (uint32_t f : order) {
+      std::vector<uint32_t> q;
+      std::vector<IntPoint3> grid;
+      std::vector<Float3> decoded;
+      for (const Vec3& p : s.frames[f]) {
+        grid.push_back({static_cast<int32_t>(toy_quantized(p.x)), static_cast<int32_t>(toy_quantized(p.y)), static_cast<int32_t>(toy_quantized(p.z))});
+        decoded.push_back({toy_position(toy_quantized(p.x)), toy_position(toy_quantized(p.y)), toy_position(toy_quantized(p.z))});
+        for (int32_t c : grid.back()) q.push_back(static_cast<uint32_t>(c));
+      }
+      if (f == 0)
+        sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, grid); });
+      else
+        sink.unit(UnitType::kFrame, f, [&](syntax::WriteIO& io) { describe_toy_frame(io, q, static_cast<uint32_t>(q.size())); });
+      sink.decoded(f, decoded);
+    }
+  }
+};
+
 void register_toy() {
   static const bool registered = [] {
     register_codec3d({kToyId, "toy-progressive", "a test's progressive codec: 16-bit positions in two refinement units", "tests/registry_test.cc",
@@ -113,6 +174,11 @@ void register_toy() {
                       {{"levels", "toy-progressive: refinement units to send", OptionKind::kInteger, "2", 1, 2}},
                       [](const ObjectHeader& h, syntax::ReadIO&) { return std::make_unique<ToyDecoder>(h); },
                       [](const MeshSequence&, const CodecSettings& s) { return std::make_unique<ToyEncoder>(s.integer("levels")); }});
+    register_codec3d({kToyId + 1, "toy-reordered", "a test's codec that decodes frames out of display order", "tests/registry_test.cc",
+                      {UnitType::kBaseMesh, UnitType::kFrame},
+                      {},
+                      [](const ObjectHeader& h, syntax::ReadIO&) { return std::make_unique<ReorderedDecoder>(h); },
+                      [](const MeshSequence&, const CodecSettings&) { return std::make_unique<ReorderedEncoder>(); }});
     return true;
   }();
   (void)registered;
@@ -184,6 +250,19 @@ TEST(Registry, ToyCodecRoundTripsThroughTheContainer) {
   EXPECT_EQ(decoded_frames(prefix(stream, 2)), expected(s, 1));
   EXPECT_THROW(decoded_frames(prefix(stream, 1)), Error);  // the frames were never decoded
   EXPECT_EQ(decoded_frames(encode_mesh3d(s, toy_options(1)).stream), expected(s, 1));
+}
+
+TEST(Registry, FramesDecodedOutOfOrderComeOutInDisplayOrder) {
+  register_toy();
+  const MeshSequence s = test::test_sequence(5, 24);
+  Encode3dOptions options;
+  options.codec = "toy-reordered";
+  const std::vector<uint8_t> stream = encode_mesh3d(s, options).stream;
+  EXPECT_EQ(decoded_frames(stream), expected(s, 2));
+  Mesh3dDecoder decoder(stream);
+  std::vector<uint32_t> unit_frames;
+  while (decoder.next_unit()) unit_frames.push_back(decoder.unit().frames.at(0));
+  EXPECT_EQ(unit_frames, (std::vector<uint32_t>{0, 4, 1, 2, 3}));
 }
 
 TEST(Registry, ToyCodecTracesAlikeAndIsChecked) {
