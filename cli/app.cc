@@ -292,6 +292,11 @@ int run_m4mesh(int argc, const char* const* argv) {
     else
       std::fprintf(stderr, "error: %s: %s\n", current_file.c_str(), e.what());
     return 1;
+  } catch (const std::exception& e) {
+    // A failure of the system (file system, memory) rather than of the input.
+    std::cout.flush();
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
   }
   return 0;
 }

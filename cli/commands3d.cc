@@ -107,8 +107,11 @@ int run_decode3d(const Decode3dArgs& args) {
   Mesh3dDecoder decoder(stream, options);
   const std::string extension = fs::path(args.output).extension().string();
   const bool to_folder = extension != ".m4seq" && extension != ".f32";
-  // Frames go to a temporary folder that becomes the output only when all decoded.
-  const fs::path temporary = args.output + ".partial";
+  // Frames go to a temporary folder beside the output (a trailing '/' is
+  // not part of the name) that becomes the output only when all decoded.
+  fs::path folder = fs::path(args.output).lexically_normal();
+  if (folder.filename().empty()) folder = folder.parent_path();
+  const fs::path temporary = folder.string() + ".partial";
   if (to_folder && fs::exists(args.output) && !fs::is_empty(args.output))
     throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, args.output + ": the output folder exists and is not empty");
   fs::remove_all(temporary);
@@ -137,8 +140,8 @@ int run_decode3d(const Decode3dArgs& args) {
     throw;
   }
   if (to_folder) {
-    fs::remove(args.output);
-    fs::rename(temporary, args.output);
+    fs::remove(folder);
+    fs::rename(temporary, folder);
   } else if (extension == ".f32") {
     std::string bytes;
     for (const std::vector<Vec3>& frame : sequence.frames) {

@@ -75,6 +75,10 @@ grep -q "motion_nonzero" "$work/t-decode.trace" || fail "3D trace lacks bins"
 "$m4mesh" check "$work/t.m4m" | grep -q ": conformant$" || fail "3D check of a good stream"
 if "$m4mesh" check "$source/conformance/mesh3d/streams/x-06-frame-cut.m4m" > "$work/check3d"; then fail "3D check passed a cut frame"; fi
 grep -q "^error: unit 2, frame 1, arithmetic_bytes at bit [0-9]*: " "$work/check3d" || fail "3D check: $(cat "$work/check3d")"
+# decode3d into a folder named with a trailing '/': the temporary folder lies beside it.
+"$m4mesh" decode3d "$work/t.m4m" -o "$work/frames/" --verify > /dev/null || fail "decode3d -o folder/"
+[ -f "$work/frames/0001.obj" ] || fail "decode3d -o folder/ wrote no frames"
+[ ! -e "$work/frames.partial" ] && [ ! -e "$work/frames/.partial" ] || fail "decode3d left its temporary folder"
 data="$source/../shared/data"
 if [ -d "$data/horse-gallop" ] && [ -d "$data/pcow" ]; then
   for seq in horse-gallop pcow; do
