@@ -1,0 +1,137 @@
+#include "mesh3d/lcc.h"
+
+#include <cmath>
+
+namespace m4mesh {
+
+namespace {
+
+Vec3 operator-(const Vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+Vec3 cross(const Vec3& a, const Vec3& b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+
+// a / |a|, or nothing (false) for a zero vector.
+bool normalized(const Vec3& a, Vec3& unit) {
+  const double length = std::sqrt(dot(a, a));
+  if (!(length > 0)) return false;
+  unit = {a.x / length, a.y / length, a.z / length};
+  return true;
+}
+
+// sin x and cos x for 0 ≤ x ≤ π/4: Taylor series to x^19 and x^18 in
+// Horner form (truncation below 10^−18).
+void sin_cos(double x, double& s, double& c) {
+  const double x2 = x * x;
+  s = 1;
+  c = 1;
+  for (int n = 9; n >= 1; --n) {
+    s = 1 - x2 / static_cast<double>((2 * n) * (2 * n + 1)) * s;
+    c = 1 - x2 / static_cast<double>((2 * n - 1) * (2 * n)) * c;
+  }
+  s = x * s;
+}
+
+}  // namespace
+
+LccOrder lcc_order(std::span<const Triangle> faces, size_t vertex_count) {
+  LccOrder order;
+  const TriangleNeighbours neighbours = triangle_neighbours(faces, vertex_count);
+  std::vector<uint8_t> coded(vertex_count, 0), reached(faces.size(), 0);
+  std::vector<uint32_t> stack;
+  auto code_directly = [&](NodeIndex v) {
+    if (coded[v]) return;
+    coded[v] = 1;
+    order.direct.push_back(v);
+  };
+  for (uint32_t root = 0; root < faces.size(); ++root) {
+    if (reached[root]) continue;
+    reached[root] = 1;
+    for (NodeIndex v : faces[root].v) code_directly(v);
+    stack.assign(1, root);
+    while (!stack.empty()) {
+      const uint32_t f = stack.back();
+      stack.pop_back();
+      const Triangle& t = faces[f];
+      // The neighbours across v0 → v1, v1 → v2, v2 → v0 are taken in this
+      // order and pushed in the reverse, so that the first is walked first.
+      uint32_t next[3];
+      for (int e = 0; e < 3; ++e) {
+        const NodeIndex a = t.v[(e + 2) % 3], b = t.v[e], c = t.v[(e + 1) % 3];
+        const uint32_t g = neighbours[f][(e + 2) % 3];
+        next[e] = kNoTriangle;
+        if (g == kNoTriangle || reached[g]) continue;
+        reached[g] = 1;
+        next[e] = g;
+        const NodeIndex d = faces[g].third(b, c);
+        if (!coded[d]) {
+          coded[d] = 1;
+          order.steps.push_back({d, a, b, c});
+        }
+      }
+      for (int e = 2; e >= 0; --e)
+        if (next[e] != kNoTriangle) stack.push_back(next[e]);
+    }
+  }
+  for (NodeIndex v = 0; v < vertex_count; ++v) code_directly(v);
+  return order;
+}
+
+LccFrame lcc_frame(const Vec3& a, const Vec3& b, const Vec3& c) {
+  LccFrame frame;
+  frame.origin = {(b.x + c.x) * 0.5, (b.y + c.y) * 0.5, (b.z + c.z) * 0.5};
+  // A zero edge takes the axis x of the space; a triangle without a normal
+  // takes the unit normal of z and the axis of the space least aligned
+  // with z (the lowest such axis on a tie).
+  if (!normalized(c - b, frame.z)) frame.z = {1, 0, 0};
+  if (!normalized(cross(b - a, c - a), frame.y)) {
+    const double ax = std::fabs(frame.z.x), ay = std::fabs(frame.z.y), az = std::fabs(frame.z.z);
+    const Vec3 axis = ax <= ay && ax <= az ? Vec3{1, 0, 0} : ay <= az ? Vec3{0, 1, 0} : Vec3{0, 0, 1};
+    normalized(cross(frame.z, axis), frame.y);
+  }
+  frame.x = cross(frame.z, frame.y);
+  return frame;
+}
+
+Cylindrical radius_and_height(const LccFrame& frame, const Vec3& p) {
+  const Vec3 d = p - frame.origin;
+  const double x = dot(d, frame.x), y = dot(d, frame.y);
+  return {0, std::sqrt(x * x + y * y), dot(d, frame.z)};
+}
+
+Cylindrical to_cylindrical(const LccFrame& frame, const Vec3& p) {
+  Cylindrical c = radius_and_height(frame, p);
+  const Vec3 d = p - frame.origin;
+  c.theta = std::atan2(dot(d, frame.y), dot(d, frame.x));
+  return c;
+}
+
+Vec3 from_cylindrical(const LccFrame& frame, double cos_theta, double sin_theta, double radius, double height) {
+  const double u = radius * cos_theta, v = radius * sin_theta;
+  return {frame.origin.x + u * frame.x.x + v * frame.y.x + height * frame.z.x,
+          frame.origin.y + u * frame.x.y + v * frame.y.y + height * frame.z.y,
+          frame.origin.z + u * frame.x.z + v * frame.y.z + height * frame.z.z};
+}
+
+AngleTable::AngleTable(int bits) : bits_(bits) {
+  // 2π·k/N through octants: x = 2π·j/N with j ≤ N/8 by the symmetries of
+  // the quadrant, then the quadrant's rotation; N = 2^bits ≥ 8.
+  constexpr double kTwoPi = 6.283185307179586;
+  const int64_t n = int64_t{1} << bits, quarter = n / 4, eighth = n / 8;
+  cos_.resize(static_cast<size_t>(n));
+  sin_.resize(static_cast<size_t>(n));
+  for (int64_t index = 0; index < n; ++index) {
+    const int64_t m = ((index - n / 2) % n + n) % n;  // the angle's k, modulo N
+    const int64_t q = m / quarter, j = m % quarter;
+    double s, c;
+    if (j <= eighth) {
+      sin_cos(kTwoPi * static_cast<double>(j) / static_cast<double>(n), s, c);
+    } else {
+      sin_cos(kTwoPi * static_cast<double>(quarter - j) / static_cast<double>(n), c, s);
+    }
+    const double cos_q[4] = {c, -s, -c, s}, sin_q[4] = {s, c, -s, -c};
+    cos_[static_cast<size_t>(index)] = cos_q[q];
+    sin_[static_cast<size_t>(index)] = sin_q[q];
+  }
+}
+
+}  // namespace m4mesh

@@ -1,0 +1,94 @@
+// The shared process of the cloth codec (mesh3d/lcc.h): traversal, local
+// cylindrical frames and the angle table.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <numbers>
+#include <set>
+
+#include "common/md5.h"
+#include "mesh3d/lcc.h"
+#include "tests/test_util.h"
+
+namespace m4mesh {
+namespace {
+
+TEST(Lcc, EveryVertexOnceAfterWhatItRefersTo) {
+  const MeshSequence s = test::test_sequence(1, 31);  // a closed sphere, an open sheet, an isolated vertex
+  const LccOrder order = lcc_order(s.faces, s.vertex_count);
+  std::set<NodeIndex> coded(order.direct.begin(), order.direct.end());
+  EXPECT_EQ(coded.size(), order.direct.size());
+  for (const LccStep& step : order.steps) {
+    for (NodeIndex v : {step.a, step.b, step.c}) ASSERT_TRUE(coded.count(v)) << "vertex " << step.d << " refers to " << v << " before it";
+    ASSERT_TRUE(coded.insert(step.d).second) << "vertex " << step.d << " twice";
+  }
+  EXPECT_EQ(coded.size(), s.vertex_count);
+  EXPECT_EQ(order.direct.size(), 3u + 3u + 1u);  // two components' root triangles and the isolated vertex
+  EXPECT_EQ(order.direct.back(), s.vertex_count - 1);
+  EXPECT_EQ(lcc_order(s.faces, s.vertex_count).steps.size(), order.steps.size());
+}
+
+TEST(Lcc, CylindricalCoordinatesRoundTrip) {
+  test::Random random(32);
+  auto point = [&] { return Vec3{random.uniform(-1000, 1000) / 100.0, random.uniform(-1000, 1000) / 100.0, random.uniform(-1000, 1000) / 100.0}; };
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 a = point(), b = point(), c = point(), d = point();
+    const LccFrame frame = lcc_frame(a, b, c);
+    const Cylindrical p = to_cylindrical(frame, d);
+    EXPECT_EQ(radius_and_height(frame, d).radius, p.radius);
+    const Vec3 back = from_cylindrical(frame, std::cos(p.theta), std::sin(p.theta), p.radius, p.height);
+    ASSERT_NEAR(back.x, d.x, 1e-9);
+    ASSERT_NEAR(back.y, d.y, 1e-9);
+    ASSERT_NEAR(back.z, d.z, 1e-9);
+  }
+  // A flat continuation across the edge has θ = 0: the polar axis points away from a.
+  const LccFrame flat = lcc_frame({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  EXPECT_NEAR(to_cylindrical(flat, {1, 1, 0}).theta, 0, 1e-15);
+  EXPECT_NEAR(to_cylindrical(flat, {0, 0, 0}).theta, std::numbers::pi, 1e-15);
+}
+
+TEST(Lcc, DegenerateTrianglesGetAFiniteFrame) {
+  for (const auto& [a, b, c] : {std::array<Vec3, 3>{Vec3{0, 0, 0}, Vec3{1, 1, 1}, Vec3{1, 1, 1}},   // a zero edge
+                                std::array<Vec3, 3>{Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{2, 0, 0}},   // collinear
+                                std::array<Vec3, 3>{Vec3{5, 5, 5}, Vec3{5, 5, 5}, Vec3{5, 5, 5}}}) {  // a point
+    const LccFrame f = lcc_frame(a, b, c);
+    for (const Vec3& axis : {f.x, f.y, f.z}) {
+      ASSERT_TRUE(std::isfinite(axis.x) && std::isfinite(axis.y) && std::isfinite(axis.z));
+      EXPECT_NEAR(axis.x * axis.x + axis.y * axis.y + axis.z * axis.z, 1, 1e-12);
+    }
+    EXPECT_NEAR(f.x.x * f.z.x + f.x.y * f.z.y + f.x.z * f.z.z, 0, 1e-12);
+  }
+}
+
+TEST(Lcc, AngleTableMatchesTheCircle) {
+  for (int bits : {3, 6, 12, 16}) {
+    const AngleTable table(bits);
+    const int64_t n = int64_t{1} << bits;
+    for (int64_t index = 0; index < n; ++index) {
+      const double angle = 2 * std::numbers::pi * static_cast<double>(index - n / 2) / static_cast<double>(n);
+      ASSERT_NEAR(table.cos(static_cast<size_t>(index)), std::cos(angle), 4e-16) << bits << " bits, index " << index;
+      ASSERT_NEAR(table.sin(static_cast<size_t>(index)), std::sin(angle), 4e-16) << bits << " bits, index " << index;
+    }
+    EXPECT_EQ(table.cos(static_cast<size_t>(n / 2)), 1.0);  // θ = 0
+    EXPECT_EQ(table.sin(static_cast<size_t>(n / 2)), 0.0);
+    EXPECT_EQ(table.cos(0), -1.0);  // θ = −π
+  }
+}
+
+// The table's bytes are pinned: every compiler and optimisation level that
+// runs this test (the release and the sanitizer builds of CI) computes the
+// same binary64 values, which decoding depends on.
+TEST(Lcc, AngleTableIsTheSameEverywhere) {
+  const AngleTable table(12);
+  std::string bytes;
+  for (size_t i = 0; i < (size_t{1} << 12); ++i)
+    for (double v : {table.cos(i), table.sin(i)}) {
+      const uint64_t bits = std::bit_cast<uint64_t>(v);
+      for (int b = 0; b < 8; ++b) bytes += static_cast<char>((bits >> (8 * b)) & 0xFF);
+    }
+  EXPECT_EQ(md5_hex(bytes), "6f214439f4232a094e50ecc12474e22a");
+}
+
+}  // namespace
+}  // namespace m4mesh
