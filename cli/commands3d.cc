@@ -91,8 +91,10 @@ int run_encode3d(const Encode3dArgs& args) {
   std::fprintf(summary, "%s\n", line.c_str());
   if (!result.statistics.empty()) {
     std::string figures = args.codec + ":";
-    for (size_t i = 0; i < result.statistics.size(); ++i)
-      figures += (i ? ", " : " ") + std::to_string(result.statistics[i].second) + " " + result.statistics[i].first;
+    for (size_t i = 0; i < result.statistics.size(); ++i) {
+      std::snprintf(figure, sizeof figure, "%s%.10g %s", i ? ", " : " ", result.statistics[i].second, result.statistics[i].first.c_str());
+      figures += figure;
+    }
     std::fprintf(summary, "%s\n", figures.c_str());
   }
   std::fprintf(summary, "encoded %zu frames of %u vertices in %.3f s (%.1f M vertices/s)\n", sequence.frames.size(), sequence.vertex_count,

@@ -33,7 +33,7 @@ class UnitSink {
 };
 
 // A codec's own figure for the summary ("matrices", 1234).
-using CodecStatistic = std::pair<std::string, uint64_t>;
+using CodecStatistic = std::pair<std::string, double>;
 
 class CodecEncoder3d {
  public:

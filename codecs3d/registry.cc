@@ -13,6 +13,9 @@ std::vector<CodecOption> bfs3d_options();
 std::unique_ptr<CodecDecoder3d> make_affine_octree_decoder(const ObjectHeader&, syntax::ReadIO&);
 std::unique_ptr<CodecEncoder3d> make_affine_octree_encoder(const MeshSequence&, const CodecSettings&);
 std::vector<CodecOption> affine_octree_options();
+std::unique_ptr<CodecDecoder3d> make_lcc_decoder(const ObjectHeader&, syntax::ReadIO&);
+std::unique_ptr<CodecEncoder3d> make_lcc_encoder(const MeshSequence&, const CodecSettings&);
+std::vector<CodecOption> lcc_options();
 
 namespace {
 
@@ -22,7 +25,8 @@ std::vector<Codec3d>& table() {
        {UnitType::kBaseMesh, UnitType::kFrame}, bfs3d_options(), make_bfs3d_decoder, make_bfs3d_encoder},
       {2, "affine-octree", "an octree of affine motion cells, closed loop", "docs/codec_affine_octree.md",
        {UnitType::kBaseMesh, UnitType::kFrame}, affine_octree_options(), make_affine_octree_decoder, make_affine_octree_encoder},
-      {3, "lcc", "cloth in local cylindrical coordinates (registered, not implemented yet)", "", {}, {}, nullptr, nullptr},
+      {3, "lcc", "cloth in local cylindrical coordinates: dihedral angle, radius and height against a reference mesh", "docs/codec_lcc.md",
+       {UnitType::kBaseMesh, UnitType::kFrame}, lcc_options(), make_lcc_decoder, make_lcc_encoder},
       {4, "cpca-wpt", "clustered PCA, weighted progressive transmission (registered, not implemented yet)", "", {}, {}, nullptr, nullptr},
   };
   return rows;

@@ -11,6 +11,7 @@
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/quantization.h"
+#include "syntax/mesh3d/lcc.h"
 
 namespace m4mesh {
 
@@ -96,6 +97,51 @@ MeshSequence rotating_sheet(int frames) {
     for (Vec3& p : frame) p = {0.96 * p.x - 0.28 * p.y, 0.28 * p.x + 0.96 * p.y, p.z};
   }
   return s;
+}
+
+// A cloth-like flag: an n × n sheet in the plane y = 0 (its rest shape,
+// frame 0), whose later frames carry a cubic wave travelling along x, and
+// a vertex in no face. With `collapse`, one triangle on the coding path
+// degenerates in the last frame (two of its vertices meet).
+MeshSequence waving_flag(int frames, int n, bool collapse) {
+  MeshSequence s;
+  auto at = [n](int i, int j) { return static_cast<NodeIndex>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      s.faces.push_back({{at(i, j), at(i + 1, j), at(i + 1, j + 1)}});
+      s.faces.push_back({{at(i, j), at(i + 1, j + 1), at(i, j + 1)}});
+    }
+  s.vertex_count = static_cast<uint32_t>((n + 1) * (n + 1) + 1);
+  for (int f = 0; f < frames; ++f) {
+    std::vector<Vec3> frame;
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        const double x = static_cast<double>(i) / n, z = static_cast<double>(j) / n;
+        const double p = x - 0.125 * f;
+        const double wave = f == 0 ? 0 : 0.5 * p * (1 - p) * (p - 0.5) * (1 + 0.25 * z);
+        frame.push_back({x - 0.0625 * wave * wave, wave, z});
+      }
+    frame.push_back({-0.5, 0.25 * f, 0.75});
+    if (collapse && f == frames - 1) frame[at(1, 1)] = frame[at(2, 1)];
+    s.frames.push_back(std::move(frame));
+  }
+  return s;
+}
+
+// The flag's rest shape in a file (the lcc codec's --reference takes one).
+std::string rest_shape_file(const MeshSequence& flag) {
+  MeshSequence rest = flag;
+  rest.frames.resize(1);
+  const std::string path = (std::filesystem::temp_directory_path() / "m4mesh-suite3d-rest-shape.m4seq").string();
+  write_binary_sequence(rest, path);
+  return path;
+}
+
+Encode3dOptions lcc(CodecOptionValues values) {
+  Encode3dOptions o;
+  o.codec = "lcc";
+  o.codec_options = std::move(values);
+  return o;
 }
 
 MeshSequence moving_tetrahedron(int frames) {
@@ -225,14 +271,35 @@ std::vector<SuiteCase> bfs3d_cases(bool traced) {
   return suite;
 }
 
+// The cloth codec's streams: both modes, a rest-shape reference, the
+// smallest and largest bit counts, a degenerate triangle on the path.
+std::vector<SuiteCase> lcc_cases(bool traced) {
+  const MeshSequence flag = waving_flag(6, 8, false);
+  MeshSequence moving = flag;
+  moving.frames.erase(moving.frames.begin());  // frame 0 waves already: coded against itself as the reference
+  const std::string rest = rest_shape_file(flag);
+  std::vector<SuiteCase> suite;
+  suite.push_back(valid("lcc-01-stream", "lcc, stream mode, b_θ 6, b_rh from Eq. 1", {"container", "lcc"}, moving, lcc({}), traced));
+  suite.push_back(valid("lcc-02-download", "lcc, download mode: contexts and direct vertices carried across frames", {"lcc"}, moving,
+                        lcc({{"mode", "download"}}), traced));
+  suite.push_back(valid("lcc-03-rest-shape", "lcc against a rest shape that is not a frame: frame 0 coded too", {"lcc"}, flag,
+                        lcc({{"reference", rest}, {"theta-bits", "5"}}), traced));
+  suite.push_back(valid("lcc-04-fewest-bits", "b_θ 2, b_rh 1", {"lcc"}, moving, lcc({{"theta-bits", "2"}, {"rh-bits", "1"}, {"bits", "4"}}), traced));
+  suite.push_back(valid("lcc-05-most-bits", "b_θ 15, b_rh 20, a 16-bit grid", {"lcc"}, moving,
+                        lcc({{"theta-bits", "15"}, {"rh-bits", "20"}, {"bits", "16"}}), traced));
+  suite.push_back(valid("lcc-06-degenerate", "a triangle on the coding path with a zero edge", {"lcc"}, waving_flag(4, 6, true), lcc({}), traced));
+  std::filesystem::remove(rest);
+  return suite;
+}
+
 // Streams to reject, each made from a valid one.
 std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
   std::vector<SuiteCase> suite;
   const std::vector<uint8_t> base = find(valid, "ao-01-me1-k16");
   suite.push_back(invalid("x-01-codec-unknown", "codec_id 5 is not registered", {"container"},
                           edited(base, [](ContainerParts& p) { p.object_payload[1] = 5; }), ErrorKind::kReservedValue, "codec_id", kNoPlane));
-  suite.push_back(invalid("x-02-codec-lcc", "codec_id 3 (lcc) is registered but not implemented", {"container"},
-                          edited(base, [](ContainerParts& p) { p.object_payload[1] = 3; }), ErrorKind::kLimit, "codec_id", kNoPlane));
+  suite.push_back(invalid("x-02-codec-cpca-wpt", "codec_id 4 (cpca-wpt) is registered but not implemented", {"container"},
+                          edited(base, [](ContainerParts& p) { p.object_payload[1] = 4; }), ErrorKind::kLimit, "codec_id", kNoPlane));
   // The object payload: 18 bytes of object header, quantization_bits, 3 origins, step, then matrix_bits.
   suite.push_back(invalid("x-03-matrix-bits", "matrix_bits 30", {"ao-header"},
                           edited(base, [](ContainerParts& p) { p.object_payload[18 + 1 + 12 + 4] = 30; }), ErrorKind::kOutOfRange,
@@ -291,6 +358,38 @@ std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
                                      unit.payload = with_extra_byte(unit.payload, c.section);
                                    }),
                             ErrorKind::kStructure, "motion_residual", 2));
+  // The lcc header's fields, found by name in the description of the stream's own headers.
+  const std::vector<uint8_t> cloth = find(valid, "lcc-01-stream");
+  auto lcc_field = [&cloth](const char* name) {
+    const ContainerParts parts = split_container(cloth);
+    BitReader reader(parts.object_payload.data(), parts.object_payload.size());
+    syntax::ReadIO in(reader);
+    ObjectHeader object;
+    LccHeader header;
+    syntax::describe(in, object);
+    syntax::describe(in, header);
+    syntax::CountIO count(name);
+    syntax::describe(count, object);
+    syntax::describe(count, header);
+    return static_cast<size_t>(count.offset_of_watched() / 8);
+  };
+  suite.push_back(invalid("x-14-lcc-theta-bits", "theta_bits 16", {"lcc"},
+                          edited(cloth, [&](ContainerParts& p) { p.object_payload[lcc_field("theta_bits")] = 16; }), ErrorKind::kOutOfRange,
+                          "theta_bits", kNoPlane));
+  suite.push_back(invalid("x-15-lcc-rh-range-zero", "rh_range 0", {"lcc"},
+                          edited(cloth,
+                                 [&](ContainerParts& p) {
+                                   for (size_t i = 0; i < 4; ++i) p.object_payload[lcc_field("rh_range") + i] = 0;
+                                 }),
+                          ErrorKind::kOutOfRange, "rh_range", kNoPlane));
+  suite.push_back(invalid("x-16-lcc-second-base-mesh", "a second base mesh unit in place of frame 2", {"lcc"},
+                          edited(cloth,
+                                 [](ContainerParts& p) {
+                                   std::vector<uint8_t> again = unit_of(p, UnitType::kBaseMesh, 0).payload;
+                                   again[4] = 2;
+                                   unit_of(p, UnitType::kFrame, 2).payload = again;
+                                 }),
+                          ErrorKind::kStructure, "unit_type", 2));
   return suite;
 }
 
@@ -299,6 +398,7 @@ std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
 std::vector<SuiteCase> build_suite3d(bool traced) {
   std::vector<SuiteCase> suite = affine_octree_cases(traced);
   for (SuiteCase& c : bfs3d_cases(traced)) suite.push_back(std::move(c));
+  for (SuiteCase& c : lcc_cases(traced)) suite.push_back(std::move(c));
   for (SuiteCase& c : rejected_cases(suite)) suite.push_back(std::move(c));
   return suite;
 }

@@ -134,4 +134,44 @@ AngleTable::AngleTable(int bits) : bits_(bits) {
   }
 }
 
+Vec3 lcc_grid_position(const LccHeader& header, const IntPoint3& q) {
+  return {static_cast<double>(header.origin_value(0)) + static_cast<double>(q[0]) * static_cast<double>(header.step_value(0)),
+          static_cast<double>(header.origin_value(1)) + static_cast<double>(q[1]) * static_cast<double>(header.step_value(1)),
+          static_cast<double>(header.origin_value(2)) + static_cast<double>(q[2]) * static_cast<double>(header.step_value(2))};
+}
+
+double average_edge_length(std::span<const Triangle> faces, std::span<const Vec3> positions) {
+  double sum = 0;
+  for (const Triangle& t : faces)
+    for (int e = 0; e < 3; ++e) {
+      const Vec3 d = positions[t.v[(e + 1) % 3]] - positions[t.v[e]];
+      sum += std::sqrt(dot(d, d));
+    }
+  const double length = faces.empty() ? 0 : sum / static_cast<double>(3 * faces.size());
+  return length > 0 && std::isfinite(length) ? length : 1;
+}
+
+LccModel::LccModel(std::span<const Triangle> faces, std::span<const Vec3> reference, int theta_bits, int rh_bits, double rh_range)
+    : order_(lcc_order(faces, reference.size())),
+      edge_length_(average_edge_length(faces, reference)),
+      theta_limit_(int32_t{1} << theta_bits),
+      rh_limit_(int32_t{1} << rh_bits),
+      rh_step_(rh_range / static_cast<double>(int64_t{1} << rh_bits)),
+      angles_(theta_bits + 1) {
+  reference_radius_.reserve(order_.steps.size());
+  reference_height_.reserve(order_.steps.size());
+  for (const LccStep& step : order_.steps) {
+    const Cylindrical c = radius_and_height(lcc_frame(reference[step.a], reference[step.b], reference[step.c]), reference[step.d]);
+    reference_radius_.push_back(c.radius / edge_length_);
+    reference_height_.push_back(c.height / edge_length_);
+  }
+}
+
+Vec3 LccModel::place_in(const LccFrame& frame, size_t k, int32_t theta, int32_t rho, int32_t zeta) const {
+  const size_t angle = static_cast<size_t>(theta + theta_limit_);
+  const double radius = (static_cast<double>(rho) * rh_step_ + reference_radius_[k]) * edge_length_;
+  const double height = (static_cast<double>(zeta) * rh_step_ + reference_height_[k]) * edge_length_;
+  return from_cylindrical(frame, angles_.cos(angle), angles_.sin(angle), radius, height);
+}
+
 }  // namespace m4mesh

@@ -11,8 +11,10 @@
 #include <span>
 #include <vector>
 
+#include "common/point3.h"
 #include "mesh/topology.h"
 #include "mesh3d/sequence.h"
+#include "syntax/mesh3d/lcc.h"
 
 namespace m4mesh {
 
@@ -71,5 +73,51 @@ class AngleTable {
   int bits_;
   std::vector<double> cos_, sin_;
 };
+
+// What decoding a frame needs, fixed for the stream after the reference
+// mesh: the coding order, the reference's own radius and height at every
+// step, the average edge length L of the reference, the angle table and
+// the dequantization steps. θ has 2^(b_θ+1) values, index t in
+// [−2^b_θ, 2^b_θ): θ = t·π / 2^b_θ; ρ and ζ have indices in
+// [−2^b_rh, 2^b_rh], standing for index·σ / 2^b_rh.
+class LccModel {
+ public:
+  LccModel(std::span<const Triangle> faces, std::span<const Vec3> reference, int theta_bits, int rh_bits, double rh_range);
+
+  const LccOrder& order() const { return order_; }
+  double edge_length() const { return edge_length_; }
+  int32_t theta_limit() const { return theta_limit_; }
+  int32_t rh_limit() const { return rh_limit_; }
+  double rh_step() const { return rh_step_; }
+  // The reference's radius and height at step k, divided by L.
+  double reference_radius(size_t k) const { return reference_radius_[k]; }
+  double reference_height(size_t k) const { return reference_height_[k]; }
+
+  // Step k's vertex from the positions reconstructed so far and its
+  // indices: in the frame of the reconstructed (a, b, c), radius
+  // (ρ̂ + r*)·L and height (ζ̂ + z*)·L.
+  Vec3 place(size_t k, std::span<const Vec3> positions, int32_t theta, int32_t rho, int32_t zeta) const {
+    const LccStep& step = order_.steps[k];
+    return place_in(lcc_frame(positions[step.a], positions[step.b], positions[step.c]), k, theta, rho, zeta);
+  }
+  // The same in step k's frame, already built.
+  Vec3 place_in(const LccFrame& frame, size_t k, int32_t theta, int32_t rho, int32_t zeta) const;
+
+ private:
+  LccOrder order_;
+  std::vector<double> reference_radius_, reference_height_;
+  double edge_length_ = 1;
+  int32_t theta_limit_, rh_limit_;
+  double rh_step_;
+  AngleTable angles_;
+};
+
+// A grid index's position in binary64: origin + q·step per axis (the
+// directly coded vertices and the reference mesh).
+Vec3 lcc_grid_position(const LccHeader& header, const IntPoint3& q);
+
+// The average edge length of a mesh: every face's three edges (an inner
+// edge so counts twice), summed in face order; 1 when that is not positive.
+double average_edge_length(std::span<const Triangle> faces, std::span<const Vec3> positions);
 
 }  // namespace m4mesh

@@ -10,6 +10,7 @@
 #include "syntax/mesh3d/affine_octree.h"
 #include "syntax/mesh3d/bfs3d.h"
 #include "syntax/mesh3d/container.h"
+#include "syntax/mesh3d/lcc.h"
 #include "syntax/table_io.h"
 
 namespace m4mesh {
@@ -50,6 +51,8 @@ TEST(Docs, CodecTablesMatchTheDescriptions) {
   expect_table<Bfs3dFrame>("codec_bfs3d.md", "bfs3d_frame_data");
   expect_table<AffineOctreeHeader>("codec_affine_octree.md", "affine_octree_header");
   expect_table<AffineFrame>("codec_affine_octree.md", "affine_octree_frame_data");
+  expect_table<LccHeader>("codec_lcc.md", "lcc_header");
+  expect_table<LccFrameData>("codec_lcc.md", "lcc_frame_data");
 }
 
 TEST(Docs, EverySymbolOfTheCodedDataIsNamed) {
@@ -59,6 +62,8 @@ TEST(Docs, EverySymbolOfTheCodedDataIsNamed) {
     for (const char* name : {n.nonzero, n.prefix, n.sign_suffix, n.element})
       EXPECT_NE(document("codec_affine_octree.md").find(name), std::string::npos) << name;
   for (const char* name : {"split_flag", "direct_flag"}) EXPECT_NE(document("codec_affine_octree.md").find(name), std::string::npos) << name;
+  for (const syntax::ResidualNames& n : {syntax::kLccDirect, syntax::kLccTheta, syntax::kLccRadius, syntax::kLccHeight})
+    for (const char* name : {n.nonzero, n.prefix, n.sign_suffix, n.element}) EXPECT_NE(document("codec_lcc.md").find(name), std::string::npos) << name;
 }
 
 TEST(Docs, EveryCodecHasItsDocument) {

@@ -37,7 +37,9 @@ class AffineOctreeEncoder final : public GridFrameEncoder {
   }
 
   void write_header(syntax::WriteIO& io) override { syntax::describe(io, header_); }
-  std::vector<CodecStatistic> statistics() const override { return {{"matrices", matrices_}, {"vertices coded directly", direct_vertices_}}; }
+  std::vector<CodecStatistic> statistics() const override {
+    return {{"matrices", static_cast<double>(matrices_)}, {"vertices coded directly", static_cast<double>(direct_vertices_)}};
+  }
 
  private:
   void encode_frame(syntax::WriteIO& io, std::span<const Vec3> frame, size_t frame_index, std::vector<IntPoint3>& positions) override {

@@ -1,0 +1,107 @@
+// The cloth codec in local cylindrical coordinates (codec_id 3) syntax
+// (docs/codec_lcc.md): the codec header, and a frame unit's data, a bin
+// section and a raw section holding the directly coded vertices' grid
+// residuals and every other vertex's quantized (θ, ρ, ζ).
+#pragma once
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <span>
+
+#include "syntax/io.h"
+#include "syntax/mesh3d/residual.h"
+
+namespace m4mesh {
+
+inline constexpr uint32_t kLccReferenceIsFrame0 = 0;
+inline constexpr uint32_t kLccReferenceIsRestShape = 1;
+inline constexpr uint32_t kLccStreamMode = 0;
+inline constexpr uint32_t kLccDownloadMode = 1;
+
+struct LccHeader {
+  uint32_t bits = 12;  // the grid of the base mesh and of the directly coded vertices
+  std::array<uint32_t, 3> origin{};  // binary32 bit patterns
+  std::array<uint32_t, 3> step{};
+  uint32_t reference = kLccReferenceIsFrame0;
+  uint32_t mode = kLccStreamMode;
+  uint32_t theta_bits = 6;  // b_θ: θ in steps of π / 2^b_θ
+  uint32_t rh_bits = 3;     // b_rh: ρ and ζ in steps of σ / 2^b_rh
+  uint32_t rh_range = 0;    // σ, binary32: |ρ|, |ζ| ≤ σ
+
+  float origin_value(int axis) const { return std::bit_cast<float>(origin[axis]); }
+  float step_value(int axis) const { return std::bit_cast<float>(step[axis]); }
+  float rh_range_value() const { return std::bit_cast<float>(rh_range); }
+};
+
+// A frame unit's data: the bin section's length, the bins, the raw bits.
+struct LccFrameData {
+  uint32_t arithmetic_bytes = 0;
+  std::span<const uint8_t> bins;
+  std::span<const uint8_t> raw;
+};
+
+namespace syntax {
+
+// Channels of the residual coder: the direct vertices' x, y, z, then θ, ρ, ζ.
+inline constexpr int kLccDirectChannel = 0;
+inline constexpr int kLccThetaChannel = 3;
+inline constexpr int kLccRadiusChannel = 4;
+inline constexpr int kLccHeightChannel = 5;
+inline constexpr int kLccChannels = 6;
+inline constexpr ResidualNames kLccDirect{"direct_nonzero", "direct_prefix", "direct_sign_suffix", "direct_position"};
+inline constexpr ResidualNames kLccTheta{"theta_nonzero", "theta_prefix", "theta_sign_suffix", "theta"};
+inline constexpr ResidualNames kLccRadius{"rho_nonzero", "rho_prefix", "rho_sign_suffix", "rho"};
+inline constexpr ResidualNames kLccHeight{"zeta_nonzero", "zeta_prefix", "zeta_sign_suffix", "zeta"};
+
+template <class IO>
+void describe(IO& io, LccHeader& h) {
+  io.field_in("quantization_bits", 8, h.bits, 4, 24);
+  static const char* const kOrigin[3] = {"origin_x", "origin_y", "origin_z"};
+  static const char* const kStep[3] = {"step_x", "step_y", "step_z"};
+  for (int axis = 0; axis < 3; ++axis) {
+    io.field(kOrigin[axis], 32, h.origin[axis]);
+    io.require(std::isfinite(h.origin_value(axis)), ErrorKind::kOutOfRange, kOrigin[axis], "not a finite binary32");
+    io.field(kStep[axis], 32, h.step[axis]);
+    io.require(std::isfinite(h.step_value(axis)) && h.step_value(axis) > 0, ErrorKind::kOutOfRange, kStep[axis],
+               "not a positive finite binary32");
+  }
+  io.field_in("reference_mode", 8, h.reference, kLccReferenceIsFrame0, kLccReferenceIsRestShape);
+  io.field_in("coding_mode", 8, h.mode, kLccStreamMode, kLccDownloadMode);
+  io.field_in("theta_bits", 8, h.theta_bits, 2, 15);
+  io.field_in("rh_bits", 8, h.rh_bits, 1, 20);
+  io.field("rh_range", 32, h.rh_range);
+  io.require(std::isfinite(h.rh_range_value()) && h.rh_range_value() > 0, ErrorKind::kOutOfRange, "rh_range",
+             "not a positive finite binary32");
+}
+
+template <class IO>
+void describe(IO& io, LccFrameData& f) {
+  io.field("arithmetic_bytes", 32, f.arithmetic_bytes);
+  io.require_length("arithmetic_bytes", f.arithmetic_bytes);
+  io.section("bins", f.arithmetic_bytes, f.bins);
+  io.tail_section("raw", f.raw);
+}
+
+// A frame's symbols: per directly coded vertex, its x, y, z grid residual;
+// per step, θ, ρ and ζ (indices in [−theta_limit, theta_limit) and
+// [−rh_limit, rh_limit]). The coder carries the contexts (reset per frame
+// in stream mode, carried across frames in download mode).
+template <class IO>
+void describe_symbols(IO& io, ResidualCoder<kLccChannels>& coder, std::span<int32_t> direct, std::span<int32_t> steps, int32_t theta_limit,
+                      int32_t rh_limit) {
+  for (size_t i = 0; i < direct.size(); ++i) coder.describe(io, kLccDirectChannel + static_cast<int>(i % 3), direct[i], kLccDirect);
+  for (size_t i = 0; i < steps.size(); i += 3) {
+    coder.describe(io, kLccThetaChannel, steps[i], kLccTheta);
+    if (steps[i] < -theta_limit || steps[i] >= theta_limit) io.fail(ErrorKind::kOutOfRange, "theta", "an angle index beyond ±2^theta_bits");
+    coder.describe(io, kLccRadiusChannel, steps[i + 1], kLccRadius);
+    if (steps[i + 1] < -rh_limit || steps[i + 1] > rh_limit) io.fail(ErrorKind::kOutOfRange, "rho", "a radius index beyond ±2^rh_bits");
+    coder.describe(io, kLccHeightChannel, steps[i + 2], kLccHeight);
+    if (steps[i + 2] < -rh_limit || steps[i + 2] > rh_limit) io.fail(ErrorKind::kOutOfRange, "zeta", "a height index beyond ±2^rh_bits");
+  }
+}
+
+}  // namespace syntax
+
+}  // namespace m4mesh

@@ -1,0 +1,130 @@
+// The cloth codec (codec_id 3) through the container: quality, modes,
+// a rest-shape reference, the quality target, damaged streams.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "decoder/mesh3d/container_decoder.h"
+#include "encoder/mesh3d/container_encoder.h"
+#include "mesh3d/metrics.h"
+#include "tests/test_util.h"
+
+namespace m4mesh {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A sheet whose rows roll up a little more every frame: nearly isometric.
+MeshSequence rolling_sheet(int frames, int n) {
+  MeshSequence s;
+  auto at = [n](int i, int j) { return static_cast<NodeIndex>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      s.faces.push_back({{at(i, j), at(i + 1, j), at(i + 1, j + 1)}});
+      s.faces.push_back({{at(i, j), at(i + 1, j + 1), at(i, j + 1)}});
+    }
+  s.vertex_count = static_cast<uint32_t>((n + 1) * (n + 1));
+  for (int f = 0; f < frames; ++f) {
+    const double curvature = 0.4 * f;  // radius 1 / curvature
+    std::vector<Vec3> frame;
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        const double u = static_cast<double>(i) / n * 2, v = static_cast<double>(j) / n * 2;
+        frame.push_back(curvature == 0 ? Vec3{u, 0, v}
+                                       : Vec3{std::sin(u * curvature) / curvature, (1 - std::cos(u * curvature)) / curvature, v});
+      }
+    s.frames.push_back(std::move(frame));
+  }
+  return s;
+}
+
+Encode3dOptions lcc(CodecOptionValues values = {}) {
+  Encode3dOptions options;
+  options.codec = "lcc";
+  options.codec_options = std::move(values);
+  return options;
+}
+
+TEST(LccCodec, RoundTripsWithASmallKgErrorThatFallsWithMoreBits) {
+  const MeshSequence s = rolling_sheet(8, 16);
+  double previous = 1e9;
+  for (const char* bits : {"4", "7", "10"}) {
+    const MeshSequence decoded = decode_mesh3d(encode_mesh3d(s, lcc({{"theta-bits", bits}})).stream);
+    const double kg = kg_error(s, decoded);
+    EXPECT_LT(kg, previous) << bits << " angle bits";
+    previous = kg;
+  }
+  EXPECT_LT(previous, 0.05);
+}
+
+TEST(LccCodec, TheTargetIsReachedAndPrinted) {
+  const MeshSequence s = rolling_sheet(6, 12);
+  for (double target : {0.5, 0.05}) {
+    const Encode3dResult r = encode_mesh3d(s, lcc({{"target-kg", std::to_string(target)}}));
+    EXPECT_LE(kg_error(s, decode_mesh3d(r.stream)), target);
+    EXPECT_EQ(r.statistics.back().first, "KG error of the closed loop");
+    EXPECT_DOUBLE_EQ(r.statistics.back().second, kg_error(s, decode_mesh3d(r.stream)));
+  }
+}
+
+// Stream mode: a frame unit decodes from the reference alone, so a stream
+// of the base mesh and frame k's unit (relabelled frame 1) gives frame k.
+TEST(LccCodec, StreamModeFramesDecodeAlone) {
+  const MeshSequence s = rolling_sheet(5, 10);
+  for (const char* mode : {"stream", "download"}) {
+    Encode3dOptions options = lcc({{"mode", mode}});
+    options.hashes = false;
+    const std::vector<uint8_t> stream = encode_mesh3d(s, options).stream;
+    const MeshSequence all = decode_mesh3d(stream);
+    ContainerParts parts = split_container(stream);
+    parts.object_payload[13] = 2;  // frame_count (u32 at byte 10) = 2
+    std::vector<uint8_t> unit = parts.units[4].payload;
+    unit[4] = 1;
+    ContainerWriter writer;
+    writer.object(parts.object_payload);
+    writer.unit(parts.units[0].payload);
+    writer.unit(unit);
+    const std::vector<uint8_t> cut = writer.finish();
+    if (std::string(mode) == "stream") {
+      EXPECT_EQ(decode_mesh3d(cut).frames[1], all.frames[4]);
+    } else {  // the contexts of frames 1 … 3 are missing: an error, or another frame
+      try {
+        EXPECT_NE(decode_mesh3d(cut).frames[1], all.frames[4]);
+      } catch (const Error&) {
+      }
+    }
+  }
+}
+
+TEST(LccCodec, RestShapeReferenceCodesFrameZeroToo) {
+  MeshSequence s = rolling_sheet(4, 8);
+  MeshSequence rolled = s;
+  rolled.frames.erase(rolled.frames.begin());
+  const fs::path rest = fs::temp_directory_path() / "m4mesh-lcc-rest.m4seq";
+  MeshSequence flat = s;
+  flat.frames.resize(1);
+  write_binary_sequence(flat, rest.string());
+  const Encode3dResult r = encode_mesh3d(rolled, lcc({{"reference", rest.string()}, {"theta-bits", "9"}}));
+  fs::remove(rest);
+  const MeshSequence decoded = decode_mesh3d(r.stream);
+  ASSERT_EQ(decoded.frames.size(), rolled.frames.size());
+  EXPECT_LT(kg_error(rolled, decoded), 0.1);
+  Mesh3dDecoder decoder(r.stream);
+  ASSERT_TRUE(decoder.next_unit());
+  EXPECT_TRUE(decoder.unit().frames.empty());  // the rest shape is no frame
+}
+
+TEST(LccCodec, BadOptionsAreUsageErrors) {
+  const MeshSequence s = rolling_sheet(2, 4);
+  EXPECT_THROW(encode_mesh3d(s, lcc({{"mode", "fast"}})), Error);
+  EXPECT_THROW(encode_mesh3d(s, lcc({{"theta-bits", "16"}})), Error);
+  EXPECT_THROW(encode_mesh3d(s, lcc({{"reference", "/nonexistent/rest.obj"}})), Error);
+}
+
+TEST(LccCodec, CorruptAndTruncatedStreamsFailCleanly) {
+  EXPECT_GT(test::decode_damaged_mesh3d(encode_mesh3d(rolling_sheet(4, 6), lcc()).stream, 5, 33), 0);
+}
+
+}  // namespace
+}  // namespace m4mesh
