@@ -11,6 +11,7 @@
 #include <span>
 
 #include "syntax/io.h"
+#include "syntax/mesh3d/grid.h"
 #include "syntax/mesh3d/residual.h"
 
 namespace m4mesh {
@@ -58,15 +59,7 @@ inline constexpr ResidualNames kLccHeight{"zeta_nonzero", "zeta_prefix", "zeta_s
 template <class IO>
 void describe(IO& io, LccHeader& h) {
   io.field_in("quantization_bits", 8, h.bits, 4, 24);
-  static const char* const kOrigin[3] = {"origin_x", "origin_y", "origin_z"};
-  static const char* const kStep[3] = {"step_x", "step_y", "step_z"};
-  for (int axis = 0; axis < 3; ++axis) {
-    io.field(kOrigin[axis], 32, h.origin[axis]);
-    io.require(std::isfinite(h.origin_value(axis)), ErrorKind::kOutOfRange, kOrigin[axis], "not a finite binary32");
-    io.field(kStep[axis], 32, h.step[axis]);
-    io.require(std::isfinite(h.step_value(axis)) && h.step_value(axis) > 0, ErrorKind::kOutOfRange, kStep[axis],
-               "not a positive finite binary32");
-  }
+  describe_grid(io, h.origin, h.step);
   io.field_in("reference_mode", 8, h.reference, kLccReferenceIsFrame0, kLccReferenceIsRestShape);
   io.field_in("coding_mode", 8, h.mode, kLccStreamMode, kLccDownloadMode);
   io.field_in("theta_bits", 8, h.theta_bits, 2, 15);

@@ -1,0 +1,28 @@
+// The per-axis quantization grid of a 3D codec header: origin and step of
+// every axis as binary32 bit patterns, described once for every codec.
+#pragma once
+
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+
+#include "syntax/io.h"
+
+namespace m4mesh::syntax {
+
+// origin_x, step_x, origin_y, step_y, origin_z, step_z: finite, steps > 0.
+template <class IO>
+void describe_grid(IO& io, std::array<uint32_t, 3>& origin, std::array<uint32_t, 3>& step) {
+  static const char* const kOrigin[3] = {"origin_x", "origin_y", "origin_z"};
+  static const char* const kStep[3] = {"step_x", "step_y", "step_z"};
+  for (int axis = 0; axis < 3; ++axis) {
+    io.field(kOrigin[axis], 32, origin[axis]);
+    io.require(std::isfinite(std::bit_cast<float>(origin[axis])), ErrorKind::kOutOfRange, kOrigin[axis], "not a finite binary32");
+    io.field(kStep[axis], 32, step[axis]);
+    const float s = std::bit_cast<float>(step[axis]);
+    io.require(std::isfinite(s) && s > 0, ErrorKind::kOutOfRange, kStep[axis], "not a positive finite binary32");
+  }
+}
+
+}  // namespace m4mesh::syntax
