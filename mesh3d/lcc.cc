@@ -112,7 +112,7 @@ Vec3 from_cylindrical(const LccFrame& frame, double cos_theta, double sin_theta,
           frame.origin.z + u * frame.x.z + v * frame.y.z + height * frame.z.z};
 }
 
-AngleTable::AngleTable(int bits) : bits_(bits) {
+AngleTable::AngleTable(int bits) {
   // 2π·k/N through octants: x = 2π·j/N with j ≤ N/8 by the symmetries of
   // the quadrant, then the quadrant's rotation; N = 2^bits ≥ 8.
   constexpr double kTwoPi = 6.283185307179586;

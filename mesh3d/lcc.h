@@ -65,12 +65,10 @@ Vec3 from_cylindrical(const LccFrame& frame, double cos_theta, double sin_theta,
 class AngleTable {
  public:
   explicit AngleTable(int bits);
-  int bits() const { return bits_; }
   double cos(size_t index) const { return cos_[index]; }
   double sin(size_t index) const { return sin_[index]; }
 
  private:
-  int bits_;
   std::vector<double> cos_, sin_;
 };
 

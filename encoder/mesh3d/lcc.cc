@@ -119,19 +119,10 @@ class LccEncoder final : public CodecEncoder3d {
 
   void encode(const MeshSequence& s, UnitSink& sink) override {
     sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, reference_grid_); });
-    const LccModel model(s.faces, reference_, static_cast<int>(header_.theta_bits), static_cast<int>(header_.rh_bits),
-                         header_.rh_range_value());
-    const LccLoop loop(model, header_);
-    std::vector<Vec3> positions = reference_;
-    std::vector<IntPoint3> grid = reference_grid_;
-    const size_t first = header_.reference == kLccReferenceIsFrame0 ? 1 : 0;
-    if (first == 1) sink.decoded(0, as_floats(positions));
-    syntax::ResidualCoder<syntax::kLccChannels> coder;
-    std::vector<int32_t> direct, steps;
-    for (size_t f = first; f < s.frames.size(); ++f) {
-      const std::vector<IntPoint3> base = header_.mode == kLccStreamMode ? reference_grid_ : grid;
-      loop.code(s.frames[f], f, grid_, base, grid, positions, direct, steps);
-      if (header_.mode == kLccStreamMode) coder = {};
+    const LccModel model = model_of(s);
+    if (header_.reference == kLccReferenceIsFrame0) sink.decoded(0, as_floats(reference_));
+    closed_loop(s, model, [&](size_t f, syntax::ResidualCoder<syntax::kLccChannels>& coder, std::vector<int32_t>& direct,
+                              std::vector<int32_t>& steps, const std::vector<Vec3>& positions) {
       sink.unit(UnitType::kFrame, static_cast<uint32_t>(f), [&](syntax::WriteIO& io) {
         const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane()};
         if (io.trace()) {
@@ -144,7 +135,7 @@ class LccEncoder final : public CodecEncoder3d {
       });
       sink.decoded(static_cast<uint32_t>(f), as_floats(positions));
       sink.progress(f + 1, s.frames.size());
-    }
+    });
   }
 
   std::vector<CodecStatistic> statistics() const override {
@@ -226,36 +217,49 @@ class LccEncoder final : public CodecEncoder3d {
   // The closed loop over the whole sequence at the header's bits: the KG
   // error of its reconstruction and the size of its coded symbols.
   Trial run_trial(const MeshSequence& s) const {
-    const LccModel model(s.faces, reference_, static_cast<int>(header_.theta_bits), static_cast<int>(header_.rh_bits),
-                         header_.rh_range_value());
-    const LccLoop loop(model, header_);
+    const LccModel model = model_of(s);
     MeshSequence decoded;
     decoded.vertex_count = s.vertex_count;
     decoded.faces = s.faces;
-    std::vector<Vec3> positions = reference_;
-    std::vector<IntPoint3> grid = reference_grid_;
-    std::vector<int32_t> direct, steps;
-    syntax::ResidualCoder<syntax::kLccChannels> coder;
-    Trial trial;
-    auto add = [&] {
+    auto add = [&](const std::vector<Vec3>& positions) {
       std::vector<Vec3> frame;
       for (const Float3& p : as_floats(positions)) frame.push_back({p[0], p[1], p[2]});
       decoded.frames.push_back(std::move(frame));
     };
-    const size_t first = header_.reference == kLccReferenceIsFrame0 ? 1 : 0;
-    if (first == 1) add();
-    for (size_t f = first; f < s.frames.size(); ++f) {
-      const std::vector<IntPoint3> base = header_.mode == kLccStreamMode ? reference_grid_ : grid;
-      loop.code(s.frames[f], f, grid_, base, grid, positions, direct, steps);
-      if (header_.mode == kLccStreamMode) coder = {};
-      const syntax::SectionPlace place;
-      syntax::EntropyWriteIO<false> symbols(place);
+    if (header_.reference == kLccReferenceIsFrame0) add(reference_);
+    Trial trial;
+    closed_loop(s, model, [&](size_t, syntax::ResidualCoder<syntax::kLccChannels>& coder, std::vector<int32_t>& direct,
+                              std::vector<int32_t>& steps, const std::vector<Vec3>& positions) {
+      syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
       syntax::describe_symbols(symbols, coder, direct, steps, model.theta_limit(), model.rh_limit());
       trial.bytes += symbols.finish_bins().size() + symbols.finish_raw().size();
-      add();
-    }
+      add(positions);
+    });
     trial.kg = kg_error(s, decoded);
     return trial;
+  }
+
+  LccModel model_of(const MeshSequence& s) const {
+    return LccModel(s.faces, reference_, static_cast<int>(header_.theta_bits), static_cast<int>(header_.rh_bits), header_.rh_range_value());
+  }
+
+  // The closed loop over the coded frames at the header's bits: each frame's
+  // symbols (the coder reset first in stream mode) and reconstruction go to
+  // frame_coded(f, coder, direct, steps, positions).
+  template <class FrameCoded>
+  void closed_loop(const MeshSequence& s, const LccModel& model, FrameCoded&& frame_coded) const {
+    const LccLoop loop(model, header_);
+    std::vector<Vec3> positions = reference_;
+    std::vector<IntPoint3> grid = reference_grid_;
+    syntax::ResidualCoder<syntax::kLccChannels> coder;
+    std::vector<int32_t> direct, steps;
+    // Download mode predicts from the previous frame: the grid that code() updates (it reads each vertex before writing it).
+    const std::vector<IntPoint3>& base = header_.mode == kLccStreamMode ? reference_grid_ : grid;
+    for (size_t f = header_.reference == kLccReferenceIsFrame0 ? 1 : 0; f < s.frames.size(); ++f) {
+      loop.code(s.frames[f], f, grid_, base, grid, positions, direct, steps);
+      if (header_.mode == kLccStreamMode) coder = {};
+      frame_coded(f, coder, direct, steps, positions);
+    }
   }
 
   Grid grid_;
