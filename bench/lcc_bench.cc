@@ -1,7 +1,8 @@
 // The cloth codec (lcc) on the windy flag (../shared/data/cloth/flag; a
 // synthetic rippling sheet when absent): decode and encode speed, and the
-// rate at KG error ≤ 0.1 for stream and download mode beside bfs3d (both
-// predictions) and Draco per frame tuned to the same KG, in one run.
+// rate at KG error ≤ 0.1 for stream and download mode, with and without
+// temporal prediction, beside bfs3d (both predictions) and Draco per
+// frame tuned to the same KG, in one run.
 #include <benchmark/benchmark.h>
 
 #include "bench/sequences.h"
@@ -54,7 +55,8 @@ BENCHMARK(BM_LccEncode)->Unit(benchmark::kMillisecond);
 // the whole stream (no hash units) over V × F; the parameter reached.
 // 0, 1: lcc stream, download (--target-kg 0.1); 2, 3: bfs3d average,
 // parallelogram at the fewest bits that reach it; 4: Draco edgebreaker
-// per frame at the quantization bfs3d needs.
+// per frame at the quantization bfs3d needs; 5, 6: lcc stream, download
+// with temporal prediction (--temporal, default gop).
 void BM_RateAtKg01(benchmark::State& state) {
   const MeshSequence& s = bench::sequence(kFlag);
   const double vertex_frames = static_cast<double>(s.vertex_count) * static_cast<double>(s.frames.size() - 1);
@@ -62,9 +64,10 @@ void BM_RateAtKg01(benchmark::State& state) {
   const int64_t which = state.range(0);
   double frame_bpvf = 0, stream_bpvf = 0, kg = 0, parameter = 0;
   for (auto _ : state) {
-    if (which <= 1) {
-      Encode3dOptions options = lcc(which == 0 ? "stream" : "download");
+    if (which <= 1 || which >= 5) {
+      Encode3dOptions options = lcc(which % 5 == 0 ? "stream" : "download");
       options.codec_options["target-kg"] = "0.1";
+      if (which >= 5) options.codec_options["temporal"] = "1";
       const Encode3dResult r = encode_mesh3d(s, options);
       frame_bpvf = 8.0 * static_cast<double>(r.frame_bytes()) / vertex_frames;
       stream_bpvf = 8.0 * static_cast<double>(r.stream.size()) / all_vertex_frames;
@@ -96,14 +99,15 @@ void BM_RateAtKg01(benchmark::State& state) {
       }
     }
   }
-  const char* const names[] = {"lcc stream", "lcc download", "bfs3d average", "bfs3d parallelogram", "Draco per frame"};
+  const char* const names[] = {"lcc stream",          "lcc download",    "bfs3d average",        "bfs3d parallelogram",
+                               "Draco per frame", "lcc stream temporal", "lcc download temporal"};
   state.SetLabel(flag_label() + " " + names[which]);
   state.counters["frame_bpvf"] = frame_bpvf;
   state.counters["stream_bpvf"] = stream_bpvf;
   state.counters["kg"] = kg;
   state.counters["bits"] = parameter;
 }
-BENCHMARK(BM_RateAtKg01)->DenseRange(0, 4)->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RateAtKg01)->DenseRange(0, 6)->Iterations(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace m4mesh

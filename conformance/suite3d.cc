@@ -10,7 +10,9 @@
 #include "common/md5.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
+#include "mesh3d/lcc.h"
 #include "mesh3d/quantization.h"
+#include "syntax/mesh3d/entropy_io.h"
 #include "syntax/mesh3d/lcc.h"
 
 namespace m4mesh {
@@ -272,7 +274,8 @@ std::vector<SuiteCase> bfs3d_cases(bool traced) {
 }
 
 // The cloth codec's streams: both modes, a rest-shape reference, the
-// smallest and largest bit counts, a degenerate triangle on the path.
+// smallest and largest bit counts, a degenerate triangle on the path,
+// temporal prediction in both modes.
 std::vector<SuiteCase> lcc_cases(bool traced) {
   const MeshSequence flag = waving_flag(6, 8, false);
   MeshSequence moving = flag;
@@ -288,8 +291,40 @@ std::vector<SuiteCase> lcc_cases(bool traced) {
   suite.push_back(valid("lcc-05-most-bits", "b_θ 15, b_rh 20, a 16-bit grid", {"lcc"}, moving,
                         lcc({{"theta-bits", "15"}, {"rh-bits", "20"}, {"bits", "16"}}), traced));
   suite.push_back(valid("lcc-06-degenerate", "a triangle on the coding path with a zero edge", {"lcc"}, waving_flag(4, 6, true), lcc({}), traced));
+  MeshSequence longer = waving_flag(13, 8, false);
+  suite.push_back(valid("lcc-07-temporal-stream", "lcc, stream mode, temporal prediction: anchors every 4 frames and the last, midpoints between",
+                        {"lcc", "lcc-temporal"}, MeshSequence{longer.vertex_count, longer.faces, {longer.frames.begin() + 1, longer.frames.end()}},
+                        lcc({{"temporal", "1"}, {"gop", "4"}}), traced));
+  suite.push_back(valid("lcc-08-temporal-download", "lcc, download mode, temporal prediction every 8 frames against a rest shape",
+                        {"lcc", "lcc-temporal"}, longer, lcc({{"temporal", "1"}, {"gop", "8"}, {"mode", "download"}, {"reference", rest}}),
+                        traced));
   std::filesystem::remove(rest);
   return suite;
+}
+
+// An lcc predicted frame unit of `stream` (stream mode) whose residuals are
+// 0 but every rho's, which is the largest the syntax allows.
+std::vector<uint8_t> lcc_predicted_unit(const std::vector<uint8_t>& stream, std::vector<uint8_t> unit_header) {
+  const ContainerParts parts = split_container(stream);
+  BitReader reader(parts.object_payload.data(), parts.object_payload.size());
+  syntax::ReadIO in(reader);
+  ObjectHeader object;
+  LccHeader header;
+  syntax::describe(in, object);
+  syntax::describe(in, header);
+  const LccOrder order = lcc_order(decode_mesh3d(stream).faces, object.vertex_count);
+  LccIndices residuals{std::vector<int32_t>(3 * order.direct.size()), std::vector<int32_t>(3 * order.steps.size())};
+  for (size_t i = 1; i < residuals.steps.size(); i += 3) residuals.steps[i] = int32_t{2} << header.rh_bits;
+  syntax::ResidualCoder<syntax::kLccChannels> coder;
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+  syntax::describe_symbols(symbols, coder, true, residuals.direct, residuals.steps, int32_t{1} << header.theta_bits, int32_t{1} << header.rh_bits);
+  const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
+  LccFrameData data{static_cast<uint32_t>(bins.size()), bins, raw};
+  BitWriter writer;
+  syntax::WriteIO out(writer);
+  syntax::describe(out, data);
+  unit_header.insert(unit_header.end(), writer.bytes().begin(), writer.bytes().end());
+  return unit_header;
 }
 
 // Streams to reject, each made from a valid one.
@@ -390,6 +425,41 @@ std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
                                    unit_of(p, UnitType::kFrame, 2).payload = again;
                                  }),
                           ErrorKind::kStructure, "unit_type", 2));
+  const struct {
+    const char* id;
+    const char* purpose;
+    const char* field;
+    uint8_t value;
+  } lcc_ranges[] = {{"x-17-lcc-quantization-bits", "quantization_bits 25", "quantization_bits", 25},
+                    {"x-18-lcc-reference-mode", "reference_mode 2", "reference_mode", 2},
+                    {"x-19-lcc-coding-mode", "coding_mode 2", "coding_mode", 2},
+                    {"x-20-lcc-rh-bits", "rh_bits 21", "rh_bits", 21},
+                    {"x-21-lcc-gop-one", "temporal_gop 1 (no temporal prediction is 0)", "temporal_gop", 1},
+                    {"x-22-lcc-gop-65", "temporal_gop 65", "temporal_gop", 65}};
+  for (const auto& c : lcc_ranges)
+    suite.push_back(invalid(c.id, c.purpose, {"lcc"}, edited(cloth, [&](ContainerParts& p) { p.object_payload[lcc_field(c.field)] = c.value; }),
+                            ErrorKind::kOutOfRange, c.field, kNoPlane));
+  const std::vector<uint8_t> temporal = find(valid, "lcc-07-temporal-stream");
+  suite.push_back(invalid("x-23-lcc-temporal-no-frame-count", "temporal prediction with frame_count 0 (unknown)", {"lcc-temporal"},
+                          edited(temporal,
+                                 [&](ContainerParts& p) {
+                                   for (size_t i = 0; i < 4; ++i) p.object_payload[lcc_field("frame_count") + i] = 0;
+                                 }),
+                          ErrorKind::kStructure, "temporal_gop", kNoPlane));
+  suite.push_back(invalid("x-24-lcc-temporal-display-order", "a unit labelled frame 2 where the order has anchor 9", {"lcc-temporal"},
+                          edited(temporal,
+                                 [](ContainerParts& p) {
+                                   unit_of(p, UnitType::kFrame, 9).payload[4] = 2;
+                                 }),
+                          ErrorKind::kStructure, "frame_index", 9));
+  // Frame 3, predicted from frames 1 and 5, with every rho residual
+  // 2^(rh_bits+1): prediction plus residual leave the range.
+  suite.push_back(invalid("x-25-lcc-rho-beyond-prediction", "predicted frame 3 whose rho residuals push rho beyond ±2^rh_bits",
+                          {"lcc-temporal"}, edited(temporal, [&](ContainerParts& p) {
+                            ContainerUnit& unit = unit_of(p, UnitType::kFrame, 3);
+                            unit.payload = lcc_predicted_unit(temporal, {unit.payload.begin(), unit.payload.begin() + 5});
+                          }),
+                          ErrorKind::kOutOfRange, "rho", 3));
   return suite;
 }
 

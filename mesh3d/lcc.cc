@@ -1,6 +1,8 @@
 #include "mesh3d/lcc.h"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace m4mesh {
 
@@ -76,6 +78,22 @@ LccOrder lcc_order(std::span<const Triangle> faces, size_t vertex_count) {
   return order;
 }
 
+LccCodedFrame LccFrameOrder::next() {
+  if (!pending_.empty()) {
+    const auto [l, r] = pending_.back();
+    pending_.pop_back();
+    const uint32_t m = l + (r - l) / 2;
+    if (r - m >= 2) pending_.emplace_back(m, r);
+    if (m - l >= 2) pending_.emplace_back(l, m);
+    return {m, l, r};
+  }
+  const uint64_t f = anchor_;
+  if (previous_ != kLccAnchor && f - previous_ >= 2) pending_.emplace_back(static_cast<uint32_t>(previous_), static_cast<uint32_t>(f));
+  previous_ = f;
+  anchor_ = gop_ == 0 || f + 1 >= frame_count_ ? f + 1 : std::min(f + gop_, frame_count_ - 1);
+  return {static_cast<uint32_t>(f)};
+}
+
 LccFrame lcc_frame(const Vec3& a, const Vec3& b, const Vec3& c) {
   LccFrame frame;
   frame.origin = {(b.x + c.x) * 0.5, (b.y + c.y) * 0.5, (b.z + c.z) * 0.5};
@@ -99,10 +117,9 @@ Cylindrical radius_and_height(const LccFrame& frame, const Vec3& p) {
 }
 
 Cylindrical to_cylindrical(const LccFrame& frame, const Vec3& p) {
-  Cylindrical c = radius_and_height(frame, p);
   const Vec3 d = p - frame.origin;
-  c.theta = std::atan2(dot(d, frame.y), dot(d, frame.x));
-  return c;
+  const double x = dot(d, frame.x), y = dot(d, frame.y);
+  return {std::atan2(y, x), std::sqrt(x * x + y * y), dot(d, frame.z)};
 }
 
 Vec3 from_cylindrical(const LccFrame& frame, double cos_theta, double sin_theta, double radius, double height) {
@@ -172,6 +189,51 @@ Vec3 LccModel::place_in(const LccFrame& frame, size_t k, int32_t theta, int32_t 
   const double radius = (static_cast<double>(rho) * rh_step_ + reference_radius_[k]) * edge_length_;
   const double height = (static_cast<double>(zeta) * rh_step_ + reference_height_[k]) * edge_length_;
   return from_cylindrical(frame, angles_.cos(angle), angles_.sin(angle), radius, height);
+}
+
+LccPredictor::LccPredictor(const LccHeader& header, const LccOrder& order, std::span<const IntPoint3> reference_grid)
+    : download_(header.mode == kLccDownloadMode), theta_limit_(int32_t{1} << header.theta_bits) {
+  for (NodeIndex v : order.direct)
+    for (int axis = 0; axis < 3; ++axis) reference_.direct.push_back(reference_grid[v][axis]);
+  reference_.steps.assign(3 * order.steps.size(), 0);
+}
+
+const LccIndices& LccPredictor::predict(const LccCodedFrame& coded) {
+  if (coded.anchor()) {
+    prediction_.direct = download_ && !window_.empty() ? window_.back().direct : reference_.direct;
+    prediction_.steps = reference_.steps;
+    return prediction_;
+  }
+  const LccIndices &l = window_[coded.left - window_start_], &r = window_[coded.right - window_start_];
+  auto mean = [](int32_t a, int32_t b) { return static_cast<int32_t>((int64_t{a} + b) >> 1); };
+  prediction_.direct.resize(l.direct.size());
+  for (size_t i = 0; i < l.direct.size(); ++i) prediction_.direct[i] = mean(l.direct[i], r.direct[i]);
+  prediction_.steps.resize(l.steps.size());
+  for (size_t i = 0; i < l.steps.size(); i += 3) {
+    const int32_t arc = lcc_wrapped_angle(int64_t{r.steps[i]} - l.steps[i], theta_limit_);
+    prediction_.steps[i] = lcc_wrapped_angle(int64_t{l.steps[i]} + (arc >> 1), theta_limit_);
+    prediction_.steps[i + 1] = mean(l.steps[i + 1], r.steps[i + 1]);
+    prediction_.steps[i + 2] = mean(l.steps[i + 2], r.steps[i + 2]);
+  }
+  return prediction_;
+}
+
+void LccPredictor::keep(const LccCodedFrame& coded, LccIndices indices) {
+  if (coded.anchor()) {
+    // The window becomes [previous anchor, this anchor]; the previous
+    // anchor is the last slot.
+    if (!window_.empty()) {
+      window_.front() = std::move(window_.back());
+      window_.resize(1);
+      window_start_ = last_anchor_;
+    } else {
+      window_start_ = coded.frame;
+    }
+    last_anchor_ = coded.frame;
+  }
+  const size_t slot = coded.frame - window_start_;
+  if (window_.size() <= slot) window_.resize(slot + 1);
+  window_[slot] = std::move(indices);
 }
 
 }  // namespace m4mesh

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "common/point3.h"
@@ -37,6 +38,31 @@ struct LccOrder {
   std::vector<LccStep> steps;  // every step refers only to vertices coded before it
 };
 LccOrder lcc_order(std::span<const Triangle> faces, size_t vertex_count);
+
+// The order of the frame units, generated one at a time. Without temporal
+// prediction (gop 0) every frame is an anchor, in display order. With it,
+// anchors every `gop` frames from the first coded frame, and the last
+// frame; after each anchor, the frames between it and the anchor before,
+// midpoint first: frame m = l + ⌊(r − l)/2⌋ is predicted from l and r,
+// then (l, m) and (m, r) the same way (the hierarchy of the paper's [23]).
+inline constexpr uint32_t kLccAnchor = 0xFFFFFFFF;
+struct LccCodedFrame {
+  uint32_t frame;
+  uint32_t left = kLccAnchor, right = kLccAnchor;  // the frames it is predicted from
+  bool anchor() const { return left == kLccAnchor; }
+};
+class LccFrameOrder {
+ public:
+  // frame_count 0: unknown, endless (gop 0 only).
+  LccFrameOrder(uint32_t first, uint32_t frame_count, uint32_t gop) : frame_count_(frame_count), gop_(gop), anchor_(first) {}
+  bool done() const { return pending_.empty() && frame_count_ != 0 && anchor_ >= frame_count_; }
+  LccCodedFrame next();
+
+ private:
+  uint64_t frame_count_, gop_, anchor_;
+  uint64_t previous_ = kLccAnchor;
+  std::vector<std::pair<uint32_t, uint32_t>> pending_;  // intervals (l, r) still to fill, the next last
+};
 
 // The local cylindrical frame of triangle (a, b, c) around edge b → c:
 // origin the edge's middle, axis z along b → c, polar axis x = z × n
@@ -108,6 +134,44 @@ class LccModel {
   int32_t theta_limit_, rh_limit_;
   double rh_step_;
   AngleTable angles_;
+};
+
+// A coded frame's quantized values: the directly coded vertices' grid
+// indices (x, y, z each, in the order's direct order) and every step's
+// angle, radius and height indices (t, i, j).
+struct LccIndices {
+  std::vector<int32_t> direct, steps;
+};
+
+// An angle index t wrapped into [−limit, limit) (θ into [−π, π)).
+inline int32_t lcc_wrapped_angle(int64_t t, int32_t limit) {
+  const int64_t n = 2 * int64_t{limit};
+  return static_cast<int32_t>(((t + limit) % n + n) % n - limit);
+}
+
+// The prediction of each coded frame's indices, the same on both sides.
+// Anchor: the grid indices of the reference (stream mode) or of the
+// previous anchor (download mode; the reference before the first), and 0
+// for t, i and j. A frame between anchors l and r: the means ⌊(l + r)/2⌋
+// of their indices, and for t the midpoint along the shorter arc,
+// l + ⌊wrap(r − l)/2⌋ wrapped.
+class LccPredictor {
+ public:
+  LccPredictor(const LccHeader& header, const LccOrder& order, std::span<const IntPoint3> reference_grid);
+
+  const LccIndices& predict(const LccCodedFrame& coded);
+  // Keeps a coded frame's indices for the frames predicted from it; an
+  // anchor drops every frame before the previous anchor.
+  void keep(const LccCodedFrame& coded, LccIndices indices);
+
+ private:
+  bool download_;
+  int32_t theta_limit_;
+  LccIndices reference_, prediction_;
+  // The frames from the previous anchor to the last one, by frame −
+  // window_start_ (at most gop + 1).
+  std::vector<LccIndices> window_;
+  uint32_t window_start_ = 0, last_anchor_ = 0;
 };
 
 // A grid index's position in binary64: origin + q·step per axis (the

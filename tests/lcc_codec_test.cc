@@ -7,6 +7,7 @@
 
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
+#include "mesh3d/lcc.h"
 #include "mesh3d/metrics.h"
 #include "tests/test_util.h"
 
@@ -115,6 +116,44 @@ TEST(LccCodec, RestShapeReferenceCodesFrameZeroToo) {
   EXPECT_TRUE(decoder.unit().frames.empty());  // the rest shape is no frame
 }
 
+// Temporal prediction changes the residuals, not the quantized values: the
+// decoded frames are those without it, bit for bit, from fewer bytes on a
+// smooth sequence, and the units come out of display order.
+TEST(LccCodec, TemporalPredictionDecodesTheSameFramesFromFewerBytes) {
+  const MeshSequence s = rolling_sheet(19, 12);
+  for (const char* mode : {"stream", "download"}) {
+    const Encode3dResult plain = encode_mesh3d(s, lcc({{"mode", mode}, {"theta-bits", "8"}}));
+    const Encode3dResult temporal = encode_mesh3d(s, lcc({{"mode", mode}, {"theta-bits", "8"}, {"temporal", "1"}, {"gop", "8"}}));
+    EXPECT_EQ(decode_mesh3d(temporal.stream).frames, decode_mesh3d(plain.stream).frames) << mode;
+    EXPECT_LT(temporal.frame_bytes(), plain.frame_bytes()) << mode;
+    Mesh3dDecoder decoder(temporal.stream);
+    std::vector<uint32_t> unit_frames;
+    while (decoder.next_unit())
+      for (uint32_t f : decoder.unit().frames) unit_frames.push_back(f);
+    EXPECT_EQ(unit_frames, (std::vector<uint32_t>{0, 1, 9, 5, 3, 2, 4, 7, 6, 8, 17, 13, 11, 10, 12, 15, 14, 16, 18}));
+  }
+}
+
+TEST(LccFrameOrder, AnchorsThenMidpointsEachFrameOnceAfterItsReferences) {
+  LccFrameOrder order(1, 12, 4);
+  std::vector<uint32_t> frames, seen(12, 0);
+  while (!order.done()) {
+    const LccCodedFrame coded = order.next();
+    if (!coded.anchor()) {
+      EXPECT_TRUE(seen[coded.left] && seen[coded.right]) << coded.frame;
+      EXPECT_EQ(coded.frame, coded.left + (coded.right - coded.left) / 2);
+    }
+    seen[coded.frame] = 1;
+    frames.push_back(coded.frame);
+  }
+  EXPECT_EQ(frames, (std::vector<uint32_t>{1, 5, 3, 2, 4, 9, 7, 6, 8, 11, 10}));
+  LccFrameOrder plain(0, 3, 0), endless(1, 0, 0);
+  for (uint32_t f = 0; f < 3; ++f) EXPECT_EQ(plain.next().frame, f);
+  EXPECT_TRUE(plain.done());
+  for (uint32_t f = 1; f < 100; ++f) EXPECT_EQ(endless.next().frame, f);
+  EXPECT_FALSE(endless.done());
+}
+
 TEST(LccCodec, BadOptionsAreUsageErrors) {
   const MeshSequence s = rolling_sheet(2, 4);
   EXPECT_THROW(encode_mesh3d(s, lcc({{"mode", "fast"}})), Error);
@@ -124,6 +163,7 @@ TEST(LccCodec, BadOptionsAreUsageErrors) {
 
 TEST(LccCodec, CorruptAndTruncatedStreamsFailCleanly) {
   EXPECT_GT(test::decode_damaged_mesh3d(encode_mesh3d(rolling_sheet(4, 6), lcc()).stream, 5, 33), 0);
+  EXPECT_GT(test::decode_damaged_mesh3d(encode_mesh3d(rolling_sheet(7, 6), lcc({{"temporal", "1"}, {"gop", "4"}})).stream, 5, 33), 0);
 }
 
 }  // namespace

@@ -29,19 +29,19 @@ int32_t rounded(double value, int32_t lo, int32_t hi) {
   return r < lo ? lo : r > hi ? hi : static_cast<int32_t>(r);
 }
 
-// The closed loop over one frame: symbols and reconstruction.
+// The closed loop over one frame: indices and reconstruction.
 class LccLoop {
  public:
   LccLoop(const LccModel& model, const LccHeader& header) : model_(model), header_(header) {}
 
-  // Codes `frame` against `base` (the grid positions the direct vertices
-  // are predicted from), updating `grid` (the direct vertices' new ones)
-  // and `positions` (the reconstruction).
-  void code(std::span<const Vec3> frame, size_t frame_index, const Grid& grid_of_frame, const std::vector<IntPoint3>& base,
-            std::vector<IntPoint3>& grid, std::vector<Vec3>& positions, std::vector<int32_t>& direct, std::vector<int32_t>& steps) const {
+  // Quantizes `frame` into `indices`, vertex after vertex in the frame of
+  // the reconstructed triangle it is reached from, and reconstructs it
+  // into `positions`.
+  void code(std::span<const Vec3> frame, size_t frame_index, const Grid& grid_of_frame, LccIndices& indices,
+            std::vector<Vec3>& positions) const {
     const LccOrder& order = model_.order();
-    direct.resize(3 * order.direct.size());
-    steps.resize(3 * order.steps.size());
+    indices.direct.resize(3 * order.direct.size());
+    indices.steps.resize(3 * order.steps.size());
     for (size_t i = 0; i < order.direct.size(); ++i) {
       const NodeIndex v = order.direct[i];
       IntPoint3 q;
@@ -49,8 +49,7 @@ class LccLoop {
         throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
                     "frame " + std::to_string(frame_index) + ", vertex " + std::to_string(v) +
                         " lies too far outside the first frame's box for the quantization grid");
-      for (int axis = 0; axis < 3; ++axis) direct[3 * i + static_cast<size_t>(axis)] = q[axis] - base[v][axis];
-      grid[v] = q;
+      for (int axis = 0; axis < 3; ++axis) indices.direct[3 * i + static_cast<size_t>(axis)] = q[axis];
       positions[v] = lcc_grid_position(header_, q);
     }
     const int32_t theta_limit = model_.theta_limit(), rh_limit = model_.rh_limit();
@@ -59,13 +58,12 @@ class LccLoop {
       const LccStep& step = order.steps[k];
       const LccFrame local = lcc_frame(positions[step.a], positions[step.b], positions[step.c]);
       const Cylindrical c = to_cylindrical(local, frame[step.d]);
-      int32_t t = static_cast<int32_t>(std::nearbyint(c.theta * theta_limit / std::numbers::pi));
-      if (t >= theta_limit) t -= 2 * theta_limit;
+      const int32_t t = lcc_wrapped_angle(static_cast<int64_t>(std::nearbyint(c.theta * theta_limit / std::numbers::pi)), theta_limit);
       const int32_t rho = rounded((c.radius / L - model_.reference_radius(k)) / model_.rh_step(), -rh_limit, rh_limit);
       const int32_t zeta = rounded((c.height / L - model_.reference_height(k)) / model_.rh_step(), -rh_limit, rh_limit);
-      steps[3 * k] = t;
-      steps[3 * k + 1] = rho;
-      steps[3 * k + 2] = zeta;
+      indices.steps[3 * k] = t;
+      indices.steps[3 * k + 1] = rho;
+      indices.steps[3 * k + 2] = zeta;
       positions[step.d] = model_.place_in(local, k, t, rho, zeta);
     }
   }
@@ -74,6 +72,18 @@ class LccLoop {
   const LccModel& model_;
   const LccHeader& header_;
 };
+
+// The residuals of a frame's indices against their prediction (θ wrapped).
+void residuals_of(const LccIndices& indices, const LccIndices& prediction, int32_t theta_limit, LccIndices& residuals) {
+  residuals.direct.resize(indices.direct.size());
+  for (size_t i = 0; i < indices.direct.size(); ++i) residuals.direct[i] = indices.direct[i] - prediction.direct[i];
+  residuals.steps.resize(indices.steps.size());
+  for (size_t i = 0; i < indices.steps.size(); i += 3) {
+    residuals.steps[i] = lcc_wrapped_angle(int64_t{indices.steps[i]} - prediction.steps[i], theta_limit);
+    residuals.steps[i + 1] = indices.steps[i + 1] - prediction.steps[i + 1];
+    residuals.steps[i + 2] = indices.steps[i + 2] - prediction.steps[i + 2];
+  }
+}
 
 std::vector<Float3> as_floats(std::span<const Vec3> positions) {
   std::vector<Float3> out(positions.size());
@@ -112,6 +122,7 @@ class LccEncoder final : public CodecEncoder3d {
     const int theta_bits = settings.integer("theta-bits");
     header_.theta_bits = static_cast<uint32_t>(theta_bits);
     header_.rh_bits = static_cast<uint32_t>(settings.integer("rh-bits") ? settings.integer("rh-bits") : recommended_rh_bits(theta_bits));
+    header_.gop = settings.flag("temporal") ? static_cast<uint32_t>(settings.integer("gop")) : 0;
     if (target_kg_ > 0) choose_bits(s);
   }
 
@@ -121,25 +132,27 @@ class LccEncoder final : public CodecEncoder3d {
     sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, reference_grid_); });
     const LccModel model = model_of(s);
     if (header_.reference == kLccReferenceIsFrame0) sink.decoded(0, as_floats(reference_));
-    closed_loop(s, model, [&](size_t f, syntax::ResidualCoder<syntax::kLccChannels>& coder, std::vector<int32_t>& direct,
-                              std::vector<int32_t>& steps, const std::vector<Vec3>& positions) {
-      sink.unit(UnitType::kFrame, static_cast<uint32_t>(f), [&](syntax::WriteIO& io) {
+    size_t done = 0;
+    closed_loop(s, model, [&](const LccCodedFrame& coded, syntax::ResidualCoder<syntax::kLccChannels>& coder, LccIndices& residuals,
+                              const std::vector<Vec3>& positions) {
+      sink.unit(UnitType::kFrame, coded.frame, [&](syntax::WriteIO& io) {
         const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane()};
         if (io.trace()) {
           syntax::EntropyWriteIO<true> symbols(place, io.trace());
-          write_frame(io, symbols, coder, model, direct, steps);
+          write_frame(io, symbols, coder, model, !coded.anchor(), residuals);
         } else {
           syntax::EntropyWriteIO<false> symbols(place);
-          write_frame(io, symbols, coder, model, direct, steps);
+          write_frame(io, symbols, coder, model, !coded.anchor(), residuals);
         }
       });
-      sink.decoded(static_cast<uint32_t>(f), as_floats(positions));
-      sink.progress(f + 1, s.frames.size());
+      sink.decoded(coded.frame, as_floats(positions));
+      sink.progress(++done, s.frames.size());
     });
   }
 
   std::vector<CodecStatistic> statistics() const override {
-    std::vector<CodecStatistic> figures{{"theta bits", header_.theta_bits}, {"rh bits", header_.rh_bits}, {"rh range", header_.rh_range_value()}};
+    std::vector<CodecStatistic> figures{
+        {"theta bits", header_.theta_bits}, {"rh bits", header_.rh_bits}, {"rh range", header_.rh_range_value()}, {"temporal gop", header_.gop}};
     if (target_kg_ > 0) figures.push_back({"KG error of the closed loop", reached_kg_});
     return figures;
   }
@@ -147,8 +160,8 @@ class LccEncoder final : public CodecEncoder3d {
  private:
   template <class SymbolIO>
   static void write_frame(syntax::WriteIO& io, SymbolIO& symbols, syntax::ResidualCoder<syntax::kLccChannels>& coder, const LccModel& model,
-                          std::vector<int32_t>& direct, std::vector<int32_t>& steps) {
-    syntax::describe_symbols(symbols, coder, direct, steps, model.theta_limit(), model.rh_limit());
+                          bool predicted, LccIndices& residuals) {
+    syntax::describe_symbols(symbols, coder, predicted, residuals.direct, residuals.steps, model.theta_limit(), model.rh_limit());
     const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
     LccFrameData data{static_cast<uint32_t>(bins.size()), bins, raw};
     syntax::describe(io, data);
@@ -156,16 +169,22 @@ class LccEncoder final : public CodecEncoder3d {
   }
 
   // σ: the largest |ρ| and |ζ| of the originals (each vertex in the frame
-  // of its original triangle), with 5 % to spare, as a binary32.
+  // of its original triangle), with 5 % to spare, as a binary32. The
+  // height is along b → c and the radius follows from |d − O|² − height²,
+  // without the rest of the frame.
   float measured_range(const MeshSequence& s) const {
     const LccModel model(s.faces, reference_, 2, 1, 1);
     double largest = 0;
     for (const std::vector<Vec3>& frame : s.frames)
       for (size_t k = 0; k < model.order().steps.size(); ++k) {
         const LccStep& step = model.order().steps[k];
-        const Cylindrical c = radius_and_height(lcc_frame(frame[step.a], frame[step.b], frame[step.c]), frame[step.d]);
-        largest = std::max({largest, std::fabs(c.radius / model.edge_length() - model.reference_radius(k)),
-                            std::fabs(c.height / model.edge_length() - model.reference_height(k))});
+        const Vec3 &b = frame[step.b], &c = frame[step.c], &p = frame[step.d];
+        const Vec3 axis{c.x - b.x, c.y - b.y, c.z - b.z}, d{p.x - (b.x + c.x) * 0.5, p.y - (b.y + c.y) * 0.5, p.z - (b.z + c.z) * 0.5};
+        const double axis_length = std::sqrt(axis.x * axis.x + axis.y * axis.y + axis.z * axis.z);
+        const double height = axis_length > 0 ? (d.x * axis.x + d.y * axis.y + d.z * axis.z) / axis_length : d.x;
+        const double radius = std::sqrt(std::max(0.0, d.x * d.x + d.y * d.y + d.z * d.z - height * height));
+        largest = std::max({largest, std::fabs(radius / model.edge_length() - model.reference_radius(k)),
+                            std::fabs(height / model.edge_length() - model.reference_height(k))});
       }
     const float range = static_cast<float>(std::max(1.05 * largest, 0x1p-20));
     return std::isfinite(range) ? range : 0x1p20f;
@@ -221,19 +240,19 @@ class LccEncoder final : public CodecEncoder3d {
     MeshSequence decoded;
     decoded.vertex_count = s.vertex_count;
     decoded.faces = s.faces;
-    auto add = [&](const std::vector<Vec3>& positions) {
-      std::vector<Vec3> frame;
-      for (const Float3& p : as_floats(positions)) frame.push_back({p[0], p[1], p[2]});
-      decoded.frames.push_back(std::move(frame));
+    decoded.frames.resize(s.frames.size());
+    auto set = [&](uint32_t f, const std::vector<Vec3>& positions) {
+      decoded.frames[f].clear();
+      for (const Float3& p : as_floats(positions)) decoded.frames[f].push_back({p[0], p[1], p[2]});
     };
-    if (header_.reference == kLccReferenceIsFrame0) add(reference_);
+    if (header_.reference == kLccReferenceIsFrame0) set(0, reference_);
     Trial trial;
-    closed_loop(s, model, [&](size_t, syntax::ResidualCoder<syntax::kLccChannels>& coder, std::vector<int32_t>& direct,
-                              std::vector<int32_t>& steps, const std::vector<Vec3>& positions) {
+    closed_loop(s, model, [&](const LccCodedFrame& coded, syntax::ResidualCoder<syntax::kLccChannels>& coder, LccIndices& residuals,
+                              const std::vector<Vec3>& positions) {
       syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
-      syntax::describe_symbols(symbols, coder, direct, steps, model.theta_limit(), model.rh_limit());
+      syntax::describe_symbols(symbols, coder, !coded.anchor(), residuals.direct, residuals.steps, model.theta_limit(), model.rh_limit());
       trial.bytes += symbols.finish_bins().size() + symbols.finish_raw().size();
-      add(positions);
+      set(coded.frame, positions);
     });
     trial.kg = kg_error(s, decoded);
     return trial;
@@ -243,22 +262,24 @@ class LccEncoder final : public CodecEncoder3d {
     return LccModel(s.faces, reference_, static_cast<int>(header_.theta_bits), static_cast<int>(header_.rh_bits), header_.rh_range_value());
   }
 
-  // The closed loop over the coded frames at the header's bits: each frame's
-  // symbols (the coder reset first in stream mode) and reconstruction go to
-  // frame_coded(f, coder, direct, steps, positions).
+  // The closed loop over the coded frames at the header's bits, in coding
+  // order: each frame's residuals (the coder reset first in stream mode)
+  // and reconstruction go to frame_coded(coded, coder, residuals, positions).
   template <class FrameCoded>
   void closed_loop(const MeshSequence& s, const LccModel& model, FrameCoded&& frame_coded) const {
     const LccLoop loop(model, header_);
+    LccPredictor predictor(header_, model.order(), reference_grid_);
+    LccFrameOrder order(header_.reference == kLccReferenceIsFrame0 ? 1 : 0, static_cast<uint32_t>(s.frames.size()), header_.gop);
     std::vector<Vec3> positions = reference_;
-    std::vector<IntPoint3> grid = reference_grid_;
     syntax::ResidualCoder<syntax::kLccChannels> coder;
-    std::vector<int32_t> direct, steps;
-    // Download mode predicts from the previous frame: the grid that code() updates (it reads each vertex before writing it).
-    const std::vector<IntPoint3>& base = header_.mode == kLccStreamMode ? reference_grid_ : grid;
-    for (size_t f = header_.reference == kLccReferenceIsFrame0 ? 1 : 0; f < s.frames.size(); ++f) {
-      loop.code(s.frames[f], f, grid_, base, grid, positions, direct, steps);
+    LccIndices indices, residuals;
+    while (!order.done()) {
+      const LccCodedFrame coded = order.next();
+      loop.code(s.frames[coded.frame], coded.frame, grid_, indices, positions);
+      residuals_of(indices, predictor.predict(coded), model.theta_limit(), residuals);
+      predictor.keep(coded, indices);
       if (header_.mode == kLccStreamMode) coder = {};
-      frame_coded(f, coder, direct, steps, positions);
+      frame_coded(coded, coder, residuals, positions);
     }
   }
 
@@ -279,6 +300,9 @@ std::vector<CodecOption> lcc_options() {
           {"mode", "lcc: stream (every frame decodable alone) or download (contexts carried across frames)", OptionKind::kText, "stream", 0, 0},
           {"reference", "lcc: a rest shape (OBJ) with the sequence's connectivity, sent as the base mesh (default: frame 0)",
            OptionKind::kText, "", 0, 0},
+          {"temporal", "lcc: temporal prediction between anchor frames (the hierarchy of the paper's [23]; frames coded out of order)",
+           OptionKind::kFlag, "", 0, 0},
+          {"gop", "lcc --temporal: an anchor frame every this many frames", OptionKind::kInteger, "4", 2, kLccMaxGop},
           {"target-kg", "lcc: the fewest angle bits whose KG error is at most this (0: off; overrides --theta-bits and --rh-bits)",
            OptionKind::kNumber, "0", 0, 100}};
 }

@@ -20,6 +20,7 @@ inline constexpr uint32_t kLccReferenceIsFrame0 = 0;
 inline constexpr uint32_t kLccReferenceIsRestShape = 1;
 inline constexpr uint32_t kLccStreamMode = 0;
 inline constexpr uint32_t kLccDownloadMode = 1;
+inline constexpr uint32_t kLccMaxGop = 64;
 
 struct LccHeader {
   uint32_t bits = 12;  // the grid of the base mesh and of the directly coded vertices
@@ -30,6 +31,7 @@ struct LccHeader {
   uint32_t theta_bits = 6;  // b_θ: θ in steps of π / 2^b_θ
   uint32_t rh_bits = 3;     // b_rh: ρ and ζ in steps of σ / 2^b_rh
   uint32_t rh_range = 0;    // σ, binary32: |ρ|, |ζ| ≤ σ
+  uint32_t gop = 0;         // temporal prediction: anchors every gop frames (0: none)
 
   float origin_value(int axis) const { return std::bit_cast<float>(origin[axis]); }
   float step_value(int axis) const { return std::bit_cast<float>(step[axis]); }
@@ -45,12 +47,14 @@ struct LccFrameData {
 
 namespace syntax {
 
-// Channels of the residual coder: the direct vertices' x, y, z, then θ, ρ, ζ.
+// Channels of the residual coder: the direct vertices' x, y, z, then θ, ρ,
+// ζ; anchors use 0 … 5, frames predicted between anchors 6 … 11.
 inline constexpr int kLccDirectChannel = 0;
 inline constexpr int kLccThetaChannel = 3;
 inline constexpr int kLccRadiusChannel = 4;
 inline constexpr int kLccHeightChannel = 5;
-inline constexpr int kLccChannels = 6;
+inline constexpr int kLccPredictedChannels = 6;
+inline constexpr int kLccChannels = 12;
 inline constexpr ResidualNames kLccDirect{"direct_nonzero", "direct_prefix", "direct_sign_suffix", "direct_position"};
 inline constexpr ResidualNames kLccTheta{"theta_nonzero", "theta_prefix", "theta_sign_suffix", "theta"};
 inline constexpr ResidualNames kLccRadius{"rho_nonzero", "rho_prefix", "rho_sign_suffix", "rho"};
@@ -67,6 +71,8 @@ void describe(IO& io, LccHeader& h) {
   io.field("rh_range", 32, h.rh_range);
   io.require(std::isfinite(h.rh_range_value()) && h.rh_range_value() > 0, ErrorKind::kOutOfRange, "rh_range",
              "not a positive finite binary32");
+  io.field_in("temporal_gop", 8, h.gop, 0, kLccMaxGop);
+  io.require(h.gop != 1, ErrorKind::kOutOfRange, "temporal_gop", "1: no temporal prediction is 0");
 }
 
 template <class IO>
@@ -77,21 +83,25 @@ void describe(IO& io, LccFrameData& f) {
   io.tail_section("raw", f.raw);
 }
 
-// A frame's symbols: per directly coded vertex, its x, y, z grid residual;
-// per step, θ, ρ and ζ (indices in [−theta_limit, theta_limit) and
-// [−rh_limit, rh_limit]). The coder carries the contexts (reset per frame
-// in stream mode, carried across frames in download mode).
+// A frame's symbols, residuals against the frame's prediction
+// (mesh3d/lcc.h): per directly coded vertex, its x, y, z grid residual;
+// per step, θ, ρ and ζ (θ in [−theta_limit, theta_limit), ρ and ζ in
+// [−rh_limit, rh_limit] for an anchor and twice that for a predicted
+// frame). The coder carries the contexts (reset per frame in stream mode,
+// carried across frames in download mode).
 template <class IO>
-void describe_symbols(IO& io, ResidualCoder<kLccChannels>& coder, std::span<int32_t> direct, std::span<int32_t> steps, int32_t theta_limit,
-                      int32_t rh_limit) {
-  for (size_t i = 0; i < direct.size(); ++i) coder.describe(io, kLccDirectChannel + static_cast<int>(i % 3), direct[i], kLccDirect);
+void describe_symbols(IO& io, ResidualCoder<kLccChannels>& coder, bool predicted, std::span<int32_t> direct, std::span<int32_t> steps,
+                      int32_t theta_limit, int32_t rh_limit) {
+  const int base = predicted ? kLccPredictedChannels : 0;
+  const int32_t rh_residual = predicted ? 2 * rh_limit : rh_limit;
+  for (size_t i = 0; i < direct.size(); ++i) coder.describe(io, base + kLccDirectChannel + static_cast<int>(i % 3), direct[i], kLccDirect);
   for (size_t i = 0; i < steps.size(); i += 3) {
-    coder.describe(io, kLccThetaChannel, steps[i], kLccTheta);
+    coder.describe(io, base + kLccThetaChannel, steps[i], kLccTheta);
     if (steps[i] < -theta_limit || steps[i] >= theta_limit) io.fail(ErrorKind::kOutOfRange, "theta", "an angle index beyond ±2^theta_bits");
-    coder.describe(io, kLccRadiusChannel, steps[i + 1], kLccRadius);
-    if (steps[i + 1] < -rh_limit || steps[i + 1] > rh_limit) io.fail(ErrorKind::kOutOfRange, "rho", "a radius index beyond ±2^rh_bits");
-    coder.describe(io, kLccHeightChannel, steps[i + 2], kLccHeight);
-    if (steps[i + 2] < -rh_limit || steps[i + 2] > rh_limit) io.fail(ErrorKind::kOutOfRange, "zeta", "a height index beyond ±2^rh_bits");
+    coder.describe(io, base + kLccRadiusChannel, steps[i + 1], kLccRadius);
+    if (steps[i + 1] < -rh_residual || steps[i + 1] > rh_residual) io.fail(ErrorKind::kOutOfRange, "rho", "a radius residual beyond its range");
+    coder.describe(io, base + kLccHeightChannel, steps[i + 2], kLccHeight);
+    if (steps[i + 2] < -rh_residual || steps[i + 2] > rh_residual) io.fail(ErrorKind::kOutOfRange, "zeta", "a height residual beyond its range");
   }
 }
 
