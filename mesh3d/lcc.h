@@ -75,7 +75,7 @@ struct LccFrame {
 LccFrame lcc_frame(const Vec3& a, const Vec3& b, const Vec3& c);
 
 // Cylindrical coordinates of p in a frame (the encoder's measurement: θ
-// uses atan2, which decoding never needs).
+// in [−π, π] within 10^−9, from an arc tangent decoding never needs).
 struct Cylindrical {
   double theta = 0, radius = 0, height = 0;
 };

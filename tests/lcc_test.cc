@@ -39,11 +39,11 @@ TEST(Lcc, CylindricalCoordinatesRoundTrip) {
     EXPECT_EQ(radius_and_height(frame, d).radius, p.radius);
     const Vec3 o{d.x - frame.origin.x, d.y - frame.origin.y, d.z - frame.origin.z};
     ASSERT_NEAR(p.theta, std::atan2(o.x * frame.y.x + o.y * frame.y.y + o.z * frame.y.z, o.x * frame.x.x + o.y * frame.x.y + o.z * frame.x.z),
-                1e-12);
+                1e-9);
     const Vec3 back = from_cylindrical(frame, std::cos(p.theta), std::sin(p.theta), p.radius, p.height);
-    ASSERT_NEAR(back.x, d.x, 1e-9);
-    ASSERT_NEAR(back.y, d.y, 1e-9);
-    ASSERT_NEAR(back.z, d.z, 1e-9);
+    ASSERT_NEAR(back.x, d.x, 3e-8);
+    ASSERT_NEAR(back.y, d.y, 3e-8);
+    ASSERT_NEAR(back.z, d.z, 3e-8);
   }
   // A flat continuation across the edge has θ = 0: the polar axis points away from a.
   const LccFrame flat = lcc_frame({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
@@ -53,7 +53,7 @@ TEST(Lcc, CylindricalCoordinatesRoundTrip) {
   const LccFrame axes{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   for (int k = -8; k <= 8; ++k) {
     const double angle = k * std::numbers::pi / 8;
-    EXPECT_NEAR(to_cylindrical(axes, {std::cos(angle), std::sin(angle), 0}).theta, std::atan2(std::sin(angle), std::cos(angle)), 1e-12) << k;
+    EXPECT_NEAR(to_cylindrical(axes, {std::cos(angle), std::sin(angle), 0}).theta, std::atan2(std::sin(angle), std::cos(angle)), 1e-9) << k;
   }
 }
 
