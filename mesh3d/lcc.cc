@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <numbers>
 
 namespace m4mesh {
 
@@ -225,7 +224,7 @@ const LccIndices& LccPredictor::predict(const LccCodedFrame& coded) {
     prediction_.steps = reference_.steps;
     return prediction_;
   }
-  const LccIndices &l = window_[coded.left - window_start_], &r = window_[coded.right - window_start_];
+  const LccIndices &l = kept(coded.left), &r = kept(coded.right);
   auto mean = [](int32_t a, int32_t b) { return static_cast<int32_t>((int64_t{a} + b) >> 1); };
   prediction_.direct.resize(l.direct.size());
   for (size_t i = 0; i < l.direct.size(); ++i) prediction_.direct[i] = mean(l.direct[i], r.direct[i]);
@@ -239,12 +238,18 @@ const LccIndices& LccPredictor::predict(const LccCodedFrame& coded) {
   return prediction_;
 }
 
+const LccIndices& LccPredictor::kept(uint32_t frame) const {
+  if (frame < window_start_ || frame - window_start_ >= window_.size() || (window_[frame - window_start_].direct.empty() && window_[frame - window_start_].steps.empty()))
+    throw Error(ErrorKind::kStructure, "frame_index", frame, kNoOffset, "a frame predicted from frame " + std::to_string(frame) + ", which is not kept");
+  return window_[frame - window_start_];
+}
+
 void LccPredictor::keep(const LccCodedFrame& coded, LccIndices indices) {
   if (coded.anchor()) {
     // The window becomes [previous anchor, this anchor]; the previous
     // anchor is the last slot.
     if (!window_.empty()) {
-      window_.front() = std::move(window_.back());
+      if (window_.size() > 1) window_.front() = std::move(window_.back());
       window_.resize(1);
       window_start_ = last_anchor_;
     } else {

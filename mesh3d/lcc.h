@@ -168,6 +168,8 @@ class LccPredictor {
   bool download_;
   int32_t theta_limit_;
   LccIndices reference_, prediction_;
+  const LccIndices& kept(uint32_t frame) const;
+
   // The frames from the previous anchor to the last one, by frame −
   // window_start_ (at most gop + 1).
   std::vector<LccIndices> window_;

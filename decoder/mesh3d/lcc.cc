@@ -27,10 +27,27 @@ class LccDecoder final : public CodecDecoder3d {
     }
     if (!model_) io.fail(ErrorKind::kStructure, "unit_type", "a frame unit before the reference mesh was decoded");
     if (frame_order_->done()) io.fail(ErrorKind::kStructure, "frame_index", "a frame unit after the last frame");
-    // The unit is the next frame even when it fails, so that a check carries on.
+    // The unit is the next frame even when it fails, and the frame then
+    // keeps its prediction, so that a check carries on.
     const LccCodedFrame coded = frame_order_->next();
     decoded.push_back(coded.frame);
     io.set_plane(coded.frame);
+    try {
+      decode_frame(unit, io, coded);
+    } catch (const Error&) {
+      predictor_->keep(coded, predictor_->predict(coded));
+      throw;
+    }
+  }
+
+  const std::vector<Triangle>& faces() const override { return faces_; }
+  void frame(uint32_t, std::span<Float3> positions) const override {
+    for (size_t i = 0; i < positions.size(); ++i)
+      positions[i] = {static_cast<float>(positions_[i].x), static_cast<float>(positions_[i].y), static_cast<float>(positions_[i].z)};
+  }
+
+ private:
+  void decode_frame(const UnitHeader& unit, syntax::ReadIO& io, const LccCodedFrame& coded) {
     if (unit.frame_index != coded.frame)
       io.fail(ErrorKind::kStructure, "frame_index",
               "frame " + std::to_string(unit.frame_index) + " where frame " + std::to_string(coded.frame) + " was expected");
@@ -50,13 +67,6 @@ class LccDecoder final : public CodecDecoder3d {
     reconstruct(io, coded);
   }
 
-  const std::vector<Triangle>& faces() const override { return faces_; }
-  void frame(uint32_t, std::span<Float3> positions) const override {
-    for (size_t i = 0; i < positions.size(); ++i)
-      positions[i] = {static_cast<float>(positions_[i].x), static_cast<float>(positions_[i].y), static_cast<float>(positions_[i].z)};
-  }
-
- private:
   void start(BaseMesh base) {
     faces_ = std::move(base.faces);
     std::vector<IntPoint3> reference_grid = std::move(base.positions);
