@@ -154,6 +154,42 @@ TEST(LccFrameOrder, AnchorsThenMidpointsEachFrameOnceAfterItsReferences) {
   EXPECT_FALSE(endless.done());
 }
 
+// The predictions of the first group of frames: anchors from the reference
+// (stream) or the previous anchor (download), midpoints from their two
+// frames, θ along the shorter arc.
+TEST(LccPredictor, PredictsAnchorsAndMidpoints) {
+  const MeshSequence s = rolling_sheet(1, 2);
+  const LccOrder order = lcc_order(s.faces, s.vertex_count);
+  std::vector<IntPoint3> reference(s.vertex_count, IntPoint3{7, 8, 9});
+  auto frame = [&](int32_t direct, int32_t t, int32_t radius) {
+    LccIndices indices;
+    indices.direct.assign(3 * order.direct.size(), direct);
+    for (size_t k = 0; k < order.steps.size(); ++k) indices.steps.insert(indices.steps.end(), {t, radius, -radius});
+    return indices;
+  };
+  for (uint32_t mode : {kLccStreamMode, kLccDownloadMode}) {
+    LccHeader header;
+    header.theta_bits = 3;  // t in [−8, 8)
+    header.mode = mode;
+    LccPredictor predictor(header, order, reference);
+    const LccCodedFrame first{1}, second{5}, middle{3, 1, 5};
+    EXPECT_EQ(predictor.predict(first).direct[0], 7);
+    EXPECT_EQ(predictor.predict(first).steps[0], 0);
+    predictor.keep(first, frame(100, 7, 3));
+    EXPECT_EQ(predictor.predict(second).direct[1], mode == kLccDownloadMode ? 100 : 8);
+    predictor.keep(second, frame(103, -7, -2));
+    const LccIndices& p = predictor.predict(middle);
+    EXPECT_EQ(p.direct[0], 101);  // ⌊203 / 2⌋
+    EXPECT_EQ(p.steps[0], -8);    // 7 and −7 meet across ±π, not at 0
+    EXPECT_EQ(p.steps[1], 0);     // ⌊(3 − 2) / 2⌋
+    EXPECT_EQ(p.steps[2], -1);    // ⌊(−3 + 2) / 2⌋
+    predictor.keep(middle, frame(0, 0, 0));
+    predictor.keep(LccCodedFrame{9}, frame(0, 0, 0));
+    EXPECT_EQ(predictor.predict(LccCodedFrame{7, 5, 9}).direct[0], 51);  // frame 5 kept, frames 1 and 3 dropped
+    EXPECT_THROW(predictor.predict(LccCodedFrame{2, 1, 3}), Error);
+  }
+}
+
 TEST(LccCodec, BadOptionsAreUsageErrors) {
   const MeshSequence s = rolling_sheet(2, 4);
   EXPECT_THROW(encode_mesh3d(s, lcc({{"mode", "fast"}})), Error);
