@@ -251,6 +251,15 @@ int run_m4mesh(int argc, const char* const* argv) {
   decode3d_cmd->add_option("input", decode3d_args.input, "mesh3d stream")->required();
   decode3d_cmd->add_option("-o,--output", decode3d_args.output, "a folder for OBJ frames, a .m4seq file, or a .f32 file (every frame's binary32 x, y, z, little-endian)")->required();
   decode3d_cmd->add_flag("--verify", decode3d_args.verify, "check every frame against its hash unit: OK or MISMATCH per frame");
+  decode3d_cmd->add_option("--max-bytes", decode3d_args.max_bytes,
+                           "decode only the longest prefix of at most this many bytes that ends at a unit boundary (a progressive stream)");
+
+  ProgressiveArgs progressive_args;
+  CLI::App* progressive_cmd =
+      app.add_subcommand("progressive", "The quality of a progressive stream after each unit: bytes received, KG error, PSNR, STED");
+  progressive_cmd->add_option("stream", progressive_args.stream, "a progressive mesh3d stream (cpca-wpt)")->required();
+  progressive_cmd->add_option("original", progressive_args.original, "the original frames, .m4seq or .pc2")->required();
+  progressive_cmd->add_option("--step", progressive_args.step, "bytes between reports (default: a fortieth of the stream; 1: every unit)");
 
   MetricsArgs metrics_args;
   CLI::App* metrics_cmd = app.add_subcommand("metrics", "KG error, RMSE, max error, PSNR and STED between two sequences");
@@ -282,6 +291,7 @@ int run_m4mesh(int argc, const char* const* argv) {
     if (*encode3d_cmd) return current_file = encode3d_args.input, run_encode3d(encode3d_args);
     if (*decode3d_cmd) return current_file = decode3d_args.input, run_decode3d(decode3d_args);
     if (*metrics_cmd) return run_metrics(metrics_args);
+    if (*progressive_cmd) return current_file = progressive_args.stream, run_progressive(progressive_args);
     if (*convert_cmd) return run_convert(convert_input, convert_output);
     if (*demo_cmd) return run_demo(demo_options);
   } catch (const Error& e) {

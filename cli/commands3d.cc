@@ -35,7 +35,7 @@ void progress(const char* what, size_t done, size_t total) {
 void add_codec_options(CLI::App& command, Encode3dArgs& args) {
   std::string names;
   for (const Codec3d& c : codecs3d())
-    if (c.make_encoder) names += (names.empty() ? "" : ", ") + c.name;
+    names += (names.empty() ? "" : ", ") + c.name;
   command.add_option("--codec", args.codec, "codec: " + names)->capture_default_str();
   // One flag per option name; codecs that share a name share the flag.
   std::set<std::string> added;
@@ -103,7 +103,15 @@ int run_encode3d(const Encode3dArgs& args) {
 }
 
 int run_decode3d(const Decode3dArgs& args) {
-  const std::vector<uint8_t> stream = read_file(args.input);
+  std::vector<uint8_t> stream = read_file(args.input);
+  if (args.max_bytes > 0) {
+    const ContainerPrefix prefix = container_prefix(split_container(stream), stream.size(), args.max_bytes);
+    if (prefix.units == 0)
+      throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
+                  "--max-bytes " + std::to_string(args.max_bytes) + " holds no unit: the first ends later");
+    std::printf("prefix: %zu units, %llu of %zu bytes\n", prefix.units, static_cast<unsigned long long>(prefix.bytes), stream.size());
+    stream.resize(prefix.bytes);
+  }
   Decode3dOptions options;
   options.verify = args.verify;
   Mesh3dDecoder decoder(stream, options);
@@ -158,7 +166,7 @@ int run_decode3d(const Decode3dArgs& args) {
     write_binary_sequence(sequence, args.output);
   }
   std::printf("%s: %u frames of %u vertices%s\n", args.output.c_str(), decoder.frame_index() + 1, decoder.header().vertex_count,
-              decoder.has_end_code() ? "" : " (warning: no end code)");
+              decoder.has_end_code() || args.max_bytes > 0 ? "" : " (warning: no end code)");
   if (args.verify) {
     std::printf("verify: %d mismatches, %d frames without a hash\n", mismatches, unchecked);
     return mismatches == 0 && unchecked == 0 ? 0 : 1;
@@ -237,6 +245,39 @@ int run_convert(const std::string& input, const std::string& output) {
   else
     write_obj_frames(sequence, output);
   std::printf("%s: %zu frames of %u vertices\n", output.c_str(), sequence.frames.size(), sequence.vertex_count);
+  return 0;
+}
+
+int run_progressive(const ProgressiveArgs& args) {
+  const MeshSequence original = load_sequence(args.original, true);
+  const std::vector<uint8_t> stream = read_file(args.stream);
+  const ContainerParts parts = split_container(stream);
+  Mesh3dDecoder decoder(stream);
+  if (!decoder.progressive())
+    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
+                args.stream + ": " + decoder.codec().name + " decodes frame by frame; progressive needs a progressive codec (cpca-wpt)");
+  const MetricsReference reference(original);
+  const uint64_t step = args.step > 0 ? args.step : std::max<uint64_t>(1, stream.size() / 40);
+  MeshSequence decoded;
+  decoded.vertex_count = decoder.header().vertex_count;
+  decoded.frames.resize(decoder.header().frame_count, std::vector<Vec3>(decoded.vertex_count));
+  std::vector<Float3> positions(decoded.vertex_count);
+  // Units: the base mesh and refinements (hash units count in the bytes).
+  std::printf("%6s %10s %10s %10s %12s\n", "units", "bytes", "KG %", "PSNR dB", "STED");
+  uint64_t next_report = 0;
+  for (size_t units = 1; decoder.next_unit(); ++units) {
+    const size_t taken = decoder.units_taken();
+    const uint64_t received = taken < parts.units.size() ? parts.units[taken].byte_offset : stream.size();
+    if (received < next_report && taken < parts.units.size()) continue;
+    next_report = received + step;
+    for (uint32_t f = 0; f < decoded.frames.size(); ++f) {
+      decoder.frame(f, positions);
+      for (size_t v = 0; v < positions.size(); ++v) decoded.frames[f][v] = {positions[v][0], positions[v][1], positions[v][2]};
+    }
+    decoded.faces = decoder.faces();
+    const SequenceMetrics m = reference.compare(decoded);
+    std::printf("%6zu %10llu %10.5f %10.3f %12.9f\n", units, static_cast<unsigned long long>(received), m.kg_error, m.psnr, m.sted);
+  }
   return 0;
 }
 

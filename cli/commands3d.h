@@ -28,6 +28,7 @@ struct Decode3dArgs {
   std::string input;
   std::string output;  // a folder of OBJ frames, or a .m4seq file
   bool verify = false;
+  uint64_t max_bytes = 0;  // decode only the longest prefix of at most this many bytes (0: all)
 };
 int run_decode3d(const Decode3dArgs& args);
 
@@ -43,5 +44,13 @@ struct MetricsArgs {
 int run_metrics(const MetricsArgs& args);
 
 int run_convert(const std::string& input, const std::string& output);
+
+struct ProgressiveArgs {
+  std::string stream;
+  std::string original;
+  uint64_t step = 0;  // bytes between reports (0: a fortieth of the stream)
+};
+// The quality after every unit of a progressive stream.
+int run_progressive(const ProgressiveArgs& args);
 
 }  // namespace m4mesh

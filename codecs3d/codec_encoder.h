@@ -30,6 +30,8 @@ class UnitSink {
   // hashed when the stream carries hash units.
   virtual void decoded(uint32_t frame, std::span<const Float3> positions) = 0;
   virtual void progress(size_t done, size_t total) = 0;
+  // The stream's bytes so far: start codes, escaping and hash units included.
+  virtual uint64_t stream_bytes() const = 0;
 };
 
 // A codec's own figure for the summary ("matrices", 1234).

@@ -16,6 +16,9 @@ std::vector<CodecOption> affine_octree_options();
 std::unique_ptr<CodecDecoder3d> make_lcc_decoder(const ObjectHeader&, syntax::ReadIO&);
 std::unique_ptr<CodecEncoder3d> make_lcc_encoder(const MeshSequence&, const CodecSettings&);
 std::vector<CodecOption> lcc_options();
+std::unique_ptr<CodecDecoder3d> make_cpca_wpt_decoder(const ObjectHeader&, syntax::ReadIO&);
+std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence&, const CodecSettings&);
+std::vector<CodecOption> cpca_wpt_options();
 
 namespace {
 
@@ -27,7 +30,9 @@ std::vector<Codec3d>& table() {
        {UnitType::kBaseMesh, UnitType::kFrame}, affine_octree_options(), make_affine_octree_decoder, make_affine_octree_encoder},
       {3, "lcc", "cloth in local cylindrical coordinates: dihedral angle, radius and height against a reference mesh", "docs/codec_lcc.md",
        {UnitType::kBaseMesh, UnitType::kFrame}, lcc_options(), make_lcc_decoder, make_lcc_encoder},
-      {4, "cpca-wpt", "clustered PCA, weighted progressive transmission (registered, not implemented yet)", "", {}, {}, nullptr, nullptr},
+      {4, "cpca-wpt", "clustered PCA, progressive: every refinement unit adds one principal component of one cluster to every frame",
+       "docs/codec_cpca_wpt.md", {UnitType::kBaseMesh, UnitType::kRefinement}, cpca_wpt_options(), make_cpca_wpt_decoder,
+       make_cpca_wpt_encoder},
   };
   return rows;
 }
@@ -48,7 +53,7 @@ const Codec3d& codec3d_by_name(const std::string& name) {
   std::string names;
   for (const Codec3d& c : table()) {
     if (c.name == name) return c;
-    if (c.make_encoder) names += (names.empty() ? "" : ", ") + c.name;
+    names += (names.empty() ? "" : ", ") + c.name;
   }
   throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "unknown codec '" + name + "' (available: " + names + ")");
 }
@@ -56,6 +61,8 @@ const Codec3d& codec3d_by_name(const std::string& name) {
 void register_codec3d(Codec3d codec) {
   if (codec.id == 0 || codec.id > 255 || find_codec3d(codec.id))
     throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "codec_id " + std::to_string(codec.id) + " is taken or outside 1 … 255");
+  if (!codec.make_decoder || !codec.make_encoder)
+    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "codec " + codec.name + " needs a decoder and an encoder");
   table().push_back(std::move(codec));
 }
 

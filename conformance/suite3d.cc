@@ -12,6 +12,7 @@
 #include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/lcc.h"
 #include "mesh3d/quantization.h"
+#include "syntax/mesh3d/cpca_wpt.h"
 #include "syntax/mesh3d/entropy_io.h"
 #include "syntax/mesh3d/lcc.h"
 
@@ -327,14 +328,149 @@ std::vector<uint8_t> lcc_predicted_unit(const std::vector<uint8_t>& stream, std:
   return unit_header;
 }
 
+Encode3dOptions cpca(CodecOptionValues values) {
+  Encode3dOptions o;
+  o.codec = "cpca-wpt";
+  o.codec_options = std::move(values);
+  return o;
+}
+
+// The clustered-PCA codec's streams: both orders, a prefix cut at a unit
+// boundary, the finest and coarsest quantization, one cluster, F = 0.
+std::vector<SuiteCase> cpca_cases(bool traced) {
+  const MeshSequence flag = waving_flag(9, 8, false);
+  std::vector<SuiteCase> suite;
+  suite.push_back(valid("cpca-01-wpt", "cpca-wpt, 4 clusters, weighted progressive order", {"cpca", "container-units"}, flag,
+                        cpca({{"clusters", "4"}}), traced));
+  suite.push_back(valid("cpca-02-rpt", "cpca-wpt, round robin over the clusters", {"cpca"}, flag, cpca({{"clusters", "4"}, {"order", "rpt"}}),
+                        traced));
+  {
+    // The prefix of cpca-01 through its twelfth unit (no hash units, no
+    // end code), traced as the encoder traced those units.
+    const SuiteCase& full = suite.front();
+    const ContainerParts parts = split_container(full.stream);
+    SuiteCase prefix = decode_case(
+        "cpca-03-prefix", "the first 12 units of cpca-01: a prefix cut at a unit boundary decodes", {"cpca", "cpca-prefix"},
+        std::vector<uint8_t>(full.stream.begin(), full.stream.begin() + static_cast<std::ptrdiff_t>(parts.units[12].byte_offset)));
+    if (traced) prefix.encoder_trace = full.encoder_trace.substr(0, full.encoder_trace.find("\nunit 12 ") + 1);
+    suite.push_back(std::move(prefix));
+  }
+  suite.push_back(valid("cpca-04-fine", "every component at the finest noise step, a 16-bit grid", {"cpca"}, flag,
+                        cpca({{"clusters", "3"}, {"components", "4096"}, {"noise", "-4"}, {"bits", "16"}}), traced));
+  suite.push_back(valid("cpca-05-coarse", "the coarsest noise step on a 4-bit grid", {"cpca"}, flag,
+                        cpca({{"clusters", "3"}, {"noise", "12"}, {"bits", "4"}}), traced));
+  suite.push_back(valid("cpca-06-one-cluster", "one cluster", {"cpca"}, flag, cpca({{"clusters", "1"}}), traced));
+  suite.push_back(valid("cpca-07-no-fraction", "a 24-bit grid: fraction_bits 0", {"cpca"}, flag, cpca({{"clusters", "2"}, {"bits", "24"}}),
+                        traced));
+  return suite;
+}
+
+// The position of the n-th refinement unit (n from 0) among a stream's units.
+size_t refinement_unit(const ContainerParts& parts, size_t n) {
+  for (size_t k = 0; k < parts.units.size(); ++k)
+    if (parts.units[k].payload[0] == static_cast<uint8_t>(UnitType::kRefinement) && n-- == 0) return k;
+  throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no such refinement unit");
+}
+
+// A refinement unit's cluster and kind (bytes 5 and 6 of its payload).
+constexpr size_t kClusterByte = 5, kKindByte = 6;
+
+// The clustered-PCA codec's streams to reject: header ranges, and the unit
+// rules (cluster, start, component count).
+std::vector<SuiteCase> cpca_rejected_cases(const std::vector<SuiteCase>& valid) {
+  std::vector<SuiteCase> suite;
+  const std::vector<uint8_t> base = find(valid, "cpca-01-wpt");
+  auto field = [&base](const char* name) {
+    const ContainerParts parts = split_container(base);
+    BitReader reader(parts.object_payload.data(), parts.object_payload.size());
+    syntax::ReadIO in(reader);
+    ObjectHeader object;
+    CpcaHeader header;
+    syntax::describe(in, object);
+    syntax::describe(in, header);
+    syntax::CountIO count(name);
+    syntax::describe(count, object);
+    syntax::describe(count, header);
+    return static_cast<size_t>(count.offset_of_watched() / 8);
+  };
+  const struct {
+    const char* id;
+    const char* purpose;
+    const char* field;
+    uint8_t value;
+    ErrorKind kind;
+    const char* element;
+  } header_cases[] = {
+      {"x-26-cpca-no-cluster", "cluster_count 0", "cluster_count", 0, ErrorKind::kOutOfRange, "cluster_count"},
+      {"x-27-cpca-fraction-bits", "fraction_bits 17", "fraction_bits", 17, ErrorKind::kOutOfRange, "fraction_bits"},
+      {"x-28-cpca-map-beyond", "cluster_count 3 while the map names cluster 3", "cluster_count", 3, ErrorKind::kOutOfRange, "cluster_of_vertex"},
+      {"x-29-cpca-empty-cluster", "cluster_count 5 while the map names clusters 0 … 3", "cluster_count", 5, ErrorKind::kStructure, "cluster_count"},
+  };
+  for (const auto& c : header_cases)
+    suite.push_back(invalid(c.id, c.purpose, {"cpca"}, edited(base, [&](ContainerParts& p) { p.object_payload[field(c.field)] = c.value; }),
+                            c.kind, c.element, kNoPlane));
+  suite.push_back(invalid("x-30-cpca-no-frame-count", "frame_count 0 (unknown)", {"cpca"},
+                          edited(base,
+                                 [&](ContainerParts& p) {
+                                   for (size_t i = 0; i < 4; ++i) p.object_payload[field("frame_count") + i] = 0;
+                                 }),
+                          ErrorKind::kStructure, "frame_count", kNoPlane));
+  suite.push_back(invalid("x-31-cpca-cluster-beyond", "a refinement unit for cluster 4 of 4", {"cpca"},
+                          edited(base, [](ContainerParts& p) { p.units[refinement_unit(p, 0)].payload[kClusterByte] = 4; }),
+                          ErrorKind::kOutOfRange, "cluster", 0));
+  suite.push_back(invalid("x-32-cpca-unit-kind", "unit_kind 2", {"cpca"},
+                          edited(base, [](ContainerParts& p) { p.units[refinement_unit(p, 0)].payload[kKindByte] = 2; }),
+                          ErrorKind::kOutOfRange, "unit_kind", 0));
+  suite.push_back(invalid("x-33-cpca-not-started", "a component of a cluster before the cluster's start", {"cpca"},
+                          edited(base,
+                                 [](ContainerParts& p) {
+                                   // The first component unit moves before every refinement unit (they follow the base mesh).
+                                   size_t k = refinement_unit(p, 0);
+                                   while (p.units[k].payload[kKindByte] != kCpcaComponent) ++k;
+                                   ContainerUnit component = p.units[k];
+                                   p.units.erase(p.units.begin() + static_cast<std::ptrdiff_t>(k));
+                                   p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(refinement_unit(p, 0)), component);
+                                 }),
+                          ErrorKind::kStructure, "unit_kind", 0));
+  suite.push_back(invalid("x-34-cpca-second-start", "a cluster's start sent twice", {"cpca"},
+                          edited(base,
+                                 [](ContainerParts& p) {
+                                   const size_t first = refinement_unit(p, 0);
+                                   p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(first) + 1, p.units[first]);
+                                 }),
+                          ErrorKind::kStructure, "unit_kind", 0));
+  suite.push_back(invalid("x-35-cpca-refinement-frame", "a refinement unit naming frame 1", {"cpca"},
+                          edited(base, [](ContainerParts& p) { p.units[refinement_unit(p, 0)].payload[4] = 1; }),
+                          ErrorKind::kStructure, "frame_index", 1));
+  {
+    // One cluster over 3 frames has 3 components: its fourth is one too many.
+    const std::vector<uint8_t> short_stream = encode_mesh3d(moving_tetrahedron(3), cpca({{"clusters", "1"}, {"noise", "-4"}})).stream;
+    suite.push_back(invalid("x-36-cpca-beyond-components", "a fourth component of a cluster over 3 frames", {"cpca"},
+                            edited(short_stream,
+                                   [](ContainerParts& p) {
+                                     size_t last = refinement_unit(p, 0), components = 0;
+                                     for (size_t k = 0; k < p.units.size(); ++k)
+                                       if (p.units[k].payload[0] == static_cast<uint8_t>(UnitType::kRefinement)) {
+                                         last = k;
+                                         components += p.units[k].payload[kKindByte] == kCpcaComponent;
+                                       }
+                                     const ContainerUnit copy = p.units[last];
+                                     for (size_t extra = components; extra < 4; ++extra)
+                                       p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(last) + 1, copy);
+                                   }),
+                            ErrorKind::kStructure, "cluster", 0));
+  }
+  return suite;
+}
+
 // Streams to reject, each made from a valid one.
 std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
   std::vector<SuiteCase> suite;
   const std::vector<uint8_t> base = find(valid, "ao-01-me1-k16");
   suite.push_back(invalid("x-01-codec-unknown", "codec_id 5 is not registered", {"container"},
                           edited(base, [](ContainerParts& p) { p.object_payload[1] = 5; }), ErrorKind::kReservedValue, "codec_id", kNoPlane));
-  suite.push_back(invalid("x-02-codec-cpca-wpt", "codec_id 4 (cpca-wpt) is registered but not implemented", {"container"},
-                          edited(base, [](ContainerParts& p) { p.object_payload[1] = 4; }), ErrorKind::kLimit, "codec_id", kNoPlane));
+  suite.push_back(invalid("x-02-codec-zero", "codec_id 0 is reserved", {"container"},
+                          edited(base, [](ContainerParts& p) { p.object_payload[1] = 0; }), ErrorKind::kReservedValue, "codec_id", kNoPlane));
   // The object payload: 18 bytes of object header, quantization_bits, 3 origins, step, then matrix_bits.
   suite.push_back(invalid("x-03-matrix-bits", "matrix_bits 30", {"ao-header"},
                           edited(base, [](ContainerParts& p) { p.object_payload[18 + 1 + 12 + 4] = 30; }), ErrorKind::kOutOfRange,
@@ -460,6 +596,7 @@ std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
                             unit.payload = lcc_predicted_unit(temporal, {unit.payload.begin(), unit.payload.begin() + 5});
                           }),
                           ErrorKind::kOutOfRange, "rho", 3));
+  for (SuiteCase& c : cpca_rejected_cases(valid)) suite.push_back(std::move(c));
   return suite;
 }
 
@@ -469,6 +606,7 @@ std::vector<SuiteCase> build_suite3d(bool traced) {
   std::vector<SuiteCase> suite = affine_octree_cases(traced);
   for (SuiteCase& c : bfs3d_cases(traced)) suite.push_back(std::move(c));
   for (SuiteCase& c : lcc_cases(traced)) suite.push_back(std::move(c));
+  for (SuiteCase& c : cpca_cases(traced)) suite.push_back(std::move(c));
   for (SuiteCase& c : rejected_cases(suite)) suite.push_back(std::move(c));
   return suite;
 }

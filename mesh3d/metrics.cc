@@ -76,23 +76,21 @@ double psnr(const MeshSequence& a, const MeshSequence& b) {
   return avg_mse > 0 ? 10.0 * std::log10(dmax * dmax / avg_mse) : INFINITY;
 }
 
-void sted(const MeshSequence& a, const MeshSequence& b, const StedParams& p, double& spatial, double& temporal,
-          double& combined) {
-  require_comparable(a, b);
+MetricsReference::MetricsReference(const MeshSequence& a, const StedParams& p) : original_(a), params_(p), edges_(edges_of(a)) {
+  if (a.frames.empty()) throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "no frames to compare");
   const size_t V = a.vertex_count, F = a.frames.size();
-  const auto edges = edges_of(a);
   // NE(i, d): the edges incident to a vertex within topological distance d of i.
   std::vector<std::vector<NodeIndex>> neighbours(V);
-  for (const auto& [u, v] : edges) {
+  for (const auto& [u, v] : edges_) {
     neighbours[u].push_back(v);
     neighbours[v].push_back(u);
   }
   std::vector<std::vector<uint32_t>> incident(V);
-  for (uint32_t e = 0; e < edges.size(); ++e) {
-    incident[edges[e].first].push_back(e);
-    incident[edges[e].second].push_back(e);
+  for (uint32_t e = 0; e < edges_.size(); ++e) {
+    incident[edges_[e].first].push_back(e);
+    incident[edges_[e].second].push_back(e);
   }
-  std::vector<std::vector<uint32_t>> ne(V);
+  neighbourhood_.resize(V);
   for (NodeIndex i = 0; i < V; ++i) {
     std::set<NodeIndex> ring{i};
     std::vector<NodeIndex> frontier{i};
@@ -105,66 +103,88 @@ void sted(const MeshSequence& a, const MeshSequence& b, const StedParams& p, dou
     }
     std::set<uint32_t> es;
     for (NodeIndex u : ring) es.insert(incident[u].begin(), incident[u].end());
-    ne[i].assign(es.begin(), es.end());
+    neighbourhood_[i].assign(es.begin(), es.end());
   }
+  if (F < 2) return;
+  // ld from the original's first frame.
+  double ld = 0;
+  const std::vector<Vec3>& first = a.frames[0];
+  for (size_t i = 0; i < V; ++i)
+    for (size_t j = i + 1; j < V; ++j) ld = std::max(ld, distance(first[i], first[j]));
+  diameter_ = ld > 0 ? ld : 1;
+  temporal_edges_.resize(V * (F - 1));
+  speeds_.resize(V * (F - 1));
+  for (size_t i = 0; i < V; ++i) {
+    double* tel = temporal_edges_.data() + i * (F - 1);
+    for (size_t f = 0; f + 1 < F; ++f) {
+      const Vec3 &u = a.frames[f][i], &v = a.frames[f + 1][i];
+      const double dx = (v.x - u.x) / diameter_, dy = (v.y - u.y) / diameter_, dz = (v.z - u.z) / diameter_;
+      tel[f] = std::sqrt(dx * dx + dy * dy + dz * dz + p.dt * p.dt);
+    }
+    // Eq. 17: the mean of tel over the frames of the window that have one.
+    for (size_t f = 0; f + 1 < F; ++f) {
+      const size_t from = f >= static_cast<size_t>(p.w) ? f - static_cast<size_t>(p.w) : 0;
+      const size_t to = std::min(F - 2, f + static_cast<size_t>(p.w));
+      double speed = 0;
+      for (size_t k = from; k <= to; ++k) speed += tel[k];
+      speeds_[i * (F - 1) + f] = speed / static_cast<double>(to - from + 1);
+    }
+  }
+}
 
+void MetricsReference::sted(const MeshSequence& b, double& spatial, double& temporal, double& combined) const {
+  const MeshSequence& a = original_;
+  const size_t V = a.vertex_count, F = a.frames.size();
   // Spatial error, Eqs. 10–14.
   double spatial_sum = 0;
-  std::vector<double> el(edges.size()), ed(edges.size());
+  std::vector<double> el(edges_.size()), ed(edges_.size());
   for (size_t f = 0; f < F; ++f) {
-    for (size_t e = 0; e < edges.size(); ++e) {
-      el[e] = distance(a.frames[f][edges[e].first], a.frames[f][edges[e].second]);
-      const double distorted = distance(b.frames[f][edges[e].first], b.frames[f][edges[e].second]);
+    for (size_t e = 0; e < edges_.size(); ++e) {
+      el[e] = distance(a.frames[f][edges_[e].first], a.frames[f][edges_[e].second]);
+      const double distorted = distance(b.frames[f][edges_[e].first], b.frames[f][edges_[e].second]);
       ed[e] = el[e] > 0 ? std::abs(el[e] - distorted) / el[e] : 0.0;
     }
     for (size_t i = 0; i < V; ++i) {
       double weight = 0, mean = 0;
-      for (uint32_t e : ne[i]) {
+      for (uint32_t e : neighbourhood_[i]) {
         weight += el[e];
         mean += ed[e] * el[e];
       }
       if (weight <= 0) continue;
       mean /= weight;
       double variance = 0;
-      for (uint32_t e : ne[i]) variance += (ed[e] - mean) * (ed[e] - mean) * el[e];
+      for (uint32_t e : neighbourhood_[i]) variance += (ed[e] - mean) * (ed[e] - mean) * el[e];
       spatial_sum += std::sqrt(variance / weight);
     }
   }
   spatial = spatial_sum / (static_cast<double>(V) * static_cast<double>(F));
 
-  // Temporal error, Eqs. 15–19; ld from the original's first frame.
+  // Temporal error, Eqs. 15–19.
   temporal = 0;
   if (F >= 2) {
-    double ld = 0;
-    const std::vector<Vec3>& first = a.frames[0];
-    for (size_t i = 0; i < V; ++i)
-      for (size_t j = i + 1; j < V; ++j) ld = std::max(ld, distance(first[i], first[j]));
-    if (ld <= 0) ld = 1;
-    auto tel = [&](const MeshSequence& s, size_t i, size_t f) {
-      const Vec3 &u = s.frames[f][i], &v = s.frames[f + 1][i];
-      const double dx = (v.x - u.x) / ld, dy = (v.y - u.y) / ld, dz = (v.z - u.z) / ld;
-      return std::sqrt(dx * dx + dy * dy + dz * dz + p.dt * p.dt);
-    };
     double temporal_sum = 0;
-    std::vector<double> original_tel(F - 1);
-    for (size_t i = 0; i < V; ++i) {
-      for (size_t f = 0; f + 1 < F; ++f) original_tel[f] = tel(a, i, f);
+    for (size_t i = 0; i < V; ++i)
       for (size_t f = 0; f + 1 < F; ++f) {
-        // Eq. 17: the mean of tel over the frames of the window that have one.
-        const size_t from = f >= static_cast<size_t>(p.w) ? f - static_cast<size_t>(p.w) : 0;
-        const size_t to = std::min(F - 2, f + static_cast<size_t>(p.w));
-        double speed = 0;
-        for (size_t k = from; k <= to; ++k) speed += original_tel[k];
-        speed /= static_cast<double>(to - from + 1);
-        temporal_sum += std::abs(original_tel[f] - tel(b, i, f)) / speed;
+        const Vec3 &u = b.frames[f][i], &v = b.frames[f + 1][i];
+        const double dx = (v.x - u.x) / diameter_, dy = (v.y - u.y) / diameter_, dz = (v.z - u.z) / diameter_;
+        const double tel = std::sqrt(dx * dx + dy * dy + dz * dz + params_.dt * params_.dt);
+        temporal_sum += std::abs(temporal_edges_[i * (F - 1) + f] - tel) / speeds_[i * (F - 1) + f];
       }
-    }
     temporal = temporal_sum / (static_cast<double>(V) * static_cast<double>(F - 1));
   }
-  combined = std::sqrt(spatial * spatial + p.c * p.c * temporal * temporal);
+  combined = std::sqrt(spatial * spatial + params_.c * params_.c * temporal * temporal);
 }
 
-SequenceMetrics compare_sequences(const MeshSequence& a, const MeshSequence& b, const StedParams& params) {
+void sted(const MeshSequence& a, const MeshSequence& b, const StedParams& p, double& spatial, double& temporal, double& combined) {
+  require_comparable(a, b);
+  const SequenceMetrics m = MetricsReference(a, p).compare(b);
+  spatial = m.sted_spatial;
+  temporal = m.sted_temporal;
+  combined = m.sted;
+}
+
+SequenceMetrics MetricsReference::compare(const MeshSequence& b) const {
+  const MeshSequence& a = original_;
   require_comparable(a, b);
   SequenceMetrics m;
   double squared = 0;
@@ -177,8 +197,13 @@ SequenceMetrics compare_sequences(const MeshSequence& a, const MeshSequence& b, 
   m.rmse = std::sqrt(squared / (static_cast<double>(a.frames.size()) * a.vertex_count));
   m.kg_error = kg_error(a, b);
   m.psnr = psnr(a, b);
-  sted(a, b, params, m.sted_spatial, m.sted_temporal, m.sted);
+  sted(b, m.sted_spatial, m.sted_temporal, m.sted);
   return m;
+}
+
+SequenceMetrics compare_sequences(const MeshSequence& a, const MeshSequence& b, const StedParams& params) {
+  require_comparable(a, b);
+  return MetricsReference(a, params).compare(b);
 }
 
 }  // namespace m4mesh

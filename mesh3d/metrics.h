@@ -26,6 +26,27 @@ struct SequenceMetrics {
   double sted = 0;         // Eq. 20
 };
 
+// What the metrics need of an original, computed once, for comparing it
+// with many decoded versions (a progressive stream's prefixes): the STED
+// neighbourhoods, the diameter and the original's temporal edges.
+class MetricsReference {
+ public:
+  // `original` must outlive the reference.
+  explicit MetricsReference(const MeshSequence& original, const StedParams& params = {});
+  // `decoded` must have the original's vertex count, faces and frame count.
+  SequenceMetrics compare(const MeshSequence& decoded) const;
+
+ private:
+  void sted(const MeshSequence& decoded, double& spatial, double& temporal, double& combined) const;
+
+  const MeshSequence& original_;
+  StedParams params_;
+  std::vector<std::pair<NodeIndex, NodeIndex>> edges_;
+  std::vector<std::vector<uint32_t>> neighbourhood_;  // per vertex, NE(i, d)
+  double diameter_ = 1;                                // ld of Eq. 15
+  std::vector<double> temporal_edges_, speeds_;        // per vertex and frame pair: tel, its window mean
+};
+
 // Both sequences must have the same vertex count, faces and frame count.
 SequenceMetrics compare_sequences(const MeshSequence& original, const MeshSequence& decoded,
                                   const StedParams& sted = {});

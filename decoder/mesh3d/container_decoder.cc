@@ -30,9 +30,6 @@ Mesh3dDecoder::Mesh3dDecoder(std::span<const uint8_t> stream, const Decode3dOpti
     syntax::describe(io, header_);
     codec_row_ = find_codec3d(header_.codec_id);
     if (!codec_row_) throw Error(ErrorKind::kReservedValue, "codec_id", kNoPlane, 8, "unknown codec " + std::to_string(header_.codec_id));
-    if (!codec_row_->make_decoder)
-      throw Error(ErrorKind::kLimit, "codec_id", kNoPlane, 8,
-                  "codec " + std::to_string(header_.codec_id) + " (" + codec_row_->name + ") is registered but this decoder does not implement it yet");
     codec_ = codec_row_->make_decoder(header_, io);
     if (reader.bits_left() != 0)
       throw Error(ErrorKind::kStructure, "object_payload", kNoPlane, static_cast<int64_t>(reader.position()),

@@ -47,6 +47,8 @@ class Mesh3dDecoder {
   const Codec3d& codec() const { return *codec_row_; }
   const std::vector<Triangle>& faces() const { return codec_->faces(); }
   bool has_end_code() const { return parts_.has_end_code; }
+  // Whether every unit refines every frame (a progressive codec).
+  bool progressive() const { return codec_->holds_all_frames(); }
 
   // Decodes the next unit that is not a hash unit, then the hash units
   // that follow it; false after the last (when the stream's frames are

@@ -47,6 +47,8 @@ class ContainerSink final : public UnitSink {
     if (options_.progress) options_.progress(done, total);
   }
 
+  uint64_t stream_bytes() const override { return container_.size(); }
+
  private:
   ContainerWriter& container_;
   const Encode3dOptions& options_;
@@ -66,8 +68,6 @@ Encode3dResult encode_mesh3d(const MeshSequence& s, const Encode3dOptions& optio
   if (s.frames.empty() || s.vertex_count < 3 || s.faces.empty()) throw encode_error("a sequence needs frames, vertices and faces");
   if (s.vertex_count > kMaxVertices3d || s.faces.size() > kMaxFaces3d) throw encode_error("the mesh exceeds the container's limits");
   const Codec3d& codec = codec3d_by_name(options.codec);
-  if (!codec.make_encoder)
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "codec " + codec.name + " is registered but not implemented yet");
   const CodecSettings settings(codec.name, codec.options, options.codec_options);
   std::unique_ptr<CodecEncoder3d> encoder = codec.make_encoder(s, settings);
 

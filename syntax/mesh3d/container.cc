@@ -72,6 +72,19 @@ void ContainerWriter::object(std::span<const uint8_t> payload) {
   bytes_.insert(bytes_.end(), escaped.begin(), escaped.end());
 }
 
+ContainerPrefix container_prefix(const ContainerParts& parts, uint64_t stream_size, uint64_t max_bytes) {
+  if (stream_size <= max_bytes) return {stream_size, parts.units.size()};
+  ContainerPrefix prefix;
+  for (size_t k = 0; k < parts.units.size(); ++k) {
+    const uint64_t end = k + 1 < parts.units.size() ? parts.units[k + 1].byte_offset : stream_size - (parts.has_end_code ? 4 : 0);
+    if (end > max_bytes) break;
+    prefix = {end, k + 1};
+  }
+  return prefix;
+}
+
+uint64_t ContainerWriter::unit_size(std::span<const uint8_t> payload) { return 4 + escape_payload(payload).size(); }
+
 void ContainerWriter::unit(std::span<const uint8_t> payload) {
   start_code(kMesh3dUnitStartCode);
   const std::vector<uint8_t> escaped = escape_payload(payload);

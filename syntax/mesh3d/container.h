@@ -114,6 +114,16 @@ struct ContainerParts {
 };
 ContainerParts split_container(std::span<const uint8_t> stream);
 
+// The longest prefix of a container of at most `max_bytes` bytes that ends
+// at a unit boundary (where a unit's start code or the end code begins; the
+// whole stream when it fits), and the units it holds: 0 when not even the
+// first unit fits.
+struct ContainerPrefix {
+  uint64_t bytes = 0;
+  size_t units = 0;
+};
+ContainerPrefix container_prefix(const ContainerParts& parts, uint64_t stream_size, uint64_t max_bytes);
+
 // Assembles a container from payloads (escaped here).
 class ContainerWriter {
  public:
@@ -121,6 +131,8 @@ class ContainerWriter {
   void unit(std::span<const uint8_t> payload);
   std::vector<uint8_t> finish(bool with_end_code = true);
   size_t size() const { return bytes_.size(); }
+  // The bytes a unit of this payload takes: its start code and the escaped payload.
+  static uint64_t unit_size(std::span<const uint8_t> payload);
 
  private:
   void start_code(uint32_t code);

@@ -1,0 +1,148 @@
+// The clustered-PCA codec (codec_id 4) decoding (docs/codec_cpca_wpt.md):
+// the cluster map from the header, the mean shape from the base mesh, then
+// every refinement unit adds a cluster's mean trajectory (its start) or one
+// of its operators to every frame.
+#include <optional>
+
+#include "codecs3d/codec_decoder.h"
+#include "mesh3d/cpca_wpt.h"
+#include "syntax/mesh3d/cpca_wpt.h"
+#include "syntax/mesh3d/entropy_io.h"
+
+namespace m4mesh {
+
+namespace {
+
+class CpcaDecoder final : public CodecDecoder3d {
+ public:
+  CpcaDecoder(const ObjectHeader& object, const CpcaHeader& header, const std::vector<uint32_t>& cluster_of)
+      : object_(object),
+        header_(header),
+        members_(cpca_members(cluster_of, header.cluster_count)),
+        started_(header.cluster_count, 0),
+        components_(header.cluster_count, 0) {}
+
+  void decode_unit(const UnitHeader& unit, syntax::ReadIO& io, std::vector<uint32_t>& decoded) override {
+    if (unit.type() == UnitType::kBaseMesh) {
+      if (animation_) io.fail(ErrorKind::kStructure, "unit_type", "a second base mesh unit: the mean shape is sent once");
+      BaseMesh base = read_base_mesh(io, object_);
+      faces_ = std::move(base.faces);
+      animation_.emplace(header_, base.positions, object_.frame_count);
+      for (uint32_t f = 0; f < object_.frame_count; ++f) decoded.push_back(f);
+      return;
+    }
+    if (!animation_) io.fail(ErrorKind::kStructure, "unit_type", "a refinement unit before the base mesh");
+    if (unit.frame_index != 0) io.fail(ErrorKind::kStructure, "frame_index", "a refinement unit refines every frame and names frame 0");
+    CpcaRefinement r;
+    syntax::describe(io, r);
+    if (r.cluster >= header_.cluster_count)
+      io.fail(ErrorKind::kOutOfRange, "cluster", "cluster " + std::to_string(r.cluster) + " of " + std::to_string(header_.cluster_count));
+    const std::vector<NodeIndex>& members = members_[r.cluster];
+    if (r.kind == kCpcaStart && started_[r.cluster])
+      io.fail(ErrorKind::kStructure, "unit_kind", "a second start of cluster " + std::to_string(r.cluster));
+    if (r.kind == kCpcaComponent && !started_[r.cluster])
+      io.fail(ErrorKind::kStructure, "unit_kind", "a component of cluster " + std::to_string(r.cluster) + ", whose basis has not started");
+    if (r.kind == kCpcaComponent && components_[r.cluster] >= cpca_component_limit(members.size(), object_.frame_count))
+      io.fail(ErrorKind::kStructure, "cluster",
+              "a refinement beyond cluster " + std::to_string(r.cluster) + "'s " +
+                  std::to_string(cpca_component_limit(members.size(), object_.frame_count)) + " components");
+    const uint8_t* payload = io.reader().data();
+    const syntax::SectionPlace place{"bins", "raw", 8 * static_cast<uint64_t>(r.bins.data() - payload),
+                                     8 * static_cast<uint64_t>(r.raw.data() - payload), io.plane()};
+    if (trace_) {
+      syntax::EntropyReadIO<true> symbols(r.bins, r.raw, place, trace_);
+      read_symbols(symbols, r.kind, members.size());
+    } else {
+      syntax::EntropyReadIO<false> symbols(r.bins, r.raw, place);
+      read_symbols(symbols, r.kind, members.size());
+    }
+    if (r.kind == kCpcaStart) {
+      animation_->translate(members, translation_, r.shift);
+      started_[r.cluster] = 1;
+    } else {
+      animation_->refine(members, basis_, coefficients_, r.shift);
+      ++components_[r.cluster];
+    }
+    for (uint32_t f = 0; f < object_.frame_count; ++f) decoded.push_back(f);
+  }
+
+  const std::vector<Triangle>& faces() const override { return faces_; }
+  void frame(uint32_t index, std::span<Float3> positions) const override {
+    const std::span<const Float3> frame = animation_->frame(index);
+    std::copy(frame.begin(), frame.end(), positions.begin());
+  }
+  bool holds_all_frames() const override { return true; }
+
+ private:
+  template <class IO>
+  void read_symbols(IO& io, uint32_t kind, size_t members) {
+    if (kind == kCpcaStart) {
+      translation_.resize(3 * size_t{object_.frame_count});
+      syntax::describe_start(io, translation_);
+      io.finish("translation");
+    } else {
+      basis_.resize(3 * members);
+      coefficients_.resize(object_.frame_count);
+      syntax::describe_operator(io, basis_, coefficients_);
+      io.finish("coefficient");
+    }
+  }
+
+  ObjectHeader object_;
+  CpcaHeader header_;
+  std::vector<std::vector<NodeIndex>> members_;
+  std::vector<uint8_t> started_;      // per cluster: its start decoded
+  std::vector<uint64_t> components_;  // per cluster: its components decoded
+  std::vector<Triangle> faces_;
+  std::optional<CpcaAnimation> animation_;
+  std::vector<int32_t> translation_, basis_, coefficients_;
+};
+
+}  // namespace
+
+std::unique_ptr<CodecDecoder3d> make_cpca_wpt_decoder(const ObjectHeader& object, syntax::ReadIO& io) {
+  const uint64_t header_start = io.reader().position();
+  CpcaHeader header;
+  syntax::describe(io, header);
+  // Errors of fields read before, located at the field: the object
+  // header's from the payload's start, the codec header's from its own.
+  auto object_field = [&object](const char* name) {
+    syntax::CountIO count(name);
+    ObjectHeader copy = object;
+    syntax::describe(count, copy);
+    return static_cast<int64_t>(count.offset_of_watched());
+  };
+  auto header_field = [&header, header_start](const char* name) {
+    syntax::CountIO count(name);
+    CpcaHeader copy = header;
+    syntax::describe(count, copy);
+    return static_cast<int64_t>(header_start + count.offset_of_watched());
+  };
+  auto fail_at = [](ErrorKind kind, const char* element, int64_t offset, const std::string& message) {
+    throw Error(kind, element, kNoPlane, offset, message);
+  };
+  if (object.frame_count == 0)
+    fail_at(ErrorKind::kStructure, "frame_count", object_field("frame_count"), "the clustered-PCA codec needs the frame count");
+  if (uint64_t{object.vertex_count} * object.frame_count > kCpcaMaxVertexFrames)
+    fail_at(ErrorKind::kLimit, "frame_count", object_field("frame_count"), "more than 2^22 vertex-frames");
+  const uint8_t* payload = io.reader().data();
+  const syntax::SectionPlace place{"cluster_map_bins", "cluster_map_raw", 8 * static_cast<uint64_t>(header.map_bins.data() - payload),
+                                   8 * static_cast<uint64_t>(header.map_raw.data() - payload), kNoPlane};
+  std::vector<uint32_t> cluster_of(object.vertex_count);
+  if (io.trace()) {
+    syntax::EntropyReadIO<true> symbols(header.map_bins, header.map_raw, place, io.trace());
+    syntax::describe_cluster_map(symbols, cluster_of, header.cluster_count);
+    symbols.finish("cluster_of_vertex");
+  } else {
+    syntax::EntropyReadIO<false> symbols(header.map_bins, header.map_raw, place);
+    syntax::describe_cluster_map(symbols, cluster_of, header.cluster_count);
+    symbols.finish("cluster_of_vertex");
+  }
+  const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, header.cluster_count);
+  for (uint32_t c = 0; c < header.cluster_count; ++c)
+    if (members[c].empty())
+      fail_at(ErrorKind::kStructure, "cluster_count", header_field("cluster_count"), "cluster " + std::to_string(c) + " has no vertex");
+  return std::make_unique<CpcaDecoder>(object, header, cluster_of);
+}
+
+}  // namespace m4mesh

@@ -1,0 +1,688 @@
+// The clustered-PCA codec (codec_id 4) encoding (docs/codec_cpca_wpt.md):
+// k-means on the vertices' trajectories, per cluster the principal
+// components of its motion about the mean shape, each quantized into one
+// refinement operator, and the operators sent in decreasing weight (WPT:
+// squared error removed per bit) or round robin over the clusters (RPT).
+#include <Eigen/Dense>
+#include <algorithm>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <sstream>
+
+#include "codecs3d/codec_encoder.h"
+#include "codecs3d/options.h"
+#include "common/error.h"
+#include "mesh3d/cpca_wpt.h"
+#include "mesh3d/metrics.h"
+#include "mesh3d/quantization.h"
+#include "syntax/mesh3d/cpca_wpt.h"
+#include "syntax/mesh3d/entropy_io.h"
+
+namespace m4mesh {
+
+namespace {
+
+// The noise step's log2: the default, and the range --noise and the search take.
+constexpr int kDefaultNoise = 4, kMinNoise = -4, kMaxNoise = 12;
+
+Error usage_error(const std::string& message) { return Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, message); }
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Vertex v's trajectory is row v: x, y, z of frame 0, then of frame 1, …
+Eigen::MatrixXd trajectories(const MeshSequence& s) {
+  Eigen::MatrixXd x(s.vertex_count, 3 * static_cast<Eigen::Index>(s.frames.size()));
+  for (size_t f = 0; f < s.frames.size(); ++f)
+    for (size_t v = 0; v < s.vertex_count; ++v) {
+      const Vec3& p = s.frames[f][v];
+      x(static_cast<Eigen::Index>(v), static_cast<Eigen::Index>(3 * f)) = p.x;
+      x(static_cast<Eigen::Index>(v), static_cast<Eigen::Index>(3 * f + 1)) = p.y;
+      x(static_cast<Eigen::Index>(v), static_cast<Eigen::Index>(3 * f + 2)) = p.z;
+    }
+  return x;
+}
+
+// k-means on the trajectories, deterministic: the first center is the
+// trajectory farthest from the mean, each next the one farthest from the
+// centers so far (ties: the lowest vertex); then Lloyd iterations (ties:
+// the lowest cluster) until no vertex moves, at most 50. Clusters are
+// numbered by their first vertex; none is empty.
+std::vector<uint32_t> cluster_trajectories(const Eigen::MatrixXd& x, int k) {
+  const Eigen::Index vertices = x.rows();
+  const Eigen::RowVectorXd mean = x.colwise().mean();
+  Eigen::VectorXd nearest = (x.rowwise() - mean).rowwise().squaredNorm();
+  std::vector<Eigen::Index> seeds;
+  for (int c = 0; c < k; ++c) {
+    Eigen::Index far = 0;
+    nearest.maxCoeff(&far);
+    if (c > 0 && !(nearest(far) > 0)) break;  // fewer distinct trajectories than clusters
+    seeds.push_back(far);
+    nearest = nearest.cwiseMin((x.rowwise() - x.row(far)).rowwise().squaredNorm());
+  }
+  Eigen::MatrixXd centers(static_cast<Eigen::Index>(seeds.size()), x.cols());
+  for (size_t c = 0; c < seeds.size(); ++c) centers.row(static_cast<Eigen::Index>(c)) = x.row(seeds[c]);
+  std::vector<uint32_t> cluster(static_cast<size_t>(vertices), UINT32_MAX);
+  for (int iteration = 0; iteration < 50; ++iteration) {
+    const Eigen::MatrixXd cross = x * centers.transpose();
+    const Eigen::VectorXd norms = centers.rowwise().squaredNorm();
+    bool moved = false;
+    for (Eigen::Index v = 0; v < vertices; ++v) {
+      Eigen::Index best = 0;
+      (norms.transpose() - 2 * cross.row(v)).minCoeff(&best);
+      moved |= cluster[static_cast<size_t>(v)] != static_cast<uint32_t>(best);
+      cluster[static_cast<size_t>(v)] = static_cast<uint32_t>(best);
+    }
+    if (!moved) break;
+    Eigen::MatrixXd sums = Eigen::MatrixXd::Zero(centers.rows(), centers.cols());
+    std::vector<double> counts(seeds.size(), 0);
+    for (Eigen::Index v = 0; v < vertices; ++v) {
+      sums.row(cluster[static_cast<size_t>(v)]) += x.row(v);
+      counts[cluster[static_cast<size_t>(v)]] += 1;
+    }
+    for (size_t c = 0; c < seeds.size(); ++c)
+      if (counts[c] > 0) centers.row(static_cast<Eigen::Index>(c)) = sums.row(static_cast<Eigen::Index>(c)) / counts[c];
+  }
+  std::vector<uint32_t> renumbered(seeds.size(), UINT32_MAX);
+  uint32_t next = 0;
+  for (uint32_t& c : cluster) {
+    if (renumbered[c] == UINT32_MAX) renumbered[c] = next++;
+    c = renumbered[c];
+  }
+  return cluster;
+}
+
+// A principal component of a cluster's motion matrix D (3M × N):
+// D ≈ Σ sigma · basis · coefficientsᵀ, basis and coefficients unit vectors.
+struct Component {
+  double sigma;
+  Eigen::VectorXd basis, coefficients;
+};
+
+// The components in decreasing sigma, at most `count`, those with sigma
+// above 10^−6 of the first: from the eigenvectors of the smaller Gram
+// matrix (DᵀD or DDᵀ). The largest coefficient of each is positive.
+std::vector<Component> principal_components(const Eigen::MatrixXd& d, size_t count) {
+  const bool by_frames = d.rows() >= d.cols();
+  const Eigen::MatrixXd gram = by_frames ? Eigen::MatrixXd(d.transpose() * d) : Eigen::MatrixXd(d * d.transpose());
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gram);
+  std::vector<Component> components;
+  const Eigen::Index n = gram.rows();
+  const double largest = n > 0 ? eigen.eigenvalues()(n - 1) : 0;
+  for (Eigen::Index i = n - 1; i >= 0 && components.size() < count; --i) {
+    const double lambda = eigen.eigenvalues()(i);
+    if (!(lambda > 1e-12 * largest)) break;
+    Component c{std::sqrt(lambda), {}, {}};
+    if (by_frames) {
+      c.coefficients = eigen.eigenvectors().col(i);
+      c.basis = d * c.coefficients / c.sigma;
+    } else {
+      c.basis = eigen.eigenvectors().col(i);
+      c.coefficients = d.transpose() * c.basis / c.sigma;
+    }
+    Eigen::Index at = 0;
+    c.coefficients.cwiseAbs().maxCoeff(&at);
+    if (c.coefficients(at) < 0) {
+      c.coefficients = -c.coefficients;
+      c.basis = -c.basis;
+    }
+    components.push_back(std::move(c));
+  }
+  return components;
+}
+
+// A cluster's translation per frame and axis (3N values, grid units): the
+// mean over its vertices of their motion about the mean shape.
+using Translation = Eigen::VectorXd;
+
+// One refinement unit as coded, with its weight's terms: a cluster's start
+// (translation) or one of its components (basis, coefficients).
+struct Operator {
+  uint32_t cluster = 0;
+  uint32_t kind = kCpcaComponent;
+  uint32_t shift = kCpcaShiftBias;
+  int basis_exponent = 0, coefficient_exponent = 0;  // the values are the real ones × 2^exponent
+  std::vector<int32_t> basis, coefficients, translation;
+  double gain = 0;    // the squared error it removes (grid units², the decoder's reconstruction)
+  uint64_t bytes = 0;  // its unit, start code and header included
+};
+
+void apply(CpcaAnimation& animation, std::span<const NodeIndex> members, const Operator& op) {
+  if (op.kind == kCpcaStart)
+    animation.translate(members, op.translation, op.shift);
+  else
+    animation.refine(members, op.basis, op.coefficients, op.shift);
+}
+
+// Exponent e such that |largest| · 2^e < 2^bits.
+int exponent_for(double largest, int bits) { return largest > 0 ? bits - 1 - std::ilogb(largest) : bits; }
+
+std::vector<int32_t> scaled(const Eigen::VectorXd& values, int exponent) {
+  std::vector<int32_t> out(static_cast<size_t>(values.size()));
+  for (Eigen::Index i = 0; i < values.size(); ++i) out[static_cast<size_t>(i)] = static_cast<int32_t>(std::nearbyint(std::ldexp(values(i), exponent)));
+  return out;
+}
+
+// The operator of a component at the noise step Δ = 2^delta_log2 grid
+// units: the coefficients sigma · w in steps of Δ and the basis in steps of
+// about Δ / sigma, so that both add noise of Δ's order to the animation
+// (each as fine as their ranges, 2^15 and 2^23, allow); their product ×
+// 2^−(shift − 16) is in steps of 2^−F grid units.
+Operator quantize(const Component& c, uint32_t cluster, int delta_log2, int fraction_bits) {
+  const Eigen::VectorXd weighted = c.sigma * c.coefficients;
+  const int basis_exponent = std::min(std::ilogb(c.sigma) - delta_log2, exponent_for(c.basis.cwiseAbs().maxCoeff(), 15));
+  int coefficient_exponent = std::min(-delta_log2, exponent_for(weighted.cwiseAbs().maxCoeff(), 23));
+  const int shift = std::clamp(basis_exponent + coefficient_exponent - fraction_bits, -static_cast<int>(kCpcaShiftBias),
+                               static_cast<int>(kCpcaMaxShift - kCpcaShiftBias));
+  coefficient_exponent = shift + fraction_bits - basis_exponent;
+  Operator op;
+  op.cluster = cluster;
+  op.shift = static_cast<uint32_t>(shift + static_cast<int>(kCpcaShiftBias));
+  op.basis_exponent = basis_exponent;
+  op.coefficient_exponent = coefficient_exponent;
+  op.basis = scaled(c.basis, basis_exponent);
+  op.coefficients = scaled(weighted, coefficient_exponent);
+  for (int32_t v : op.coefficients)
+    if (v > kCpcaMaxCoefficient || v < -kCpcaMaxCoefficient)
+      throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "a motion too large for the fixed point of cpca-wpt: use fewer --bits");
+  return op;
+}
+
+// A cluster's start at the noise step Δ: the translation t is the
+// coefficient of the basis (1, …, 1) of norm √M, so it takes steps of about
+// Δ / √M (as fine as its range, 2^29, allows, and no finer than 2^−F grid
+// units: the shift never rounds, so that a start can be undone exactly).
+Operator quantize_start(const Translation& t, uint32_t cluster, size_t members, int delta_log2, int fraction_bits) {
+  const int wanted = std::min(std::ilogb(std::sqrt(static_cast<double>(members))) - delta_log2, exponent_for(t.cwiseAbs().maxCoeff(), 29));
+  const int shift = std::clamp(wanted - fraction_bits, -static_cast<int>(kCpcaShiftBias), 0);
+  Operator op;
+  op.cluster = cluster;
+  op.kind = kCpcaStart;
+  op.shift = static_cast<uint32_t>(shift + static_cast<int>(kCpcaShiftBias));
+  op.coefficient_exponent = shift + fraction_bits;
+  op.translation = scaled(t, op.coefficient_exponent);
+  for (int32_t v : op.translation)
+    if (v > kCpcaMaxTranslation || v < -kCpcaMaxTranslation)
+      throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "a motion too large for the fixed point of cpca-wpt: use fewer --bits");
+  return op;
+}
+
+// The squared error a start removes, estimated: M (‖t‖² − ‖t̂ − t‖²).
+double estimated_gain(const Translation& t, size_t members, const Operator& op) {
+  double removed = 0;
+  for (Eigen::Index j = 0; j < t.size(); ++j) {
+    const double q = std::ldexp(op.translation[static_cast<size_t>(j)], -op.coefficient_exponent);
+    removed += t(j) * t(j) - (q - t(j)) * (q - t(j));
+  }
+  return static_cast<double>(members) * removed;
+}
+
+// The squared error removed by an operator, estimated without decoding:
+// sigma² less the quantization error ‖b̂ŵᵀ − σbwᵀ‖² (from its inner
+// products, b unit).
+double estimated_gain(const Component& c, const Operator& op) {
+  double bb = 0, bq = 0, ww = 0, wq = 0;
+  for (Eigen::Index j = 0; j < c.basis.size(); ++j) {
+    const double b = std::ldexp(op.basis[static_cast<size_t>(j)], -op.basis_exponent);
+    bb += b * b;
+    bq += b * c.basis(j);
+  }
+  for (Eigen::Index n = 0; n < c.coefficients.size(); ++n) {
+    const double w = std::ldexp(op.coefficients[static_cast<size_t>(n)], -op.coefficient_exponent);
+    ww += w * w;
+    wq += w * c.sigma * c.coefficients(n);
+  }
+  const double noise = bb * ww - 2 * bq * wq + c.sigma * c.sigma;
+  return c.sigma * c.sigma - noise;
+}
+
+// A refinement unit's data.
+template <class SymbolIO>
+void write_refinement(syntax::WriteIO& io, SymbolIO& symbols, Operator& op) {
+  if (op.kind == kCpcaStart)
+    syntax::describe_start(symbols, op.translation);
+  else
+    syntax::describe_operator(symbols, op.basis, op.coefficients);
+  const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
+  CpcaRefinement r{op.cluster, op.kind, op.shift, static_cast<uint32_t>(bins.size()), bins, raw};
+  syntax::describe(io, r);
+  if (io.trace()) io.trace()->stream() << symbols.trace_text();
+}
+
+void write_refinement(syntax::WriteIO& io, Operator& op) {
+  const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane()};
+  if (io.trace()) {
+    syntax::EntropyWriteIO<true> symbols(place, io.trace());
+    write_refinement(io, symbols, op);
+  } else {
+    syntax::EntropyWriteIO<false> symbols(place);
+    write_refinement(io, symbols, op);
+  }
+}
+
+// The operators of one noise step, their order and how many are sent.
+struct Plan {
+  int delta_log2 = 0;
+  std::vector<Operator> operators;
+  std::vector<size_t> order;  // indices into operators, in stream order
+  size_t sent = 0;
+  double estimated_kg = 0;  // of the prefix sent, from the gains
+  uint64_t bytes = 0;       // of the prefix sent
+};
+
+class CpcaEncoder final : public CodecEncoder3d {
+ public:
+  CpcaEncoder(const MeshSequence& s, const CodecSettings& settings)
+      : components_(static_cast<size_t>(settings.integer("components"))),
+        max_bytes_(static_cast<uint64_t>(settings.number("max-bytes"))),
+        target_kg_(settings.number("target-kg")),
+        round_robin_(settings.text("order") == "rpt") {
+    if (settings.text("order") != "wpt" && settings.text("order") != "rpt") throw usage_error("--order is wpt or rpt (cpca-wpt)");
+    if (settings.text("noise") != "auto") {
+      size_t used = 0;
+      try {
+        noise_ = std::stoi(settings.text("noise"), &used);
+      } catch (const std::exception&) {
+      }
+      if (!noise_ || used != settings.text("noise").size() || *noise_ < kMinNoise || *noise_ > kMaxNoise)
+        throw usage_error("--noise is auto or an integer in " + std::to_string(kMinNoise) + " … " + std::to_string(kMaxNoise) + " (cpca-wpt)");
+    }
+    if (uint64_t{s.vertex_count} * s.frames.size() > kCpcaMaxVertexFrames)
+      throw usage_error("cpca-wpt takes at most 2^22 vertex-frames (vertices × frames)");
+    const int bits = settings.integer("bits");
+    std::vector<Vec3> mean(s.vertex_count);
+    for (const std::vector<Vec3>& frame : s.frames)
+      for (size_t v = 0; v < s.vertex_count; ++v) mean[v] = {mean[v].x + frame[v].x, mean[v].y + frame[v].y, mean[v].z + frame[v].z};
+    const double n = static_cast<double>(s.frames.size());
+    for (Vec3& p : mean) p = {p.x / n, p.y / n, p.z / n};
+    grid_ = Grid::over(mean, bits, true);
+    header_.bits = static_cast<uint32_t>(bits);
+    for (int axis = 0; axis < 3; ++axis) {
+      header_.origin[axis] = std::bit_cast<uint32_t>(grid_.origin[axis]);
+      header_.step[axis] = std::bit_cast<uint32_t>(grid_.step[axis]);
+    }
+    header_.fraction_bits = static_cast<uint32_t>(std::clamp(24 - bits, 0, 8));
+    mean_.resize(s.vertex_count);
+    for (size_t v = 0; v < s.vertex_count; ++v)
+      if (!grid_.quantize(mean[v], mean_[v]))
+        throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "the mean of vertex " + std::to_string(v) + " lies outside the grid");
+    prepare(s, settings.integer("clusters"));
+  }
+
+  void write_header(syntax::WriteIO& io) override {
+    header_.map_bins = map_bins_;
+    header_.map_raw = map_raw_;
+    syntax::describe(io, header_);
+    if (io.trace()) io.trace()->stream() << write_cluster_map(io.trace());
+  }
+
+  // The base mesh, then the plan's operators while the stream through the
+  // last refinement stays within --max-bytes, then the frames' hashes.
+  void encode(const MeshSequence& s, UnitSink& sink) override {
+    sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, mean_); });
+    if (max_bytes_ > 0 && sink.stream_bytes() > max_bytes_)
+      throw usage_error("--max-bytes " + std::to_string(max_bytes_) + " is below the " + std::to_string(sink.stream_bytes()) +
+                        " bytes of the header and the base mesh (cpca-wpt)");
+    CpcaAnimation animation(header_, mean_, static_cast<uint32_t>(s.frames.size()));
+    size_t sent = 0;
+    for (; sent < plan_.sent; ++sent) {
+      Operator& op = plan_.operators[plan_.order[sent]];
+      if (max_bytes_ > 0 && sink.stream_bytes() + op.bytes > max_bytes_) break;
+      sink.unit(UnitType::kRefinement, 0, [&](syntax::WriteIO& io) { write_refinement(io, op); });
+      apply(animation, members_[op.cluster], op);
+      sink.progress(sent + 1, plan_.sent);
+    }
+    plan_.sent = sent;
+    kg_ = kg_of_prefix(s, sent);
+    if (target_kg_ > 0 && kg_ > target_kg_)
+      throw usage_error("--target-kg " + std::to_string(target_kg_) + " is out of reach within --max-bytes (cpca-wpt)");
+    for (uint32_t f = 0; f < s.frames.size(); ++f) sink.decoded(f, animation.frame(f));
+  }
+
+  std::vector<CodecStatistic> statistics() const override {
+    return {{"clusters", header_.cluster_count},
+            {"noise step log2", plan_.delta_log2},
+            {"operators sent", static_cast<double>(plan_.sent)},
+            {"operators computed", static_cast<double>(plan_.operators.size())},
+            {"KG error", kg_},
+            {"k-means seconds", kmeans_seconds_},
+            {"SVD seconds", svd_seconds_},
+            {"order seconds", order_seconds_}};
+  }
+
+ private:
+  // Clusters, components, then the plan of the noise step given, or of the
+  // best one for --max-bytes (the smallest KG error within it) or
+  // --target-kg (the fewest bytes that reach it), else of the default.
+  void prepare(const MeshSequence& s, int clusters) {
+    auto start = std::chrono::steady_clock::now();
+    cluster_of_ = cluster_trajectories(trajectories(s), std::min<int>(clusters, static_cast<int>(s.vertex_count)));
+    header_.cluster_count = *std::max_element(cluster_of_.begin(), cluster_of_.end()) + 1;
+    members_ = cpca_members(cluster_of_, header_.cluster_count);
+    write_cluster_map();
+    kmeans_seconds_ = seconds_since(start);
+    start = std::chrono::steady_clock::now();
+    for (uint32_t c = 0; c < header_.cluster_count; ++c) {
+      Eigen::MatrixXd d = motion(s, c);
+      translations_.push_back(translation_of(d));
+      for (Eigen::Index row = 0; row < d.rows(); ++row) d.row(row) -= translations_[c](Eigen::seqN(row % 3, d.cols(), 3)).transpose();
+      components_of_.push_back(principal_components(d, components_));
+    }
+    svd_seconds_ = seconds_since(start);
+    start = std::chrono::steady_clock::now();
+    const CpcaAnimation mean_only(header_, mean_, static_cast<uint32_t>(s.frames.size()));
+    for (uint32_t c = 0; c < header_.cluster_count; ++c) mean_error_.push_back(squared_error(s, mean_only, c));
+    spread_ = squared_spread(s);
+    fixed_bytes_ = fixed_bytes(s);
+    int q = noise_.value_or(kDefaultNoise);
+    if (!noise_ && (max_bytes_ > 0 || target_kg_ > 0)) {
+      // From the default, towards the better neighbour while it improves
+      // (plans from estimated gains).
+      Plan best = plan_for(s, q, false);
+      for (const int direction : {1, -1}) {
+        for (int next = q + direction; next >= kMinNoise && next <= kMaxNoise; next += direction) {
+          Plan plan = plan_for(s, next, false);
+          if (!better(plan, best)) break;
+          best = std::move(plan);
+        }
+        if (best.delta_log2 != q) break;
+      }
+      q = best.delta_log2;
+    }
+    plan_ = plan_for(s, q, true);
+    if (target_kg_ > 0) reach_target(s);
+    order_seconds_ = seconds_since(start);
+  }
+
+  // Every cluster's operators at noise step 2^q, each kept while it removes
+  // error from the decoder's output (exactly, or estimated); their order;
+  // the prefix sent.
+  Plan plan_for(const MeshSequence& s, int q, bool exact) const {
+    Plan plan;
+    plan.delta_log2 = q;
+    std::optional<CpcaAnimation> animation;
+    if (exact) animation.emplace(header_, mean_, static_cast<uint32_t>(s.frames.size()));
+    std::vector<std::vector<size_t>> per_cluster(header_.cluster_count);
+    for (uint32_t c = 0; c < header_.cluster_count; ++c) {
+      // The start, then the components while each removes error; a start
+      // that would add error moves nothing (all zeros); a cluster whose
+      // start and first component remove none is left as it is.
+      const size_t members = members_[c].size();
+      double error = mean_error_[c];
+      std::vector<Operator> sequence;
+      auto measure = [&](Operator& op, double estimate) {
+        if (animation) {
+          apply(*animation, members_[c], op);
+          const double after = squared_error(s, *animation, c);
+          op.gain = error - after;
+          error = after;
+        } else {
+          op.gain = estimate;
+        }
+      };
+      Operator start = quantize_start(translations_[c], c, members, q, static_cast<int>(header_.fraction_bits));
+      if (!(estimated_gain(translations_[c], members, start) > 0)) std::fill(start.translation.begin(), start.translation.end(), 0);
+      measure(start, estimated_gain(translations_[c], members, start));
+      if (start.gain < 0) {  // the output's rounding: undo (exactly: no shift rounds), and move nothing
+        if (animation) {
+          for (int32_t& v : start.translation) v = -v;
+          apply(*animation, members_[c], start);
+          error = squared_error(s, *animation, c);
+        }
+        std::fill(start.translation.begin(), start.translation.end(), 0);
+        start.gain = 0;
+      }
+      sequence.push_back(std::move(start));
+      for (const Component& component : components_of_[c]) {
+        Operator op = quantize(component, c, q, static_cast<int>(header_.fraction_bits));
+        measure(op, estimated_gain(component, op));
+        if (!(op.gain > 0)) break;  // quantization ate the component: the later ones are smaller still
+        sequence.push_back(std::move(op));
+      }
+      if (sequence.size() == 1 && !(sequence[0].gain > 0)) continue;
+      for (Operator& op : sequence) {
+        op.bytes = unit_bytes(op);
+        per_cluster[c].push_back(plan.operators.size());
+        plan.operators.push_back(std::move(op));
+      }
+    }
+    plan.order = round_robin_ ? round_robin(per_cluster) : by_weight(plan.operators, per_cluster);
+    double error = 0;
+    for (double e : mean_error_) error += e;
+    plan.bytes = fixed_bytes_;
+    for (size_t i = 0; i < plan.order.size(); ++i) {
+      const Operator& op = plan.operators[plan.order[i]];
+      if (max_bytes_ > 0 && plan.bytes + op.bytes > max_bytes_) break;
+      if (target_kg_ > 0 && kg_of(error) <= target_kg_) break;
+      plan.bytes += op.bytes;
+      error -= op.gain;
+      ++plan.sent;
+    }
+    plan.estimated_kg = kg_of(error);
+    return plan;
+  }
+
+  // With --target-kg: reaching it, then fewer bytes (else the smaller
+  // error); otherwise the smaller error.
+  bool better(const Plan& a, const Plan& b) const {
+    if (target_kg_ > 0) {
+      const bool a_reaches = a.estimated_kg <= target_kg_, b_reaches = b.estimated_kg <= target_kg_;
+      if (a_reaches != b_reaches) return a_reaches;
+      if (a_reaches) return a.bytes < b.bytes;
+    }
+    return a.estimated_kg < b.estimated_kg;
+  }
+
+  double kg_of(double squared_error) const { return spread_ > 0 ? 100 * std::sqrt(std::max(squared_error, 0.0) / spread_) : 0; }
+
+  // The exact KG of the plan's prefix, one more operator while above the
+  // target (the estimate's sums differ in rounding).
+  void reach_target(const MeshSequence& s) {
+    while (kg_of_prefix(s, plan_.sent) > target_kg_) {
+      if (plan_.sent == plan_.order.size() || (max_bytes_ > 0 && plan_.bytes + plan_.operators[plan_.order[plan_.sent]].bytes > max_bytes_))
+        throw usage_error("--target-kg " + std::to_string(target_kg_) +
+                          " is out of reach (cpca-wpt: raise --components, --max-bytes or lower --noise)");
+      plan_.bytes += plan_.operators[plan_.order[plan_.sent++]].bytes;
+    }
+  }
+
+  // The mean of a motion matrix's rows per axis, per frame: index 3n + axis.
+  static Translation translation_of(const Eigen::MatrixXd& d) {
+    Translation t = Translation::Zero(3 * d.cols());
+    for (Eigen::Index row = 0; row < d.rows(); ++row) t(Eigen::seqN(row % 3, d.cols(), 3)) += d.row(row).transpose();
+    return t / static_cast<double>(d.rows() / 3);
+  }
+
+  // Cluster c's motion about the decoded mean shape, in grid units: row
+  // 3i + axis for its i-th vertex, column n for frame n.
+  Eigen::MatrixXd motion(const MeshSequence& s, uint32_t c) const {
+    const std::vector<NodeIndex>& members = members_[c];
+    Eigen::MatrixXd d(3 * static_cast<Eigen::Index>(members.size()), static_cast<Eigen::Index>(s.frames.size()));
+    for (size_t f = 0; f < s.frames.size(); ++f)
+      for (size_t i = 0; i < members.size(); ++i) {
+        const Vec3& p = s.frames[f][members[i]];
+        const double value[3] = {p.x, p.y, p.z};
+        for (int axis = 0; axis < 3; ++axis)
+          d(static_cast<Eigen::Index>(3 * i) + axis, static_cast<Eigen::Index>(f)) =
+              (value[axis] - static_cast<double>(grid_.origin[axis])) / static_cast<double>(grid_.step[axis]) - mean_[members[i]][axis];
+      }
+    return d;
+  }
+
+  // Cluster c's squared error in grid units, as the decoder outputs it.
+  double squared_error(const MeshSequence& s, const CpcaAnimation& animation, uint32_t c) const {
+    double sum = 0;
+    const double unit = static_cast<double>(grid_.step[0]);
+    for (uint32_t f = 0; f < s.frames.size(); ++f) {
+      const std::span<const Float3> decoded = animation.frame(f);
+      for (NodeIndex v : members_[c]) {
+        const Vec3& p = s.frames[f][v];
+        const double dx = (p.x - decoded[v][0]) / unit, dy = (p.y - decoded[v][1]) / unit, dz = (p.z - decoded[v][2]) / unit;
+        sum += dx * dx + dy * dy + dz * dz;
+      }
+    }
+    return sum;
+  }
+
+  // Σ over frames of the squared distances to the frame's centroid, in
+  // grid units² (the KG error's denominator).
+  double squared_spread(const MeshSequence& s) const {
+    const double unit = static_cast<double>(grid_.step[0]);
+    double sum = 0;
+    for (const std::vector<Vec3>& frame : s.frames) {
+      Vec3 c;
+      for (const Vec3& p : frame) c = {c.x + p.x, c.y + p.y, c.z + p.z};
+      const double n = static_cast<double>(frame.size());
+      c = {c.x / n, c.y / n, c.z / n};
+      for (const Vec3& p : frame) {
+        const double dx = (p.x - c.x) / unit, dy = (p.y - c.y) / unit, dz = (p.z - c.z) / unit;
+        sum += dx * dx + dy * dy + dz * dz;
+      }
+    }
+    return sum;
+  }
+
+  // The cluster map's sections, and their trace in the place of `like`
+  // when given (printed after the header's fields).
+  std::string write_cluster_map(Trace* like = nullptr) {
+    std::vector<uint32_t> map = cluster_of_;
+    const syntax::SectionPlace place{"cluster_map_bins", "cluster_map_raw", 0, 0, kNoPlane};
+    std::string text;
+    if (like) {
+      syntax::EntropyWriteIO<true> symbols(place, like);
+      syntax::describe_cluster_map(symbols, map, header_.cluster_count);
+      text = symbols.trace_text();
+    } else {
+      syntax::EntropyWriteIO<false> symbols(place);
+      syntax::describe_cluster_map(symbols, map, header_.cluster_count);
+      map_bins_ = symbols.finish_bins();
+      map_raw_ = symbols.finish_raw();
+      header_.map_bins_bytes = static_cast<uint32_t>(map_bins_.size());
+      header_.map_raw_bytes = static_cast<uint32_t>(map_raw_.size());
+    }
+    return text;
+  }
+
+  // The bytes of an operator's unit in the stream.
+  static uint64_t unit_bytes(Operator& op) {
+    BitWriter writer;
+    syntax::WriteIO io(writer);
+    UnitHeader header{static_cast<uint32_t>(UnitType::kRefinement), 0};
+    syntax::describe(io, header);
+    write_refinement(io, op);
+    return ContainerWriter::unit_size(writer.bytes());
+  }
+
+  // The bytes before the first refinement unit: the object (its frame rate
+  // assumed 25/1, which may change the escaping by a byte) and the base mesh.
+  uint64_t fixed_bytes(const MeshSequence& s) {
+    BitWriter object, base;
+    syntax::WriteIO object_io(object), base_io(base);
+    ObjectHeader header{1, 4, s.vertex_count, static_cast<uint32_t>(s.faces.size()), static_cast<uint32_t>(s.frames.size()), 25, 1};
+    syntax::describe(object_io, header);
+    write_header(object_io);
+    UnitHeader unit{static_cast<uint32_t>(UnitType::kBaseMesh), 0};
+    syntax::describe(base_io, unit);
+    write_base_mesh(base_io, s.faces, mean_);
+    return ContainerWriter::unit_size(object.bytes()) + ContainerWriter::unit_size(base.bytes());
+  }
+
+  // RPT: round r sends every cluster's r-th operator, in cluster order.
+  static std::vector<size_t> round_robin(const std::vector<std::vector<size_t>>& per_cluster) {
+    std::vector<size_t> order;
+    for (size_t round = 0;; ++round) {
+      const size_t before = order.size();
+      for (const std::vector<size_t>& ops : per_cluster)
+        if (round < ops.size()) order.push_back(ops[round]);
+      if (order.size() == before) return order;
+    }
+  }
+
+  // WPT: the next unit of the cluster whose next units remove the most
+  // error per bit, W = Σ gain / Σ bits over the best run of them (so that
+  // a cheap start with little gain counts with the components it opens;
+  // ties: the lowest cluster).
+  static std::vector<size_t> by_weight(const std::vector<Operator>& operators, const std::vector<std::vector<size_t>>& per_cluster) {
+    std::vector<size_t> order, next(per_cluster.size(), 0);
+    for (;;) {
+      size_t best = SIZE_MAX;
+      double best_weight = 0;
+      for (size_t c = 0; c < per_cluster.size(); ++c) {
+        double gain = 0, bits = 0, weight = -INFINITY;
+        for (size_t j = next[c]; j < per_cluster[c].size(); ++j) {
+          gain += operators[per_cluster[c][j]].gain;
+          bits += 8.0 * static_cast<double>(operators[per_cluster[c][j]].bytes);
+          weight = std::max(weight, gain / bits);
+        }
+        if (next[c] < per_cluster[c].size() && (best == SIZE_MAX || weight > best_weight)) {
+          best = c;
+          best_weight = weight;
+        }
+      }
+      if (best == SIZE_MAX) return order;
+      order.push_back(per_cluster[best][next[best]++]);
+    }
+  }
+
+  // The KG error of the decoder's output after the plan's first `count`
+  // operators, as `m4mesh metrics` measures it.
+  double kg_of_prefix(const MeshSequence& s, size_t count) const {
+    CpcaAnimation animation(header_, mean_, static_cast<uint32_t>(s.frames.size()));
+    for (size_t i = 0; i < count; ++i) {
+      const Operator& op = plan_.operators[plan_.order[i]];
+      apply(animation, members_[op.cluster], op);
+    }
+    MeshSequence decoded;
+    decoded.vertex_count = s.vertex_count;
+    decoded.faces = s.faces;
+    for (uint32_t f = 0; f < s.frames.size(); ++f) {
+      std::vector<Vec3> frame;
+      for (const Float3& p : animation.frame(f)) frame.push_back({p[0], p[1], p[2]});
+      decoded.frames.push_back(std::move(frame));
+    }
+    return kg_error(s, decoded);
+  }
+
+  size_t components_;
+  uint64_t max_bytes_;
+  double target_kg_;
+  bool round_robin_;
+  std::optional<int> noise_;  // log2 of the noise step; none: auto
+  Grid grid_;
+  CpcaHeader header_;
+  std::vector<IntPoint3> mean_;
+  std::vector<uint32_t> cluster_of_;
+  std::vector<std::vector<NodeIndex>> members_;
+  std::vector<uint8_t> map_bins_, map_raw_;
+  std::vector<Translation> translations_;
+  std::vector<std::vector<Component>> components_of_;
+  std::vector<double> mean_error_;  // per cluster, of the mean shape alone
+  double spread_ = 0;
+  uint64_t fixed_bytes_ = 0;
+  Plan plan_;
+  double kg_ = 0, kmeans_seconds_ = 0, svd_seconds_ = 0, order_seconds_ = 0;
+};
+
+}  // namespace
+
+std::vector<CodecOption> cpca_wpt_options() {
+  return {bits_option("quantization bits of the mean shape (the base mesh)"),
+          {"clusters", "cpca-wpt: k, the clusters of k-means on the vertices' trajectories", OptionKind::kInteger, "10", 1, kCpcaMaxClusters},
+          {"components", "cpca-wpt: at most this many principal components per cluster", OptionKind::kInteger, "40", 1, 4096},
+          {"noise", "cpca-wpt: log2 of the quantization step of the coded values in grid units, −4 … 12, or auto (4, or the best for "
+                    "--max-bytes or --target-kg)",
+           OptionKind::kText, "auto", 0, 0},
+          {"order", "cpca-wpt: wpt (by squared error removed per bit) or rpt (round robin over the clusters)", OptionKind::kText, "wpt", 0, 0},
+          {"max-bytes", "cpca-wpt: the stream's size at most (0: every operator)", OptionKind::kNumber, "0", 0, 1e15},
+          {"target-kg", "cpca-wpt: stop at the first operator whose decoded KG error is at most this (0: off)", OptionKind::kNumber, "0", 0,
+           100}};
+}
+
+std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequence, const CodecSettings& settings) {
+  return std::make_unique<CpcaEncoder>(sequence, settings);
+}
+
+}  // namespace m4mesh

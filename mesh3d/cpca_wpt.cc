@@ -1,0 +1,69 @@
+#include "mesh3d/cpca_wpt.h"
+
+namespace m4mesh {
+
+std::vector<std::vector<NodeIndex>> cpca_members(std::span<const uint32_t> cluster_of, uint32_t cluster_count) {
+  std::vector<std::vector<NodeIndex>> members(cluster_count);
+  for (NodeIndex v = 0; v < cluster_of.size(); ++v) members[cluster_of[v]].push_back(v);
+  return members;
+}
+
+CpcaAnimation::CpcaAnimation(const CpcaHeader& header, std::span<const IntPoint3> mean_shape, uint32_t frames)
+    : vertex_count_(mean_shape.size()), frames_(frames) {
+  const double scale = 1.0 / static_cast<double>(uint64_t{1} << header.fraction_bits);
+  for (int axis = 0; axis < 3; ++axis) {
+    origin_[axis] = header.origin_value(axis);
+    unit_[axis] = static_cast<double>(header.step_value(axis)) * scale;
+  }
+  fixed_.resize(size_t{frames} * vertex_count_ * 3);
+  positions_.resize(size_t{frames} * vertex_count_);
+  for (uint32_t f = 0; f < frames; ++f)
+    for (size_t v = 0; v < vertex_count_; ++v) {
+      const size_t element = (size_t{f} * vertex_count_ + v) * 3;
+      for (int axis = 0; axis < 3; ++axis)
+        fixed_[element + static_cast<size_t>(axis)] = static_cast<uint64_t>(int64_t{mean_shape[v][axis]}) << header.fraction_bits;
+      positions_[element / 3] = position_of(element);
+    }
+}
+
+Float3 CpcaAnimation::position_of(size_t element) const {
+  Float3 p;
+  for (int axis = 0; axis < 3; ++axis)
+    p[axis] = static_cast<float>(origin_[axis] + static_cast<double>(static_cast<int64_t>(fixed_[element + static_cast<size_t>(axis)])) * unit_[axis]);
+  return p;
+}
+
+namespace {
+
+// value × 2^−t, rounded (halves up) when t > 0; |value| ≤ 2^38, t ≥ −16.
+int64_t scaled(int64_t value, int t) { return t > 0 ? (value + (int64_t{1} << (t - 1))) >> t : value * (int64_t{1} << -t); }
+
+}  // namespace
+
+void CpcaAnimation::translate(std::span<const NodeIndex> members, std::span<const int32_t> translation, uint32_t shift) {
+  const int t = static_cast<int>(shift) - static_cast<int>(kCpcaShiftBias);
+  for (uint32_t f = 0; f < frames_; ++f) {
+    uint64_t term[3];
+    for (size_t axis = 0; axis < 3; ++axis) term[axis] = static_cast<uint64_t>(scaled(translation[3 * size_t{f} + axis], t));
+    for (NodeIndex m : members) {
+      const size_t at = size_t{f} * vertex_count_ + m;
+      for (size_t axis = 0; axis < 3; ++axis) fixed_[3 * at + axis] += term[axis];
+      positions_[at] = position_of(3 * at);
+    }
+  }
+}
+
+void CpcaAnimation::refine(std::span<const NodeIndex> members, std::span<const int32_t> basis, std::span<const int32_t> coefficients,
+                           uint32_t shift) {
+  const int t = static_cast<int>(shift) - static_cast<int>(kCpcaShiftBias);
+  for (uint32_t f = 0; f < frames_; ++f) {
+    const int64_t c = coefficients[f];
+    for (size_t i = 0; i < members.size(); ++i) {
+      const size_t at = size_t{f} * vertex_count_ + members[i];
+      for (size_t axis = 0; axis < 3; ++axis) fixed_[3 * at + axis] += static_cast<uint64_t>(scaled(basis[3 * i + axis] * c, t));
+      positions_[at] = position_of(3 * at);
+    }
+  }
+}
+
+}  // namespace m4mesh

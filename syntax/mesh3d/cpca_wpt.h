@@ -1,0 +1,165 @@
+// The clustered-PCA codec with weighted progressive transmission
+// (codec_id 4) syntax (docs/codec_cpca_wpt.md): the codec header with the
+// cluster of every vertex, and a refinement unit's data: a cluster's start
+// (its mean trajectory) or one of its operators (basis, singular value and
+// coefficients folded into two integer vectors and a shift).
+#pragma once
+
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <span>
+
+#include "syntax/io.h"
+#include "syntax/mesh3d/grid.h"
+#include "syntax/mesh3d/residual.h"
+
+namespace m4mesh {
+
+inline constexpr uint32_t kCpcaMaxClusters = 255;
+inline constexpr uint32_t kCpcaMaxFractionBits = 16;
+// The shift of a refinement is stored plus this bias: contributions are
+// (basis × coefficient) × 2^−(shift − bias).
+inline constexpr uint32_t kCpcaShiftBias = 16;
+inline constexpr uint32_t kCpcaMaxShift = 63;
+inline constexpr int32_t kCpcaMaxBasis = int32_t{1} << 15;        // |basis value| ≤ 2^15
+inline constexpr int32_t kCpcaMaxCoefficient = int32_t{1} << 23;  // |coefficient| ≤ 2^23
+inline constexpr int32_t kCpcaMaxTranslation = int32_t{1} << 29;  // |translation| ≤ 2^29
+inline constexpr uint32_t kCpcaStart = 0;      // unit_kind: the cluster's mean trajectory
+inline constexpr uint32_t kCpcaComponent = 1;  // unit_kind: one principal component
+// The decoder holds 36 bytes per vertex and frame: at most 2^22 of them.
+inline constexpr uint64_t kCpcaMaxVertexFrames = uint64_t{1} << 22;
+
+struct CpcaHeader {
+  uint32_t bits = 12;  // the grid of the base mesh (the mean shape)
+  std::array<uint32_t, 3> origin{};  // binary32 bit patterns
+  std::array<uint32_t, 3> step{};
+  uint32_t cluster_count = 1;
+  uint32_t fraction_bits = 8;  // F: positions accumulate in steps of 2^−F grid units
+  uint32_t map_bins_bytes = 0;
+  std::span<const uint8_t> map_bins;
+  uint32_t map_raw_bytes = 0;
+  std::span<const uint8_t> map_raw;
+
+  float origin_value(int axis) const { return std::bit_cast<float>(origin[axis]); }
+  float step_value(int axis) const { return std::bit_cast<float>(step[axis]); }
+};
+
+// A refinement unit's data: the cluster it refines, what it carries, the
+// shift, the bin section's length, the bins and the raw bits.
+struct CpcaRefinement {
+  uint32_t cluster = 0;
+  uint32_t kind = kCpcaComponent;
+  uint32_t shift = kCpcaShiftBias;
+  uint32_t arithmetic_bytes = 0;
+  std::span<const uint8_t> bins;
+  std::span<const uint8_t> raw;
+};
+
+namespace syntax {
+
+inline constexpr ResidualNames kCpcaCluster{"cluster_nonzero", "cluster_prefix", "cluster_sign_suffix", "cluster_of_vertex"};
+inline constexpr ResidualNames kCpcaBasis{"basis_nonzero", "basis_prefix", "basis_sign_suffix", "basis"};
+inline constexpr ResidualNames kCpcaCoefficient{"coefficient_nonzero", "coefficient_prefix", "coefficient_sign_suffix", "coefficient"};
+inline constexpr ResidualNames kCpcaTranslation{"translation_nonzero", "translation_prefix", "translation_sign_suffix", "translation"};
+inline constexpr int kCpcaCoefficientChannel = 3;  // the basis uses 0 … 2 (x, y, z)
+
+template <class IO>
+void describe(IO& io, CpcaHeader& h) {
+  io.field_in("quantization_bits", 8, h.bits, 4, 24);
+  describe_grid(io, h.origin, h.step);
+  io.field_in("cluster_count", 8, h.cluster_count, 1, kCpcaMaxClusters);
+  io.field_in("fraction_bits", 8, h.fraction_bits, 0, kCpcaMaxFractionBits);
+  io.field("cluster_map_bins_bytes", 32, h.map_bins_bytes);
+  io.require_length("cluster_map_bins_bytes", h.map_bins_bytes);
+  io.section("cluster_map_bins", h.map_bins_bytes, h.map_bins);
+  io.field("cluster_map_raw_bytes", 32, h.map_raw_bytes);
+  io.require_length("cluster_map_raw_bytes", h.map_raw_bytes);
+  io.section("cluster_map_raw", h.map_raw_bytes, h.map_raw);
+}
+
+template <class IO>
+void describe(IO& io, CpcaRefinement& r) {
+  io.field_in("cluster", 8, r.cluster, 0, kCpcaMaxClusters - 1);
+  io.field_in("unit_kind", 8, r.kind, kCpcaStart, kCpcaComponent);
+  io.field_in("shift", 8, r.shift, 0, kCpcaMaxShift);
+  io.field("arithmetic_bytes", 32, r.arithmetic_bytes);
+  io.require_length("arithmetic_bytes", r.arithmetic_bytes);
+  io.section("bins", r.arithmetic_bytes, r.bins);
+  io.tail_section("raw", r.raw);
+}
+
+// The cluster of every vertex in index order, each coded as the difference
+// to the previous vertex's (the first to 0); every cluster below
+// cluster_count.
+template <class IO>
+void describe_cluster_map(IO& io, std::span<uint32_t> cluster_of, uint32_t cluster_count) {
+  ResidualCoder<1> coder;
+  int64_t previous = 0;
+  for (uint32_t& cluster : cluster_of) {
+    int32_t difference = 0;
+    if constexpr (!IO::kReading) difference = static_cast<int32_t>(int64_t{cluster} - previous);
+    coder.describe(io, 0, difference, kCpcaCluster);
+    const int64_t value = previous + difference;
+    if (value < 0 || value >= cluster_count) io.fail(ErrorKind::kOutOfRange, "cluster_of_vertex", "a cluster beyond cluster_count");
+    cluster = static_cast<uint32_t>(value);
+    previous = value;
+  }
+}
+
+// An operator's symbols: the basis value of each member vertex and axis
+// (members in index order, x, y, z), each as the difference to the same
+// axis of the member before (the first to 0), then the coefficient of
+// every frame as the difference to the frame before's (the first to 0);
+// |basis| ≤ 2^15, |coefficient| ≤ 2^23. The contexts start afresh in
+// every refinement unit.
+template <class IO>
+void describe_operator(IO& io, std::span<int32_t> basis, std::span<int32_t> coefficients) {
+  ResidualCoder<4> coder;
+  std::array<int64_t, 3> previous{};
+  for (size_t j = 0; j < basis.size(); ++j) {
+    const size_t axis = j % 3;
+    int32_t difference = 0;
+    if constexpr (!IO::kReading) difference = static_cast<int32_t>(int64_t{basis[j]} - previous[axis]);
+    coder.describe(io, static_cast<int>(axis), difference, kCpcaBasis);
+    const int64_t value = previous[axis] + difference;
+    if (value < -kCpcaMaxBasis || value > kCpcaMaxBasis) io.fail(ErrorKind::kOutOfRange, "basis", "a basis value beyond ±2^15");
+    basis[j] = static_cast<int32_t>(value);
+    previous[axis] = value;
+  }
+  int64_t before = 0;
+  for (int32_t& coefficient : coefficients) {
+    int32_t difference = 0;
+    if constexpr (!IO::kReading) difference = static_cast<int32_t>(int64_t{coefficient} - before);
+    coder.describe(io, kCpcaCoefficientChannel, difference, kCpcaCoefficient);
+    const int64_t value = before + difference;
+    if (value < -kCpcaMaxCoefficient || value > kCpcaMaxCoefficient)
+      io.fail(ErrorKind::kOutOfRange, "coefficient", "a coefficient beyond ±2^23");
+    coefficient = static_cast<int32_t>(value);
+    before = value;
+  }
+}
+
+// A start's symbols: the cluster's translation of every frame and axis
+// (frame 0's x, y, z, then frame 1's, …), each as the difference to the
+// same axis of the frame before (the first to 0); |translation| ≤ 2^29.
+// The contexts start afresh in every refinement unit.
+template <class IO>
+void describe_start(IO& io, std::span<int32_t> translation) {
+  ResidualCoder<3> coder;
+  std::array<int64_t, 3> previous{};
+  for (size_t j = 0; j < translation.size(); ++j) {
+    const size_t axis = j % 3;
+    int32_t difference = 0;
+    if constexpr (!IO::kReading) difference = static_cast<int32_t>(int64_t{translation[j]} - previous[axis]);
+    coder.describe(io, static_cast<int>(axis), difference, kCpcaTranslation);
+    const int64_t value = previous[axis] + difference;
+    if (value < -kCpcaMaxTranslation || value > kCpcaMaxTranslation) io.fail(ErrorKind::kOutOfRange, "translation", "a translation beyond ±2^29");
+    translation[j] = static_cast<int32_t>(value);
+    previous[axis] = value;
+  }
+}
+
+}  // namespace syntax
+
+}  // namespace m4mesh
