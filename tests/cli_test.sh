@@ -79,6 +79,19 @@ grep -q "^error: unit 2, frame 1, arithmetic_bytes at bit [0-9]*: " "$work/check
 "$m4mesh" decode3d "$work/t.m4m" -o "$work/frames/" --verify > /dev/null || fail "decode3d -o folder/"
 [ -f "$work/frames/0001.obj" ] || fail "decode3d -o folder/ wrote no frames"
 [ ! -e "$work/frames.partial" ] && [ ! -e "$work/frames/.partial" ] || fail "decode3d left its temporary folder"
+# A progressive stream: decode3d --max-bytes takes a prefix; progressive prints the curve.
+cpca="$source/conformance/mesh3d/streams/cpca-01-wpt.m4m"
+"$m4mesh" decode3d "$cpca" -o "$work/full.m4seq" > /dev/null || fail "decode3d of a cpca stream"
+"$m4mesh" decode3d "$cpca" --max-bytes 1300 -o "$work/prefix.m4seq" > "$work/prefix" || fail "decode3d --max-bytes"
+grep -q "^prefix: [0-9]* units, [0-9]* of [0-9]* bytes$" "$work/prefix" || fail "decode3d --max-bytes report: $(cat "$work/prefix")"
+[ "$(stat -c %s "$work/prefix.m4seq")" = "$(stat -c %s "$work/full.m4seq")" ] || fail "a prefix decodes every frame"
+cmp -s "$work/prefix.m4seq" "$work/full.m4seq" && fail "a prefix decodes like the whole stream"
+if "$m4mesh" decode3d "$cpca" --max-bytes 100 -o "$work/none.m4seq" 2> "$work/err"; then fail "--max-bytes below the first unit"; fi
+grep -q "holds no unit" "$work/err" || fail "--max-bytes below the first unit: $(cat "$work/err")"
+"$m4mesh" progressive "$cpca" "$work/full.m4seq" --step 1 > "$work/curve" || fail "progressive"
+[ "$(tail -1 "$work/curve" | awk '{print $3}')" = "0.00000" ] || fail "progressive: the whole stream against its own decoding: $(tail -1 "$work/curve")"
+if "$m4mesh" progressive "$work/t.m4m" tests/data/tetra-frames 2> "$work/err"; then fail "progressive on a frame codec"; fi
+grep -q "progressive needs a progressive codec" "$work/err" || fail "progressive on a frame codec: $(cat "$work/err")"
 data="$source/../shared/data"
 if [ -d "$data/horse-gallop" ] && [ -d "$data/pcow" ]; then
   for seq in horse-gallop pcow; do
