@@ -375,6 +375,23 @@ size_t refinement_unit(const ContainerParts& parts, size_t n) {
 // A refinement unit's cluster and kind (bytes 5 and 6 of its payload).
 constexpr size_t kClusterByte = 5, kKindByte = 6;
 
+// A refinement unit (frame 0, shift 16) whose symbols are the residuals
+// given, channel and value, in order: values the encoder's description
+// refuses to write, for the decoder to reject.
+std::vector<uint8_t> crafted_refinement(uint32_t cluster, uint32_t kind, const std::vector<std::pair<int, int32_t>>& residuals) {
+  syntax::ResidualCoder<4> coder;
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+  for (auto [channel, value] : residuals) coder.describe(symbols, channel, value, syntax::kCpcaBasis);
+  const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
+  BitWriter writer;
+  syntax::WriteIO io(writer);
+  UnitHeader header{static_cast<uint32_t>(UnitType::kRefinement), 0};
+  syntax::describe(io, header);
+  CpcaRefinement r{cluster, kind, kCpcaShiftBias, static_cast<uint32_t>(bins.size()), bins, raw};
+  syntax::describe(io, r);
+  return writer.take_bytes();
+}
+
 // The clustered-PCA codec's streams to reject: header ranges, and the unit
 // rules (cluster, start, component count).
 std::vector<SuiteCase> cpca_rejected_cases(const std::vector<SuiteCase>& valid) {
@@ -405,6 +422,7 @@ std::vector<SuiteCase> cpca_rejected_cases(const std::vector<SuiteCase>& valid) 
       {"x-27-cpca-fraction-bits", "fraction_bits 17", "fraction_bits", 17, ErrorKind::kOutOfRange, "fraction_bits"},
       {"x-28-cpca-map-beyond", "cluster_count 3 while the map names cluster 3", "cluster_count", 3, ErrorKind::kOutOfRange, "cluster_of_vertex"},
       {"x-29-cpca-empty-cluster", "cluster_count 5 while the map names clusters 0 … 3", "cluster_count", 5, ErrorKind::kStructure, "cluster_count"},
+      {"x-37-cpca-quantization-bits", "quantization_bits 3", "quantization_bits", 3, ErrorKind::kOutOfRange, "quantization_bits"},
   };
   for (const auto& c : header_cases)
     suite.push_back(invalid(c.id, c.purpose, {"cpca"}, edited(base, [&](ContainerParts& p) { p.object_payload[field(c.field)] = c.value; }),
@@ -442,6 +460,52 @@ std::vector<SuiteCase> cpca_rejected_cases(const std::vector<SuiteCase>& valid) 
   suite.push_back(invalid("x-35-cpca-refinement-frame", "a refinement unit naming frame 1", {"cpca"},
                           edited(base, [](ContainerParts& p) { p.units[refinement_unit(p, 0)].payload[4] = 1; }),
                           ErrorKind::kStructure, "frame_index", 1));
+  suite.push_back(invalid("x-38-cpca-shift", "shift 64", {"cpca"},
+                          edited(base, [](ContainerParts& p) { p.units[refinement_unit(p, 0)].payload[kKindByte + 1] = 64; }),
+                          ErrorKind::kOutOfRange, "shift", 0));
+  {
+    // Values beyond their ranges, in the first refinement units: cluster
+    // 0's start, then one of its components.
+    const ContainerParts parts = split_container(base);
+    const size_t start = refinement_unit(parts, 0);
+    const uint32_t cluster = parts.units[start].payload[kClusterByte];
+    // The cluster's size, from the header's cluster map.
+    BitReader reader(parts.object_payload.data(), parts.object_payload.size());
+    syntax::ReadIO in(reader);
+    ObjectHeader object;
+    CpcaHeader header;
+    syntax::describe(in, object);
+    syntax::describe(in, header);
+    std::vector<uint32_t> cluster_of(object.vertex_count);
+    syntax::EntropyReadIO<false> map(header.map_bins, header.map_raw, syntax::SectionPlace{});
+    syntax::describe_cluster_map(map, cluster_of, header.cluster_count);
+    std::vector<std::pair<int, int32_t>> coefficient_beyond(3 * static_cast<size_t>(std::count(cluster_of.begin(), cluster_of.end(), cluster)));
+    for (size_t j = 0; j < coefficient_beyond.size(); ++j) coefficient_beyond[j] = {static_cast<int>(j % 3), 0};
+    coefficient_beyond.emplace_back(syntax::kCpcaCoefficientChannel, (1 << 23) + 1);
+    const struct {
+      const char* id;
+      const char* purpose;
+      uint32_t kind;
+      std::vector<std::pair<int, int32_t>> residuals;
+      const char* element;
+    } ranges[] = {
+        {"x-39-cpca-translation-range", "a start whose first translation is 2^29 + 1", kCpcaStart, {{0, (1 << 29) + 1}}, "translation"},
+        {"x-40-cpca-basis-range", "a component whose first basis value is 2^15 + 1", kCpcaComponent, {{0, (1 << 15) + 1}}, "basis"},
+        {"x-41-cpca-coefficient-range", "a component whose first coefficient is 2^23 + 1", kCpcaComponent, coefficient_beyond, "coefficient"},
+    };
+    for (const auto& c : ranges)
+      suite.push_back(invalid(c.id, c.purpose, {"cpca"},
+                              edited(base,
+                                     [&](ContainerParts& p) {
+                                       const std::vector<uint8_t> unit = crafted_refinement(cluster, c.kind, c.residuals);
+                                       // A start replaces cluster's start; a component follows it.
+                                       if (c.kind == kCpcaStart)
+                                         p.units[start].payload = unit;
+                                       else
+                                         p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(start) + 1, ContainerUnit{0, 0, unit});
+                                     }),
+                              ErrorKind::kOutOfRange, c.element, 0));
+  }
   {
     // One cluster over 3 frames has 3 components: its fourth is one too many.
     const std::vector<uint8_t> short_stream = encode_mesh3d(moving_tetrahedron(3), cpca({{"clusters", "1"}, {"noise", "-4"}})).stream;
