@@ -14,6 +14,7 @@
 #include "common/error.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
+#include "encoder/mesh3d/quality_target.h"
 #include "mesh3d/metrics.h"
 #include "mesh3d/quantization.h"
 
@@ -36,12 +37,16 @@ void add_codec_options(CLI::App& command, Encode3dArgs& args) {
   std::string names;
   for (const Codec3d& c : codecs3d())
     names += (names.empty() ? "" : ", ") + c.name;
-  command.add_option("--codec", args.codec, "codec: " + names)->capture_default_str();
+  command.add_option("--codec", args.codec, "codec: " + names + ", or auto (every codec at the quality target, the smallest kept)")
+      ->capture_default_str();
+  command.add_option("--target-kg", args.target_kg,
+                     "the smallest stream whose decoded KG error is at most this (percent), searching the codec's quality parameter");
+  command.add_option("--target-psnr", args.target_psnr, "the smallest stream whose decoded PSNR is at least this (dB)");
   // One flag per option name; codecs that share a name share the flag.
   std::set<std::string> added;
   for (const Codec3d& c : codecs3d())
     for (const CodecOption& o : c.options) {
-      if (!added.insert(o.name).second) continue;
+      if (o.name == "target-kg" || !added.insert(o.name).second) continue;  // the target is a flag of every codec
       std::string owners;
       for (const Codec3d& other : codecs3d())
         for (const CodecOption& p : other.options)
@@ -65,12 +70,32 @@ int run_encode3d(const Encode3dArgs& args) {
   options.frame_rate_num = static_cast<uint32_t>(args.fps);
   options.trace = args.trace ? &trace : nullptr;
   options.progress = [](size_t done, size_t total) { progress("encoding", done, total); };
-  const auto start = std::chrono::steady_clock::now();
-  const Encode3dResult result = encode_mesh3d(sequence, options);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_file_atomically(args.output, std::string_view(reinterpret_cast<const char*>(result.stream.data()), result.stream.size()));
   // The summary goes to standard error when the trace fills standard output.
   std::FILE* summary = args.trace ? stderr : stdout;
+  const QualityTarget target{args.target_kg, args.target_psnr};
+  const bool targeted = target.kg > 0 || target.psnr > 0;
+  if (args.codec == "auto" && !targeted) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--codec auto needs --target-kg or --target-psnr");
+  if (targeted && args.trace) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--trace and a quality target: trace the stream the search keeps");
+  const double bits = 8.0 / (static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size()));
+  auto print_trial = [&](const TargetTrial& t) {
+    std::fprintf(summary, "  %-14s %-22s %10llu bytes %8.4f bpvf  KG %9.5f  PSNR %8.3f  %s\n", t.codec.c_str(), t.parameter.c_str(),
+                 static_cast<unsigned long long>(t.bytes), static_cast<double>(t.bytes) * bits, t.kg, t.psnr,
+                 t.meets ? "meets" : "misses");
+  };
+  const auto start = std::chrono::steady_clock::now();
+  Encode3dResult result;
+  if (args.codec == "auto") {
+    std::fprintf(summary, "every codec at the target:\n");
+    result = encode_smallest(sequence, options, target, print_trial, options.codec);
+    std::fprintf(summary, "kept: %s\n", options.codec.c_str());
+  } else if (targeted) {
+    std::fprintf(summary, "%s, searching its quality for the target:\n", args.codec.c_str());
+    result = encode_to_target(sequence, options, target, print_trial);
+  } else {
+    result = encode_mesh3d(sequence, options);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_file_atomically(args.output, std::string_view(reinterpret_cast<const char*>(result.stream.data()), result.stream.size()));
   const double vertex_frames = static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size() - 1);
   std::string line = args.output + ": " + std::to_string(result.stream.size()) + " bytes";
   char figure[160];
@@ -90,7 +115,7 @@ int run_encode3d(const Encode3dArgs& args) {
   line += ", other " + std::to_string(result.other_bytes);
   std::fprintf(summary, "%s\n", line.c_str());
   if (!result.statistics.empty()) {
-    std::string figures = args.codec + ":";
+    std::string figures = options.codec + ":";
     for (size_t i = 0; i < result.statistics.size(); ++i) {
       std::snprintf(figure, sizeof figure, "%s%.10g %s", i ? ", " : " ", result.statistics[i].second, result.statistics[i].first.c_str());
       figures += figure;

@@ -14,13 +14,15 @@ namespace m4mesh {
 struct Encode3dArgs {
   std::string input;
   std::string output;
-  std::string codec = "bfs3d";
+  std::string codec = "bfs3d";       // or "auto": every codec at the target, the smallest kept
   CodecOptionValues codec_options;  // only those given
+  double target_kg = 0, target_psnr = 0;  // a quality target (0: none)
   bool no_hash = false;
   int fps = 25;
   bool trace = false;
 };
-// Adds --codec and every registered codec's own options to `command`.
+// Adds --codec, the quality targets and every registered codec's own
+// options to `command`.
 void add_codec_options(CLI::App& command, Encode3dArgs& args);
 int run_encode3d(const Encode3dArgs& args);
 

@@ -17,6 +17,14 @@
 
 namespace m4mesh {
 
+// The option that sets a codec's quality, and its values from the coarsest
+// to the finest: what a quality target (encoder/mesh3d/quality_target.h)
+// searches.
+struct QualityKnob {
+  std::string option;
+  std::vector<std::string> coarse_to_fine;
+};
+
 struct Codec3d {
   uint32_t id = 0;  // codec_id
   std::string name;
@@ -25,8 +33,8 @@ struct Codec3d {
   // The unit types it uses besides frame hash units (any other is an error).
   std::vector<UnitType> unit_types;
   std::vector<CodecOption> options;
-  // Reads the codec header (after the object header) and makes the
-  // decoder; empty for a registered codec m4mesh does not implement.
+  QualityKnob quality;
+  // Reads the codec header (after the object header) and makes the decoder.
   std::function<std::unique_ptr<CodecDecoder3d>(const ObjectHeader&, syntax::ReadIO&)> make_decoder;
   std::function<std::unique_ptr<CodecEncoder3d>(const MeshSequence&, const CodecSettings&)> make_encoder;
 

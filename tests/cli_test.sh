@@ -79,6 +79,15 @@ grep -q "^error: unit 2, frame 1, arithmetic_bytes at bit [0-9]*: " "$work/check
 "$m4mesh" decode3d "$work/t.m4m" -o "$work/frames/" --verify > /dev/null || fail "decode3d -o folder/"
 [ -f "$work/frames/0001.obj" ] || fail "decode3d -o folder/ wrote no frames"
 [ ! -e "$work/frames.partial" ] && [ ! -e "$work/frames/.partial" ] || fail "decode3d left its temporary folder"
+# Quality targets: the search is printed and the kept stream meets the target.
+"$m4mesh" encode3d tests/data/tetra-frames -o "$work/target.m4m" --target-psnr 40 > "$work/target" || fail "encode3d --target-psnr"
+grep -q "^bfs3d, searching its quality for the target:$" "$work/target" || fail "target search report: $(cat "$work/target")"
+grep -q " meets$" "$work/target" || fail "target search lines: $(cat "$work/target")"
+"$m4mesh" encode3d tests/data/tetra-frames -o "$work/auto.m4m" --codec auto --target-kg 2 > "$work/auto" || fail "encode3d --codec auto"
+grep -q "^kept: " "$work/auto" || fail "--codec auto report: $(cat "$work/auto")"
+if "$m4mesh" encode3d tests/data/tetra-frames -o "$work/none.m4m" --codec auto 2> "$work/err"; then fail "--codec auto without a target"; fi
+grep -q "needs --target-kg or --target-psnr" "$work/err" || fail "--codec auto without a target: $(cat "$work/err")"
+
 # A progressive stream: decode3d --max-bytes takes a prefix; progressive prints the curve.
 cpca="$source/conformance/mesh3d/streams/cpca-01-wpt.m4m"
 "$m4mesh" decode3d "$cpca" -o "$work/full.m4seq" > /dev/null || fail "decode3d of a cpca stream"

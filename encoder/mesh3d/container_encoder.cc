@@ -33,6 +33,11 @@ class ContainerSink final : public UnitSink {
   }
 
   void decoded(uint32_t frame, std::span<const Float3> positions) override {
+    if (options_.keep_decoded) {
+      std::vector<Vec3>& kept = result_.decoded.frames.at(frame);
+      kept.resize(positions.size());
+      for (size_t v = 0; v < positions.size(); ++v) kept[v] = {positions[v][0], positions[v][1], positions[v][2]};
+    }
     if (!options_.hashes) return;
     const std::string hex = frame_md5(positions);
     std::vector<uint8_t> digest;
@@ -83,6 +88,7 @@ Encode3dResult encode_mesh3d(const MeshSequence& s, const Encode3dOptions& optio
     encoder->write_header(io);
     container.object(writer.take_bytes());
   }
+  if (options.keep_decoded) result.decoded = {s.vertex_count, s.faces, std::vector<std::vector<Vec3>>(s.frames.size())};
   ContainerSink sink(container, options, result);
   encoder->encode(s, sink);
   if (options.trace) options.trace->begin_payload("end", "mesh_object_end_code", kMeshObjectEndCode);

@@ -22,6 +22,7 @@ struct Encode3dOptions {
   uint32_t frame_rate_num = 25;
   uint32_t frame_rate_den = 1;
   Trace* trace = nullptr;        // every element written, as `m4mesh trace` prints it
+  bool keep_decoded = false;     // the decoder's output in the result
   std::function<void(size_t done, size_t total)> progress;
 };
 
@@ -30,6 +31,7 @@ struct Encode3dResult {
   uint64_t unit_bytes[kUnitTypes] = {};  // per unit_type, start codes included
   uint64_t other_bytes = 0;              // object payload and end code
   std::vector<CodecStatistic> statistics;  // the codec's own
+  MeshSequence decoded;                    // with keep_decoded: every frame as the decoder outputs it
 
   uint64_t base_bytes() const { return unit_bytes[static_cast<uint32_t>(UnitType::kBaseMesh)]; }
   uint64_t frame_bytes() const { return unit_bytes[static_cast<uint32_t>(UnitType::kFrame)]; }

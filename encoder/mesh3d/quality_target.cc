@@ -1,0 +1,100 @@
+#include "encoder/mesh3d/quality_target.h"
+
+#include <algorithm>
+#include <map>
+
+#include "codecs3d/registry.h"
+#include "common/error.h"
+#include "mesh3d/metrics.h"
+
+namespace m4mesh {
+
+namespace {
+
+Error usage_error(const std::string& message) { return Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, message); }
+
+bool has_option(const Codec3d& codec, const std::string& name) {
+  return std::any_of(codec.options.begin(), codec.options.end(), [&](const CodecOption& o) { return o.name == name; });
+}
+
+// Encodes and measures the decoder's output (the encoder's closed loop
+// knows it exactly: it is what the hash units cover).
+TargetTrial trial(const MeshSequence& s, Encode3dOptions options, const QualityTarget& target, const std::string& parameter,
+                  Encode3dResult& result) {
+  options.keep_decoded = true;
+  result = encode_mesh3d(s, options);
+  TargetTrial t{options.codec, parameter, result.stream.size(), kg_error(s, result.decoded), psnr(s, result.decoded), false};
+  t.meets = target.kg > 0 ? t.kg <= target.kg : t.psnr >= target.psnr;
+  return t;
+}
+
+}  // namespace
+
+Encode3dResult encode_to_target(const MeshSequence& s, const Encode3dOptions& options, const QualityTarget& target,
+                                const TrialReport& report) {
+  if ((target.kg > 0) == (target.psnr > 0)) throw usage_error("give one quality target: --target-kg or --target-psnr");
+  const Codec3d& codec = codec3d_by_name(options.codec);
+  Encode3dResult result;
+  if (target.kg > 0 && has_option(codec, "target-kg")) {
+    Encode3dOptions own = options;
+    own.codec_options["target-kg"] = std::to_string(target.kg);
+    const TargetTrial t = trial(s, own, target, "its own search", result);
+    report(t);
+    if (!t.meets) throw usage_error("the target is out of reach for " + codec.name);
+    return result;
+  }
+  const QualityKnob& knob = codec.quality;
+  if (knob.coarse_to_fine.empty()) throw usage_error(codec.name + " has no quality parameter to search");
+  if (options.codec_options.count(knob.option))
+    throw usage_error("--" + knob.option + " and a quality target: the target chooses --" + knob.option + " (" + codec.name + ")");
+  // The smallest index that meets the target, by bisection; results kept by index.
+  std::map<size_t, Encode3dResult> results;
+  auto meets = [&](size_t index) {
+    Encode3dOptions tried = options;
+    tried.codec_options[knob.option] = knob.coarse_to_fine[index];
+    const TargetTrial t = trial(s, tried, target, "--" + knob.option + " " + knob.coarse_to_fine[index], results[index]);
+    report(t);
+    return t.meets;
+  };
+  size_t lo = 0, hi = knob.coarse_to_fine.size() - 1;
+  if (!meets(hi))
+    throw usage_error("the target is out of reach for " + codec.name + " even at --" + knob.option + " " + knob.coarse_to_fine[hi]);
+  while (lo < hi) {
+    const size_t mid = lo + (hi - lo) / 2;
+    if (meets(mid))
+      hi = mid;
+    else
+      lo = mid + 1;
+  }
+  return std::move(results[hi]);
+}
+
+Encode3dResult encode_smallest(const MeshSequence& s, const Encode3dOptions& options, const QualityTarget& target,
+                               const TrialReport& report_codec, std::string& chosen) {
+  Encode3dResult best;
+  for (const Codec3d& codec : codecs3d()) {
+    Encode3dOptions tried = options;
+    tried.codec = codec.name;
+    TargetTrial last;
+    try {
+      Encode3dResult result = encode_to_target(s, tried, target, [&](const TargetTrial& t) {
+        if (t.meets || last.codec.empty()) last = t;
+      });
+      report_codec(last);
+      if (best.stream.empty() || result.stream.size() < best.stream.size()) {
+        best = std::move(result);
+        chosen = codec.name;
+      }
+    } catch (const Error& e) {
+      if (e.kind() != ErrorKind::kUsage) throw;
+      last.codec = codec.name;
+      last.parameter = e.message();
+      last.meets = false;
+      report_codec(last);
+    }
+  }
+  if (best.stream.empty()) throw usage_error("no codec reaches the target");
+  return best;
+}
+
+}  // namespace m4mesh

@@ -1,0 +1,71 @@
+// Quality targets for every codec: the kept stream meets the target as the
+// metrics measure its decoding, the next coarser setting misses it, and
+// --codec auto keeps the smallest of the codecs.
+#include <gtest/gtest.h>
+
+#include "codecs3d/registry.h"
+#include "decoder/mesh3d/container_decoder.h"
+#include "encoder/mesh3d/quality_target.h"
+#include "mesh3d/metrics.h"
+#include "tests/test_util.h"
+
+namespace m4mesh {
+namespace {
+
+const char* const kCodecs[] = {"bfs3d", "affine-octree", "lcc", "cpca-wpt"};
+
+TEST(QualityTarget, EveryCodecMeetsAKgTargetWithItsCoarsestSetting) {
+  const MeshSequence s = test::test_sequence(8, 21);
+  for (const char* name : kCodecs) {
+    Encode3dOptions options;
+    options.codec = name;
+    std::vector<TargetTrial> trials;
+    const Encode3dResult r = encode_to_target(s, options, {.kg = 1.0}, [&](const TargetTrial& t) { trials.push_back(t); });
+    const MeshSequence decoded = decode_mesh3d(r.stream);
+    EXPECT_LE(kg_error(s, decoded), 1.0) << name;
+    ASSERT_FALSE(trials.empty());
+    // The kept trial is the last that met the target; every trial coarser than it missed.
+    const QualityKnob& knob = codec3d_by_name(name).quality;
+    const auto kept = std::find_if(trials.rbegin(), trials.rend(), [](const TargetTrial& t) { return t.meets; });
+    ASSERT_NE(kept, trials.rend()) << name;
+    EXPECT_EQ(kept->bytes, r.stream.size()) << name;
+    EXPECT_DOUBLE_EQ(kept->kg, kg_error(s, decoded)) << name;
+    if (kept->parameter.rfind("--", 0) != 0) continue;  // the codec's own search
+    const std::string value = kept->parameter.substr(kept->parameter.find(' ') + 1);
+    const size_t index = static_cast<size_t>(std::find(knob.coarse_to_fine.begin(), knob.coarse_to_fine.end(), value) - knob.coarse_to_fine.begin());
+    ASSERT_LT(index, knob.coarse_to_fine.size()) << name;
+    if (index == 0) continue;
+    options.codec_options[knob.option] = knob.coarse_to_fine[index - 1];
+    EXPECT_GT(kg_error(s, decode_mesh3d(encode_mesh3d(s, options).stream)), 1.0) << name << " at " << knob.coarse_to_fine[index - 1];
+  }
+}
+
+TEST(QualityTarget, PsnrTargetsAndTheSmallestCodec) {
+  const MeshSequence s = test::test_sequence(8, 22);
+  Encode3dOptions options;
+  options.codec = "affine-octree";
+  const Encode3dResult r = encode_to_target(s, options, {.psnr = 50}, [](const TargetTrial&) {});
+  EXPECT_GE(psnr(s, decode_mesh3d(r.stream)), 50);
+  std::string chosen;
+  std::vector<TargetTrial> best;
+  const Encode3dResult smallest = encode_smallest(s, options, {.kg = 2.0}, [&](const TargetTrial& t) { best.push_back(t); }, chosen);
+  for (const TargetTrial& t : best) {
+    if (t.meets) {
+      EXPECT_LE(smallest.stream.size(), t.bytes) << t.codec;
+    }
+  }
+  EXPECT_EQ(decode_mesh3d(smallest.stream).frames.size(), s.frames.size());
+  EXPECT_FALSE(chosen.empty());
+}
+
+TEST(QualityTarget, UnreachableAndConflictingTargetsAreUsageErrors) {
+  const MeshSequence s = test::test_sequence(4, 23);
+  Encode3dOptions options;
+  EXPECT_THROW(encode_to_target(s, options, {}, [](const TargetTrial&) {}), Error);
+  EXPECT_THROW(encode_to_target(s, options, {.kg = 1e-9}, [](const TargetTrial&) {}), Error);
+  options.codec_options["bits"] = "12";
+  EXPECT_THROW(encode_to_target(s, options, {.kg = 1}, [](const TargetTrial&) {}), Error);
+}
+
+}  // namespace
+}  // namespace m4mesh
