@@ -243,6 +243,9 @@ int run_m4mesh(int argc, const char* const* argv) {
   encode3d_cmd->add_option("-o,--output", encode3d_args.output, "output stream (.m4m)")->required();
   add_codec_options(*encode3d_cmd, encode3d_args);
   encode3d_cmd->add_flag("--no-hash", encode3d_args.no_hash, "leave out the decoded-frame hash units");
+  encode3d_cmd->add_option("--hash-group", encode3d_args.hash_group, "frames per group hash unit (1: an MD5 hash unit per frame)")
+      ->check(CLI::Range(1, 65535))
+      ->capture_default_str();
   encode3d_cmd->add_option("--fps", encode3d_args.fps, "frame rate")->check(CLI::Range(1, 65535))->capture_default_str();
   encode3d_cmd->add_flag("--trace", encode3d_args.trace, "print every syntax element written, as `m4mesh trace` prints them");
 

@@ -18,6 +18,7 @@ struct Encode3dArgs {
   CodecOptionValues codec_options;  // only those given
   double target_kg = 0, target_psnr = 0;  // a quality target (0: none)
   bool no_hash = false;
+  uint32_t hash_group = 16;  // frames per group hash unit; 1: a frame hash unit per frame
   int fps = 25;
   bool trace = false;
 };

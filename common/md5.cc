@@ -17,15 +17,19 @@ void Md5::update(std::string_view data) { update(data.data(), data.size()); }
 
 void Md5::update(const void* data, size_t size) { EVP_DigestUpdate(ctx_, data, size); }
 
-std::string Md5::hex_digest() {
-  unsigned char digest[EVP_MAX_MD_SIZE];
+std::array<uint8_t, 16> Md5::digest() {
+  std::array<uint8_t, 16> out{};
   unsigned int length = 0;
-  EVP_DigestFinal_ex(ctx_, digest, &length);
+  EVP_DigestFinal_ex(ctx_, out.data(), &length);
+  return out;
+}
+
+std::string Md5::hex_digest() {
   static const char kHex[] = "0123456789abcdef";
   std::string hex;
-  for (unsigned i = 0; i < length; ++i) {
-    hex += kHex[digest[i] >> 4];
-    hex += kHex[digest[i] & 15];
+  for (uint8_t b : digest()) {
+    hex += kHex[b >> 4];
+    hex += kHex[b & 15];
   }
   return hex;
 }

@@ -1,6 +1,8 @@
 // Incremental MD5 (OpenSSL EVP) for the conformance hashes of §9.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -18,7 +20,9 @@ class Md5 {
 
   void update(std::string_view data);
   void update(const void* data, size_t size);
-  // Lower-case hex digest; the object cannot be updated afterwards.
+  // The 16-byte digest; the object cannot be updated afterwards.
+  std::array<uint8_t, 16> digest();
+  // The same as lower-case hex.
   std::string hex_digest();
 
  private:

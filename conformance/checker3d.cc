@@ -42,7 +42,7 @@ CheckReport check_mesh3d(std::span<const uint8_t> stream) {
       after_error = report.errors() > 0;
       // After an error, later frames decode from a damaged state: their hashes tell nothing new.
       if (report.errors() == 0)
-        for (uint32_t frame : decoder->unit().frames)
+        for (uint32_t frame : decoder->unit().verified)
           if (decoder->hash_result(frame) == false)
             report.findings.push_back(mesh3d_finding(true, ErrorKind::kStructure, frame, "frame_md5", kNoOffset,
                                                      "the decoded frame does not match its hash unit", decoder->unit().index));

@@ -142,6 +142,7 @@ std::string rest_shape_file(const MeshSequence& flag) {
 
 Encode3dOptions lcc(CodecOptionValues values) {
   Encode3dOptions o;
+  o.hash_group = 1;  // the conformance streams hash every frame
   o.codec = "lcc";
   o.codec_options = std::move(values);
   return o;
@@ -161,17 +162,20 @@ MeshSequence moving_tetrahedron(int frames) {
 // Affine-Octree at ME `me` percent and k bits per matrix element.
 Encode3dOptions affine(const std::string& me, int k = 16) {
   Encode3dOptions o;
+  o.hash_group = 1;  // the conformance streams hash every frame
   o.codec = "affine-octree";
   o.codec_options = {{"me", me}, {"matrix-bits", std::to_string(k)}};
   return o;
 }
 
-// A stream to decode; with `traced`, the encoder's trace of it is kept.
+// A stream to decode, with a frame hash unit per frame unless a group is
+// given; with `traced`, the encoder's trace of it is kept.
 SuiteCase valid(std::string id, std::string purpose, std::vector<std::string> clauses, const MeshSequence& s, Encode3dOptions o,
-                bool traced) {
+                bool traced, uint32_t hash_group = 1) {
   std::ostringstream text;
   Trace trace(text);
   if (traced) o.trace = &trace;
+  o.hash_group = hash_group;
   SuiteCase c = decode_case(std::move(id), std::move(purpose), std::move(clauses), encode_mesh3d(s, o).stream);
   c.encoder_trace = text.str();
   return c;
@@ -330,6 +334,7 @@ std::vector<uint8_t> lcc_predicted_unit(const std::vector<uint8_t>& stream, std:
 
 Encode3dOptions cpca(CodecOptionValues values) {
   Encode3dOptions o;
+  o.hash_group = 1;  // the conformance streams hash every frame
   o.codec = "cpca-wpt";
   o.codec_options = std::move(values);
   return o;
@@ -527,6 +532,18 @@ std::vector<SuiteCase> cpca_rejected_cases(const std::vector<SuiteCase>& valid) 
   return suite;
 }
 
+// Group hash units: after frame-by-frame units, and after frames decoded
+// out of display order.
+std::vector<SuiteCase> group_hash_cases(bool traced) {
+  std::vector<SuiteCase> suite;
+  suite.push_back(valid("hash-01-groups", "bfs3d with a group hash unit per 4 frames, the last group shorter", {"container-hash"},
+                        box_and_sheet(10, 3), Encode3dOptions{}, traced, 4));
+  const MeshSequence flag = waving_flag(13, 8, false);
+  suite.push_back(valid("hash-02-groups-out-of-order", "lcc with temporal prediction and a group hash unit per 3 frames", {"container-hash"},
+                        flag, lcc({{"temporal", "1"}, {"gop", "4"}}), traced, 3));
+  return suite;
+}
+
 // Streams to reject, each made from a valid one.
 std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
   std::vector<SuiteCase> suite;
@@ -661,6 +678,30 @@ std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
                           }),
                           ErrorKind::kOutOfRange, "rho", 3));
   for (SuiteCase& c : cpca_rejected_cases(valid)) suite.push_back(std::move(c));
+  // Group hash units (after hash-01's frame 3, a group of frames 0 … 3).
+  const std::vector<uint8_t> grouped = find(valid, "hash-01-groups");
+  auto first_group = [](ContainerParts& p) -> ContainerUnit& {
+    for (ContainerUnit& unit : p.units)
+      if (unit.payload[0] == static_cast<uint8_t>(UnitType::kGroupHash)) return unit;
+    throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no group hash unit");
+  };
+  const size_t group_frames_byte = (syntax::unit_data_offset() - 32) / 8 + 1;  // the low byte of group_frames
+  suite.push_back(invalid("x-42-group-ahead", "a group hash of frames 0 … 4 after frame 3", {"container-hash"},
+                          edited(grouped, [&](ContainerParts& p) { first_group(p).payload[group_frames_byte] = 5; }), ErrorKind::kStructure,
+                          "group_frames", 0));
+  suite.push_back(invalid("x-43-group-empty", "group_frames 0", {"container-hash"},
+                          edited(grouped, [&](ContainerParts& p) { first_group(p).payload[group_frames_byte] = 0; }), ErrorKind::kOutOfRange,
+                          "group_frames", 0));
+  suite.push_back(invalid("x-44-group-beyond", "a group of frames 8 … 11 where frame_count is 10", {"container-hash"},
+                          edited(grouped,
+                                 [&](ContainerParts& p) {
+                                   ContainerUnit& last = p.units[p.units.size() - 1];
+                                   last.payload[group_frames_byte] = 4;  // frames 8 and 9 are the last group
+                                 }),
+                          ErrorKind::kStructure, "group_frames", 8));
+  suite.push_back(invalid("x-45-group-md5-cut", "a group hash unit one byte short", {"container-hash"},
+                          edited(grouped, [&](ContainerParts& p) { first_group(p).payload.pop_back(); }), ErrorKind::kOutOfRange,
+                          "group_md5", 0));
   return suite;
 }
 
@@ -671,6 +712,7 @@ std::vector<SuiteCase> build_suite3d(bool traced) {
   for (SuiteCase& c : bfs3d_cases(traced)) suite.push_back(std::move(c));
   for (SuiteCase& c : lcc_cases(traced)) suite.push_back(std::move(c));
   for (SuiteCase& c : cpca_cases(traced)) suite.push_back(std::move(c));
+  for (SuiteCase& c : group_hash_cases(traced)) suite.push_back(std::move(c));
   for (SuiteCase& c : rejected_cases(suite)) suite.push_back(std::move(c));
   return suite;
 }
@@ -681,11 +723,11 @@ std::vector<uint8_t> decoded_frames3d(const std::vector<uint8_t>& stream) {
   Mesh3dDecoder decoder(stream, options);
   std::vector<uint8_t> out;
   while (decoder.next_frame()) {
-    if (decoder.hash_matches() == false)
-      throw Error(ErrorKind::kStructure, "frame_md5", decoder.frame_index(), kNoOffset, "the decoded frame does not match its hash");
     const std::vector<uint8_t> bytes = frame_bytes(decoder.positions());
     out.insert(out.end(), bytes.begin(), bytes.end());
   }
+  if (const std::optional<uint32_t> f = decoder.first_mismatch())
+    throw Error(ErrorKind::kStructure, "frame_md5", *f, kNoOffset, "the decoded frame does not match its hash");
   return out;
 }
 

@@ -84,7 +84,6 @@ void expect_within_me(const MeshSequence& s, const Encode3dOptions& options) {
   const double step = Grid::over(s.frames[0], 12, true).step[0];
   const double me = std::stod(options.codec_options.at("me")) / 100;
   while (decoder.next_frame()) {
-    ASSERT_TRUE(decoder.hash_matches().value_or(false)) << "frame " << frames;
     const double bound = frames == 0 ? step : me * cube_side(previous) + 2 * step;
     for (uint32_t i = 0; i < s.vertex_count; ++i) {
       const Float3& p = decoder.positions()[i];
@@ -96,6 +95,7 @@ void expect_within_me(const MeshSequence& s, const Encode3dOptions& options) {
     ++frames;
   }
   EXPECT_EQ(frames, s.frames.size());
+  for (uint32_t f = 0; f < frames; ++f) EXPECT_TRUE(decoder.hash_result(f).value_or(false)) << "frame " << f;
 }
 
 TEST(AffineOctree, EveryVertexWithinMe) {
@@ -153,7 +153,6 @@ TEST(AffineOctree, IntraFramesResendTheBaseMesh) {
   Mesh3dDecoder decoder(encoded.stream, test::verifying());
   const Grid grid = Grid::over(s.frames[0], 12, true);
   while (decoder.next_frame()) {
-    ASSERT_TRUE(decoder.hash_matches().value_or(false));
     if (decoder.frame_index() % 3 != 0) continue;
     for (uint32_t i = 0; i < s.vertex_count; ++i) {
       IntPoint3 q;
@@ -161,6 +160,7 @@ TEST(AffineOctree, IntraFramesResendTheBaseMesh) {
       for (int axis = 0; axis < 3; ++axis) ASSERT_EQ(decoder.positions()[i][axis], grid.position(axis, q[axis]));
     }
   }
+  EXPECT_FALSE(decoder.first_mismatch().has_value());
   expect_within_me(s, options);
 }
 

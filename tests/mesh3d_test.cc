@@ -208,7 +208,6 @@ void expect_round_trip(const MeshSequence& s, const Encode3dOptions& options, in
   uint32_t frames = 0;
   while (decoder.next_frame()) {
     ASSERT_EQ(decoder.frame_index(), frames);
-    ASSERT_TRUE(decoder.hash_matches().value_or(false)) << "frame " << frames;
     for (uint32_t i = 0; i < s.vertex_count; ++i) {
       IntPoint3 q;
       ASSERT_TRUE(grid.quantize(s.frames[frames][i], q));
@@ -217,6 +216,7 @@ void expect_round_trip(const MeshSequence& s, const Encode3dOptions& options, in
     ++frames;
   }
   EXPECT_EQ(frames, s.frames.size());
+  for (uint32_t f = 0; f < frames; ++f) EXPECT_TRUE(decoder.hash_result(f).value_or(false)) << "frame " << f;
   EXPECT_TRUE(decoder.has_end_code());
   uint64_t total = encoded.other_bytes;
   for (uint64_t bytes : encoded.unit_bytes) total += bytes;
@@ -257,7 +257,9 @@ TEST(Bfs3d, EncoderIsDeterministicAndHashesCatchChanges) {
   const std::vector<uint8_t> moved_stream = moved.finish();
   Mesh3dDecoder decoder(moved_stream, verifying());
   int mismatches = 0;
-  while (decoder.next_frame()) mismatches += !decoder.hash_matches().value_or(true);
+  while (decoder.next_frame()) {
+  }
+  for (uint32_t f = 0; f < s.frames.size(); ++f) mismatches += !decoder.hash_result(f).value_or(true);
   EXPECT_EQ(mismatches, 4);
 }
 

@@ -4,6 +4,7 @@
 
 #include "bitstream/bit_reader.h"
 #include "codecs3d/registry.h"
+#include "common/md5.h"
 #include "mesh3d/quantization.h"
 
 namespace m4mesh {
@@ -87,12 +88,15 @@ void Mesh3dDecoder::read_unit_data(size_t index, int64_t frame, Read&& read) {
 
 void Mesh3dDecoder::decode_unit(size_t index) {
   unit_.frames.clear();
+  unit_.verified.clear();
   const UnitHeader header = begin_unit(index);
   const int64_t frame = header.frame_index;
   if (index == 0 && (header.type() != UnitType::kBaseMesh || header.frame_index != 0))
     fail(ErrorKind::kStructure, index, 0, "unit_type", "the first unit must be the base mesh of frame 0");
   if (header.type() == UnitType::kFrameHash)
     fail(ErrorKind::kStructure, index, frame, "unit_type", "a hash unit for a frame the unit before it did not decode");
+  if (header.type() == UnitType::kGroupHash)
+    fail(ErrorKind::kStructure, index, frame, "unit_type", "a group hash unit before any frame is decoded");
   if (!codec_row_->uses(header.type()))
     fail(ErrorKind::kStructure, index, frame, "unit_type",
          std::string("unit_type ") + std::to_string(header.unit_type) + " (" + unit_type_name(header.type()) + ") is not used by " +
@@ -109,8 +113,30 @@ void Mesh3dDecoder::decode_unit(size_t index) {
   }
 }
 
+namespace {
+
+std::string hex(std::span<const uint8_t> bytes) {
+  static const char kHex[] = "0123456789abcdef";
+  std::string out;
+  for (uint8_t b : bytes) {
+    out += kHex[b >> 4];
+    out += kHex[b & 15];
+  }
+  return out;
+}
+
+std::array<uint8_t, 16> frame_digest(std::span<const Float3> positions) {
+  Md5 md5;
+  const std::vector<uint8_t> bytes = frame_bytes(positions);
+  md5.update(bytes.data(), bytes.size());
+  return md5.digest();
+}
+
+}  // namespace
+
 void Mesh3dDecoder::check_hash(size_t index) {
   const UnitHeader header = begin_unit(index);
+  if (header.type() == UnitType::kGroupHash) return check_group_hash(index, header);
   const uint32_t frame = header.frame_index;
   const bool covered = codec_->holds_all_frames() ? frame < decoded_.size() && decoded_[frame]
                                                   : std::find(unit_.frames.begin(), unit_.frames.end(), frame) != unit_.frames.end();
@@ -123,13 +149,40 @@ void Mesh3dDecoder::check_hash(size_t index) {
     positions = it->second;
   else
     codec_->frame(frame, positions);
-  static const char kHex[] = "0123456789abcdef";
-  std::string expected;
-  for (uint8_t b : hash.md5) {
-    expected += kHex[b >> 4];
-    expected += kHex[b & 15];
+  hash_results_[frame] = hex(hash.md5) == frame_md5(positions);
+  unit_.verified.push_back(frame);
+}
+
+void Mesh3dDecoder::check_group_hash(size_t index, const UnitHeader& header) {
+  const uint32_t first = header.frame_index;
+  GroupHash hash;
+  read_unit_data(index, first, [&](syntax::ReadIO& io) {
+    syntax::describe(io, hash);
+    const uint64_t end = uint64_t{first} + hash.group_frames;
+    if (header_.frame_count != 0 && end > header_.frame_count) io.fail(ErrorKind::kStructure, "group_frames", "a group beyond frame_count");
+    for (uint64_t f = first; f < end; ++f)
+      if (f >= decoded_.size() || !decoded_[f])
+        io.fail(ErrorKind::kStructure, "group_frames", "a group hash covering frame " + std::to_string(f) + ", which is not decoded yet");
+  });
+  if (!options_.verify) return;
+  Md5 group;
+  std::vector<Float3> positions(header_.vertex_count);
+  for (uint32_t f = first; f < first + hash.group_frames; ++f) {
+    std::array<uint8_t, 16> digest;
+    if (codec_->holds_all_frames()) {
+      codec_->frame(f, positions);
+      digest = frame_digest(positions);
+    } else {
+      digest = digests_.at(f);
+    }
+    group.update(digest.data(), digest.size());
   }
-  hash_results_[frame] = expected == frame_md5(positions);
+  const std::array<uint8_t, 16> digest = group.digest();
+  const bool match = std::equal(digest.begin(), digest.end(), hash.md5.begin());
+  for (uint32_t f = first; f < first + hash.group_frames; ++f) {
+    hash_results_[f] = match;
+    unit_.verified.push_back(f);
+  }
 }
 
 void Mesh3dDecoder::finish() {
@@ -141,6 +194,11 @@ void Mesh3dDecoder::finish() {
       throw Error(ErrorKind::kTruncated, "mesh3d_unit_start_code", f, kNoOffset,
                   "the stream ends before frame " + std::to_string(f) + " of " + std::to_string(header_.frame_count) + " is decoded");
   if (options_.trace && parts_.has_end_code) options_.trace->begin_payload("end", "mesh_object_end_code", kMeshObjectEndCode);
+}
+
+bool Mesh3dDecoder::is_hash_unit(size_t index) const {
+  const std::vector<uint8_t>& payload = parts_.units[index].payload;
+  return !payload.empty() && payload[0] < kUnitTypes && m4mesh::is_hash_unit(static_cast<UnitType>(payload[0]));
 }
 
 bool Mesh3dDecoder::next_unit() {
@@ -159,11 +217,10 @@ bool Mesh3dDecoder::next_unit() {
       }
       slot.resize(header_.vertex_count);
       codec_->frame(f, slot);
+      if (options_.verify) digests_[f] = frame_digest(slot);
     }
   }
-  while (next_unit_ < parts_.units.size() && !parts_.units[next_unit_].payload.empty() &&
-         parts_.units[next_unit_].payload[0] == static_cast<uint8_t>(UnitType::kFrameHash))
-    check_hash(next_unit_++);
+  while (next_unit_ < parts_.units.size() && is_hash_unit(next_unit_)) check_hash(next_unit_++);
   return true;
 }
 
@@ -172,9 +229,13 @@ void Mesh3dDecoder::resume() {
     if (f >= decoded_.size()) decoded_.resize(f + size_t{1});
     decoded_[f] = true;
   }
-  while (next_unit_ < parts_.units.size() && !parts_.units[next_unit_].payload.empty() &&
-         parts_.units[next_unit_].payload[0] == static_cast<uint8_t>(UnitType::kFrameHash))
-    ++next_unit_;
+  while (next_unit_ < parts_.units.size() && is_hash_unit(next_unit_)) ++next_unit_;
+}
+
+std::optional<uint32_t> Mesh3dDecoder::first_mismatch() const {
+  for (const auto& [frame, match] : hash_results_)
+    if (!match) return frame;
+  return std::nullopt;
 }
 
 std::optional<bool> Mesh3dDecoder::hash_result(uint32_t frame) const {
@@ -209,13 +270,13 @@ MeshSequence decode_mesh3d(std::span<const uint8_t> stream) {
   MeshSequence s;
   s.vertex_count = decoder.header().vertex_count;
   while (decoder.next_frame()) {
-    if (decoder.hash_matches() == false)
-      throw Error(ErrorKind::kStructure, "frame_md5", decoder.frame_index(), kNoOffset, "the decoded frame does not match its hash");
     std::vector<Vec3> frame;
     frame.reserve(decoder.positions().size());
     for (const Float3& p : decoder.positions()) frame.push_back({p[0], p[1], p[2]});
     s.frames.push_back(std::move(frame));
   }
+  if (const std::optional<uint32_t> f = decoder.first_mismatch())
+    throw Error(ErrorKind::kStructure, "frame_md5", *f, kNoOffset, "the decoded frame does not match its hash");
   s.faces = decoder.faces();
   return s;
 }

@@ -7,6 +7,7 @@
 // (next_frame()). Use one of them per decoder.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -35,6 +36,7 @@ struct DecodedUnit {
   UnitHeader header;
   uint64_t byte_offset = 0;      // of its start code
   std::vector<uint32_t> frames;  // frames it (re)decoded
+  std::vector<uint32_t> verified;  // with verify: frames the hash units after it checked
 };
 
 class Mesh3dDecoder {
@@ -66,15 +68,18 @@ class Mesh3dDecoder {
   // frame, any frame decoded so far).
   void frame(uint32_t index, std::span<Float3> positions) const { codec_->frame(index, positions); }
   // Each frame's last hash check: absent when no hash unit covered it
-  // (or verification is off), else whether it matched.
+  // (or verification is off), else whether it matched. A group hash unit
+  // checks its frames after the last of them is decoded: a frame's result
+  // may come after next_frame() handed the frame out.
   std::optional<bool> hash_result(uint32_t frame) const;
+  // The first frame whose last hash check failed.
+  std::optional<uint32_t> first_mismatch() const;
 
   // Decodes the next frame in display order, once no later unit can
   // change it; false after the last.
   bool next_frame();
   uint32_t frame_index() const { return frame_index_; }
   const std::vector<Float3>& positions() const { return positions_; }
-  std::optional<bool> hash_matches() const { return hash_result(frame_index_); }
 
  private:
   UnitHeader read_unit_header(size_t index, bool traced);
@@ -85,6 +90,8 @@ class Mesh3dDecoder {
   void read_unit_data(size_t index, int64_t frame, Read&& read);
   void decode_unit(size_t index);
   void check_hash(size_t index);
+  void check_group_hash(size_t index, const UnitHeader& header);
+  bool is_hash_unit(size_t index) const;
   void finish();
   // An error of a unit header's element (unit_type, frame_index).
   [[noreturn]] void fail(ErrorKind kind, size_t index, int64_t frame, const char* element, const std::string& message) const;
@@ -98,6 +105,9 @@ class Mesh3dDecoder {
   DecodedUnit unit_;
   std::vector<bool> decoded_;  // frames decoded at least once
   std::map<uint32_t, bool> hash_results_;
+  // With verify, the MD5 of every frame as it was decoded (a codec that
+  // holds every frame is hashed when a group hash is read).
+  std::map<uint32_t, std::array<uint8_t, 16>> digests_;
   // Display order: frames copied out of the codec until their turn.
   std::map<uint32_t, std::vector<Float3>> ready_;
   std::vector<std::vector<Float3>> spare_;

@@ -1,6 +1,10 @@
 #include "encoder/mesh3d/container_encoder.h"
 
+#include <algorithm>
+#include <map>
+
 #include "codecs3d/registry.h"
+#include "common/md5.h"
 #include "common/error.h"
 #include "mesh3d/draco_base.h"
 #include "mesh3d/quantization.h"
@@ -13,8 +17,8 @@ Error encode_error(const std::string& message) { return Error(ErrorKind::kInput,
 
 class ContainerSink final : public UnitSink {
  public:
-  ContainerSink(ContainerWriter& container, const Encode3dOptions& options, Encode3dResult& result)
-      : container_(container), options_(options), result_(result) {}
+  ContainerSink(ContainerWriter& container, const Encode3dOptions& options, Encode3dResult& result, uint32_t frame_count)
+      : container_(container), options_(options), result_(result), frame_count_(frame_count) {}
 
   void unit(UnitType type, uint32_t frame, const std::function<void(syntax::WriteIO&)>& write) override {
     if (options_.trace)
@@ -39,11 +43,31 @@ class ContainerSink final : public UnitSink {
       for (size_t v = 0; v < positions.size(); ++v) kept[v] = {positions[v][0], positions[v][1], positions[v][2]};
     }
     if (!options_.hashes) return;
-    const std::string hex = frame_md5(positions);
-    std::vector<uint8_t> digest;
-    for (size_t i = 0; i < hex.size(); i += 2) digest.push_back(static_cast<uint8_t>(std::stoul(hex.substr(i, 2), nullptr, 16)));
-    unit(UnitType::kFrameHash, frame, [&](syntax::WriteIO& io) {
-      FrameHash hash{digest};
+    Md5 md5;
+    const std::vector<uint8_t> bytes = frame_bytes(positions);
+    md5.update(bytes.data(), bytes.size());
+    if (options_.hash_group <= 1) {
+      const std::array<uint8_t, 16> digest = md5.digest();
+      unit(UnitType::kFrameHash, frame, [&](syntax::WriteIO& io) {
+        FrameHash hash{digest};
+        syntax::describe(io, hash);
+      });
+      return;
+    }
+    // The frame's group, once every frame of it is decoded (again).
+    pending_[frame] = md5.digest();
+    const uint32_t first = frame - frame % options_.hash_group;
+    const uint32_t count = std::min(options_.hash_group, frame_count_ - first);
+    for (uint32_t f = first; f < first + count; ++f)
+      if (!pending_.count(f)) return;
+    Md5 group;
+    for (uint32_t f = first; f < first + count; ++f) {
+      group.update(pending_[f].data(), pending_[f].size());
+      pending_.erase(f);
+    }
+    const std::array<uint8_t, 16> digest = group.digest();
+    unit(UnitType::kGroupHash, first, [&](syntax::WriteIO& io) {
+      GroupHash hash{count, digest};
       syntax::describe(io, hash);
     });
   }
@@ -58,7 +82,9 @@ class ContainerSink final : public UnitSink {
   ContainerWriter& container_;
   const Encode3dOptions& options_;
   Encode3dResult& result_;
+  uint32_t frame_count_;
   uint64_t units_ = 0;
+  std::map<uint32_t, std::array<uint8_t, 16>> pending_;  // digests of decoded frames whose group is not complete
 };
 
 }  // namespace
@@ -89,7 +115,7 @@ Encode3dResult encode_mesh3d(const MeshSequence& s, const Encode3dOptions& optio
     container.object(writer.take_bytes());
   }
   if (options.keep_decoded) result.decoded = {s.vertex_count, s.faces, std::vector<std::vector<Vec3>>(s.frames.size())};
-  ContainerSink sink(container, options, result);
+  ContainerSink sink(container, options, result, static_cast<uint32_t>(s.frames.size()));
   encoder->encode(s, sink);
   if (options.trace) options.trace->begin_payload("end", "mesh_object_end_code", kMeshObjectEndCode);
   result.stream = container.finish();

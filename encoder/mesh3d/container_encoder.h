@@ -1,6 +1,7 @@
 // The encoder of §12 containers: the object header and the codec's header,
-// the codec's units (codecs3d/registry.h finds the codec), a hash unit
-// after every frame the codec reports decoded, the end code.
+// the codec's units (codecs3d/registry.h finds the codec), hash units of
+// the frames the codec reports decoded (one per frame, or one per group of
+// frames once the group is decoded), the end code.
 #pragma once
 
 #include <cstdint>
@@ -18,7 +19,8 @@ namespace m4mesh {
 struct Encode3dOptions {
   std::string codec = "bfs3d";   // a name of the registry
   CodecOptionValues codec_options;  // the codec's own (codecs3d/options.h)
-  bool hashes = true;            // a decoded-frame hash unit after every decoded frame
+  bool hashes = true;            // hash units of the decoded frames
+  uint32_t hash_group = 16;      // frames per group hash unit; 1: a frame hash unit (MD5) per frame
   uint32_t frame_rate_num = 25;
   uint32_t frame_rate_den = 1;
   Trace* trace = nullptr;        // every element written, as `m4mesh trace` prints it

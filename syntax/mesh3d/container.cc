@@ -6,7 +6,7 @@
 namespace m4mesh {
 
 const char* unit_type_name(UnitType type) {
-  static const char* const kNames[kUnitTypes] = {"base mesh", "frame", "refinement", "frame hash"};
+  static const char* const kNames[kUnitTypes] = {"base mesh", "frame", "refinement", "frame hash", "group hash"};
   return static_cast<uint32_t>(type) < kUnitTypes ? kNames[static_cast<uint32_t>(type)] : "unknown";
 }
 

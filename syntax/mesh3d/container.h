@@ -13,8 +13,10 @@
 
 namespace m4mesh {
 
-enum class UnitType : uint32_t { kBaseMesh = 0, kFrame = 1, kRefinement = 2, kFrameHash = 3 };
-inline constexpr uint32_t kUnitTypes = 4;
+enum class UnitType : uint32_t { kBaseMesh = 0, kFrame = 1, kRefinement = 2, kFrameHash = 3, kGroupHash = 4 };
+inline constexpr uint32_t kUnitTypes = 5;
+// Hash units: checked by the container, never handed to a codec.
+inline bool is_hash_unit(UnitType type) { return type == UnitType::kFrameHash || type == UnitType::kGroupHash; }
 const char* unit_type_name(UnitType type);
 
 struct ObjectHeader {
@@ -44,6 +46,14 @@ struct FrameHash {
   std::span<const uint8_t> md5;
 };
 inline constexpr uint64_t kFrameMd5Bytes = 16;
+
+// A frame group hash unit's data: the MD5 of the per-frame MD5 digests of
+// frames frame_index … frame_index + group_frames − 1, concatenated in
+// display order.
+struct GroupHash {
+  uint32_t group_frames = 1;
+  std::span<const uint8_t> md5;
+};
 
 // Limits m4mesh enforces before allocating (docs/container3d.md).
 inline constexpr uint32_t kMaxVertices3d = 1u << 24;
@@ -78,6 +88,13 @@ template <class IO>
 void describe(IO& io, FrameHash& h) {
   io.require_remaining_bytes("frame_md5", kFrameMd5Bytes);
   io.section("frame_md5", kFrameMd5Bytes, h.md5);
+}
+
+template <class IO>
+void describe(IO& io, GroupHash& h) {
+  io.field_in("group_frames", 16, h.group_frames, 1, 65535);
+  io.require_remaining_bytes("group_md5", kFrameMd5Bytes);
+  io.section("group_md5", kFrameMd5Bytes, h.md5);
 }
 
 // The bit offset of the unit's data after its start code and header.
