@@ -280,33 +280,17 @@ int run_convert(const std::string& input, const std::string& output) {
 int run_progressive(const ProgressiveArgs& args) {
   const MeshSequence original = load_sequence(args.original, true);
   const std::vector<uint8_t> stream = read_file(args.stream);
-  const ContainerParts parts = split_container(stream);
-  Mesh3dDecoder decoder(stream);
-  if (!decoder.progressive())
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
-                args.stream + ": " + decoder.codec().name + " decodes frame by frame; progressive needs a progressive codec (cpca-wpt)");
   const MetricsReference reference(original);
   const uint64_t step = args.step > 0 ? args.step : std::max<uint64_t>(1, stream.size() / 40);
-  MeshSequence decoded;
-  decoded.vertex_count = decoder.header().vertex_count;
-  decoded.frames.resize(decoder.header().frame_count, std::vector<Vec3>(decoded.vertex_count));
-  std::vector<Float3> positions(decoded.vertex_count);
   // Units: the base mesh and refinements (hash units count in the bytes).
   std::printf("%6s %10s %10s %10s %12s\n", "units", "bytes", "KG %", "PSNR dB", "STED");
   uint64_t next_report = 0;
-  for (size_t units = 1; decoder.next_unit(); ++units) {
-    const size_t taken = decoder.units_taken();
-    const uint64_t received = taken < parts.units.size() ? parts.units[taken].byte_offset : stream.size();
-    if (received < next_report && taken < parts.units.size()) continue;
-    next_report = received + step;
-    for (uint32_t f = 0; f < decoded.frames.size(); ++f) {
-      decoder.frame(f, positions);
-      for (size_t v = 0; v < positions.size(); ++v) decoded.frames[f][v] = {positions[v][0], positions[v][1], positions[v][2]};
-    }
-    decoded.faces = decoder.faces();
+  for_each_prefix(stream, [&](size_t units, uint64_t bytes, const MeshSequence& decoded) {
+    if (bytes < next_report && bytes < stream.size()) return;
+    next_report = bytes + step;
     const SequenceMetrics m = reference.compare(decoded);
-    std::printf("%6zu %10llu %10.5f %10.3f %12.9f\n", units, static_cast<unsigned long long>(received), m.kg_error, m.psnr, m.sted);
-  }
+    std::printf("%6zu %10llu %10.5f %10.3f %12.9f\n", units, static_cast<unsigned long long>(bytes), m.kg_error, m.psnr, m.sted);
+  });
   return 0;
 }
 

@@ -307,16 +307,33 @@ std::vector<SuiteCase> lcc_cases(bool traced) {
   return suite;
 }
 
-// An lcc predicted frame unit of `stream` (stream mode) whose residuals are
-// 0 but every rho's, which is the largest the syntax allows.
-std::vector<uint8_t> lcc_predicted_unit(const std::vector<uint8_t>& stream, std::vector<uint8_t> unit_header) {
+// A stream's object header and codec header, read from its object payload.
+template <class Header>
+std::pair<ObjectHeader, Header> headers_of(const std::vector<uint8_t>& stream) {
   const ContainerParts parts = split_container(stream);
   BitReader reader(parts.object_payload.data(), parts.object_payload.size());
   syntax::ReadIO in(reader);
-  ObjectHeader object;
-  LccHeader header;
-  syntax::describe(in, object);
-  syntax::describe(in, header);
+  std::pair<ObjectHeader, Header> headers;
+  syntax::describe(in, headers.first);
+  syntax::describe(in, headers.second);
+  return headers;
+}
+
+// The byte of the object payload where a header field starts, found by
+// name in the description of the stream's own headers.
+template <class Header>
+size_t header_byte(const std::vector<uint8_t>& stream, const char* name) {
+  auto [object, header] = headers_of<Header>(stream);
+  syntax::CountIO count(name);
+  syntax::describe(count, object);
+  syntax::describe(count, header);
+  return static_cast<size_t>(count.offset_of_watched() / 8);
+}
+
+// An lcc predicted frame unit of `stream` (stream mode) whose residuals are
+// 0 but every rho's, which is the largest the syntax allows.
+std::vector<uint8_t> lcc_predicted_unit(const std::vector<uint8_t>& stream, std::vector<uint8_t> unit_header) {
+  const auto [object, header] = headers_of<LccHeader>(stream);
   const LccOrder order = lcc_order(decode_mesh3d(stream).faces, object.vertex_count);
   LccIndices residuals{std::vector<int32_t>(3 * order.direct.size()), std::vector<int32_t>(3 * order.steps.size())};
   for (size_t i = 1; i < residuals.steps.size(); i += 3) residuals.steps[i] = int32_t{2} << header.rh_bits;
@@ -402,19 +419,7 @@ std::vector<uint8_t> crafted_refinement(uint32_t cluster, uint32_t kind, const s
 std::vector<SuiteCase> cpca_rejected_cases(const std::vector<SuiteCase>& valid) {
   std::vector<SuiteCase> suite;
   const std::vector<uint8_t> base = find(valid, "cpca-01-wpt");
-  auto field = [&base](const char* name) {
-    const ContainerParts parts = split_container(base);
-    BitReader reader(parts.object_payload.data(), parts.object_payload.size());
-    syntax::ReadIO in(reader);
-    ObjectHeader object;
-    CpcaHeader header;
-    syntax::describe(in, object);
-    syntax::describe(in, header);
-    syntax::CountIO count(name);
-    syntax::describe(count, object);
-    syntax::describe(count, header);
-    return static_cast<size_t>(count.offset_of_watched() / 8);
-  };
+  auto field = [&base](const char* name) { return header_byte<CpcaHeader>(base, name); };
   const struct {
     const char* id;
     const char* purpose;
@@ -475,15 +480,8 @@ std::vector<SuiteCase> cpca_rejected_cases(const std::vector<SuiteCase>& valid) 
     const size_t start = refinement_unit(parts, 0);
     const uint32_t cluster = parts.units[start].payload[kClusterByte];
     // The cluster's size, from the header's cluster map.
-    BitReader reader(parts.object_payload.data(), parts.object_payload.size());
-    syntax::ReadIO in(reader);
-    ObjectHeader object;
-    CpcaHeader header;
-    syntax::describe(in, object);
-    syntax::describe(in, header);
-    std::vector<uint32_t> cluster_of(object.vertex_count);
-    syntax::EntropyReadIO<false> map(header.map_bins, header.map_raw, syntax::SectionPlace{});
-    syntax::describe_cluster_map(map, cluster_of, header.cluster_count);
+    const auto [object, header] = headers_of<CpcaHeader>(base);
+    const std::vector<uint32_t> cluster_of = syntax::read_cluster_map<false>(header, object.vertex_count, syntax::SectionPlace{});
     std::vector<std::pair<int, int32_t>> coefficient_beyond(3 * static_cast<size_t>(std::count(cluster_of.begin(), cluster_of.end(), cluster)));
     for (size_t j = 0; j < coefficient_beyond.size(); ++j) coefficient_beyond[j] = {static_cast<int>(j % 3), 0};
     coefficient_beyond.emplace_back(syntax::kCpcaCoefficientChannel, (1 << 23) + 1);
@@ -612,19 +610,7 @@ std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
                             ErrorKind::kStructure, "motion_residual", 2));
   // The lcc header's fields, found by name in the description of the stream's own headers.
   const std::vector<uint8_t> cloth = find(valid, "lcc-01-stream");
-  auto lcc_field = [&cloth](const char* name) {
-    const ContainerParts parts = split_container(cloth);
-    BitReader reader(parts.object_payload.data(), parts.object_payload.size());
-    syntax::ReadIO in(reader);
-    ObjectHeader object;
-    LccHeader header;
-    syntax::describe(in, object);
-    syntax::describe(in, header);
-    syntax::CountIO count(name);
-    syntax::describe(count, object);
-    syntax::describe(count, header);
-    return static_cast<size_t>(count.offset_of_watched() / 8);
-  };
+  auto lcc_field = [&cloth](const char* name) { return header_byte<LccHeader>(cloth, name); };
   suite.push_back(invalid("x-14-lcc-theta-bits", "theta_bits 16", {"lcc"},
                           edited(cloth, [&](ContainerParts& p) { p.object_payload[lcc_field("theta_bits")] = 16; }), ErrorKind::kOutOfRange,
                           "theta_bits", kNoPlane));

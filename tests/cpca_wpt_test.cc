@@ -29,19 +29,8 @@ Encode3dOptions cpca(CodecOptionValues values = {}) {
 
 // (bytes received, KG error) after every unit but hash units.
 std::vector<std::pair<uint64_t, double>> curve(const std::vector<uint8_t>& stream, const MeshSequence& original) {
-  const ContainerParts parts = split_container(stream);
-  Mesh3dDecoder decoder(stream);
   std::vector<std::pair<uint64_t, double>> points;
-  MeshSequence decoded = original;
-  std::vector<Float3> positions(original.vertex_count);
-  while (decoder.next_unit()) {
-    for (uint32_t f = 0; f < decoded.frames.size(); ++f) {
-      decoder.frame(f, positions);
-      for (size_t v = 0; v < positions.size(); ++v) decoded.frames[f][v] = {positions[v][0], positions[v][1], positions[v][2]};
-    }
-    const size_t taken = decoder.units_taken();
-    points.emplace_back(taken < parts.units.size() ? parts.units[taken].byte_offset : stream.size(), kg_error(original, decoded));
-  }
+  for_each_prefix(stream, [&](size_t, uint64_t bytes, const MeshSequence& decoded) { points.emplace_back(bytes, kg_error(original, decoded)); });
   return points;
 }
 

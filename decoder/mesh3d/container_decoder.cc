@@ -263,6 +263,28 @@ bool Mesh3dDecoder::next_frame() {
   }
 }
 
+void for_each_prefix(std::span<const uint8_t> stream,
+                     const std::function<void(size_t units, uint64_t bytes, const MeshSequence& decoded)>& visit) {
+  const ContainerParts parts = split_container(stream);
+  Mesh3dDecoder decoder(stream);
+  if (!decoder.progressive())
+    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
+                decoder.codec().name + " decodes frame by frame; progressive needs a progressive codec (cpca-wpt)");
+  MeshSequence decoded;
+  decoded.vertex_count = decoder.header().vertex_count;
+  decoded.frames.resize(decoder.header().frame_count, std::vector<Vec3>(decoded.vertex_count));
+  std::vector<Float3> positions(decoded.vertex_count);
+  for (size_t units = 1; decoder.next_unit(); ++units) {
+    for (uint32_t f = 0; f < decoded.frames.size(); ++f) {
+      decoder.frame(f, positions);
+      for (size_t v = 0; v < positions.size(); ++v) decoded.frames[f][v] = {positions[v][0], positions[v][1], positions[v][2]};
+    }
+    decoded.faces = decoder.faces();
+    const size_t taken = decoder.units_taken();
+    visit(units, taken < parts.units.size() ? parts.units[taken].byte_offset : stream.size(), decoded);
+  }
+}
+
 MeshSequence decode_mesh3d(std::span<const uint8_t> stream) {
   Decode3dOptions options;
   options.verify = true;

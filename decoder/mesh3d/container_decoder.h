@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -116,6 +117,13 @@ class Mesh3dDecoder {
   std::vector<Float3> positions_;
   bool finished_ = false;
 };
+
+// A progressive stream unit by unit: after every unit but hash units,
+// visit(units so far, bytes received through the unit and the hash units
+// after it, the animation decoded so far). Needs a codec that holds every
+// frame (a usage error otherwise).
+void for_each_prefix(std::span<const uint8_t> stream,
+                     const std::function<void(size_t units, uint64_t bytes, const MeshSequence& decoded)>& visit);
 
 // The whole sequence (tests, tools); fails on a hash mismatch.
 MeshSequence decode_mesh3d(std::span<const uint8_t> stream);

@@ -128,16 +128,8 @@ std::unique_ptr<CodecDecoder3d> make_cpca_wpt_decoder(const ObjectHeader& object
   const uint8_t* payload = io.reader().data();
   const syntax::SectionPlace place{"cluster_map_bins", "cluster_map_raw", 8 * static_cast<uint64_t>(header.map_bins.data() - payload),
                                    8 * static_cast<uint64_t>(header.map_raw.data() - payload), kNoPlane};
-  std::vector<uint32_t> cluster_of(object.vertex_count);
-  if (io.trace()) {
-    syntax::EntropyReadIO<true> symbols(header.map_bins, header.map_raw, place, io.trace());
-    syntax::describe_cluster_map(symbols, cluster_of, header.cluster_count);
-    symbols.finish("cluster_of_vertex");
-  } else {
-    syntax::EntropyReadIO<false> symbols(header.map_bins, header.map_raw, place);
-    syntax::describe_cluster_map(symbols, cluster_of, header.cluster_count);
-    symbols.finish("cluster_of_vertex");
-  }
+  const std::vector<uint32_t> cluster_of = io.trace() ? syntax::read_cluster_map<true>(header, object.vertex_count, place, io.trace())
+                                                      : syntax::read_cluster_map<false>(header, object.vertex_count, place);
   const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, header.cluster_count);
   for (uint32_t c = 0; c < header.cluster_count; ++c)
     if (members[c].empty())

@@ -9,8 +9,10 @@
 #include <bit>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "syntax/io.h"
+#include "syntax/mesh3d/entropy_io.h"
 #include "syntax/mesh3d/grid.h"
 #include "syntax/mesh3d/residual.h"
 
@@ -105,6 +107,16 @@ void describe_cluster_map(IO& io, std::span<uint32_t> cluster_of, uint32_t clust
     cluster = static_cast<uint32_t>(value);
     previous = value;
   }
+}
+
+// The header's cluster map read: the cluster of every vertex.
+template <bool kTraced>
+std::vector<uint32_t> read_cluster_map(const CpcaHeader& h, uint32_t vertex_count, const SectionPlace& place, Trace* trace = nullptr) {
+  std::vector<uint32_t> cluster_of(vertex_count);
+  EntropyReadIO<kTraced> symbols(h.map_bins, h.map_raw, place, trace);
+  describe_cluster_map(symbols, cluster_of, h.cluster_count);
+  symbols.finish("cluster_of_vertex");
+  return cluster_of;
 }
 
 // An operator's symbols: the basis value of each member vertex and axis
