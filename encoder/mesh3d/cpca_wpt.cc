@@ -9,7 +9,6 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
-#include <sstream>
 
 #include "codecs3d/codec_encoder.h"
 #include "codecs3d/options.h"
