@@ -6,6 +6,7 @@
 #include "common/atomic_file.h"
 #include "conformance/checker.h"
 #include "decoder/decoder.h"
+#include "decoder/mesh3d/container_decoder.h"
 #include "encoder/encoder.h"
 #include "mesh/decoded_text.h"
 
@@ -22,6 +23,12 @@ TEST(FuzzRegressions, EveryReproducerFailsCleanly) {
         encode(parse_decoded_text({reinterpret_cast<const char*>(bytes.data()), bytes.size()}, entry.path().string()));
       } catch (const Error&) {
       }
+    } else if (is_mesh3d_stream(bytes)) {
+      try {
+        decode_mesh3d(bytes);
+      } catch (const Error&) {
+      }
+      check_mesh3d(bytes);
     } else {
       try {
         decode_to_text(bytes, {}, {});
