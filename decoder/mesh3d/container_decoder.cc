@@ -115,16 +115,6 @@ void Mesh3dDecoder::decode_unit(size_t index) {
 
 namespace {
 
-std::string hex(std::span<const uint8_t> bytes) {
-  static const char kHex[] = "0123456789abcdef";
-  std::string out;
-  for (uint8_t b : bytes) {
-    out += kHex[b >> 4];
-    out += kHex[b & 15];
-  }
-  return out;
-}
-
 std::array<uint8_t, 16> frame_digest(std::span<const Float3> positions) {
   Md5 md5;
   const std::vector<uint8_t> bytes = frame_bytes(positions);
@@ -144,13 +134,16 @@ void Mesh3dDecoder::check_hash(size_t index) {
   FrameHash hash;
   read_unit_data(index, frame, [&](syntax::ReadIO& io) { syntax::describe(io, hash); });
   if (!options_.verify) return;
-  std::vector<Float3> positions(header_.vertex_count);
-  if (auto it = ready_.find(frame); it != ready_.end())
-    positions = it->second;
-  else
-    codec_->frame(frame, positions);
-  hash_results_[frame] = hex(hash.md5) == frame_md5(positions);
+  const std::array<uint8_t, 16> digest = digest_of(frame);
+  hash_results_[frame] = std::equal(digest.begin(), digest.end(), hash.md5.begin());
   unit_.verified.push_back(frame);
+}
+
+std::array<uint8_t, 16> Mesh3dDecoder::digest_of(uint32_t frame) const {
+  if (!codec_->holds_all_frames()) return digests_.at(frame);
+  std::vector<Float3> positions(header_.vertex_count);
+  codec_->frame(frame, positions);
+  return frame_digest(positions);
 }
 
 void Mesh3dDecoder::check_group_hash(size_t index, const UnitHeader& header) {
@@ -166,18 +159,10 @@ void Mesh3dDecoder::check_group_hash(size_t index, const UnitHeader& header) {
   });
   if (!options_.verify) return;
   Md5 group;
-  std::vector<Float3> positions(header_.vertex_count);
   for (uint32_t f = first; f < first + hash.group_frames; ++f) {
-    std::array<uint8_t, 16> digest;
-    if (codec_->holds_all_frames()) {
-      codec_->frame(f, positions);
-      digest = frame_digest(positions);
-    } else {
-      // A frame that failed to decode (a check carries on past it) has no digest: the group stays unchecked.
-      const auto it = digests_.find(f);
-      if (it == digests_.end()) return;
-      digest = it->second;
-    }
+    // A frame that failed to decode (a check carries on past it) has no digest: the group stays unchecked.
+    if (!codec_->holds_all_frames() && !digests_.count(f)) return;
+    const std::array<uint8_t, 16> digest = digest_of(f);
     group.update(digest.data(), digest.size());
   }
   const std::array<uint8_t, 16> digest = group.digest();

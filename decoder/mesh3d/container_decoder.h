@@ -93,6 +93,8 @@ class Mesh3dDecoder {
   void check_hash(size_t index);
   void check_group_hash(size_t index, const UnitHeader& header);
   bool is_hash_unit(size_t index) const;
+  // A decoded frame's MD5 digest (with verify).
+  std::array<uint8_t, 16> digest_of(uint32_t frame) const;
   void finish();
   // An error of a unit header's element (unit_type, frame_index).
   [[noreturn]] void fail(ErrorKind kind, size_t index, int64_t frame, const char* element, const std::string& message) const;
