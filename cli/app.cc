@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -47,8 +48,9 @@ struct EncodeArgs {
 };
 
 int run_encode(const EncodeArgs& args) {
+  refuse_overwriting(args.input, args.output);
   std::vector<MeshPlane> planes;
-  if (is_decoded_text(args.input)) {
+  if (args.input == "-" || is_decoded_text(args.input)) {
     const std::vector<uint8_t> bytes = read_file(args.input);
     planes = parse_decoded_text(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), args.input);
   } else {
@@ -83,6 +85,7 @@ struct DecodeArgs {
 };
 
 int run_decode(const DecodeArgs& args) {
+  refuse_overwriting(args.input, args.output);
   const std::vector<uint8_t> stream = read_file(args.input);
   DecoderOptions options;
   options.method = method_of(args.method);
@@ -114,10 +117,12 @@ int run_decode(const DecodeArgs& args) {
   if (file) file->commit();
   for (const syntax::Warning& w : decoder.warnings())
     std::fprintf(stderr, "warning: %s: bit %lld: %s\n", args.input.c_str(), static_cast<long long>(w.bit_offset), w.message.c_str());
+  // The MD5 goes to standard error when the decoded text fills standard output.
+  std::FILE* report = args.output == "-" ? stderr : stdout;
   if (args.md5_only)
-    std::printf("%s\n", md5.c_str());
+    std::fprintf(report, "%s\n", md5.c_str());
   else
-    std::printf("%s  %s (%lld planes)\n", md5.c_str(), args.input.c_str(), static_cast<long long>(planes));
+    std::fprintf(report, "%s  %s (%lld planes)\n", md5.c_str(), args.input.c_str(), static_cast<long long>(planes));
   return 0;
 }
 
@@ -281,7 +286,22 @@ int run_m4mesh(int argc, const char* const* argv) {
   demo_cmd->add_option("--rows", demo_options.rows, "nodes per column")->check(CLI::Range(2, 1023));
   demo_cmd->add_option("--frames", demo_options.frames, "planes")->check(CLI::Range(1, 100000));
 
-  CLI11_PARSE(app, argc, argv);
+  app.set_version_flag("--version", "m4mesh " M4MESH_VERSION);
+  // Usage errors: one line, exit status 2 (help and --version: 0).
+  if (argc >= 2 && argv[1][0] != '-' && app.get_subcommands([&](CLI::App* c) { return c->get_name() == argv[1]; }).empty()) {
+    std::string names;
+    for (const CLI::App* c : app.get_subcommands([](CLI::App*) { return true; })) names += (names.empty() ? "" : ", ") + c->get_name();
+    std::fprintf(stderr, "error: unknown command '%s' (commands: %s)\n", argv[1], names.c_str());
+    return 2;
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "error: %s (m4mesh --help)\n", e.what());
+    return 2;
+  }
   std::string current_file;
   try {
     if (*encode_cmd) return current_file = encode_args.input, run_encode(encode_args);
@@ -304,7 +324,7 @@ int run_m4mesh(int argc, const char* const* argv) {
       std::fprintf(stderr, "error: %s\n", e.what());
     else
       std::fprintf(stderr, "error: %s: %s\n", current_file.c_str(), e.what());
-    return 1;
+    return e.kind() == ErrorKind::kUsage ? 2 : 1;
   } catch (const std::exception& e) {
     // A failure of the system (file system, memory) rather than of the input.
     std::cout.flush();

@@ -33,6 +33,12 @@ void progress(const char* what, size_t done, size_t total) {
 
 }  // namespace
 
+void refuse_overwriting(const std::string& input, const std::string& output) {
+  std::error_code ignored;
+  if (input != "-" && output != "-" && fs::equivalent(input, output, ignored))
+    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, output + ": the output is the input; refusing to overwrite it");
+}
+
 void add_codec_options(CLI::App& command, Encode3dArgs& args) {
   std::string names;
   for (const Codec3d& c : codecs3d())
@@ -61,6 +67,7 @@ void add_codec_options(CLI::App& command, Encode3dArgs& args) {
 }
 
 int run_encode3d(const Encode3dArgs& args) {
+  refuse_overwriting(args.input, args.output);
   const MeshSequence sequence = load_sequence(args.input, true);
   Trace trace(std::cout);
   Encode3dOptions options;
@@ -71,8 +78,8 @@ int run_encode3d(const Encode3dArgs& args) {
   options.frame_rate_num = static_cast<uint32_t>(args.fps);
   options.trace = args.trace ? &trace : nullptr;
   options.progress = [](size_t done, size_t total) { progress("encoding", done, total); };
-  // The summary goes to standard error when the trace fills standard output.
-  std::FILE* summary = args.trace ? stderr : stdout;
+  // The summary goes to standard error when the trace or the stream fills standard output.
+  std::FILE* summary = args.trace || args.output == "-" ? stderr : stdout;
   const QualityTarget target{args.target_kg, args.target_psnr};
   const bool targeted = target.kg > 0 || target.psnr > 0;
   if (args.codec == "auto" && !targeted) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--codec auto needs --target-kg or --target-psnr");
@@ -129,6 +136,7 @@ int run_encode3d(const Encode3dArgs& args) {
 }
 
 int run_decode3d(const Decode3dArgs& args) {
+  refuse_overwriting(args.input, args.output);
   std::vector<uint8_t> stream = read_file(args.input);
   if (args.max_bytes > 0) {
     const ContainerPrefix prefix = container_prefix(split_container(stream), stream.size(), args.max_bytes);
@@ -268,6 +276,7 @@ int run_metrics(const MetricsArgs& args) {
 }
 
 int run_convert(const std::string& input, const std::string& output) {
+  refuse_overwriting(input, output);
   const MeshSequence sequence = load_sequence(input, true);
   if (fs::path(output).extension() == ".m4seq")
     write_binary_sequence(sequence, output);

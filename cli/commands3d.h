@@ -11,6 +11,9 @@ class App;
 
 namespace m4mesh {
 
+// Writing onto an input is refused before anything is read (a usage error).
+void refuse_overwriting(const std::string& input, const std::string& output);
+
 struct Encode3dArgs {
   std::string input;
   std::string output;

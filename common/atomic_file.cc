@@ -17,30 +17,54 @@ static Error io_error(const std::string& path, const std::string& what) {
 }
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+  namespace fs = std::filesystem;
+  if (path_ == "-") {
+    file_ = stdout;
+    return;
+  }
+  // A symlink (or a chain of them, even dangling) is followed to the file it names.
+  std::error_code ignored;
+  fs::path target = path_;
+  for (int hops = 0; hops < 40 && fs::is_symlink(target, ignored); ++hops) {
+    const fs::path next = fs::read_symlink(target, ignored);
+    target = next.is_absolute() ? next : target.parent_path() / next;
+  }
+  path_ = target.string();
+  const fs::file_status status = fs::status(path_, ignored);
+  if (fs::is_character_file(status) || fs::is_fifo(status)) {
+    file_ = std::fopen(path_.c_str(), "wb");
+    if (file_ == nullptr) throw io_error(path_, "cannot open");
+    return;
+  }
+  if (fs::is_directory(status)) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, path_ + ": a folder, not a file");
   temp_path_ = path_ + ".tmp." + std::to_string(::getpid());
   file_ = std::fopen(temp_path_.c_str(), "wb");
   if (file_ == nullptr) throw io_error(temp_path_, "cannot create");
 }
 
 AtomicFile::~AtomicFile() {
-  if (file_ != nullptr) {
-    std::fclose(file_);
-    std::remove(temp_path_.c_str());
-  }
+  if (file_ == nullptr || file_ == stdout) return;
+  std::fclose(file_);
+  if (!temp_path_.empty()) std::remove(temp_path_.c_str());
 }
 
 void AtomicFile::write(std::string_view data) {
   if (std::fwrite(data.data(), 1, data.size(), file_) != data.size())
-    throw io_error(temp_path_, "cannot write");
+    throw io_error(temp_path_.empty() ? path_ : temp_path_, "cannot write");
 }
 
 void AtomicFile::commit() {
   std::FILE* file = file_;
   file_ = nullptr;
-  if (std::fclose(file) != 0) {
-    std::remove(temp_path_.c_str());
-    throw io_error(temp_path_, "cannot close");
+  if (file == stdout) {
+    if (std::fflush(stdout) != 0) throw io_error("standard output", "cannot write");
+    return;
   }
+  if (std::fclose(file) != 0) {
+    if (!temp_path_.empty()) std::remove(temp_path_.c_str());
+    throw io_error(temp_path_.empty() ? path_ : temp_path_, "cannot close");
+  }
+  if (temp_path_.empty()) return;
   if (std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
     std::remove(temp_path_.c_str());
     throw io_error(path_, "cannot rename into place");
@@ -48,6 +72,13 @@ void AtomicFile::commit() {
 }
 
 std::vector<uint8_t> read_file(const std::string& path) {
+  if (path == "-") {
+    std::vector<uint8_t> bytes;
+    uint8_t buffer[65536];
+    for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, stdin)) > 0;) bytes.insert(bytes.end(), buffer, buffer + n);
+    if (std::ferror(stdin)) throw io_error("standard input", "cannot read");
+    return bytes;
+  }
   std::error_code ignored;
   if (std::filesystem::is_directory(path, ignored)) throw io_error(path, "a folder, not a file");
   std::ifstream in(path, std::ios::binary);

@@ -1,5 +1,8 @@
 // Output files that appear only when complete: data goes to a temporary
-// file beside the target, which is renamed over it on commit().
+// file beside the target, which is renamed over it on commit(). A symlink
+// is followed (its target is replaced, the link stays); a character
+// device or a FIFO is written in place, and "-" is standard output, both
+// streaming (they cannot be taken back on a failure).
 #pragma once
 
 #include <cstdio>
@@ -21,10 +24,11 @@ class AtomicFile {
 
  private:
   std::string path_;
-  std::string temp_path_;
+  std::string temp_path_;  // empty when written in place
   std::FILE* file_ = nullptr;
 };
 
+// A whole file; "-" is standard input.
 std::vector<uint8_t> read_file(const std::string& path);
 void write_file_atomically(const std::string& path, std::string_view data);
 

@@ -62,6 +62,36 @@ grep -q "decoded 1 complete planes before the error" "$work/err" || fail "--keep
 [ "$(head -2 "$work/kept.txt" | tail -1)" = "plane 0 I uniform cols=3 rows=2 dx=16 dy=16 split=2" ] || fail "--keep-going output"
 grep -qx end "$work/kept.txt" && fail "--keep-going output ends with 'end'"
 
+# Outputs and inputs as files, '-', symlinks and FIFOs; exit statuses.
+cp "$work/in.txt" "$work/same.txt"
+status=0; "$m4mesh" encode "$work/same.txt" -o "$work/same.txt" 2> "$work/err" || status=$?
+[ "$status" = 2 ] || fail "encode onto its input: exit $status"
+cmp -s "$work/in.txt" "$work/same.txt" || fail "encode onto its input changed the input"
+grep -q "^error: .*same.txt: the output is the input; refusing to overwrite it$" "$work/err" || fail "overwrite message: $(cat "$work/err")"
+"$m4mesh" decode "$work/a.m4m" -o - 2> /dev/null > "$work/stdout.txt"
+cmp -s "$work/stdout.txt" "$work/in.txt" || fail "decode -o - differs"
+"$m4mesh" decode - -o "$work/stdin.txt" < "$work/a.m4m" > /dev/null || fail "decode from standard input"
+cmp -s "$work/stdin.txt" "$work/in.txt" || fail "decode - differs"
+"$m4mesh" encode - -o "$work/stdin.m4m" < "$work/in.txt" 2> /dev/null || fail "encode from standard input"
+cmp -s "$work/stdin.m4m" "$work/a.m4m" || fail "encode - differs"
+ln -s real.txt "$work/link.txt"
+"$m4mesh" decode "$work/a.m4m" -o "$work/link.txt" > /dev/null
+[ -L "$work/link.txt" ] && cmp -s "$work/real.txt" "$work/in.txt" || fail "a symlink output is followed, not replaced"
+mkfifo "$work/fifo"
+cat "$work/fifo" > "$work/from-fifo.txt" &
+"$m4mesh" decode "$work/a.m4m" -o "$work/fifo" > /dev/null
+wait
+[ -p "$work/fifo" ] && cmp -s "$work/from-fifo.txt" "$work/in.txt" || fail "a FIFO output is written in place"
+[ -z "$(find "$work" -name '*.tmp.*')" ] || fail "temporary files left behind"
+status=0; "$m4mesh" bogus 2> "$work/err" || status=$?
+[ "$status" = 2 ] && grep -q "^error: unknown command 'bogus' (commands: encode, " "$work/err" || fail "unknown command: exit $status, $(cat "$work/err")"
+status=0; "$m4mesh" decode 2> "$work/err" || status=$?
+[ "$status" = 2 ] && [ "$(wc -l < "$work/err")" = 1 ] || fail "usage error: exit $status, $(cat "$work/err")"
+status=0; "$m4mesh" encode3d tests/data/tetra-frames -o "$work/t3.m4m" --bits 99 2> "$work/err" || status=$?
+[ "$status" = 2 ] || fail "a codec option out of range: exit $status, $(cat "$work/err")"
+"$m4mesh" --version | grep -qx "m4mesh [0-9]*\.[0-9]*\.[0-9]*" || fail "--version"
+[ "$("$m4mesh" encode3d tests/data/tetra-frames -o - 2> /dev/null | head -c 4 | od -An -tx1 | tr -d ' ')" = "000001c4" ] || fail "encode3d -o -"
+
 # Malformed encoder input names the file and line.
 sed 's/^16 3$/16 x/' "$work/in.txt" > "$work/bad.txt"
 if "$m4mesh" encode "$work/bad.txt" -o "$work/bad.m4m" 2> "$work/err"; then fail "bad input accepted"; fi
