@@ -211,6 +211,28 @@ int run_decode3d(const Decode3dArgs& args) {
   return mismatches == 0 ? 0 : 1;
 }
 
+namespace {
+
+// Per unit_type, the units of a stream and their bytes (start codes included).
+struct UnitSizes {
+  uint64_t bytes[kUnitTypes] = {};
+  uint64_t count[kUnitTypes] = {};
+};
+UnitSizes unit_sizes(const ContainerParts& parts, uint64_t stream_size) {
+  UnitSizes sizes;
+  for (size_t k = 0; k < parts.units.size(); ++k) {
+    const uint64_t end = k + 1 < parts.units.size() ? parts.units[k + 1].byte_offset : stream_size - (parts.has_end_code ? 4 : 0);
+    const uint32_t type = parts.units[k].payload.empty() ? kUnitTypes : parts.units[k].payload[0];
+    if (type < kUnitTypes) {
+      sizes.bytes[type] += end - parts.units[k].byte_offset;
+      ++sizes.count[type];
+    }
+  }
+  return sizes;
+}
+
+}  // namespace
+
 int run_info3d(const std::string& input) {
   const std::vector<uint8_t> stream = read_file(input);
   const ContainerParts parts = split_container(stream);
@@ -219,16 +241,9 @@ int run_info3d(const std::string& input) {
   std::printf("%s: %zu bytes, mesh3d container, codec_id %u (%s), %u vertices, %u faces, %u frames at %u/%u fps\n", input.c_str(),
               stream.size(), h.codec_id, decoder.codec().name.c_str(), h.vertex_count, h.face_count, h.frame_count, h.frame_rate_num,
               h.frame_rate_den);
-  uint64_t sizes[kUnitTypes] = {};
-  uint64_t counts[kUnitTypes] = {};
-  for (size_t k = 0; k < parts.units.size(); ++k) {
-    const uint64_t end = k + 1 < parts.units.size() ? parts.units[k + 1].byte_offset : stream.size() - (parts.has_end_code ? 4 : 0);
-    const uint32_t type = parts.units[k].payload.empty() ? kUnitTypes : parts.units[k].payload[0];
-    if (type < kUnitTypes) {
-      sizes[type] += end - parts.units[k].byte_offset;
-      ++counts[type];
-    }
-  }
+  const UnitSizes unit = unit_sizes(parts, stream.size());
+  const uint64_t* sizes = unit.bytes;
+  const uint64_t* counts = unit.count;
   for (uint32_t t = 0; t < kUnitTypes; ++t)
     if (counts[t])
       std::printf("  %-10s units: %llu, %llu bytes\n", unit_type_name(static_cast<UnitType>(t)), static_cast<unsigned long long>(counts[t]),
@@ -254,6 +269,35 @@ int run_trace3d(const std::string& input) {
 
 int run_metrics(const MetricsArgs& args) {
   const MeshSequence original = load_sequence(args.original, true);
+  // The stream is checked against the sequence before anything is printed.
+  std::vector<std::string> rates;
+  if (!args.stream.empty()) {
+    const std::vector<uint8_t> stream = read_file(args.stream);
+    const ObjectHeader h = Mesh3dDecoder(stream).header();
+    if (h.vertex_count != original.vertex_count || h.face_count != original.faces.size() || h.frame_count != original.frames.size())
+      throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
+                  args.stream + ": a stream of " + std::to_string(h.vertex_count) + " vertices, " + std::to_string(h.face_count) + " faces, " +
+                      std::to_string(h.frame_count) + " frames, not of the sequence compared (" + std::to_string(original.vertex_count) +
+                      ", " + std::to_string(original.faces.size()) + ", " + std::to_string(original.frames.size()) + ")");
+    const UnitSizes sizes = unit_sizes(split_container(stream), stream.size());
+    const double v = static_cast<double>(original.vertex_count), f = static_cast<double>(original.frames.size());
+    const uint64_t frame_bytes = sizes.bytes[static_cast<uint32_t>(UnitType::kFrame)];
+    const uint64_t refinement_bytes = sizes.bytes[static_cast<uint32_t>(UnitType::kRefinement)];
+    char line[160];
+    if (frame_bytes > 0 && f > 1) {
+      std::snprintf(line, sizeof line, "rate          %.4f bits/vertex/frame (frame units over vertices × (frames − 1))",
+                    8.0 * static_cast<double>(frame_bytes) / (v * (f - 1)));
+      rates.push_back(line);
+    }
+    if (refinement_bytes > 0) {
+      std::snprintf(line, sizeof line, "rate          %.4f bits/vertex/frame (refinement units over vertices × frames)",
+                    8.0 * static_cast<double>(refinement_bytes) / (v * f));
+      rates.push_back(line);
+    }
+    std::snprintf(line, sizeof line, "stream        %.4f bits/vertex/frame (the whole stream over vertices × frames)",
+                  8.0 * static_cast<double>(stream.size()) / (v * f));
+    rates.push_back(line);
+  }
   MeshSequence decoded;
   if (fs::is_regular_file(args.decoded) && is_mesh3d_stream(read_file(args.decoded)))
     decoded = decode_mesh3d(read_file(args.decoded));
@@ -267,11 +311,7 @@ int run_metrics(const MetricsArgs& args) {
   std::printf("STED spatial  %.9g\n", m.sted_spatial);
   std::printf("STED temporal %.9g\n", m.sted_temporal);
   std::printf("STED          %.9g\n", m.sted);
-  if (!args.stream.empty()) {
-    const std::vector<uint8_t> stream = read_file(args.stream);
-    std::printf("rate          %.4f bits/vertex/frame (whole stream over all frames)\n",
-                8.0 * static_cast<double>(stream.size()) / (static_cast<double>(original.vertex_count) * static_cast<double>(original.frames.size())));
-  }
+  for (const std::string& rate : rates) std::printf("%s\n", rate.c_str());
   return 0;
 }
 

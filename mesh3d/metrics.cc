@@ -107,10 +107,7 @@ MetricsReference::MetricsReference(const MeshSequence& a, const StedParams& p) :
   }
   if (F < 2) return;
   // ld from the original's first frame.
-  double ld = 0;
-  const std::vector<Vec3>& first = a.frames[0];
-  for (size_t i = 0; i < V; ++i)
-    for (size_t j = i + 1; j < V; ++j) ld = std::max(ld, distance(first[i], first[j]));
+  const double ld = diameter(a.frames[0]);
   diameter_ = ld > 0 ? ld : 1;
   temporal_edges_.resize(V * (F - 1));
   speeds_.resize(V * (F - 1));
@@ -173,6 +170,41 @@ void MetricsReference::sted(const MeshSequence& b, double& spatial, double& temp
     temporal = temporal_sum / (static_cast<double>(V) * static_cast<double>(F - 1));
   }
   combined = std::sqrt(spatial * spatial + params_.c * params_.c * temporal * temporal);
+}
+
+double diameter(std::span<const Vec3> points) {
+  if (points.empty()) return 0;
+  // A lower bound from farthest-point sweeps.
+  auto farthest = [&](const Vec3& from) {
+    size_t at = 0;
+    for (size_t i = 1; i < points.size(); ++i)
+      if (distance(from, points[i]) > distance(from, points[at])) at = i;
+    return at;
+  };
+  size_t end = 0;
+  double best = 0;
+  for (int sweep = 0; sweep < 4; ++sweep) {
+    const size_t next = farthest(points[end]);
+    best = std::max(best, distance(points[end], points[next]));
+    end = next;
+  }
+  // A point is farther than |p − c| + R from none (c the box centre, R the
+  // largest distance from c): only points whose bound exceeds the lower
+  // bound can end a longer pair, and both ends of one must.
+  Vec3 lo = points[0], hi = points[0];
+  for (const Vec3& p : points) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  const Vec3 centre{(lo.x + hi.x) / 2, (lo.y + hi.y) / 2, (lo.z + hi.z) / 2};
+  double radius = 0;
+  for (const Vec3& p : points) radius = std::max(radius, distance(p, centre));
+  std::vector<Vec3> candidates;
+  for (const Vec3& p : points)
+    if (distance(p, centre) + radius > best) candidates.push_back(p);
+  for (size_t i = 0; i < candidates.size(); ++i)
+    for (size_t j = i + 1; j < candidates.size(); ++j) best = std::max(best, distance(candidates[i], candidates[j]));
+  return best;
 }
 
 void sted(const MeshSequence& a, const MeshSequence& b, const StedParams& p, double& spatial, double& temporal, double& combined) {

@@ -52,6 +52,9 @@ SequenceMetrics compare_sequences(const MeshSequence& original, const MeshSequen
                                   const StedParams& sted = {});
 
 double kg_error(const MeshSequence& original, const MeshSequence& decoded);
+// The largest distance between two points (exact; fast unless many points
+// lie near the sphere about their box's centre that holds them all).
+double diameter(std::span<const Vec3> points);
 double psnr(const MeshSequence& original, const MeshSequence& decoded);
 // Spatial and temporal STED and their combination.
 void sted(const MeshSequence& original, const MeshSequence& decoded, const StedParams& params, double& spatial,

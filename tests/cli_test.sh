@@ -118,6 +118,13 @@ grep -q "^kept: " "$work/auto" || fail "--codec auto report: $(cat "$work/auto")
 if "$m4mesh" encode3d tests/data/tetra-frames -o "$work/none.m4m" --codec auto 2> "$work/err"; then fail "--codec auto without a target"; fi
 grep -q "needs --target-kg or --target-psnr" "$work/err" || fail "--codec auto without a target: $(cat "$work/err")"
 
+# metrics --stream: the rate as the docs define it, then the whole stream; a stream of another sequence is refused.
+"$m4mesh" metrics tests/data/tetra-frames "$work/t.m4m" --stream "$work/t.m4m" > "$work/metrics" || fail "metrics --stream"
+grep -q "^rate .* bits/vertex/frame (frame units over vertices × (frames − 1))$" "$work/metrics" || fail "metrics rate: $(cat "$work/metrics")"
+grep -q "^stream .* bits/vertex/frame (the whole stream over vertices × frames)$" "$work/metrics" || fail "metrics stream: $(cat "$work/metrics")"
+status=0; "$m4mesh" metrics tests/data/tetra-frames "$work/t.m4m" --stream "$source/conformance/mesh3d/streams/cpca-01-wpt.m4m" > "$work/metrics" 2> "$work/err" || status=$?
+[ "$status" = 1 ] && [ ! -s "$work/metrics" ] && grep -q "not of the sequence compared" "$work/err" || fail "metrics of another stream: exit $status, $(cat "$work/err")"
+
 # A progressive stream: decode3d --max-bytes takes a prefix; progressive prints the curve.
 cpca="$source/conformance/mesh3d/streams/cpca-01-wpt.m4m"
 "$m4mesh" decode3d "$cpca" -o "$work/full.m4seq" > /dev/null || fail "decode3d of a cpca stream"

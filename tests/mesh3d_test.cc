@@ -299,6 +299,30 @@ TEST(Metrics, HandComputedValues) {
   EXPECT_NEAR(m.sted, deviation, 1e-12);
 }
 
+TEST(Metrics, DiameterIsTheLargestPairwiseDistance) {
+  test::Random random(77);
+  auto brute = [](const std::vector<Vec3>& p) {
+    double best = 0;
+    for (size_t i = 0; i < p.size(); ++i)
+      for (size_t j = i + 1; j < p.size(); ++j)
+        best = std::max(best, std::sqrt((p[i].x - p[j].x) * (p[i].x - p[j].x) + (p[i].y - p[j].y) * (p[i].y - p[j].y) +
+                                        (p[i].z - p[j].z) * (p[i].z - p[j].z)));
+    return best;
+  };
+  for (int shape = 0; shape < 3; ++shape)
+    for (int trial = 0; trial < 20; ++trial) {
+      std::vector<Vec3> points;
+      for (int i = 0; i < 300; ++i) {
+        const double u = random.uniform(-1000, 1000) / 1000.0, v = random.uniform(-1000, 1000) / 1000.0, w = random.uniform(-1000, 1000) / 1000.0;
+        const double n = std::sqrt(u * u + v * v + w * w) + 1e-9;
+        points.push_back(shape == 0 ? Vec3{u, v, w} : shape == 1 ? Vec3{u / n, v / n, w / n} : Vec3{3 * u, v, 0});  // cube, sphere, flat
+      }
+      EXPECT_DOUBLE_EQ(diameter(points), brute(points)) << shape;
+    }
+  EXPECT_EQ(diameter(std::vector<Vec3>{}), 0);
+  EXPECT_EQ(diameter(std::vector<Vec3>{{1, 2, 3}}), 0);
+}
+
 TEST(Metrics, TemporalStedByHand) {
   // Two frames; vertex 0 moves by 0.5 in the original and by 0.6 in the decoded; ld = 5.
   const MeshSequence a = one_triangle({{{0, 0, 0}, {3, 0, 0}, {0, 4, 0}}, {{0.5, 0, 0}, {3, 0, 0}, {0, 4, 0}}});
