@@ -2,6 +2,7 @@
 #include "cli/app.h"
 
 #include <CLI/CLI.hpp>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -58,7 +59,7 @@ int run_encode(const EncodeArgs& args) {
     std::vector<ObjFrame> frames;
     for (size_t k = 0; k < files.size(); ++k) {
       frames.push_back(read_obj(files[k]));
-      if (files.size() > 20 && (k + 1) % 20 == 0) std::fprintf(stderr, "read %zu/%zu frames\r", k + 1, files.size());
+      if (files.size() > 20 && (k + 1) % 20 == 0 && isatty(fileno(stderr))) std::fprintf(stderr, "\rread %zu/%zu frames", k + 1, files.size());
     }
     planes = planes_from_frames(frames, files, args.scale).planes;
   }
@@ -87,6 +88,12 @@ struct DecodeArgs {
 int run_decode(const DecodeArgs& args) {
   refuse_overwriting(args.input, args.output);
   const std::vector<uint8_t> stream = read_file(args.input);
+  if (is_mesh3d_stream(stream)) {
+    if (args.output.empty() || args.md5_only || args.keep_going)
+      throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
+                  args.input + ": a mesh3d stream: m4mesh decode3d " + args.input + " -o FOLDER/, FILE.m4seq or FILE.f32");
+    return run_decode3d({args.input, args.output});
+  }
   DecoderOptions options;
   options.method = method_of(args.method);
   Decoder decoder(stream, options);

@@ -33,6 +33,28 @@ void progress(const char* what, size_t done, size_t total) {
 
 }  // namespace
 
+namespace {
+
+// A sequence output's form from its name: a folder of OBJ frames (no
+// extension, or a trailing '/'), .m4seq or .f32; anything else is a usage
+// error, not a folder.
+enum class SequenceOutput { kObjFolder, kM4seq, kF32 };
+SequenceOutput sequence_output(const std::string& output, bool f32_allowed) {
+  if (output == "-")
+    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "frames go to a folder or a file, not to standard output: -o FOLDER/, FILE.m4seq" +
+                                                                 std::string(f32_allowed ? " or FILE.f32" : ""));
+  const fs::path path(output);
+  const std::string extension = path.filename().empty() ? "" : path.extension().string();
+  if (extension.empty()) return SequenceOutput::kObjFolder;
+  if (extension == ".m4seq") return SequenceOutput::kM4seq;
+  if (extension == ".f32" && f32_allowed) return SequenceOutput::kF32;
+  throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
+              output + ": unknown output format '" + extension + "' (a folder of OBJ frames, .m4seq" + (f32_allowed ? ", .f32" : "") +
+                  "; a folder whose name holds a dot takes a trailing '/')");
+}
+
+}  // namespace
+
 void refuse_overwriting(const std::string& input, const std::string& output) {
   std::error_code ignored;
   if (input != "-" && output != "-" && fs::equivalent(input, output, ignored))
@@ -68,6 +90,9 @@ void add_codec_options(CLI::App& command, Encode3dArgs& args) {
 
 int run_encode3d(const Encode3dArgs& args) {
   refuse_overwriting(args.input, args.output);
+  if (fs::is_regular_file(args.input) && is_mesh3d_stream(read_file(args.input)))
+    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
+                args.input + ": a mesh3d stream; encode3d takes frames (m4mesh decode3d turns a stream into frames)");
   const MeshSequence sequence = load_sequence(args.input, true);
   Trace trace(std::cout);
   Encode3dOptions options;
@@ -148,9 +173,9 @@ int run_decode3d(const Decode3dArgs& args) {
   }
   Decode3dOptions options;
   options.verify = args.verify;
+  const SequenceOutput form = sequence_output(args.output, true);
   Mesh3dDecoder decoder(stream, options);
-  const std::string extension = fs::path(args.output).extension().string();
-  const bool to_folder = extension != ".m4seq" && extension != ".f32";
+  const bool to_folder = form == SequenceOutput::kObjFolder;
   // Frames go to a temporary folder beside the output (a trailing '/' is
   // not part of the name) that becomes the output only when all decoded.
   fs::path folder = fs::path(args.output).lexically_normal();
@@ -182,7 +207,7 @@ int run_decode3d(const Decode3dArgs& args) {
   if (to_folder) {
     fs::remove(folder);
     fs::rename(temporary, folder);
-  } else if (extension == ".f32") {
+  } else if (form == SequenceOutput::kF32) {
     std::string bytes;
     for (const std::vector<Vec3>& frame : sequence.frames) {
       std::vector<Float3> positions;
@@ -317,8 +342,9 @@ int run_metrics(const MetricsArgs& args) {
 
 int run_convert(const std::string& input, const std::string& output) {
   refuse_overwriting(input, output);
+  const SequenceOutput form = sequence_output(output, false);
   const MeshSequence sequence = load_sequence(input, true);
-  if (fs::path(output).extension() == ".m4seq")
+  if (form == SequenceOutput::kM4seq)
     write_binary_sequence(sequence, output);
   else
     write_obj_frames(sequence, output);

@@ -118,6 +118,17 @@ grep -q "^kept: " "$work/auto" || fail "--codec auto report: $(cat "$work/auto")
 if "$m4mesh" encode3d tests/data/tetra-frames -o "$work/none.m4m" --codec auto 2> "$work/err"; then fail "--codec auto without a target"; fi
 grep -q "needs --target-kg or --target-psnr" "$work/err" || fail "--codec auto without a target: $(cat "$work/err")"
 
+# One command family: decode takes a 3D stream to a sequence file; unknown output formats and streams given as frames are usage errors.
+bfs="$source/conformance/mesh3d/streams/bfs3d-01-average.m4m"
+"$m4mesh" decode "$bfs" -o "$work/via-decode.m4seq" > /dev/null || fail "decode of a 3D stream"
+"$m4mesh" decode3d "$bfs" -o "$work/via-decode3d.m4seq" > /dev/null
+cmp -s "$work/via-decode.m4seq" "$work/via-decode3d.m4seq" || fail "decode and decode3d of a 3D stream differ"
+for args in "decode $bfs" "decode3d $bfs -o $work/x.ply" "encode3d $bfs -o $work/y.m4m" "convert tests/data/tetra-frames $work/z.f32"; do
+  status=0; "$m4mesh" $args > /dev/null 2> "$work/err" || status=$?
+  [ "$status" = 2 ] && [ "$(wc -l < "$work/err")" = 1 ] || fail "$args: exit $status, $(cat "$work/err")"
+done
+[ ! -e "$work/x.ply" ] && [ ! -e "$work/y.m4m" ] && [ ! -e "$work/z.f32" ] || fail "a refused command left an output"
+
 # metrics --stream: the rate as the docs define it, then the whole stream; a stream of another sequence is refused.
 "$m4mesh" metrics tests/data/tetra-frames "$work/t.m4m" --stream "$work/t.m4m" > "$work/metrics" || fail "metrics --stream"
 grep -q "^rate .* bits/vertex/frame (frame units over vertices × (frames − 1))$" "$work/metrics" || fail "metrics rate: $(cat "$work/metrics")"
