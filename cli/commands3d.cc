@@ -56,9 +56,14 @@ SequenceOutput sequence_output(const std::string& output, bool f32_allowed) {
 }  // namespace
 
 void refuse_overwriting(const std::string& input, const std::string& output) {
+  if (input == "-" || output == "-") return;
+  // A PC2 cache reads the OBJ beside it for the faces: an input too.
+  std::vector<fs::path> inputs{input};
+  if (fs::path(input).extension() == ".pc2") inputs.push_back(fs::path(input).replace_extension(".obj"));
   std::error_code ignored;
-  if (input != "-" && output != "-" && fs::equivalent(input, output, ignored))
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, output + ": the output is the input; refusing to overwrite it");
+  for (const fs::path& in : inputs)
+    if (fs::equivalent(in, output, ignored))
+      throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, output + ": the output is the input; refusing to overwrite it");
 }
 
 void add_codec_options(CLI::App& command, Encode3dArgs& args) {
