@@ -54,7 +54,11 @@ int run_encode(const EncodeArgs& args) {
     const std::vector<uint8_t> bytes = read_file(args.input);
     planes = parse_decoded_text(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), args.input);
   } else {
-    const std::vector<std::string> files = frame_files(args.input);
+    std::vector<std::string> unused;
+    const std::vector<std::string> files = frame_files(args.input, ".obj", &unused);
+    if (!unused.empty())
+      std::fprintf(stderr, "warning: %s: %zu files not used (not .obj frames), %s%s\n", args.input.c_str(), unused.size(), unused.front().c_str(),
+                   unused.size() > 1 ? ", …" : "");
     std::vector<ObjFrame> frames;
     for (size_t k = 0; k < files.size(); ++k) {
       frames.push_back(read_obj(files[k]));

@@ -1,6 +1,7 @@
 #include "mesh/obj.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -91,7 +92,7 @@ ObjFrame read_obj(const std::string& path) {
   return frame;
 }
 
-std::vector<std::string> frame_files(const std::string& folder_or_pattern, const std::string& extension) {
+std::vector<std::string> frame_files(const std::string& folder_or_pattern, const std::string& extension, std::vector<std::string>* unused) {
   namespace fs = std::filesystem;
   fs::path folder;
   std::string prefix, suffix = extension;
@@ -107,18 +108,29 @@ std::vector<std::string> frame_files(const std::string& folder_or_pattern, const
   } else {
     throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, folder_or_pattern + ": no such file, folder or pattern");
   }
+  auto lower = [](std::string text) {
+    for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return text;
+  };
   std::vector<fs::path> files;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    if (!entry.is_regular_file()) continue;
     const std::string name = entry.path().filename().string();
-    if (entry.is_regular_file() && name.size() >= prefix.size() + suffix.size() && name.starts_with(prefix) &&
-        name.ends_with(suffix))
+    if (name.size() >= prefix.size() + suffix.size() && name.starts_with(prefix) && lower(name).ends_with(lower(suffix)))
       files.push_back(entry.path());
+    else if (unused && prefix.empty() && suffix == extension)
+      unused->push_back(entry.path().string());
   }
   if (files.empty()) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, folder_or_pattern + ": no frame files");
   std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
     const int64_t na = frame_number(a), nb = frame_number(b);
     return na != nb ? na < nb : a < b;
   });
+  for (size_t k = 1; k < files.size(); ++k)
+    if (frame_number(files[k]) >= 0 && frame_number(files[k]) == frame_number(files[k - 1]))
+      throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
+                  files[k - 1].string() + " and " + files[k].string() + " are both frame " + std::to_string(frame_number(files[k])));
+  if (unused) std::sort(unused->begin(), unused->end());
   std::vector<std::string> paths;
   for (const fs::path& p : files) paths.push_back(p.string());
   return paths;

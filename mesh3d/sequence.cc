@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -167,14 +168,24 @@ MeshSequence load_sequence(const std::string& path, bool progress) {
   namespace fs = std::filesystem;
   if (fs::is_regular_file(path) && fs::path(path).extension() == ".m4seq") return read_binary_sequence(path);
   if (fs::is_regular_file(path) && fs::path(path).extension() == ".pc2") return read_pc2_sequence(path);
+  // A folder of OFF frames when it holds any (OBJ frames otherwise).
+  auto is_off = [](const fs::path& p) {
+    std::string e = p.extension().string();
+    for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return e == ".off";
+  };
   std::string extension = ".obj";
   if (fs::is_directory(path)) {
     for (const auto& entry : fs::directory_iterator(path))
-      if (entry.path().extension() == ".off") extension = ".off";
-  } else if (fs::path(path).extension() == ".off") {
+      if (is_off(entry.path())) extension = ".off";
+  } else if (is_off(path)) {
     extension = ".off";
   }
-  const std::vector<std::string> files = frame_files(path, extension);
+  std::vector<std::string> unused;
+  const std::vector<std::string> files = frame_files(path, extension, &unused);
+  if (progress && !unused.empty())
+    std::fprintf(stderr, "warning: %s: %zu files not used (not %s frames), %s%s\n", path.c_str(), unused.size(), extension.c_str(),
+                 unused.front().c_str(), unused.size() > 1 ? ", …" : "");
   const bool report_progress = progress && files.size() > 10 && isatty(fileno(stderr));
   MeshSequence sequence;
   for (size_t k = 0; k < files.size(); ++k) {

@@ -129,6 +129,12 @@ for args in "decode $bfs" "decode3d $bfs -o $work/x.ply" "encode3d $bfs -o $work
 done
 [ ! -e "$work/x.ply" ] && [ ! -e "$work/y.m4m" ] && [ ! -e "$work/z.f32" ] || fail "a refused command left an output"
 
+# Input folders: files that are not frames are named in a warning.
+cp -r tests/data/tetra-frames "$work/frames-in"
+echo "not a frame" > "$work/frames-in/notes.txt"
+"$m4mesh" encode3d "$work/frames-in" -o "$work/warned.m4m" > /dev/null 2> "$work/err" || fail "encode3d with a stray file"
+grep -q "^warning: .*frames-in: 1 files not used (not .obj frames), .*notes.txt$" "$work/err" || fail "unused-file warning: $(cat "$work/err")"
+
 # metrics --stream: the rate as the docs define it, then the whole stream; a stream of another sequence is refused.
 "$m4mesh" metrics tests/data/tetra-frames "$work/t.m4m" --stream "$work/t.m4m" > "$work/metrics" || fail "metrics --stream"
 grep -q "^rate .* bits/vertex/frame (frame units over vertices × (frames − 1))$" "$work/metrics" || fail "metrics rate: $(cat "$work/metrics")"

@@ -55,6 +55,24 @@ TEST(ObjInput, FramesAreReadInNumericOrder) {
   EXPECT_TRUE(files[1].ends_with("f2.obj"));
   EXPECT_TRUE(files[2].ends_with("f10.obj"));
   EXPECT_EQ(frame_files(dir.path() + "/f1*.obj").size(), 2u);
+  std::vector<std::string> unused;
+  frame_files(dir.path(), ".obj", &unused);
+  ASSERT_EQ(unused.size(), 1u);
+  EXPECT_TRUE(unused[0].ends_with("notes.txt"));
+}
+
+TEST(ObjInput, ExtensionsInAnyCaseAndNoFrameTwice) {
+  TempDir dir;
+  dir.write("1.OBJ", grid_obj(0));
+  dir.write("2.obj", grid_obj(0.0625));
+  EXPECT_EQ(frame_files(dir.path()).size(), 2u);
+  dir.write("0001.obj", grid_obj(0));
+  try {
+    frame_files(dir.path());
+    FAIL() << "1.OBJ and 0001.obj are both frame 1";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("are both frame 1"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ObjInput, AGridBecomesAUniformMesh) {
