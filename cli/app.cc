@@ -95,7 +95,10 @@ int run_decode(const DecodeArgs& args) {
     if (args.output.empty() || args.md5_only || args.keep_going)
       throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
                   args.input + ": a mesh3d stream: m4mesh decode3d " + args.input + " -o FOLDER/, FILE.m4seq or FILE.f32");
-    return run_decode3d({args.input, args.output});
+    Decode3dArgs three_d;
+    three_d.input = args.input;
+    three_d.output = args.output;
+    return run_decode3d(three_d);
   }
   DecoderOptions options;
   options.method = method_of(args.method);
@@ -269,6 +272,9 @@ int run_m4mesh(int argc, const char* const* argv) {
   decode3d_cmd->add_option("input", decode3d_args.input, "mesh3d stream")->required();
   decode3d_cmd->add_option("-o,--output", decode3d_args.output, "a folder for OBJ frames, a .m4seq file, or a .f32 file (every frame's binary32 x, y, z, little-endian)")->required();
   decode3d_cmd->add_flag("--verify", decode3d_args.verify, "check every frame against its hash unit: OK or MISMATCH per frame");
+  decode3d_cmd->add_option("--frames", decode3d_args.frames, "write frames A … B only (A:B, A: or :B; every frame is still decoded)");
+  decode3d_cmd->add_flag("--keep-going", decode3d_args.keep_going,
+                         "on an error, keep the frames decoded before it (and say how many; the exit status is still 1)");
   decode3d_cmd->add_option("--max-bytes", decode3d_args.max_bytes,
                            "decode only the longest prefix of at most this many bytes that ends at a unit boundary (a progressive stream)");
 

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -165,8 +166,31 @@ int run_encode3d(const Encode3dArgs& args) {
   return 0;
 }
 
+namespace {
+
+// --frames A:B (both included; "A:" to the end, ":B" from the first).
+std::pair<uint32_t, uint32_t> frame_range(const std::string& text) {
+  if (text.empty()) return {0, UINT32_MAX};
+  const size_t colon = text.find(':');
+  auto number = [&](const std::string& part, uint32_t otherwise) {
+    if (part.empty()) return otherwise;
+    uint32_t value = 0;
+    const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), value);
+    if (error != std::errc() || end != part.data() + part.size())
+      throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--frames " + text + ": frames A:B, A: or :B");
+    return value;
+  };
+  if (colon == std::string::npos) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--frames " + text + ": frames A:B, A: or :B");
+  const std::pair<uint32_t, uint32_t> range{number(text.substr(0, colon), 0), number(text.substr(colon + 1), UINT32_MAX)};
+  if (range.first > range.second) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--frames " + text + ": A is after B");
+  return range;
+}
+
+}  // namespace
+
 int run_decode3d(const Decode3dArgs& args) {
   refuse_overwriting(args.input, args.output);
+  const auto [first, last] = frame_range(args.frames);
   std::vector<uint8_t> stream = read_file(args.input);
   if (args.max_bytes > 0) {
     const ContainerPrefix prefix = container_prefix(split_container(stream), stream.size(), args.max_bytes);
@@ -191,9 +215,13 @@ int run_decode3d(const Decode3dArgs& args) {
   fs::remove_all(temporary);
   MeshSequence sequence;
   sequence.vertex_count = decoder.header().vertex_count;
-  int mismatches = 0, unchecked = 0;
+  std::vector<uint32_t> written;
+  bool failed = false;
   try {
+    // Every frame is decoded (a group hash may cover frames after the range); those in the range are written.
     while (decoder.next_frame()) {
+      progress("decoding", decoder.frame_index() + 1, decoder.header().frame_count);
+      if (decoder.frame_index() < first || decoder.frame_index() > last) continue;
       std::vector<Vec3> frame;
       frame.reserve(decoder.positions().size());
       for (const Float3& p : decoder.positions()) frame.push_back({p[0], p[1], p[2]});
@@ -203,12 +231,24 @@ int run_decode3d(const Decode3dArgs& args) {
       } else {
         sequence.frames.push_back(std::move(frame));
       }
-      progress("decoding", decoder.frame_index() + 1, decoder.header().frame_count);
+      written.push_back(decoder.frame_index());
     }
+  } catch (const Error& e) {
+    if (!args.keep_going) {
+      fs::remove_all(temporary);
+      throw;
+    }
+    std::fprintf(stderr, "error: %s: %s\n", args.input.c_str(), e.what());
+    failed = true;
   } catch (...) {
     fs::remove_all(temporary);
     throw;
   }
+  if (written.empty() && failed) {
+    std::fprintf(stderr, "%s: no frame decoded before the error; nothing written\n", args.input.c_str());
+    return 1;
+  }
+  if (written.empty()) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--frames " + args.frames + ": the stream has no frame there");
   if (to_folder) {
     fs::remove(folder);
     fs::rename(temporary, folder);
@@ -225,10 +265,15 @@ int run_decode3d(const Decode3dArgs& args) {
     sequence.faces = decoder.faces();
     write_binary_sequence(sequence, args.output);
   }
-  std::printf("%s: %u frames of %u vertices%s\n", args.output.c_str(), decoder.frame_index() + 1, decoder.header().vertex_count,
+  if (failed) {
+    std::fprintf(stderr, "%s: decoded %zu frames before the error; %s holds them\n", args.input.c_str(), written.size(), args.output.c_str());
+    return 1;
+  }
+  std::printf("%s: %zu frames of %u vertices%s\n", args.output.c_str(), written.size(), decoder.header().vertex_count,
               decoder.has_end_code() || args.max_bytes > 0 ? "" : " (warning: no end code)");
   // Hash units may check a group of frames after its last: the results come at the end.
-  for (uint32_t f = 0; f <= decoder.frame_index(); ++f) {
+  int mismatches = 0, unchecked = 0;
+  for (uint32_t f : written) {
     const std::optional<bool> ok = decoder.hash_result(f);
     if (args.verify) std::printf("frame %u: %s\n", f, !ok ? "NO HASH" : *ok ? "OK" : "MISMATCH");
     mismatches += ok.has_value() && !*ok;

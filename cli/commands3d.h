@@ -35,6 +35,8 @@ struct Decode3dArgs {
   std::string output;  // a folder of OBJ frames, or a .m4seq file
   bool verify = false;
   uint64_t max_bytes = 0;  // decode only the longest prefix of at most this many bytes (0: all)
+  std::string frames;      // "A:B": write frames A … B only ("A:", ":B"); empty: all
+  bool keep_going = false;  // on an error, keep the frames decoded before it
 };
 int run_decode3d(const Decode3dArgs& args);
 

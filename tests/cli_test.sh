@@ -129,6 +129,16 @@ for args in "decode $bfs" "decode3d $bfs -o $work/x.ply" "encode3d $bfs -o $work
 done
 [ ! -e "$work/x.ply" ] && [ ! -e "$work/y.m4m" ] && [ ! -e "$work/z.f32" ] || fail "a refused command left an output"
 
+# decode3d --frames writes a range; --keep-going keeps the frames before an error.
+"$m4mesh" decode3d "$bfs" --frames 2:3 -o "$work/range.f32" > /dev/null || fail "decode3d --frames"
+"$m4mesh" decode3d "$bfs" -o "$work/all.f32" > /dev/null
+frame_bytes=$(( $(stat -c %s "$work/all.f32") / 6 ))
+cmp -s "$work/range.f32" <(tail -c +$(( 2 * frame_bytes + 1 )) "$work/all.f32" | head -c $(( 2 * frame_bytes ))) || fail "decode3d --frames 2:3 differs"
+status=0; "$m4mesh" decode3d "$source/conformance/mesh3d/streams/x-06-frame-cut.m4m" --keep-going -o "$work/kept.m4seq" > /dev/null 2> "$work/err" || status=$?
+[ "$status" = 1 ] && [ -f "$work/kept.m4seq" ] && grep -q "decoded 1 frames before the error" "$work/err" || fail "decode3d --keep-going: exit $status, $(cat "$work/err")"
+status=0; "$m4mesh" decode3d "$source/conformance/mesh3d/streams/x-06-frame-cut.m4m" -o "$work/not-kept.m4seq" 2> /dev/null || status=$?
+[ "$status" = 1 ] && [ ! -e "$work/not-kept.m4seq" ] || fail "decode3d without --keep-going left an output"
+
 # Input folders: files that are not frames are named in a warning.
 cp -r tests/data/tetra-frames "$work/frames-in"
 echo "not a frame" > "$work/frames-in/notes.txt"
