@@ -1,5 +1,7 @@
 #include "conformance/suite3d.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -135,7 +137,11 @@ MeshSequence waving_flag(int frames, int n, bool collapse) {
 std::string rest_shape_file(const MeshSequence& flag) {
   MeshSequence rest = flag;
   rest.frames.resize(1);
-  const std::string path = (std::filesystem::temp_directory_path() / "m4mesh-suite3d-rest-shape.m4seq").string();
+  // A name of this process's own: suites are built by tests running side by side.
+  static int made = 0;
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("m4mesh-suite3d-rest-shape-" + std::to_string(::getpid()) + "-" + std::to_string(made++) + ".m4seq"))
+                               .string();
   write_binary_sequence(rest, path);
   return path;
 }
