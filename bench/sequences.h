@@ -15,17 +15,23 @@ namespace fs = std::filesystem;
 
 inline const fs::path kData = fs::path(M4MESH_SOURCE_DIR) / ".." / "shared" / "data";
 
-// A rippling 128×128 sheet, when the real data is absent.
-inline MeshSequence synthetic() {
+// An n × n grid of vertices in row-major order, two triangles per cell; no frames.
+inline MeshSequence grid_sheet(int n) {
   MeshSequence s;
-  const int n = 128;
-  s.vertex_count = n * n;
+  s.vertex_count = static_cast<uint32_t>(n * n);
   for (int y = 0; y + 1 < n; ++y)
     for (int x = 0; x + 1 < n; ++x) {
       const NodeIndex a = static_cast<NodeIndex>(y * n + x);
-      s.faces.push_back({{a, a + 1, a + n + 1}});
-      s.faces.push_back({{a, a + n + 1, a + n}});
+      s.faces.push_back({{a, a + 1, a + static_cast<NodeIndex>(n) + 1}});
+      s.faces.push_back({{a, a + static_cast<NodeIndex>(n) + 1, a + static_cast<NodeIndex>(n)}});
     }
+  return s;
+}
+
+// A rippling 128×128 sheet, when the real data is absent.
+inline MeshSequence synthetic() {
+  const int n = 128;
+  MeshSequence s = grid_sheet(n);
   for (int f = 0; f < 40; ++f) {
     std::vector<Vec3> frame;
     for (int y = 0; y < n; ++y)
