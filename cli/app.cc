@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -191,7 +192,21 @@ int run_check(const std::string& input) {
   return report.conformant() ? 0 : 1;
 }
 
-int run_conform(const ConformOptions& options) {
+// The suite when none is given: ./conformance, else the one installed
+// beside the tool (PREFIX/share/m4mesh/conformance for PREFIX/bin/m4mesh),
+// else the source tree's around a build folder (SOURCE/BUILD/cli/m4mesh).
+std::string default_suite() {
+  namespace fs = std::filesystem;
+  std::error_code ignored;
+  const fs::path tool = fs::read_symlink("/proc/self/exe", ignored).parent_path();
+  for (const fs::path& folder : {fs::path("conformance"), tool / ".." / "share" / "m4mesh" / "conformance", tool / ".." / ".." / "conformance"})
+    if (fs::exists(folder / "manifest.json", ignored)) return folder.lexically_normal().string();
+  throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
+              "no conformance suite in ./conformance or beside the tool: m4mesh conform FOLDER (the folder holding manifest.json)");
+}
+
+int run_conform(ConformOptions options) {
+  if (options.suite.empty()) options.suite = default_suite();
   const ConformResult result = run_conformance(options, std::cout);
   return result.failed == 0 ? 0 : 1;
 }
@@ -244,9 +259,9 @@ int run_m4mesh(int argc, const char* const* argv) {
   check_cmd->add_option("input", check_input, "mesh stream")->required();
 
   ConformOptions conform_options;
-  conform_options.suite = M4MESH_CONFORMANCE_DIR;
   CLI::App* conform_cmd = app.add_subcommand("conform", "Run the conformance suite through m4mesh's or another decoder");
-  conform_cmd->add_option("suite", conform_options.suite, "suite folder holding manifest.json")->capture_default_str();
+  conform_cmd->add_option("suite", conform_options.suite,
+                          "suite folder holding manifest.json (default: ./conformance, or the suite installed beside the tool)");
   conform_cmd->add_option("--decoder", conform_options.decoder_command,
                           "external decoder command: {in} stream, {out} output to write (§9 text; for the 3D suite every frame's "
                           "binary32 bytes, as decode3d -o FILE.f32), {method} 1 or 2");

@@ -92,6 +92,17 @@ status=0; "$m4mesh" encode3d tests/data/tetra-frames -o "$work/t3.m4m" --bits 99
 "$m4mesh" --version | grep -qx "m4mesh [0-9]*\.[0-9]*\.[0-9]*" || fail "--version"
 [ "$("$m4mesh" encode3d tests/data/tetra-frames -o - 2> /dev/null | head -c 4 | od -An -tx1 | tr -d ' ')" = "000001c4" ] || fail "encode3d -o -"
 
+# conform finds ./conformance, or the source tree's around the build folder; elsewhere it asks for the folder.
+"$m4mesh" conform > "$work/conform" || fail "conform from the source folder"
+grep -q " passed, 0 failed" "$work/conform" || fail "conform report: $(tail -1 "$work/conform")"
+status=0; (cd "$work" && "$m4mesh" conform > /dev/null 2> "$work/err") || status=$?
+m4mesh_dir="$(cd "$(dirname "$m4mesh")/../.." && pwd)"
+if [ -f "$m4mesh_dir/conformance/manifest.json" ]; then
+  [ "$status" = 0 ] || fail "conform beside a build folder of the source tree: exit $status, $(cat "$work/err")"
+else
+  [ "$status" = 2 ] && grep -q "no conformance suite" "$work/err" || fail "conform without a suite: exit $status, $(cat "$work/err")"
+fi
+
 # Malformed encoder input names the file and line.
 sed 's/^16 3$/16 x/' "$work/in.txt" > "$work/bad.txt"
 if "$m4mesh" encode "$work/bad.txt" -o "$work/bad.m4m" 2> "$work/err"; then fail "bad input accepted"; fi
