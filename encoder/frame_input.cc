@@ -92,6 +92,12 @@ FrameInput planes_from_frames(const std::vector<ObjFrame>& frames, const std::ve
     for (NodeIndex i = 0; i < count; ++i) input.input_vertex.push_back(i);
   } else {
     intra.info.kind = MeshKind::kDelaunay;
+    // A Delaunay I-plane's nodes lie in 0 … 1023: name the OBJ vertex that does not.
+    for (size_t i = 0; i < count; ++i)
+      if (first_points[i].x < 0 || first_points[i].x > 1023 || first_points[i].y < 0 || first_points[i].y > 1023)
+        throw input_error(names[0], i < first.vertex_lines.size() ? first.vertex_lines[i] : 0,
+                          "vertex " + std::to_string(i + 1) + " lies at (" + std::to_string(first_points[i].x) + ", " +
+                              std::to_string(first_points[i].y) + ") half pixels, outside 0 … 1023 (a Delaunay I-plane's nodes; see --scale)");
     input.input_vertex = boundary_loop(first.faces, names[0]);
     if (input.input_vertex.size() > 1023) throw input_error(names[0], 0, "more than 1023 boundary vertices");
     intra.info.boundary = static_cast<uint32_t>(input.input_vertex.size());

@@ -79,6 +79,7 @@ ObjFrame read_obj(const std::string& path) {
       if (tokens.size() < 4) throw input_error(path, line, "a vertex needs x y z");
       frame.vertices.push_back({parse_number(tokens[1], path, line), parse_number(tokens[2], path, line),
                                 parse_number(tokens[3], path, line)});
+      frame.vertex_lines.push_back(line);
     } else if (tokens[0] == "f") {
       if (tokens.size() < 4) throw input_error(path, line, "a face needs at least 3 vertices");
       std::vector<NodeIndex> polygon;

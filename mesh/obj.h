@@ -11,7 +11,8 @@ namespace m4mesh {
 
 struct ObjFrame {
   std::vector<std::array<double, 3>> vertices;
-  std::vector<Triangle> faces;  // 0-based; polygons are fanned into triangles
+  std::vector<Triangle> faces;          // 0-based; polygons are fanned into triangles
+  std::vector<uint64_t> vertex_lines;   // the line of each vertex, for errors
 };
 
 // Errors name the file and line: malformed records, non-finite numbers,

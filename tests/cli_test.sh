@@ -103,6 +103,11 @@ else
   [ "$status" = 2 ] && grep -q "no conformance suite" "$work/err" || fail "conform without a suite: exit $status, $(cat "$work/err")"
 fi
 
+# An OBJ vertex outside a Delaunay I-plane's 0 … 1023 is named with its file, line and vertex number.
+printf 'v 0 0 0\nv 10 0 0\nv 0 10 0\nv 5000 5 0\nf 1 2 4\nf 1 4 3\n' > "$work/far.obj"
+if "$m4mesh" encode "$work/far.obj" -o "$work/far.m4m" 2> "$work/err"; then fail "a vertex beyond 1023 accepted"; fi
+grep -q "^error: .*far.obj:4: vertex 4 lies at (5000, 5) half pixels, outside 0 … 1023" "$work/err" || fail "far vertex: $(cat "$work/err")"
+
 # Malformed encoder input names the file and line.
 sed 's/^16 3$/16 x/' "$work/in.txt" > "$work/bad.txt"
 if "$m4mesh" encode "$work/bad.txt" -o "$work/bad.m4m" 2> "$work/err"; then fail "bad input accepted"; fi
