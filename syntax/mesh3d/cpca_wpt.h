@@ -91,22 +91,34 @@ void describe(IO& io, CpcaRefinement& r) {
   io.tail_section("raw", r.raw);
 }
 
+// values[j] as the difference to values[j − stride] (0 for the first
+// stride), on channel first_channel + j mod stride, each within [lo, hi]
+// (else out-of-range, named names.element).
+template <class IO, int kChannels>
+void describe_differences(IO& io, ResidualCoder<kChannels>& coder, std::span<int32_t> values, int first_channel, size_t stride, int64_t lo,
+                          int64_t hi, const ResidualNames& names, const char* beyond) {
+  std::array<int64_t, 3> previous{};
+  for (size_t j = 0; j < values.size(); ++j) {
+    const size_t lane = j % stride;
+    int32_t difference = 0;
+    if constexpr (!IO::kReading) difference = static_cast<int32_t>(int64_t{values[j]} - previous[lane]);
+    coder.describe(io, first_channel + static_cast<int>(lane), difference, names);
+    const int64_t value = previous[lane] + difference;
+    if (value < lo || value > hi) io.fail(ErrorKind::kOutOfRange, names.element, beyond);
+    values[j] = static_cast<int32_t>(value);
+    previous[lane] = value;
+  }
+}
+
 // The cluster of every vertex in index order, each coded as the difference
 // to the previous vertex's (the first to 0); every cluster below
 // cluster_count.
 template <class IO>
 void describe_cluster_map(IO& io, std::span<uint32_t> cluster_of, uint32_t cluster_count) {
   ResidualCoder<1> coder;
-  int64_t previous = 0;
-  for (uint32_t& cluster : cluster_of) {
-    int32_t difference = 0;
-    if constexpr (!IO::kReading) difference = static_cast<int32_t>(int64_t{cluster} - previous);
-    coder.describe(io, 0, difference, kCpcaCluster);
-    const int64_t value = previous + difference;
-    if (value < 0 || value >= cluster_count) io.fail(ErrorKind::kOutOfRange, "cluster_of_vertex", "a cluster beyond cluster_count");
-    cluster = static_cast<uint32_t>(value);
-    previous = value;
-  }
+  // A signed view of the same values (the aliasing rules allow it; clusters are below 255).
+  const std::span<int32_t> clusters(reinterpret_cast<int32_t*>(cluster_of.data()), cluster_of.size());
+  describe_differences(io, coder, clusters, 0, 1, 0, int64_t{cluster_count} - 1, kCpcaCluster, "a cluster beyond cluster_count");
 }
 
 // The header's cluster map read: the cluster of every vertex.
@@ -128,28 +140,9 @@ std::vector<uint32_t> read_cluster_map(const CpcaHeader& h, uint32_t vertex_coun
 template <class IO>
 void describe_operator(IO& io, std::span<int32_t> basis, std::span<int32_t> coefficients) {
   ResidualCoder<4> coder;
-  std::array<int64_t, 3> previous{};
-  for (size_t j = 0; j < basis.size(); ++j) {
-    const size_t axis = j % 3;
-    int32_t difference = 0;
-    if constexpr (!IO::kReading) difference = static_cast<int32_t>(int64_t{basis[j]} - previous[axis]);
-    coder.describe(io, static_cast<int>(axis), difference, kCpcaBasis);
-    const int64_t value = previous[axis] + difference;
-    if (value < -kCpcaMaxBasis || value > kCpcaMaxBasis) io.fail(ErrorKind::kOutOfRange, "basis", "a basis value beyond ±2^15");
-    basis[j] = static_cast<int32_t>(value);
-    previous[axis] = value;
-  }
-  int64_t before = 0;
-  for (int32_t& coefficient : coefficients) {
-    int32_t difference = 0;
-    if constexpr (!IO::kReading) difference = static_cast<int32_t>(int64_t{coefficient} - before);
-    coder.describe(io, kCpcaCoefficientChannel, difference, kCpcaCoefficient);
-    const int64_t value = before + difference;
-    if (value < -kCpcaMaxCoefficient || value > kCpcaMaxCoefficient)
-      io.fail(ErrorKind::kOutOfRange, "coefficient", "a coefficient beyond ±2^23");
-    coefficient = static_cast<int32_t>(value);
-    before = value;
-  }
+  describe_differences(io, coder, basis, 0, 3, -kCpcaMaxBasis, kCpcaMaxBasis, kCpcaBasis, "a basis value beyond ±2^15");
+  describe_differences(io, coder, coefficients, kCpcaCoefficientChannel, 1, -kCpcaMaxCoefficient, kCpcaMaxCoefficient, kCpcaCoefficient,
+                       "a coefficient beyond ±2^23");
 }
 
 // A start's symbols: the cluster's translation of every frame and axis
@@ -159,17 +152,8 @@ void describe_operator(IO& io, std::span<int32_t> basis, std::span<int32_t> coef
 template <class IO>
 void describe_start(IO& io, std::span<int32_t> translation) {
   ResidualCoder<3> coder;
-  std::array<int64_t, 3> previous{};
-  for (size_t j = 0; j < translation.size(); ++j) {
-    const size_t axis = j % 3;
-    int32_t difference = 0;
-    if constexpr (!IO::kReading) difference = static_cast<int32_t>(int64_t{translation[j]} - previous[axis]);
-    coder.describe(io, static_cast<int>(axis), difference, kCpcaTranslation);
-    const int64_t value = previous[axis] + difference;
-    if (value < -kCpcaMaxTranslation || value > kCpcaMaxTranslation) io.fail(ErrorKind::kOutOfRange, "translation", "a translation beyond ±2^29");
-    translation[j] = static_cast<int32_t>(value);
-    previous[axis] = value;
-  }
+  describe_differences(io, coder, translation, 0, 3, -kCpcaMaxTranslation, kCpcaMaxTranslation, kCpcaTranslation,
+                       "a translation beyond ±2^29");
 }
 
 }  // namespace syntax
