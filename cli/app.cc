@@ -276,6 +276,8 @@ int run_m4mesh(int argc, const char* const* argv) {
   encode3d_cmd->add_option("-o,--output", encode3d_args.output, "output stream (.m4m)")->required();
   add_codec_options(*encode3d_cmd, encode3d_args);
   encode3d_cmd->add_flag("--no-hash", encode3d_args.no_hash, "leave out the decoded-frame hash units");
+  encode3d_cmd->add_flag("--reorder", encode3d_args.reorder,
+                         "number the vertices in coding order, not the input's: a smaller base mesh (decoders say so)");
   encode3d_cmd->add_option("--hash-group", encode3d_args.hash_group, "frames per group hash unit (1: an MD5 hash unit per frame)")
       ->check(CLI::Range(1, 65535))
       ->capture_default_str();
@@ -285,7 +287,7 @@ int run_m4mesh(int argc, const char* const* argv) {
   Decode3dArgs decode3d_args;
   CLI::App* decode3d_cmd = app.add_subcommand("decode3d", "Decode a mesh3d stream into OBJ frames or a .m4seq file");
   decode3d_cmd->add_option("input", decode3d_args.input, "mesh3d stream")->required();
-  decode3d_cmd->add_option("-o,--output", decode3d_args.output, "a folder for OBJ frames, a .m4seq file, or a .f32 file (every frame's binary32 x, y, z, little-endian)")->required();
+  decode3d_cmd->add_option("-o,--output", decode3d_args.output, "a folder for OBJ frames, a .m4seq file, a .pc2 file (with the faces and frame 0 in the .obj beside it), or a .f32 file (every frame's binary32 x, y, z, little-endian)")->required();
   decode3d_cmd->add_flag("--verify", decode3d_args.verify, "check every frame against its hash unit: OK or MISMATCH per frame");
   decode3d_cmd->add_option("--frames", decode3d_args.frames, "write frames A … B only (A:B, A: or :B; every frame is still decoded)");
   decode3d_cmd->add_flag("--keep-going", decode3d_args.keep_going,
@@ -305,11 +307,14 @@ int run_m4mesh(int argc, const char* const* argv) {
   metrics_cmd->add_option("original", metrics_args.original, "original frames or .m4seq")->required();
   metrics_cmd->add_option("decoded", metrics_args.decoded, "decoded frames, .m4seq, or a mesh3d stream")->required();
   metrics_cmd->add_option("--stream", metrics_args.stream, "the stream, to report bits per vertex per frame");
+  metrics_cmd->add_flag("--json", metrics_args.json, "print one JSON object");
+  metrics_cmd->add_flag("--csv", metrics_args.csv, "print CSV: a header and one row (with --per-frame, one row per frame)");
+  metrics_cmd->add_flag("--per-frame", metrics_args.per_frame, "RMSE, max error and PSNR of every frame too");
 
   std::string convert_input, convert_output;
-  CLI::App* convert_cmd = app.add_subcommand("convert", "Convert a frame sequence to .m4seq or to OBJ frames");
+  CLI::App* convert_cmd = app.add_subcommand("convert", "Convert a frame sequence to .m4seq, .pc2 (+ .obj) or OBJ frames");
   convert_cmd->add_option("input", convert_input, "frames or .m4seq")->required();
-  convert_cmd->add_option("output", convert_output, "a .m4seq file or a folder")->required();
+  convert_cmd->add_option("output", convert_output, "a .m4seq file, a .pc2 file (with its .obj) or a folder")->required();
 
   DemoOptions demo_options;
   CLI::App* demo_cmd = app.add_subcommand("demo", "Encode and decode an embedded waving-flag animation, check bit-exactness");

@@ -3,7 +3,9 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <charconv>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -18,6 +20,7 @@
 #include "encoder/mesh3d/quality_target.h"
 #include "mesh3d/metrics.h"
 #include "mesh3d/quantization.h"
+#include "syntax/mesh3d/base_mesh.h"
 
 namespace m4mesh {
 
@@ -37,34 +40,48 @@ void progress(const char* what, size_t done, size_t total) {
 namespace {
 
 // A sequence output's form from its name: a folder of OBJ frames (no
-// extension, or a trailing '/'), .m4seq or .f32; anything else is a usage
-// error, not a folder.
-enum class SequenceOutput { kObjFolder, kM4seq, kF32 };
+// extension, or a trailing '/'), .m4seq, .pc2 (with its .obj) or .f32;
+// anything else is a usage error, not a folder.
+enum class SequenceOutput { kObjFolder, kM4seq, kPc2, kF32 };
 SequenceOutput sequence_output(const std::string& output, bool f32_allowed) {
   if (output == "-")
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "frames go to a folder or a file, not to standard output: -o FOLDER/, FILE.m4seq" +
-                                                                 std::string(f32_allowed ? " or FILE.f32" : ""));
+    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
+                "frames go to a folder or a file, not to standard output: -o FOLDER/, FILE.m4seq, FILE.pc2" +
+                    std::string(f32_allowed ? " or FILE.f32" : ""));
   const fs::path path(output);
   const std::string extension = path.filename().empty() ? "" : path.extension().string();
   if (extension.empty()) return SequenceOutput::kObjFolder;
   if (extension == ".m4seq") return SequenceOutput::kM4seq;
+  if (extension == ".pc2") return SequenceOutput::kPc2;
   if (extension == ".f32" && f32_allowed) return SequenceOutput::kF32;
   throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
-              output + ": unknown output format '" + extension + "' (a folder of OBJ frames, .m4seq" + (f32_allowed ? ", .f32" : "") +
+              output + ": unknown output format '" + extension + "' (a folder of OBJ frames, .m4seq, .pc2" + (f32_allowed ? ", .f32" : "") +
                   "; a folder whose name holds a dot takes a trailing '/')");
+}
+
+// A whole sequence to a .m4seq or .pc2 file.
+void write_sequence_file(SequenceOutput form, const MeshSequence& sequence, const std::string& output) {
+  if (form == SequenceOutput::kPc2)
+    write_pc2_sequence(sequence, output);
+  else
+    write_binary_sequence(sequence, output);
 }
 
 }  // namespace
 
 void refuse_overwriting(const std::string& input, const std::string& output) {
   if (input == "-" || output == "-") return;
-  // A PC2 cache reads the OBJ beside it for the faces: an input too.
-  std::vector<fs::path> inputs{input};
-  if (fs::path(input).extension() == ".pc2") inputs.push_back(fs::path(input).replace_extension(".obj"));
+  // A PC2 cache comes with the OBJ beside it (its faces), as an input and as an output.
+  auto with_faces = [](const std::string& path) {
+    std::vector<fs::path> paths{path};
+    if (fs::path(path).extension() == ".pc2") paths.push_back(pc2_faces_path(path));
+    return paths;
+  };
   std::error_code ignored;
-  for (const fs::path& in : inputs)
-    if (fs::equivalent(in, output, ignored))
-      throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, output + ": the output is the input; refusing to overwrite it");
+  for (const fs::path& in : with_faces(input))
+    for (const fs::path& out : with_faces(output))
+      if (fs::equivalent(in, out, ignored))
+        throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, out.string() + ": the output is the input; refusing to overwrite it");
 }
 
 void add_codec_options(CLI::App& command, Encode3dArgs& args) {
@@ -106,6 +123,7 @@ int run_encode3d(const Encode3dArgs& args) {
   options.codec_options = args.codec_options;
   options.hashes = !args.no_hash;
   options.hash_group = args.hash_group;
+  options.reorder = args.reorder;
   options.frame_rate_num = static_cast<uint32_t>(args.fps);
   options.trace = args.trace ? &trace : nullptr;
   options.progress = [](size_t done, size_t total) { progress("encoding", done, total); };
@@ -204,6 +222,9 @@ int run_decode3d(const Decode3dArgs& args) {
   options.verify = args.verify;
   const SequenceOutput form = sequence_output(args.output, true);
   Mesh3dDecoder decoder(stream, options);
+  if (decoder.vertex_order() == kVertexOrderCoding)
+    std::fprintf(stderr, "note: %s numbers its vertices in coding order (encode3d --reorder), not necessarily the input's\n",
+                 args.input.c_str());
   const bool to_folder = form == SequenceOutput::kObjFolder;
   // Frames go to a temporary folder beside the output (a trailing '/' is
   // not part of the name) that becomes the output only when all decoded.
@@ -263,7 +284,7 @@ int run_decode3d(const Decode3dArgs& args) {
     write_file_atomically(args.output, bytes);
   } else {
     sequence.faces = decoder.faces();
-    write_binary_sequence(sequence, args.output);
+    write_sequence_file(form, sequence, args.output);
   }
   if (failed) {
     std::fprintf(stderr, "%s: decoded %zu frames before the error; %s holds them\n", args.input.c_str(), written.size(), args.output.c_str());
@@ -308,6 +329,14 @@ UnitSizes unit_sizes(const ContainerParts& parts, uint64_t stream_size) {
 
 }  // namespace
 
+const char* vertex_order_name(uint32_t order) {
+  switch (order) {
+    case kVertexOrderCoding: return "coding order (the input's only if it was in coding order: encode3d --reorder)";
+    case kVertexOrderFromGate: return "the input's (sent, predicted by the gate's vertex)";
+    default: return "the input's (sent, predicted by parallelograms of input numbers)";
+  }
+}
+
 int run_info3d(const std::string& input) {
   const std::vector<uint8_t> stream = read_file(input);
   const ContainerParts parts = split_container(stream);
@@ -316,6 +345,8 @@ int run_info3d(const std::string& input) {
   std::printf("%s: %zu bytes, mesh3d container, codec_id %u (%s), %u vertices, %u faces, %u frames at %u/%u fps\n", input.c_str(),
               stream.size(), h.codec_id, decoder.codec().name.c_str(), h.vertex_count, h.face_count, h.frame_count, h.frame_rate_num,
               h.frame_rate_den);
+  if (const std::optional<uint32_t> order = decoder.vertex_order())
+    std::printf("  vertex order: %s\n", vertex_order_name(*order));
   const UnitSizes unit = unit_sizes(parts, stream.size());
   const uint64_t* sizes = unit.bytes;
   const uint64_t* counts = unit.count;
@@ -343,9 +374,15 @@ int run_trace3d(const std::string& input) {
 }
 
 int run_metrics(const MetricsArgs& args) {
+  if (args.json && args.csv) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--json or --csv, not both");
   const MeshSequence original = load_sequence(args.original, true);
   // The stream is checked against the sequence before anything is printed.
-  std::vector<std::string> rates;
+  struct Rate {
+    const char* key;
+    const char* label;
+    double value;
+  };
+  std::vector<Rate> rates;
   if (!args.stream.empty()) {
     const std::vector<uint8_t> stream = read_file(args.stream);
     const ObjectHeader h = Mesh3dDecoder(stream).header();
@@ -358,35 +395,68 @@ int run_metrics(const MetricsArgs& args) {
     const double v = static_cast<double>(original.vertex_count), f = static_cast<double>(original.frames.size());
     const uint64_t frame_bytes = sizes.bytes[static_cast<uint32_t>(UnitType::kFrame)];
     const uint64_t refinement_bytes = sizes.bytes[static_cast<uint32_t>(UnitType::kRefinement)];
-    char line[160];
-    if (frame_bytes > 0 && f > 1) {
-      std::snprintf(line, sizeof line, "rate          %.4f bits/vertex/frame (frame units over vertices × (frames − 1))",
-                    8.0 * static_cast<double>(frame_bytes) / (v * (f - 1)));
-      rates.push_back(line);
-    }
-    if (refinement_bytes > 0) {
-      std::snprintf(line, sizeof line, "rate          %.4f bits/vertex/frame (refinement units over vertices × frames)",
-                    8.0 * static_cast<double>(refinement_bytes) / (v * f));
-      rates.push_back(line);
-    }
-    std::snprintf(line, sizeof line, "stream        %.4f bits/vertex/frame (the whole stream over vertices × frames)",
-                  8.0 * static_cast<double>(stream.size()) / (v * f));
-    rates.push_back(line);
+    if (frame_bytes > 0 && f > 1)
+      rates.push_back({"frame_rate_bpvf", "(frame units over vertices × (frames − 1))", 8.0 * static_cast<double>(frame_bytes) / (v * (f - 1))});
+    if (refinement_bytes > 0)
+      rates.push_back({"refinement_rate_bpvf", "(refinement units over vertices × frames)", 8.0 * static_cast<double>(refinement_bytes) / (v * f)});
+    rates.push_back({"stream_rate_bpvf", "(the whole stream over vertices × frames)", 8.0 * static_cast<double>(stream.size()) / (v * f)});
   }
   MeshSequence decoded;
   if (fs::is_regular_file(args.decoded) && is_mesh3d_stream(read_file(args.decoded)))
     decoded = decode_mesh3d(read_file(args.decoded));
   else
     decoded = load_sequence(args.decoded, true);
+  for (const std::string& warning : metrics_warnings(original)) std::fprintf(stderr, "warning: %s\n", warning.c_str());
   const SequenceMetrics m = compare_sequences(original, decoded);
-  std::printf("KG error      %.6f %%\n", m.kg_error);
-  std::printf("RMSE          %.9g\n", m.rmse);
-  std::printf("max error     %.9g\n", m.max_error);
-  std::printf("PSNR          %.3f dB\n", m.psnr);
-  std::printf("STED spatial  %.9g\n", m.sted_spatial);
-  std::printf("STED temporal %.9g\n", m.sted_temporal);
-  std::printf("STED          %.9g\n", m.sted);
-  for (const std::string& rate : rates) std::printf("%s\n", rate.c_str());
+  const std::vector<FrameMetrics> frames = args.per_frame ? per_frame_metrics(original, decoded) : std::vector<FrameMetrics>{};
+  const std::pair<const char*, double> figures[] = {{"kg_error_percent", m.kg_error}, {"rmse", m.rmse},
+                                                    {"max_error", m.max_error},       {"psnr_db", m.psnr},
+                                                    {"sted_spatial", m.sted_spatial}, {"sted_temporal", m.sted_temporal},
+                                                    {"sted", m.sted}};
+  auto number = [](double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", x);
+    return std::string(text);
+  };
+  if (args.json) {
+    // JSON has no infinity: a lossless frame's PSNR is null.
+    auto value = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+    nlohmann::json out;
+    for (const auto& [key, figure] : figures) out[key] = value(figure);
+    for (const Rate& r : rates) out[r.key] = r.value;
+    if (args.per_frame)
+      for (size_t f = 0; f < frames.size(); ++f)
+        out["frames"].push_back({{"frame", f}, {"rmse", frames[f].rmse}, {"max_error", frames[f].max_error}, {"psnr_db", value(frames[f].psnr)}});
+    std::printf("%s\n", out.dump(2).c_str());
+  } else if (args.csv && args.per_frame) {
+    std::printf("frame,rmse,max_error,psnr_db\n");
+    for (size_t f = 0; f < frames.size(); ++f)
+      std::printf("%zu,%.9g,%.9g,%.9g\n", f, frames[f].rmse, frames[f].max_error, frames[f].psnr);
+  } else if (args.csv) {
+    std::string header, row;
+    for (const auto& [key, value] : figures) {
+      header += std::string(header.empty() ? "" : ",") + key;
+      row += std::string(row.empty() ? "" : ",") + number(value);
+    }
+    for (const Rate& r : rates) {
+      header += std::string(",") + r.key;
+      row += "," + number(r.value);
+    }
+    std::printf("%s\n%s\n", header.c_str(), row.c_str());
+  } else {
+    std::printf("KG error      %.6f %%\n", m.kg_error);
+    std::printf("RMSE          %.9g\n", m.rmse);
+    std::printf("max error     %.9g\n", m.max_error);
+    std::printf("PSNR          %.3f dB\n", m.psnr);
+    std::printf("STED spatial  %.9g\n", m.sted_spatial);
+    std::printf("STED temporal %.9g\n", m.sted_temporal);
+    std::printf("STED          %.9g\n", m.sted);
+    for (const Rate& r : rates) std::printf("%-13s %.4f bits/vertex/frame %s\n", r.key[0] == 's' ? "stream" : "rate", r.value, r.label);
+    if (args.per_frame) {
+      std::printf("%6s %16s %16s %10s\n", "frame", "RMSE", "max error", "PSNR dB");
+      for (size_t f = 0; f < frames.size(); ++f) std::printf("%6zu %16.9g %16.9g %10.3f\n", f, frames[f].rmse, frames[f].max_error, frames[f].psnr);
+    }
+  }
   return 0;
 }
 
@@ -394,10 +464,10 @@ int run_convert(const std::string& input, const std::string& output) {
   refuse_overwriting(input, output);
   const SequenceOutput form = sequence_output(output, false);
   const MeshSequence sequence = load_sequence(input, true);
-  if (form == SequenceOutput::kM4seq)
-    write_binary_sequence(sequence, output);
-  else
+  if (form == SequenceOutput::kObjFolder)
     write_obj_frames(sequence, output);
+  else
+    write_sequence_file(form, sequence, output);
   std::printf("%s: %zu frames of %u vertices\n", output.c_str(), sequence.frames.size(), sequence.vertex_count);
   return 0;
 }

@@ -21,6 +21,7 @@ struct Encode3dArgs {
   CodecOptionValues codec_options;  // only those given
   double target_kg = 0, target_psnr = 0;  // a quality target (0: none)
   bool no_hash = false;
+  bool reorder = false;      // vertices renumbered in coding order
   uint32_t hash_group = 16;  // frames per group hash unit; 1: a frame hash unit per frame
   int fps = 25;
   bool trace = false;
@@ -48,6 +49,9 @@ struct MetricsArgs {
   std::string original;
   std::string decoded;
   std::string stream;  // optional: for bits per vertex per frame
+  bool json = false;   // one JSON object on standard output
+  bool csv = false;    // CSV on standard output
+  bool per_frame = false;  // RMSE, max error and PSNR of every frame too
 };
 int run_metrics(const MetricsArgs& args);
 

@@ -13,7 +13,7 @@
 
 #include "common/point3.h"
 #include "mesh/topology.h"
-#include "mesh3d/draco_base.h"
+#include "mesh3d/base_mesh.h"
 #include "syntax/io.h"
 #include "syntax/mesh3d/container.h"
 
@@ -46,8 +46,8 @@ class CodecDecoder3d {
   Trace* trace_ = nullptr;
 };
 
-// A base mesh unit's data: the faces and the first frame's grid positions,
-// checked against the object header's counts (docs/container3d.md).
-BaseMesh read_base_mesh(syntax::ReadIO& io, const ObjectHeader& header);
+// A base mesh unit's data: the faces and the first frame's grid positions
+// (docs/base_mesh.md), its symbols traced when `trace` is set.
+BaseMesh read_base_mesh(syntax::ReadIO& io, const ObjectHeader& header, Trace* trace);
 
 }  // namespace m4mesh

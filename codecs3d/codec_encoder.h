@@ -47,7 +47,8 @@ class CodecEncoder3d {
   virtual std::vector<CodecStatistic> statistics() const { return {}; }
 };
 
-// A base mesh unit's data: the faces and grid positions as a Draco mesh.
+// A base mesh unit's data (docs/base_mesh.md): the faces, which must be in
+// coding order (the container encoder puts them so), and the grid positions.
 void write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions);
 
 }  // namespace m4mesh

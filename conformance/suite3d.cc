@@ -537,6 +537,66 @@ std::vector<SuiteCase> cpca_rejected_cases(const std::vector<SuiteCase>& valid) 
   return suite;
 }
 
+// What real meshes have, in one sequence numbered out of any traversal's
+// order: a closed octahedron, an open sheet, two fans sharing a vertex, a
+// third face on an edge, a degenerate face, a repeated face, a face turned
+// the wrong way, and vertices in no face; coordinates small integers.
+MeshSequence awkward_mesh(int frames) {
+  MeshSequence s;
+  std::vector<Vec3> base;
+  const int n = 4;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) base.push_back({static_cast<double>(x), static_cast<double>(y), 0});
+  for (int y = 0; y + 1 < n; ++y)
+    for (int x = 0; x + 1 < n; ++x) {
+      const NodeIndex a = static_cast<NodeIndex>(y * n + x);
+      s.faces.push_back({{a, a + 1, a + n + 1}});
+      s.faces.push_back({{a, a + n + 1, a + n}});
+    }
+  const NodeIndex o = static_cast<NodeIndex>(base.size());
+  for (const Vec3& p : {Vec3{6, 0, 0}, Vec3{8, 0, 0}, Vec3{7, 1, 0}, Vec3{7, -1, 0}, Vec3{7, 0, 1}, Vec3{7, 0, -1}}) base.push_back(p);
+  const NodeIndex octahedron[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (const auto& f : octahedron) s.faces.push_back({{o + f[0], o + f[1], o + f[2]}});
+  const NodeIndex h = static_cast<NodeIndex>(base.size());
+  for (const Vec3& p : {Vec3{0, 5, 0}, Vec3{1, 5, 0}, Vec3{1, 6, 0}, Vec3{0, 6, 0}, Vec3{-1, 5, 0}, Vec3{-1, 4, 0}, Vec3{0, 4, 0},
+                        Vec3{1, 7, 1}, Vec3{0, 2, 2}, Vec3{9, 9, 9}, Vec3{9, 8, 9}, Vec3{2, 6, 1}, Vec3{-3, -3, 0}, Vec3{5, 5, 5}})
+    base.push_back(p);
+  const std::array<NodeIndex, 3> extra[] = {{h, h + 1, h + 2}, {h, h + 2, h + 3}, {h, h + 4, h + 5}, {h, h + 5, h + 6},  // fans at h
+                                            {0, 1, h + 8},                                                                  // edge 0 → 1 again
+                                            {h + 9, h + 9, h + 10},                                                         // degenerate
+                                            {h, h + 1, h + 2},                                                              // repeated
+                                            {h + 2, h + 1, h + 11},                                                         // consistent
+                                            {h + 1, h + 2, h + 7}};                                                         // the wrong way
+  for (const auto& f : extra) s.faces.push_back({f});
+  // Numbered backwards, so that the input order is not the coding order.
+  s.vertex_count = static_cast<uint32_t>(base.size());
+  for (Triangle& t : s.faces)
+    for (NodeIndex& v : t.v) v = s.vertex_count - 1 - v;
+  std::reverse(base.begin(), base.end());
+  for (int f = 0; f < frames; ++f) {
+    std::vector<Vec3> frame = base;
+    for (Vec3& p : frame) p = {p.x + 0.25 * f * p.y, p.y - 0.125 * f, p.z + 0.5 * f * p.x * p.y};
+    s.frames.push_back(std::move(frame));
+  }
+  return s;
+}
+
+// The base mesh: every kind of face and vertex, in the input order and in
+// coding order; a row-major sheet, whose input numbers parallelograms predict.
+std::vector<SuiteCase> base_mesh_cases(bool traced) {
+  std::vector<SuiteCase> suite;
+  const MeshSequence awkward = awkward_mesh(4);
+  suite.push_back(valid("base-01-awkward", "components, borders, vertices in no face, non-manifold, degenerate and repeated faces",
+                        {"base-mesh"}, awkward, Encode3dOptions{}, traced));
+  Encode3dOptions reorder;
+  reorder.reorder = true;
+  suite.push_back(valid("base-02-coding-order", "the same mesh numbered in coding order (encode3d --reorder)", {"base-mesh"}, awkward,
+                        reorder, traced));
+  suite.push_back(valid("base-03-row-major", "a row-major sheet: input numbers predicted by parallelograms", {"base-mesh"},
+                        rotating_sheet(3), Encode3dOptions{}, traced));
+  return suite;
+}
+
 // Group hash units: after frame-by-frame units, and after frames decoded
 // out of display order.
 std::vector<SuiteCase> group_hash_cases(bool traced) {
@@ -695,6 +755,29 @@ std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
   suite.push_back(invalid("x-45-group-md5-cut", "a group hash unit one byte short", {"container-hash"},
                           edited(grouped, [&](ContainerParts& p) { first_group(p).payload.pop_back(); }), ErrorKind::kOutOfRange,
                           "group_md5", 0));
+  // The base mesh unit's fields: vertex_order, loose_face_count, arithmetic_bytes, then the sections.
+  const std::vector<uint8_t> awkward = find(valid, "base-01-awkward");
+  const size_t order_byte = (syntax::unit_data_offset() - 32) / 8;
+  auto base_unit = [](ContainerParts& p) -> std::vector<uint8_t>& { return unit_of(p, UnitType::kBaseMesh, 0).payload; };
+  suite.push_back(invalid("x-46-base-vertex-order", "vertex_order 3", {"base-mesh"},
+                          edited(awkward, [&](ContainerParts& p) { base_unit(p)[order_byte] = 3; }), ErrorKind::kOutOfRange,
+                          "vertex_order", 0));
+  suite.push_back(invalid("x-47-base-loose-faces", "more loose faces than faces", {"base-mesh"},
+                          edited(awkward, [&](ContainerParts& p) { base_unit(p)[order_byte + 1] = 0x40; }), ErrorKind::kOutOfRange,
+                          "loose_face_count", 0));
+  suite.push_back(invalid("x-48-base-raw-left-over", "a byte after the raw bits", {"base-mesh"},
+                          edited(awkward, [&](ContainerParts& p) { base_unit(p).push_back(0x00); }), ErrorKind::kStructure, "base_mesh", 0));
+  suite.push_back(invalid("x-49-base-bins-left-over", "a zero byte after the last bin, counted by arithmetic_bytes", {"base-mesh"},
+                          edited(awkward,
+                                 [&](ContainerParts& p) {
+                                   std::vector<uint8_t>& unit = base_unit(p);
+                                   const size_t length = order_byte + 5;
+                                   const uint32_t bins = uint32_t{unit[length]} << 24 | uint32_t{unit[length + 1]} << 16 |
+                                                         uint32_t{unit[length + 2]} << 8 | unit[length + 3];
+                                   unit.insert(unit.begin() + static_cast<std::ptrdiff_t>(length + 4 + bins), 0x00);
+                                   ++unit[length + 3];  // fewer than 255 bytes of bins
+                                 }),
+                          ErrorKind::kStructure, "base_mesh", 0));
   return suite;
 }
 
@@ -706,6 +789,7 @@ std::vector<SuiteCase> build_suite3d(bool traced) {
   for (SuiteCase& c : lcc_cases(traced)) suite.push_back(std::move(c));
   for (SuiteCase& c : cpca_cases(traced)) suite.push_back(std::move(c));
   for (SuiteCase& c : group_hash_cases(traced)) suite.push_back(std::move(c));
+  for (SuiteCase& c : base_mesh_cases(traced)) suite.push_back(std::move(c));
   for (SuiteCase& c : rejected_cases(suite)) suite.push_back(std::move(c));
   return suite;
 }

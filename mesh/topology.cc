@@ -22,6 +22,17 @@ std::vector<Triangle> canonical_triangles(std::span<const Triangle> triangles, s
   return out;
 }
 
+bool same_faces(std::span<const Triangle> a, std::span<const Triangle> b) {
+  if (a.size() != b.size()) return false;
+  const auto sorted = [](std::span<const Triangle> faces) {
+    std::vector<Triangle> out(faces.begin(), faces.end());
+    for (Triangle& t : out) std::rotate(t.v.begin(), std::min_element(t.v.begin(), t.v.end()), t.v.end());
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  return sorted(a) == sorted(b);
+}
+
 TriangleNeighbours triangle_neighbours(std::span<const Triangle> triangles, size_t node_count) {
   // Directed edges grouped by their first node.
   std::vector<uint32_t> first(node_count + 1, 0);

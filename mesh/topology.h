@@ -31,6 +31,10 @@ struct Triangle {
 // start at its smallest index; the list sorted.
 std::vector<Triangle> canonical_triangles(std::span<const Triangle> triangles, std::span<const Point> nodes);
 
+// Whether two lists hold the same triangles, each with its orientation, in
+// any order and any rotation (a 3D base mesh reorders and rotates faces).
+bool same_faces(std::span<const Triangle> a, std::span<const Triangle> b);
+
 inline constexpr uint32_t kNoTriangle = 0xFFFFFFFF;
 
 // neighbours[t][i]: the triangle across the edge of t opposite t.v[i], or

@@ -16,7 +16,7 @@ double distance(const Vec3& a, const Vec3& b) {
 }
 
 void require_comparable(const MeshSequence& a, const MeshSequence& b) {
-  if (a.vertex_count != b.vertex_count || a.frames.size() != b.frames.size() || a.faces != b.faces)
+  if (a.vertex_count != b.vertex_count || a.frames.size() != b.frames.size() || !same_faces(a.faces, b.faces))
     throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
                 "the sequences differ in vertex count, frame count or faces (" + std::to_string(a.vertex_count) + "/" +
                     std::to_string(b.vertex_count) + " vertices, " + std::to_string(a.frames.size()) + "/" +
@@ -58,22 +58,90 @@ double kg_error(const MeshSequence& a, const MeshSequence& b) {
   return spread > 0 ? 100.0 * std::sqrt(error) / std::sqrt(spread) : 0.0;
 }
 
-double psnr(const MeshSequence& a, const MeshSequence& b) {
-  require_comparable(a, b);
-  double dmax = 0, squared = 0;
-  for (size_t f = 0; f < a.frames.size(); ++f) {
-    Vec3 lo = a.frames[f][0], hi = lo;
-    for (size_t i = 0; i < a.frames[f].size(); ++i) {
-      const Vec3& v = a.frames[f][i];
+namespace {
+
+// The diagonal of the largest per-frame bounding box (Eq. 5's dmax).
+double largest_box_diagonal(const MeshSequence& a) {
+  double dmax = 0;
+  for (const std::vector<Vec3>& frame : a.frames) {
+    Vec3 lo = frame[0], hi = lo;
+    for (const Vec3& v : frame) {
       lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
       hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
-      const double e = distance(v, b.frames[f][i]);
-      squared += e * e;
     }
     dmax = std::max(dmax, distance(lo, hi));
   }
-  const double avg_mse = squared / (static_cast<double>(a.frames.size()) * a.vertex_count);
-  return avg_mse > 0 ? 10.0 * std::log10(dmax * dmax / avg_mse) : INFINITY;
+  return dmax;
+}
+
+double psnr_of(double dmax, double mse) { return mse > 0 ? 10.0 * std::log10(dmax * dmax / mse) : INFINITY; }
+
+}  // namespace
+
+double psnr(const MeshSequence& a, const MeshSequence& b) {
+  require_comparable(a, b);
+  double squared = 0;
+  for (size_t f = 0; f < a.frames.size(); ++f)
+    for (size_t i = 0; i < a.frames[f].size(); ++i) {
+      const double e = distance(a.frames[f][i], b.frames[f][i]);
+      squared += e * e;
+    }
+  return psnr_of(largest_box_diagonal(a), squared / (static_cast<double>(a.frames.size()) * a.vertex_count));
+}
+
+std::vector<FrameMetrics> per_frame_metrics(const MeshSequence& a, const MeshSequence& b) {
+  require_comparable(a, b);
+  const double dmax = largest_box_diagonal(a);
+  std::vector<FrameMetrics> out(a.frames.size());
+  for (size_t f = 0; f < a.frames.size(); ++f) {
+    double squared = 0;
+    for (size_t i = 0; i < a.frames[f].size(); ++i) {
+      const double e = distance(a.frames[f][i], b.frames[f][i]);
+      squared += e * e;
+      out[f].max_error = std::max(out[f].max_error, e);
+    }
+    const double mse = squared / a.vertex_count;
+    out[f].rmse = std::sqrt(mse);
+    out[f].psnr = psnr_of(dmax, mse);
+  }
+  return out;
+}
+
+std::vector<std::string> metrics_warnings(const MeshSequence& a) {
+  std::vector<std::string> warnings;
+  if (a.frames.empty() || a.vertex_count == 0) return warnings;
+  const char* names = "xyz";
+  auto coordinate = [](const Vec3& v, int axis) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; };
+  // Flatness over every frame.
+  double extent[3];
+  for (int axis = 0; axis < 3; ++axis) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (const std::vector<Vec3>& frame : a.frames)
+      for (const Vec3& v : frame) {
+        lo = std::min(lo, coordinate(v, axis));
+        hi = std::max(hi, coordinate(v, axis));
+      }
+    extent[axis] = hi - lo;
+  }
+  const double largest = std::max({extent[0], extent[1], extent[2]});
+  for (int axis = 0; axis < 3; ++axis)
+    if (largest > 0 && extent[axis] < 1e-4 * largest)
+      warnings.push_back(std::string("the sequence hardly extends along ") + names[axis] + " (" + std::to_string(extent[axis]) + " of " +
+                         std::to_string(largest) + "): errors along it barely count, and a grid over the box collapses it");
+  // Outliers in frame 0: its box against the box of its middle 98 % per axis.
+  double full = 0, middle = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    std::vector<double> c;
+    c.reserve(a.frames[0].size());
+    for (const Vec3& v : a.frames[0]) c.push_back(coordinate(v, axis));
+    std::sort(c.begin(), c.end());
+    full = std::max(full, c.back() - c.front());
+    middle = std::max(middle, c[c.size() - 1 - c.size() / 100] - c[c.size() / 100]);
+  }
+  if (middle > 0 && full > 100 * middle)
+    warnings.push_back("a few vertices lie far from the rest: frame 0's box is " + std::to_string(static_cast<int64_t>(full / middle)) +
+                       " times that of 98 % of its vertices, and KG error and PSNR are relative to it");
+  return warnings;
 }
 
 MetricsReference::MetricsReference(const MeshSequence& a, const StedParams& p) : original_(a), params_(p), edges_(edges_of(a)) {

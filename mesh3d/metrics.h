@@ -3,6 +3,7 @@
 #pragma once
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include "mesh3d/sequence.h"
@@ -50,6 +51,19 @@ class MetricsReference {
 // Both sequences must have the same vertex count, faces and frame count.
 SequenceMetrics compare_sequences(const MeshSequence& original, const MeshSequence& decoded,
                                   const StedParams& sted = {});
+
+// Per frame: RMSE, max error, and the PSNR of that frame's error against
+// the whole sequence's dmax (so that frames compare with each other).
+struct FrameMetrics {
+  double rmse = 0, max_error = 0, psnr = 0;
+};
+std::vector<FrameMetrics> per_frame_metrics(const MeshSequence& original, const MeshSequence& decoded);
+
+// What would make the figures mislead, as sentences: an axis along which
+// the original hardly extends (errors along it barely count), or a few
+// vertices far from the rest that set the bounding box (KG and PSNR are
+// then relative to them).
+std::vector<std::string> metrics_warnings(const MeshSequence& original);
 
 double kg_error(const MeshSequence& original, const MeshSequence& decoded);
 // The largest distance between two points (exact; fast unless many points

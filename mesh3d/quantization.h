@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "common/point3.h"
-#include "mesh3d/draco_base.h"
 #include "mesh3d/sequence.h"
 
 namespace m4mesh {

@@ -249,7 +249,7 @@ MeshSequence read_binary_sequence(const std::string& path) {
 
 MeshSequence read_pc2_sequence(const std::string& path) {
   namespace fs = std::filesystem;
-  const std::string obj = fs::path(path).replace_extension(".obj").string();
+  const std::string obj = pc2_faces_path(path);
   if (!fs::is_regular_file(obj)) throw io(path, "a PC2 file takes its faces from " + obj + ", which is missing");
   const MeshFrame first = read_obj_frame(obj);
   const std::vector<uint8_t> bytes = read_file(path);
@@ -279,6 +279,26 @@ MeshSequence read_pc2_sequence(const std::string& path) {
   if (r.position() != bytes.size()) throw io(path, "bytes after the last sample");
   return s;
 }
+
+void write_pc2_sequence(const MeshSequence& s, const std::string& path) {
+  namespace fs = std::filesystem;
+  std::string out("POINTCACHE2", 12);
+  put_u32(out, 1);
+  put_u32(out, s.vertex_count);
+  put_f32(out, 0.0f);  // start frame
+  put_f32(out, 1.0f);  // sample rate
+  put_u32(out, static_cast<uint32_t>(s.frames.size()));
+  for (const std::vector<Vec3>& frame : s.frames)
+    for (const Vec3& v : frame) {
+      put_f32(out, static_cast<float>(v.x));
+      put_f32(out, static_cast<float>(v.y));
+      put_f32(out, static_cast<float>(v.z));
+    }
+  write_obj_frame(s.frames.at(0), s.faces, pc2_faces_path(path));
+  write_file_atomically(path, out);
+}
+
+std::string pc2_faces_path(const std::string& path) { return std::filesystem::path(path).replace_extension(".obj").string(); }
 
 std::string obj_frame_name(size_t frame_index) {
   char name[32];

@@ -40,6 +40,10 @@ MeshSequence read_binary_sequence(const std::string& path);
 // float32, little-endian; one frame per sample. The faces come from the OBJ
 // of the same name beside it (flag.pc2 → flag.obj), with as many vertices.
 MeshSequence read_pc2_sequence(const std::string& path);
+// Writes both: the OBJ first (frame 0 and the faces), then the PC2.
+void write_pc2_sequence(const MeshSequence& sequence, const std::string& path);
+// The OBJ beside a PC2 file.
+std::string pc2_faces_path(const std::string& path);
 
 // Frames as OBJ files 0001.obj, 0002.obj, … in a folder (created if needed).
 void write_obj_frames(const MeshSequence& sequence, const std::string& folder);

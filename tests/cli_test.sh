@@ -171,7 +171,7 @@ status=0; "$m4mesh" metrics tests/data/tetra-frames "$work/t.m4m" --stream "$sou
 # A progressive stream: decode3d --max-bytes takes a prefix; progressive prints the curve.
 cpca="$source/conformance/mesh3d/streams/cpca-01-wpt.m4m"
 "$m4mesh" decode3d "$cpca" -o "$work/full.m4seq" > /dev/null || fail "decode3d of a cpca stream"
-"$m4mesh" decode3d "$cpca" --max-bytes 1300 -o "$work/prefix.m4seq" > "$work/prefix" || fail "decode3d --max-bytes"
+"$m4mesh" decode3d "$cpca" --max-bytes 700 -o "$work/prefix.m4seq" > "$work/prefix" || fail "decode3d --max-bytes"
 grep -q "^prefix: [0-9]* units, [0-9]* of [0-9]* bytes$" "$work/prefix" || fail "decode3d --max-bytes report: $(cat "$work/prefix")"
 [ "$(stat -c %s "$work/prefix.m4seq")" = "$(stat -c %s "$work/full.m4seq")" ] || fail "a prefix decodes every frame"
 cmp -s "$work/prefix.m4seq" "$work/full.m4seq" && fail "a prefix decodes like the whole stream"
@@ -181,6 +181,39 @@ grep -q "holds no unit" "$work/err" || fail "--max-bytes below the first unit: $
 [ "$(tail -1 "$work/curve" | awk '{print $3}')" = "0.00000" ] || fail "progressive: the whole stream against its own decoding: $(tail -1 "$work/curve")"
 if "$m4mesh" progressive "$work/t.m4m" tests/data/tetra-frames 2> "$work/err"; then fail "progressive on a frame codec"; fi
 grep -q "progressive needs a progressive codec" "$work/err" || fail "progressive on a frame codec: $(cat "$work/err")"
+# --reorder: vertices in coding order, and the decoder and info say so.
+"$m4mesh" encode3d tests/data/tetra-frames --reorder -o "$work/re.m4m" > /dev/null || fail "encode3d --reorder"
+"$m4mesh" info "$work/re.m4m" | grep -q "vertex order: coding order" || fail "info of a reordered stream: $("$m4mesh" info "$work/re.m4m")"
+"$m4mesh" decode3d "$work/re.m4m" -o "$work/re.m4seq" > /dev/null 2> "$work/err" || fail "decode3d of a reordered stream"
+grep -q "^note: .* numbers its vertices in coding order" "$work/err" || fail "decode3d note: $(cat "$work/err")"
+"$m4mesh" info "$work/t.m4m" | grep -q "vertex order: the input's" || fail "info of an input-order stream"
+
+# PC2 output, with its OBJ beside it, reads back as the same sequence; it never overwrites the input's OBJ.
+"$m4mesh" decode3d "$work/t.m4m" -o "$work/t.pc2" > /dev/null || fail "decode3d -o .pc2"
+[ -f "$work/t.obj" ] || fail "decode3d -o .pc2 wrote no .obj"
+"$m4mesh" convert "$work/t.pc2" "$work/from-pc2.m4seq" > /dev/null || fail "convert .pc2"
+"$m4mesh" decode3d "$work/t.m4m" -o "$work/direct.m4seq" > /dev/null || fail "decode3d -o .m4seq"
+cmp -s "$work/from-pc2.m4seq" "$work/direct.m4seq" || fail "a PC2 round trip differs from the .m4seq"
+cp tests/data/tetra-frames/1.obj "$work/one.obj"
+cp "$work/one.obj" "$work/one-before.obj"
+status=0; "$m4mesh" convert "$work/one.obj" "$work/one.pc2" > /dev/null 2> "$work/err" || status=$?
+[ "$status" = 2 ] && cmp -s "$work/one.obj" "$work/one-before.obj" && [ ! -e "$work/one.pc2" ] || fail "convert x.obj x.pc2: exit $status, $(cat "$work/err")"
+
+# metrics: JSON and CSV, per frame; a warning when an outlier sets the box.
+"$m4mesh" metrics tests/data/tetra-frames "$work/t.m4m" --stream "$work/t.m4m" --json --per-frame > "$work/m.json" || fail "metrics --json"
+python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert len(d['frames'])==4 and 'kg_error_percent' in d and 'stream_rate_bpvf' in d" "$work/m.json" ||
+  fail "metrics --json: $(cat "$work/m.json")"
+[ "$("$m4mesh" metrics tests/data/tetra-frames "$work/t.m4m" --csv | head -1)" = "kg_error_percent,rmse,max_error,psnr_db,sted_spatial,sted_temporal,sted" ] ||
+  fail "metrics --csv header"
+[ "$("$m4mesh" metrics tests/data/tetra-frames "$work/t.m4m" --csv --per-frame | wc -l)" = 5 ] || fail "metrics --csv --per-frame: a header and 4 frames"
+mkdir "$work/far"
+for k in 1 2 3 4; do
+  { for i in $(seq 0 199); do echo "v $((i % 20)) $((i / 20)) $((k * i % 7))"; done; echo "v 1e9 0 0"
+    for i in $(seq 1 18); do echo "f $i $((i + 1)) $((i + 21))"; done; echo "f 1 2 201"; } > "$work/far/$k.obj"
+done
+"$m4mesh" metrics "$work/far" "$work/far" > /dev/null 2> "$work/err" || fail "metrics with an outlier"
+grep -q "^warning: a few vertices lie far from the rest" "$work/err" || fail "outlier warning: $(cat "$work/err")"
+
 data="$source/../shared/data"
 if [ -d "$data/horse-gallop" ] && [ -d "$data/pcow" ]; then
   for seq in horse-gallop pcow; do

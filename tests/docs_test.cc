@@ -8,6 +8,7 @@
 #include "codecs3d/registry.h"
 #include "common/atomic_file.h"
 #include "syntax/mesh3d/affine_octree.h"
+#include "syntax/mesh3d/base_mesh.h"
 #include "syntax/mesh3d/bfs3d.h"
 #include "syntax/mesh3d/container.h"
 #include "syntax/mesh3d/cpca_wpt.h"
@@ -43,7 +44,7 @@ void expect_table(const std::string& doc, const std::string& title) {
 TEST(Docs, ContainerTablesMatchTheDescriptions) {
   expect_table<ObjectHeader>("container3d.md", "object_header");
   expect_table<UnitHeader>("container3d.md", "unit_header");
-  expect_table<BaseMeshData>("container3d.md", "base_mesh_data");
+  expect_table<BaseMeshData>("base_mesh.md", "base_mesh_data");
   expect_table<FrameHash>("container3d.md", "frame_hash_data");
 }
 
@@ -70,6 +71,10 @@ TEST(Docs, EverySymbolOfTheCodedDataIsNamed) {
   for (const syntax::ResidualNames& n : {syntax::kCpcaCluster, syntax::kCpcaTranslation, syntax::kCpcaBasis, syntax::kCpcaCoefficient})
     for (const char* name : {n.nonzero, n.prefix, n.sign_suffix, n.element})
       EXPECT_NE(document("codec_cpca_wpt.md").find(name), std::string::npos) << name;
+  for (const syntax::ResidualNames& n : {syntax::kPositionNames, syntax::kOrderNames, syntax::kFarNames})
+    for (const char* name : {n.nonzero, n.prefix, n.sign_suffix, n.element}) EXPECT_NE(document("base_mesh.md").find(name), std::string::npos) << name;
+  for (const char* name : {"seed_new_vertex", "seed_vertex", "gate_new_vertex", "gate_candidate", "candidate_index", "gate_border", "loose_vertex"})
+    EXPECT_NE(document("base_mesh.md").find(name), std::string::npos) << name;
 }
 
 TEST(Docs, EveryCodecHasItsDocument) {

@@ -13,7 +13,7 @@
 #include "common/error.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
-#include "mesh3d/draco_base.h"
+#include "mesh3d/draco_reference.h"
 #include "mesh3d/metrics.h"
 #include "mesh3d/quantization.h"
 #include "mesh3d/sequence.h"
@@ -187,18 +187,6 @@ TEST(Traversal3d, EveryVertexOnceAndPredictorsBeforeUse) {
   }
   EXPECT_EQ(order.node.front(), s.faces[0].v[0]);
   EXPECT_EQ(order.node.back(), s.vertex_count - 1);  // the isolated vertex comes last
-}
-
-TEST(DracoBase, KeepsVertexAndFaceOrder) {
-  const MeshSequence s = test_sequence(1, 5);
-  std::vector<IntPoint3> q;
-  test::Random random(5);
-  for (uint32_t i = 0; i < s.vertex_count; ++i) q.push_back({random.uniform(-4000, 4000), random.uniform(0, 4095), random.uniform(-9, 9)});
-  const std::vector<uint8_t> data = encode_base_mesh(s.faces, q);
-  const BaseMesh base = decode_base_mesh(data, s.vertex_count, static_cast<uint32_t>(s.faces.size()));
-  EXPECT_EQ(base.positions, q);
-  EXPECT_EQ(base.faces, s.faces);
-  EXPECT_THROW(decode_base_mesh(data, s.vertex_count + 1, static_cast<uint32_t>(s.faces.size())), Error);
 }
 
 void expect_round_trip(const MeshSequence& s, const Encode3dOptions& options, int bits) {

@@ -49,7 +49,7 @@ class ToyDecoder final : public CodecDecoder3d {
 
   void decode_unit(const UnitHeader& unit, syntax::ReadIO& io, std::vector<uint32_t>& decoded) override {
     if (unit.type() == UnitType::kBaseMesh) {
-      faces_ = read_base_mesh(io, header_).faces;
+      faces_ = read_base_mesh(io, header_, trace_).faces;
       q_.assign(size_t{header_.frame_count} * header_.vertex_count * 3, 0);
       return;
     }
@@ -120,7 +120,7 @@ class ReorderedDecoder final : public CodecDecoder3d {
   explicit ReorderedDecoder(const ObjectHeader& header) : header_(header) {}
   void decode_unit(const UnitHeader& unit, syntax::ReadIO& io, std::vector<uint32_t>& decoded) override {
     if (unit.type() == UnitType::kBaseMesh) {
-      const BaseMesh base = read_base_mesh(io, header_);
+      const BaseMesh base = read_base_mesh(io, header_, trace_);
       faces_ = base.faces;
       q_.clear();
       for (const IntPoint3& p : base.positions)

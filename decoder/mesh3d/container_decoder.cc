@@ -6,6 +6,7 @@
 #include "codecs3d/registry.h"
 #include "common/md5.h"
 #include "mesh3d/quantization.h"
+#include "syntax/mesh3d/base_mesh.h"
 
 namespace m4mesh {
 
@@ -59,6 +60,24 @@ UnitHeader Mesh3dDecoder::read_unit_header(size_t index, bool traced) {
     throw located(e, unit.byte_offset, frame);
   }
   return header;
+}
+
+std::optional<uint32_t> Mesh3dDecoder::vertex_order() const {
+  for (const ContainerUnit& unit : parts_.units) {
+    BitReader reader(unit.payload.data(), unit.payload.size());
+    syntax::ReadIO io(reader);
+    try {
+      UnitHeader header;
+      syntax::describe(io, header);
+      if (header.type() != UnitType::kBaseMesh) continue;
+      BaseMeshData data;
+      syntax::describe(io, data);
+      return data.vertex_order;
+    } catch (const Error&) {
+      return std::nullopt;
+    }
+  }
+  return std::nullopt;
 }
 
 UnitHeader Mesh3dDecoder::begin_unit(size_t index) {

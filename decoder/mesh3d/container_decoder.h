@@ -50,6 +50,9 @@ class Mesh3dDecoder {
   const Codec3d& codec() const { return *codec_row_; }
   const std::vector<Triangle>& faces() const { return codec_->faces(); }
   bool has_end_code() const { return parts_.has_end_code; }
+  // The first base mesh unit's vertex_order (syntax/mesh3d/base_mesh.h);
+  // none when the stream has no readable base mesh unit.
+  std::optional<uint32_t> vertex_order() const;
   // Whether every unit refines every frame (a progressive codec).
   bool progressive() const { return codec_->holds_all_frames(); }
 

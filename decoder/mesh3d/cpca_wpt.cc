@@ -25,7 +25,7 @@ class CpcaDecoder final : public CodecDecoder3d {
   void decode_unit(const UnitHeader& unit, syntax::ReadIO& io, std::vector<uint32_t>& decoded) override {
     if (unit.type() == UnitType::kBaseMesh) {
       if (animation_) io.fail(ErrorKind::kStructure, "unit_type", "a second base mesh unit: the mean shape is sent once");
-      BaseMesh base = read_base_mesh(io, object_);
+      BaseMesh base = read_base_mesh(io, object_, trace_);
       faces_ = std::move(base.faces);
       animation_.emplace(header_, base.positions, object_.frame_count);
       for (uint32_t f = 0; f < object_.frame_count; ++f) decoded.push_back(f);

@@ -15,7 +15,7 @@ void GridFrameDecoder::decode_unit(const UnitHeader& unit, syntax::ReadIO& io, s
             "frame " + std::to_string(unit.frame_index) + " where frame " + std::to_string(expected) + " was expected");
   }
   if (unit.type() == UnitType::kBaseMesh) {
-    BaseMesh base = read_base_mesh(io, header_);
+    BaseMesh base = read_base_mesh(io, header_, trace_);
     if (first) {
       faces_ = std::move(base.faces);
       start(faces_, header_.vertex_count);

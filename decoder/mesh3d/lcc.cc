@@ -21,7 +21,7 @@ class LccDecoder final : public CodecDecoder3d {
   void decode_unit(const UnitHeader& unit, syntax::ReadIO& io, std::vector<uint32_t>& decoded) override {
     if (unit.type() == UnitType::kBaseMesh) {
       if (model_) io.fail(ErrorKind::kStructure, "unit_type", "a second base mesh unit: the reference is sent once");
-      start(read_base_mesh(io, object_));
+      start(read_base_mesh(io, object_, trace_));
       if (header_.reference == kLccReferenceIsFrame0) decoded.push_back(0);
       return;
     }

@@ -4,9 +4,9 @@
 #include <map>
 
 #include "codecs3d/registry.h"
+#include "encoder/mesh3d/base_mesh.h"
 #include "common/md5.h"
 #include "common/error.h"
-#include "mesh3d/draco_base.h"
 #include "mesh3d/quantization.h"
 
 namespace m4mesh {
@@ -89,21 +89,20 @@ class ContainerSink final : public UnitSink {
 
 }  // namespace
 
-void write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions) {
-  const std::vector<uint8_t> draco = encode_base_mesh(faces, positions);
-  BaseMeshData data{draco};
-  syntax::describe(io, data);
-}
-
-Encode3dResult encode_mesh3d(const MeshSequence& s, const Encode3dOptions& options) {
-  if (s.frames.empty() || s.vertex_count < 3 || s.faces.empty()) throw encode_error("a sequence needs frames, vertices and faces");
-  if (s.vertex_count > kMaxVertices3d || s.faces.size() > kMaxFaces3d) throw encode_error("the mesh exceeds the container's limits");
+Encode3dResult encode_mesh3d(const MeshSequence& input, const Encode3dOptions& options) {
+  if (input.frames.empty() || input.vertex_count < 3 || input.faces.empty()) throw encode_error("a sequence needs frames, vertices and faces");
+  if (input.vertex_count > kMaxVertices3d || input.faces.size() > kMaxFaces3d) throw encode_error("the mesh exceeds the container's limits");
+  if (options.reorder && options.codec_options.count("reference"))
+    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--reorder and --reference: the rest shape's vertices would keep the input's numbers");
+  const BaseMeshPlan plan = plan_base_mesh(input.faces, input.vertex_count, options.reorder);
+  const MeshSequence s = in_coding_order(input, plan, options.reorder);
   const Codec3d& codec = codec3d_by_name(options.codec);
   const CodecSettings settings(codec.name, codec.options, options.codec_options);
   std::unique_ptr<CodecEncoder3d> encoder = codec.make_encoder(s, settings);
 
   ContainerWriter container;
   Encode3dResult result;
+  if (options.reorder) result.input_of = plan.input_of;
   {
     if (options.trace) options.trace->begin_payload("object", "mesh3d_object_start_code", kMesh3dObjectStartCode);
     BitWriter writer;

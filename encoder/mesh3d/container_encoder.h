@@ -25,6 +25,7 @@ struct Encode3dOptions {
   uint32_t frame_rate_den = 1;
   Trace* trace = nullptr;        // every element written, as `m4mesh trace` prints it
   bool keep_decoded = false;     // the decoder's output in the result
+  bool reorder = false;          // vertices renumbered in coding order (docs/base_mesh.md)
   std::function<void(size_t done, size_t total)> progress;
 };
 
@@ -34,6 +35,7 @@ struct Encode3dResult {
   uint64_t other_bytes = 0;              // object payload and end code
   std::vector<CodecStatistic> statistics;  // the codec's own
   MeshSequence decoded;                    // with keep_decoded: every frame as the decoder outputs it
+  std::vector<uint32_t> input_of;          // with reorder: the input number of each output vertex
 
   uint64_t base_bytes() const { return unit_bytes[static_cast<uint32_t>(UnitType::kBaseMesh)]; }
   uint64_t frame_bytes() const { return unit_bytes[static_cast<uint32_t>(UnitType::kFrame)]; }

@@ -115,7 +115,7 @@ class LccEncoder final : public CodecEncoder3d {
     std::vector<Vec3> reference = s.frames[0];
     if (!settings.text("reference").empty()) {
       const MeshSequence rest = load_sequence(settings.text("reference"));
-      if (rest.vertex_count != s.vertex_count || rest.faces != s.faces)
+      if (rest.vertex_count != s.vertex_count || !same_faces(rest.faces, s.faces))
         throw usage_error(settings.text("reference") + ": the reference must have the sequence's vertices and faces (lcc)");
       reference = rest.frames[0];
       header_.reference = kLccReferenceIsRestShape;

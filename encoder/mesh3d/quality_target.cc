@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 
 #include "codecs3d/registry.h"
 #include "common/error.h"
+#include "encoder/mesh3d/base_mesh.h"
 #include "mesh3d/metrics.h"
 
 namespace m4mesh {
@@ -23,7 +25,10 @@ TargetTrial trial(const MeshSequence& s, Encode3dOptions options, const QualityT
                   Encode3dResult& result) {
   options.keep_decoded = true;
   result = encode_mesh3d(s, options);
-  TargetTrial t{options.codec, parameter, result.stream.size(), kg_error(s, result.decoded), psnr(s, result.decoded), false};
+  std::optional<MeshSequence> reordered;
+  if (!result.input_of.empty()) reordered = renumbered(s, result.input_of);
+  const MeshSequence& original = reordered ? *reordered : s;
+  TargetTrial t{options.codec, parameter, result.stream.size(), kg_error(original, result.decoded), psnr(original, result.decoded), false};
   t.meets = target.kg > 0 ? t.kg <= target.kg : t.psnr >= target.psnr;
   return t;
 }

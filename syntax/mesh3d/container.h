@@ -36,11 +36,6 @@ struct UnitHeader {
   UnitType type() const { return static_cast<UnitType>(unit_type); }
 };
 
-// A base mesh unit's data: a Draco mesh (docs/container3d.md).
-struct BaseMeshData {
-  std::span<const uint8_t> draco_mesh;
-};
-
 // A frame hash unit's data: the MD5 of the decoded frame's canonical bytes.
 struct FrameHash {
   std::span<const uint8_t> md5;
@@ -77,11 +72,6 @@ template <class IO>
 void describe(IO& io, UnitHeader& h) {
   io.field_in("unit_type", 8, h.unit_type, 0, kUnitTypes - 1);
   io.field("frame_index", 32, h.frame_index);
-}
-
-template <class IO>
-void describe(IO& io, BaseMeshData& b) {
-  io.tail_section("draco_mesh", b.draco_mesh);
 }
 
 template <class IO>

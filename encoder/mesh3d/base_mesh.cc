@@ -1,0 +1,235 @@
+// The base mesh unit's encoding: the traversal with an oracle that looks
+// up what the input has behind each gate, then the vertex order in the
+// cheaper of its two codings, then the positions.
+#include "encoder/mesh3d/base_mesh.h"
+
+#include <algorithm>
+
+#include "codecs3d/codec_encoder.h"
+#include "common/error.h"
+#include "mesh3d/base_mesh.h"
+#include "syntax/mesh3d/entropy_io.h"
+
+namespace m4mesh {
+
+namespace {
+
+constexpr uint32_t kUnnumbered = 0xFFFFFFFF;
+
+uint64_t edge_key(uint32_t from, uint32_t to) { return (uint64_t{from} << 32) | to; }
+
+// The input mesh seen from the traversal: which faces it codes (the first
+// face of each directed edge, never a degenerate one) and which are loose,
+// and the numbering the traversal gives the vertices.
+class TraversalOracle {
+ public:
+  TraversalOracle(std::span<const Triangle> faces, uint32_t vertex_count) : faces_(faces), coding_of_(vertex_count, kUnnumbered) {
+    std::vector<std::pair<uint64_t, uint32_t>> claimed;
+    claimed.reserve(3 * faces.size());
+    for (uint32_t f = 0; f < faces.size(); ++f)
+      for (int i = 0; i < 3; ++i) claimed.push_back({edge_key(faces[f].v[i], faces[f].v[(i + 1) % 3]), f});
+    std::sort(claimed.begin(), claimed.end());
+    std::vector<bool> loose(faces.size(), false);
+    for (uint32_t f = 0; f < faces.size(); ++f) {
+      const auto [a, b, c] = faces[f].v;
+      if (a == b || b == c || c == a) loose[f] = true;
+    }
+    // A face is loose when an earlier face that is not loose has one of its directed edges.
+    for (uint32_t f = 0; f < faces.size(); ++f) {
+      if (loose[f]) continue;
+      for (int i = 0; i < 3; ++i) {
+        const uint64_t k = edge_key(faces[f].v[i], faces[f].v[(i + 1) % 3]);
+        auto it = std::lower_bound(claimed.begin(), claimed.end(), std::pair<uint64_t, uint32_t>{k, 0});
+        for (; it != claimed.end() && it->first == k && it->second < f; ++it)
+          if (!loose[it->second]) loose[f] = true;
+      }
+    }
+    for (uint32_t f = 0; f < faces.size(); ++f) {
+      if (loose[f]) {
+        loose_.push_back(f);
+        continue;
+      }
+      for (int i = 0; i < 3; ++i) edges_.push_back({edge_key(faces[f].v[i], faces[f].v[(i + 1) % 3]), f});
+    }
+    std::sort(edges_.begin(), edges_.end());
+    coded_.assign(faces.size(), false);
+    for (uint32_t f : loose_) coded_[f] = true;
+  }
+
+  uint32_t traversal_faces() const { return static_cast<uint32_t>(faces_.size() - loose_.size()); }
+
+  bool seed_corner(int corner, uint32_t& vertex) {
+    if (corner == 0) {
+      while (coded_[next_seed_]) ++next_seed_;
+      coded_[next_seed_] = true;
+    }
+    return known(faces_[next_seed_].v[corner], vertex);
+  }
+
+  GateAnswer gate(HalfEdge gate, std::span<const uint32_t> candidates) {
+    const uint32_t a = input_of_[gate.from], b = input_of_[gate.to];
+    const uint64_t k = edge_key(b, a);
+    const auto it = std::lower_bound(edges_.begin(), edges_.end(), std::pair<uint64_t, uint32_t>{k, 0});
+    if (it == edges_.end() || it->first != k) return {GateSymbol::kBorder, 0, 0};
+    if (coded_[it->second]) throw Error(ErrorKind::kInput, "base_mesh", kNoPlane, kNoOffset, "encoder: a face behind a gate is coded twice");
+    coded_[it->second] = true;
+    GateAnswer answer;
+    uint32_t c = 0;
+    if (!known(faces_[it->second].third(a, b), c)) {
+      answer.symbol = GateSymbol::kNewVertex;
+      return answer;
+    }
+    const auto found = std::find(candidates.begin(), candidates.end(), c);
+    if (found != candidates.end()) return {GateSymbol::kCandidate, static_cast<uint32_t>(found - candidates.begin()), 0};
+    return {GateSymbol::kFarVertex, 0, c};
+  }
+
+  void numbered(uint32_t c) {
+    coding_of_[pending_] = c;
+    input_of_.push_back(pending_);
+  }
+
+  // After the traversal: the vertices it did not reach, in input order, and
+  // the loose faces in coding numbers.
+  std::vector<uint32_t> finish(std::vector<Triangle>& loose_faces) {
+    for (uint32_t v = 0; v < coding_of_.size(); ++v)
+      if (coding_of_[v] == kUnnumbered) {
+        coding_of_[v] = static_cast<uint32_t>(input_of_.size());
+        input_of_.push_back(v);
+      }
+    for (uint32_t f : loose_) {
+      Triangle t = faces_[f];
+      for (NodeIndex& v : t.v) v = coding_of_[v];
+      loose_faces.push_back(t);
+    }
+    return input_of_;
+  }
+
+ private:
+  // Whether input vertex v has its number yet; if not, it is the next one.
+  bool known(uint32_t v, uint32_t& number) {
+    if (coding_of_[v] != kUnnumbered) {
+      number = coding_of_[v];
+      return true;
+    }
+    pending_ = v;
+    return false;
+  }
+
+  std::span<const Triangle> faces_;
+  std::vector<uint32_t> coding_of_, input_of_;
+  std::vector<uint32_t> loose_;
+  std::vector<std::pair<uint64_t, uint32_t>> edges_;  // directed edge → its traversal face
+  std::vector<bool> coded_;
+  size_t next_seed_ = 0;
+  uint32_t pending_ = 0;
+};
+
+// The connectivity in coding numbers: traversal faces, then loose faces.
+struct Connectivity {
+  std::vector<Triangle> faces;
+  std::vector<Triangle> parents;
+  std::vector<uint32_t> input_of;
+  uint32_t loose_faces = 0;
+};
+
+template <class IO>
+Connectivity write_connectivity(IO& symbols, syntax::BaseMeshContexts& contexts, std::span<const Triangle> faces, uint32_t vertex_count) {
+  TraversalOracle oracle(faces, vertex_count);
+  GateTraversal traversal(oracle.traversal_faces());
+  describe_traversal(symbols, contexts, traversal, vertex_count, oracle.traversal_faces(), &oracle);
+  Connectivity c;
+  c.faces = traversal.faces();
+  c.parents = traversal.parents();
+  std::vector<Triangle> loose;
+  c.input_of = oracle.finish(loose);
+  c.loose_faces = static_cast<uint32_t>(loose.size());
+  describe_loose_faces(symbols, vertex_count, std::span<Triangle>(loose));
+  c.faces.insert(c.faces.end(), loose.begin(), loose.end());
+  return c;
+}
+
+// The bytes the vertex order takes in a coding, alone.
+size_t vertex_order_bytes(uint32_t method, const Connectivity& c) {
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+  syntax::BaseMeshContexts contexts;
+  std::vector<uint32_t> input_of = c.input_of;
+  describe_vertex_order(symbols, contexts, method, c.parents, input_of);
+  return symbols.finish_bins().size() + symbols.finish_raw().size();
+}
+
+template <class IO>
+void write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> faces, std::span<const IntPoint3> positions) {
+  const uint32_t vertex_count = static_cast<uint32_t>(positions.size());
+  syntax::BaseMeshContexts contexts;
+  Connectivity c = write_connectivity(symbols, contexts, faces, vertex_count);
+  bool identity = true;
+  for (uint32_t i = 0; i < vertex_count; ++i) identity = identity && c.input_of[i] == i;
+  // Coding numbers back to input numbers, to compare with the faces given.
+  std::vector<Triangle> decoded = c.faces;
+  for (Triangle& t : decoded)
+    for (NodeIndex& v : t.v) v = c.input_of[v];
+  if (!std::equal(decoded.begin(), decoded.end(), faces.begin(), faces.end()))
+    throw Error(ErrorKind::kInput, "base_mesh", kNoPlane, kNoOffset, "encoder: the faces are not in coding order (plan_base_mesh)");
+  BaseMeshData data;
+  data.loose_face_count = c.loose_faces;
+  data.vertex_order = identity ? kVertexOrderCoding
+                      : vertex_order_bytes(kVertexOrderFromParallelogram, c) < vertex_order_bytes(kVertexOrderFromGate, c)
+                          ? kVertexOrderFromParallelogram
+                          : kVertexOrderFromGate;
+  describe_vertex_order(symbols, contexts, data.vertex_order, c.parents, c.input_of);
+  std::vector<IntPoint3> coded(vertex_count);
+  for (uint32_t i = 0; i < vertex_count; ++i) coded[i] = positions[c.input_of[i]];
+  describe_positions(symbols, contexts, c.faces, coded);
+  const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
+  data.arithmetic_bytes = static_cast<uint32_t>(bins.size());
+  data.bins = bins;
+  data.raw = raw;
+  syntax::describe(io, data);
+  if (io.trace()) io.trace()->stream() << symbols.trace_text();
+}
+
+}  // namespace
+
+BaseMeshPlan plan_base_mesh(std::span<const Triangle> faces, uint32_t vertex_count, bool reorder) {
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+  syntax::BaseMeshContexts contexts;
+  Connectivity c = write_connectivity(symbols, contexts, faces, vertex_count);
+  BaseMeshPlan plan{std::move(c.faces), std::move(c.input_of), c.loose_faces};
+  if (!reorder)
+    for (Triangle& t : plan.faces)
+      for (NodeIndex& v : t.v) v = plan.input_of[v];
+  return plan;
+}
+
+MeshSequence in_coding_order(const MeshSequence& sequence, const BaseMeshPlan& plan, bool reorder) {
+  MeshSequence s = reorder ? renumbered(sequence, plan.input_of) : sequence;
+  s.faces = plan.faces;
+  return s;
+}
+
+MeshSequence renumbered(const MeshSequence& sequence, std::span<const uint32_t> input_of) {
+  std::vector<uint32_t> coding_of(sequence.vertex_count);
+  for (uint32_t i = 0; i < sequence.vertex_count; ++i) coding_of[input_of[i]] = i;
+  MeshSequence s{sequence.vertex_count, sequence.faces, std::vector<std::vector<Vec3>>(sequence.frames.size())};
+  for (Triangle& t : s.faces)
+    for (NodeIndex& v : t.v) v = coding_of[v];
+  for (size_t f = 0; f < sequence.frames.size(); ++f) {
+    s.frames[f].resize(sequence.vertex_count);
+    for (uint32_t i = 0; i < sequence.vertex_count; ++i) s.frames[f][i] = sequence.frames[f][input_of[i]];
+  }
+  return s;
+}
+
+void write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions) {
+  const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane()};
+  if (io.trace()) {
+    syntax::EntropyWriteIO<true> symbols(place, io.trace());
+    write_data(io, symbols, faces, positions);
+  } else {
+    syntax::EntropyWriteIO<false> symbols(place);
+    write_data(io, symbols, faces, positions);
+  }
+}
+
+}  // namespace m4mesh

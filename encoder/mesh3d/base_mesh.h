@@ -1,0 +1,33 @@
+// The base mesh as the encoder codes it (docs/base_mesh.md). The decoder
+// outputs faces in coding order, so the container encoder puts a
+// sequence's faces in that order before a codec sees them, and with
+// `--reorder` renumbers its vertices too; write_base_mesh
+// (codecs3d/codec_encoder.h) then codes faces that are already in order.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "mesh/topology.h"
+#include "mesh3d/sequence.h"
+
+namespace m4mesh {
+
+struct BaseMeshPlan {
+  std::vector<Triangle> faces;     // in coding order, numbered as the decoder outputs them
+  std::vector<uint32_t> input_of;  // coding number → input number
+  uint32_t loose_faces = 0;
+};
+
+// The traversal of `faces`; with `reorder`, faces numbered in coding order.
+BaseMeshPlan plan_base_mesh(std::span<const Triangle> faces, uint32_t vertex_count, bool reorder);
+
+// The sequence with the plan's faces, and with its vertices in coding order
+// when the plan renumbered them.
+MeshSequence in_coding_order(const MeshSequence& sequence, const BaseMeshPlan& plan, bool reorder);
+
+// The sequence with vertex i taken from input vertex input_of[i].
+MeshSequence renumbered(const MeshSequence& sequence, std::span<const uint32_t> input_of);
+
+}  // namespace m4mesh

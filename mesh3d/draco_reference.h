@@ -1,0 +1,22 @@
+// Draco as the reference the benchmarks measure m4mesh against; nothing
+// of Draco's is in a stream m4mesh writes or reads.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <span>
+
+#include "common/point3.h"
+#include "mesh/topology.h"
+
+namespace m4mesh {
+
+// Draco coding one frame at `bits` quantization with edgebreaker, as the
+// reference rate of "Draco coding every frame".
+size_t draco_frame_size(std::span<const Triangle> faces, std::span<const std::array<float, 3>> positions, int bits);
+
+// Draco coding grid positions losslessly with edgebreaker (which reorders
+// vertices) or with sequential coding (which keeps their order).
+size_t draco_grid_size(std::span<const Triangle> faces, std::span<const IntPoint3> positions, bool edgebreaker);
+
+}  // namespace m4mesh
