@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "cli/commands3d.h"
+#include "cli/console.h"
 #include "cli/demo.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
@@ -50,6 +51,7 @@ struct EncodeArgs {
 
 int run_encode(const EncodeArgs& args) {
   refuse_overwriting(args.input, args.output);
+  console::check_output(args.output);
   std::vector<MeshPlane> planes;
   if (args.input == "-" || is_decoded_text(args.input)) {
     const std::vector<uint8_t> bytes = read_file(args.input);
@@ -58,12 +60,13 @@ int run_encode(const EncodeArgs& args) {
     std::vector<std::string> unused;
     const std::vector<std::string> files = frame_files(args.input, ".obj", &unused);
     if (!unused.empty())
-      std::fprintf(stderr, "warning: %s: %zu files not used (not .obj frames), %s%s\n", args.input.c_str(), unused.size(), unused.front().c_str(),
+      console::say("warning: %s: %zu files not used (not .obj frames), %s%s", args.input.c_str(), unused.size(), unused.front().c_str(),
                    unused.size() > 1 ? ", …" : "");
     std::vector<ObjFrame> frames;
+    console::Progress progress("reading frame", files.size());
     for (size_t k = 0; k < files.size(); ++k) {
       frames.push_back(read_obj(files[k]));
-      if (files.size() > 20 && (k + 1) % 20 == 0 && isatty(fileno(stderr))) std::fprintf(stderr, "\rread %zu/%zu frames", k + 1, files.size());
+      progress.update(k + 1);
     }
     planes = planes_from_frames(frames, files, args.scale).planes;
   }
@@ -73,10 +76,10 @@ int run_encode(const EncodeArgs& args) {
   options.keep_node_order = args.keep_order;
   options.end_code = !args.no_end_code;
   options.trace = args.trace ? &trace : nullptr;
-  options.report = [&](const std::string& message) { std::fprintf(stderr, "note: %s: %s\n", args.input.c_str(), message.c_str()); };
+  options.report = [&](const std::string& message) { console::say("note: %s: %s", args.input.c_str(), message.c_str()); };
   const EncodeResult result = encode(planes, options);
   write_file_atomically(args.output, std::string_view(reinterpret_cast<const char*>(result.stream.data()), result.stream.size()));
-  std::fprintf(stderr, "%s: %zu bytes, %lld I-planes, %lld P-planes\n", args.output.c_str(), result.stream.size(),
+  console::say("%s: %zu bytes, %lld I-planes, %lld P-planes", args.output.c_str(), result.stream.size(),
                static_cast<long long>(result.intra_planes), static_cast<long long>(result.inter_planes));
   return 0;
 }
@@ -91,6 +94,7 @@ struct DecodeArgs {
 
 int run_decode(const DecodeArgs& args) {
   refuse_overwriting(args.input, args.output);
+  if (!args.output.empty()) console::check_output(args.output);
   const std::vector<uint8_t> stream = read_file(args.input);
   if (is_mesh3d_stream(stream)) {
     if (args.output.empty() || args.md5_only || args.keep_going)
@@ -130,7 +134,7 @@ int run_decode(const DecodeArgs& args) {
   const std::string md5 = writer.finish();
   if (file) file->commit();
   for (const syntax::Warning& w : decoder.warnings())
-    std::fprintf(stderr, "warning: %s: bit %lld: %s\n", args.input.c_str(), static_cast<long long>(w.bit_offset), w.message.c_str());
+    console::say("warning: %s: bit %lld: %s", args.input.c_str(), static_cast<long long>(w.bit_offset), w.message.c_str());
   // The MD5 goes to standard error when the decoded text fills standard output.
   std::FILE* report = args.output == "-" ? stderr : stdout;
   if (args.md5_only)
@@ -213,7 +217,7 @@ int run_conform(ConformOptions options) {
 
 int run_generate_suite(const std::string& folder) {
   generate_suites(folder);
-  std::printf("%s: the 2D suite; %s/mesh3d: the 3D suite; each with streams/ and manifest.json\n", folder.c_str(), folder.c_str());
+  console::say("%s: the 2D suite; %s/mesh3d: the 3D suite; each with streams/ and manifest.json", folder.c_str(), folder.c_str());
   return 0;
 }
 
@@ -225,6 +229,12 @@ namespace m4mesh {
 int run_m4mesh(int argc, const char* const* argv) {
   CLI::App app{"m4mesh: MPEG-4-style 2D mesh object encoder, decoder and tools"};
   app.require_subcommand(1);
+  // Before or after the command: `m4mesh -q decode3d …` or `m4mesh decode3d … -q`.
+  app.fallthrough();
+  bool quiet = false, verbose = false, overwrite = false;
+  app.add_flag("-q,--quiet", quiet, "print errors only: no summaries, notes, warnings or progress");
+  app.add_flag("-v,--verbose", verbose, "print more detail");
+  app.add_flag("-y,--overwrite", overwrite, "replace outputs that exist (refused otherwise)");
 
   EncodeArgs encode_args;
   CLI::App* encode_cmd = app.add_subcommand("encode", "Encode §9 text or OBJ frames into a mesh stream");
@@ -338,6 +348,12 @@ int run_m4mesh(int argc, const char* const* argv) {
     std::fprintf(stderr, "error: %s (m4mesh --help)\n", e.what());
     return 2;
   }
+  if (quiet && verbose) {
+    std::fprintf(stderr, "error: -q or -v, not both (m4mesh --help)\n");
+    return 2;
+  }
+  console::set_level(quiet ? console::Level::kQuiet : verbose ? console::Level::kVerbose : console::Level::kNormal);
+  console::set_overwrite(overwrite);
   std::string current_file;
   try {
     if (*encode_cmd) return current_file = encode_args.input, run_encode(encode_args);

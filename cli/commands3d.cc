@@ -12,6 +12,7 @@
 #include <iostream>
 #include <set>
 
+#include "cli/console.h"
 #include "codecs3d/registry.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
@@ -27,13 +28,7 @@ namespace m4mesh {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Progress on long runs, for a person at a terminal.
-void progress(const char* what, size_t done, size_t total) {
-  if (total < 20 || !isatty(fileno(stderr))) return;
-  std::fprintf(stderr, "\r%s frame %zu/%zu", what, done, total);
-  if (done == total) std::fprintf(stderr, "\n");
-}
+using console::say;
 
 }  // namespace
 
@@ -113,10 +108,15 @@ void add_codec_options(CLI::App& command, Encode3dArgs& args) {
 
 int run_encode3d(const Encode3dArgs& args) {
   refuse_overwriting(args.input, args.output);
+  console::check_output(args.output);
   if (fs::is_regular_file(args.input) && is_mesh3d_stream(read_file(args.input)))
     throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
                 args.input + ": a mesh3d stream; encode3d takes frames (m4mesh decode3d turns a stream into frames)");
-  const MeshSequence sequence = load_sequence(args.input, true);
+  const auto reading = std::chrono::steady_clock::now();
+  const MeshSequence sequence = load_sequence(args.input, !console::quiet());
+  console::detail("%s: %zu frames of %u vertices and %zu faces read in %.3f s", args.input.c_str(), sequence.frames.size(),
+                  sequence.vertex_count, sequence.faces.size(),
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - reading).count());
   Trace trace(std::cout);
   Encode3dOptions options;
   options.codec = args.codec;
@@ -126,27 +126,26 @@ int run_encode3d(const Encode3dArgs& args) {
   options.reorder = args.reorder;
   options.frame_rate_num = static_cast<uint32_t>(args.fps);
   options.trace = args.trace ? &trace : nullptr;
-  options.progress = [](size_t done, size_t total) { progress("encoding", done, total); };
-  // The summary goes to standard error when the trace or the stream fills standard output.
-  std::FILE* summary = args.trace || args.output == "-" ? stderr : stdout;
+  console::Progress progress("encoding frame", sequence.frames.size());
+  options.progress = [&](size_t done, size_t) { progress.update(done); };
   const QualityTarget target{args.target_kg, args.target_psnr};
   const bool targeted = target.kg > 0 || target.psnr > 0;
   if (args.codec == "auto" && !targeted) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--codec auto needs --target-kg or --target-psnr");
   if (targeted && args.trace) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--trace and a quality target: trace the stream the search keeps");
   const double bits = 8.0 / (static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size()));
   auto print_trial = [&](const TargetTrial& t) {
-    std::fprintf(summary, "  %-14s %-22s %10llu bytes %8.4f bpvf  KG %9.5f  PSNR %8.3f  %s\n", t.codec.c_str(), t.parameter.c_str(),
+    say("  %-14s %-22s %10llu bytes %8.4f bpvf  KG %9.5f  PSNR %8.3f  %s", t.codec.c_str(), t.parameter.c_str(),
                  static_cast<unsigned long long>(t.bytes), static_cast<double>(t.bytes) * bits, t.kg, t.psnr,
                  t.meets ? "meets" : "misses");
   };
   const auto start = std::chrono::steady_clock::now();
   Encode3dResult result;
   if (args.codec == "auto") {
-    std::fprintf(summary, "every codec at the target:\n");
+    say("every codec at the target:");
     result = encode_smallest(sequence, options, target, print_trial, options.codec);
-    std::fprintf(summary, "kept: %s\n", options.codec.c_str());
+    say("kept: %s", options.codec.c_str());
   } else if (targeted) {
-    std::fprintf(summary, "%s, searching its quality for the target:\n", args.codec.c_str());
+    say("%s, searching its quality for the target:", args.codec.c_str());
     result = encode_to_target(sequence, options, target, print_trial);
   } else {
     result = encode_mesh3d(sequence, options);
@@ -170,17 +169,16 @@ int run_encode3d(const Encode3dArgs& args) {
     line += figure;
   }
   line += ", other " + std::to_string(result.other_bytes);
-  std::fprintf(summary, "%s\n", line.c_str());
+  say("%s", line.c_str());
   if (!result.statistics.empty()) {
     std::string figures = options.codec + ":";
     for (size_t i = 0; i < result.statistics.size(); ++i) {
       std::snprintf(figure, sizeof figure, "%s%.10g %s", i ? ", " : " ", result.statistics[i].second, result.statistics[i].first.c_str());
       figures += figure;
     }
-    std::fprintf(summary, "%s\n", figures.c_str());
+    say("%s", figures.c_str());
   }
-  std::fprintf(summary, "encoded %zu frames of %u vertices in %.3f s (%.1f M vertices/s)\n", sequence.frames.size(), sequence.vertex_count,
-               seconds, static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size()) / seconds / 1e6);
+  say("encoded %zu frames of %u vertices in %.3f s (%.1f M vertices/s)", sequence.frames.size(), sequence.vertex_count, seconds, static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size()) / seconds / 1e6);
   return 0;
 }
 
@@ -208,6 +206,7 @@ std::pair<uint32_t, uint32_t> frame_range(const std::string& text) {
 
 int run_decode3d(const Decode3dArgs& args) {
   refuse_overwriting(args.input, args.output);
+  console::check_output(args.output);
   const auto [first, last] = frame_range(args.frames);
   std::vector<uint8_t> stream = read_file(args.input);
   if (args.max_bytes > 0) {
@@ -215,25 +214,25 @@ int run_decode3d(const Decode3dArgs& args) {
     if (prefix.units == 0)
       throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
                   "--max-bytes " + std::to_string(args.max_bytes) + " holds no unit: the first ends later");
-    std::printf("prefix: %zu units, %llu of %zu bytes\n", prefix.units, static_cast<unsigned long long>(prefix.bytes), stream.size());
+    say("prefix: %zu units, %llu of %zu bytes", prefix.units, static_cast<unsigned long long>(prefix.bytes), stream.size());
     stream.resize(prefix.bytes);
   }
   Decode3dOptions options;
   options.verify = args.verify;
   const SequenceOutput form = sequence_output(args.output, true);
   Mesh3dDecoder decoder(stream, options);
+  console::detail("%s: codec %s, %u vertices, %u faces, %u frames", args.input.c_str(), decoder.codec().name.c_str(),
+                  decoder.header().vertex_count, decoder.header().face_count, decoder.header().frame_count);
   if (decoder.vertex_order() == kVertexOrderCoding)
-    std::fprintf(stderr, "note: %s numbers its vertices in coding order (encode3d --reorder), not necessarily the input's\n",
-                 args.input.c_str());
+    say("note: %s numbers its vertices in coding order (encode3d --reorder), not necessarily the input's", args.input.c_str());
   const bool to_folder = form == SequenceOutput::kObjFolder;
   // Frames go to a temporary folder beside the output (a trailing '/' is
   // not part of the name) that becomes the output only when all decoded.
   fs::path folder = fs::path(args.output).lexically_normal();
   if (folder.filename().empty()) folder = folder.parent_path();
-  const fs::path temporary = folder.string() + ".partial";
-  if (to_folder && fs::exists(args.output) && !fs::is_empty(args.output))
-    throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, args.output + ": the output folder exists and is not empty");
-  fs::remove_all(temporary);
+  // A name of this process's own: nothing the user did not name is touched.
+  const fs::path temporary = folder.string() + ".partial-" + std::to_string(getpid());
+  console::Progress progress("decoding frame", decoder.header().frame_count);
   MeshSequence sequence;
   sequence.vertex_count = decoder.header().vertex_count;
   std::vector<uint32_t> written;
@@ -241,7 +240,7 @@ int run_decode3d(const Decode3dArgs& args) {
   try {
     // Every frame is decoded (a group hash may cover frames after the range); those in the range are written.
     while (decoder.next_frame()) {
-      progress("decoding", decoder.frame_index() + 1, decoder.header().frame_count);
+      progress.update(decoder.frame_index() + 1);
       if (decoder.frame_index() < first || decoder.frame_index() > last) continue;
       std::vector<Vec3> frame;
       frame.reserve(decoder.positions().size());
@@ -271,7 +270,7 @@ int run_decode3d(const Decode3dArgs& args) {
   }
   if (written.empty()) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--frames " + args.frames + ": the stream has no frame there");
   if (to_folder) {
-    fs::remove(folder);
+    fs::remove_all(folder);  // empty, or replaced with -y
     fs::rename(temporary, folder);
   } else if (form == SequenceOutput::kF32) {
     std::string bytes;
@@ -290,7 +289,7 @@ int run_decode3d(const Decode3dArgs& args) {
     std::fprintf(stderr, "%s: decoded %zu frames before the error; %s holds them\n", args.input.c_str(), written.size(), args.output.c_str());
     return 1;
   }
-  std::printf("%s: %zu frames of %u vertices%s\n", args.output.c_str(), written.size(), decoder.header().vertex_count,
+  say("%s: %zu frames of %u vertices%s", args.output.c_str(), written.size(), decoder.header().vertex_count,
               decoder.has_end_code() || args.max_bytes > 0 ? "" : " (warning: no end code)");
   // Hash units may check a group of frames after its last: the results come at the end.
   int mismatches = 0, unchecked = 0;
@@ -375,7 +374,7 @@ int run_trace3d(const std::string& input) {
 
 int run_metrics(const MetricsArgs& args) {
   if (args.json && args.csv) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--json or --csv, not both");
-  const MeshSequence original = load_sequence(args.original, true);
+  const MeshSequence original = load_sequence(args.original, !console::quiet());
   // The stream is checked against the sequence before anything is printed.
   struct Rate {
     const char* key;
@@ -405,8 +404,8 @@ int run_metrics(const MetricsArgs& args) {
   if (fs::is_regular_file(args.decoded) && is_mesh3d_stream(read_file(args.decoded)))
     decoded = decode_mesh3d(read_file(args.decoded));
   else
-    decoded = load_sequence(args.decoded, true);
-  for (const std::string& warning : metrics_warnings(original)) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+    decoded = load_sequence(args.decoded, !console::quiet());
+  for (const std::string& warning : metrics_warnings(original)) say("warning: %s", warning.c_str());
   const SequenceMetrics m = compare_sequences(original, decoded);
   const std::vector<FrameMetrics> frames = args.per_frame ? per_frame_metrics(original, decoded) : std::vector<FrameMetrics>{};
   const std::pair<const char*, double> figures[] = {{"kg_error_percent", m.kg_error}, {"rmse", m.rmse},
@@ -462,18 +461,19 @@ int run_metrics(const MetricsArgs& args) {
 
 int run_convert(const std::string& input, const std::string& output) {
   refuse_overwriting(input, output);
+  console::check_output(output);
   const SequenceOutput form = sequence_output(output, false);
-  const MeshSequence sequence = load_sequence(input, true);
+  const MeshSequence sequence = load_sequence(input, !console::quiet());
   if (form == SequenceOutput::kObjFolder)
     write_obj_frames(sequence, output);
   else
     write_sequence_file(form, sequence, output);
-  std::printf("%s: %zu frames of %u vertices\n", output.c_str(), sequence.frames.size(), sequence.vertex_count);
+  say("%s: %zu frames of %u vertices", output.c_str(), sequence.frames.size(), sequence.vertex_count);
   return 0;
 }
 
 int run_progressive(const ProgressiveArgs& args) {
-  const MeshSequence original = load_sequence(args.original, true);
+  const MeshSequence original = load_sequence(args.original, !console::quiet());
   const std::vector<uint8_t> stream = read_file(args.stream);
   const MetricsReference reference(original);
   const uint64_t step = args.step > 0 ? args.step : std::max<uint64_t>(1, stream.size() / 40);

@@ -124,12 +124,12 @@ grep -q "^error: unit 2, frame 1, arithmetic_bytes at bit [0-9]*: " "$work/check
 # decode3d into a folder named with a trailing '/': the temporary folder lies beside it.
 "$m4mesh" decode3d "$work/t.m4m" -o "$work/frames/" --verify > /dev/null || fail "decode3d -o folder/"
 [ -f "$work/frames/0001.obj" ] || fail "decode3d -o folder/ wrote no frames"
-[ ! -e "$work/frames.partial" ] && [ ! -e "$work/frames/.partial" ] || fail "decode3d left its temporary folder"
+! ls -a "$work" "$work/frames" | grep -q partial || fail "decode3d left its temporary folder"
 # Quality targets: the search is printed and the kept stream meets the target.
-"$m4mesh" encode3d tests/data/tetra-frames -o "$work/target.m4m" --target-psnr 40 > "$work/target" || fail "encode3d --target-psnr"
+"$m4mesh" encode3d tests/data/tetra-frames -o "$work/target.m4m" --target-psnr 40 2> "$work/target" || fail "encode3d --target-psnr"
 grep -q "^bfs3d, searching its quality for the target:$" "$work/target" || fail "target search report: $(cat "$work/target")"
 grep -q " meets$" "$work/target" || fail "target search lines: $(cat "$work/target")"
-"$m4mesh" encode3d tests/data/tetra-frames -o "$work/auto.m4m" --codec auto --target-kg 2 > "$work/auto" || fail "encode3d --codec auto"
+"$m4mesh" encode3d tests/data/tetra-frames -o "$work/auto.m4m" --codec auto --target-kg 2 2> "$work/auto" || fail "encode3d --codec auto"
 grep -q "^kept: " "$work/auto" || fail "--codec auto report: $(cat "$work/auto")"
 if "$m4mesh" encode3d tests/data/tetra-frames -o "$work/none.m4m" --codec auto 2> "$work/err"; then fail "--codec auto without a target"; fi
 grep -q "needs --target-kg or --target-psnr" "$work/err" || fail "--codec auto without a target: $(cat "$work/err")"
@@ -171,7 +171,7 @@ status=0; "$m4mesh" metrics tests/data/tetra-frames "$work/t.m4m" --stream "$sou
 # A progressive stream: decode3d --max-bytes takes a prefix; progressive prints the curve.
 cpca="$source/conformance/mesh3d/streams/cpca-01-wpt.m4m"
 "$m4mesh" decode3d "$cpca" -o "$work/full.m4seq" > /dev/null || fail "decode3d of a cpca stream"
-"$m4mesh" decode3d "$cpca" --max-bytes 700 -o "$work/prefix.m4seq" > "$work/prefix" || fail "decode3d --max-bytes"
+"$m4mesh" decode3d "$cpca" --max-bytes 700 -o "$work/prefix.m4seq" 2> "$work/prefix" || fail "decode3d --max-bytes"
 grep -q "^prefix: [0-9]* units, [0-9]* of [0-9]* bytes$" "$work/prefix" || fail "decode3d --max-bytes report: $(cat "$work/prefix")"
 [ "$(stat -c %s "$work/prefix.m4seq")" = "$(stat -c %s "$work/full.m4seq")" ] || fail "a prefix decodes every frame"
 cmp -s "$work/prefix.m4seq" "$work/full.m4seq" && fail "a prefix decodes like the whole stream"
@@ -213,6 +213,24 @@ for k in 1 2 3 4; do
 done
 "$m4mesh" metrics "$work/far" "$work/far" > /dev/null 2> "$work/err" || fail "metrics with an outlier"
 grep -q "^warning: a few vertices lie far from the rest" "$work/err" || fail "outlier warning: $(cat "$work/err")"
+
+# Conventions: summaries on standard error, data on standard output; an
+# existing output is refused (exit 2, unchanged) unless -y; -q prints nothing.
+"$m4mesh" encode3d tests/data/tetra-frames -o "$work/conv.m4m" > "$work/out" 2> "$work/err" || fail "encode3d"
+[ ! -s "$work/out" ] && grep -q "^$work/conv.m4m: [0-9]* bytes" "$work/err" || fail "encode3d summary not on standard error: $(cat "$work/out")"
+cp "$work/conv.m4m" "$work/conv-before.m4m"
+status=0; "$m4mesh" encode3d tests/data/tetra-frames --bits 8 -o "$work/conv.m4m" 2> "$work/err" || status=$?
+[ "$status" = 2 ] && cmp -s "$work/conv.m4m" "$work/conv-before.m4m" && [ "$(head -1 "$work/err")" = "error: $work/conv.m4m: exists; -y replaces it" ] ||
+  fail "an existing output: exit $status, $(cat "$work/err")"
+"$m4mesh" encode3d tests/data/tetra-frames --bits 8 -o "$work/conv.m4m" -y -q > "$work/out" 2> "$work/err" || fail "encode3d -y -q"
+! cmp -s "$work/conv.m4m" "$work/conv-before.m4m" && [ ! -s "$work/out" ] && [ ! -s "$work/err" ] || fail "-y did not replace, or -q printed"
+mkdir "$work/taken" && touch "$work/taken/mine.txt"
+status=0; "$m4mesh" decode3d "$work/conv.m4m" -o "$work/taken" 2> "$work/err" || status=$?
+[ "$status" = 2 ] && [ -f "$work/taken/mine.txt" ] || fail "decode3d into a folder that is not empty: exit $status"
+"$m4mesh" -y decode3d "$work/conv.m4m" -o "$work/taken" 2> /dev/null || fail "decode3d -y into a folder"
+[ -f "$work/taken/0001.obj" ] && [ ! -e "$work/taken/mine.txt" ] || fail "decode3d -y did not replace the folder"
+status=0; "$m4mesh" -q -v info "$work/conv.m4m" > /dev/null 2> "$work/err" || status=$?
+[ "$status" = 2 ] || fail "-q -v: exit $status"
 
 data="$source/../shared/data"
 if [ -d "$data/horse-gallop" ] && [ -d "$data/pcow" ]; then

@@ -1,0 +1,69 @@
+#include "cli/console.h"
+
+#include <unistd.h>
+
+#include <cstdarg>
+#include <cstdio>
+#include <filesystem>
+
+#include "common/error.h"
+
+namespace m4mesh::console {
+
+namespace {
+
+Level g_level = Level::kNormal;
+bool g_overwrite = false;
+
+void vsay(const char* format, va_list args) {
+  std::vfprintf(stderr, format, args);
+  std::fputc('\n', stderr);
+}
+
+}  // namespace
+
+void set_level(Level level) { g_level = level; }
+void set_overwrite(bool overwrite) { g_overwrite = overwrite; }
+bool overwrite() { return g_overwrite; }
+bool quiet() { return g_level == Level::kQuiet; }
+
+void say(const char* format, ...) {
+  if (g_level == Level::kQuiet) return;
+  va_list args;
+  va_start(args, format);
+  vsay(format, args);
+  va_end(args);
+}
+
+void detail(const char* format, ...) {
+  if (g_level != Level::kVerbose) return;
+  va_list args;
+  va_start(args, format);
+  vsay(format, args);
+  va_end(args);
+}
+
+Progress::Progress(std::string what, size_t total) : what_(std::move(what)), total_(total), start_(std::chrono::steady_clock::now()) {}
+
+Progress::~Progress() {
+  if (shown_) std::fprintf(stderr, "\r%*s\r", static_cast<int>(what_.size() + 32), "");
+}
+
+void Progress::update(size_t done) {
+  if (g_level == Level::kQuiet || !isatty(fileno(stderr))) return;
+  if (!shown_ && std::chrono::steady_clock::now() - start_ < std::chrono::seconds(1)) return;
+  shown_ = true;
+  std::fprintf(stderr, "\r%s %zu/%zu", what_.c_str(), done, total_);
+  std::fflush(stderr);
+}
+
+void check_output(const std::string& path) {
+  namespace fs = std::filesystem;
+  if (path == "-" || g_overwrite) return;
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  const bool taken = fs::is_regular_file(status) || (fs::is_directory(status) && !fs::is_empty(path, error));
+  if (taken) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, path + ": exists; -y replaces it");
+}
+
+}  // namespace m4mesh::console

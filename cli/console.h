@@ -1,0 +1,46 @@
+// What the command line tells a person, by the conventions of codec tools
+// (ffmpeg, x264, draco_encoder): data on standard output; summaries, notes,
+// warnings and progress on standard error; -q keeps only errors, -v adds
+// detail; an existing output is replaced only with -y.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <string>
+
+namespace m4mesh::console {
+
+enum class Level { kQuiet, kNormal, kVerbose };
+void set_level(Level level);
+void set_overwrite(bool overwrite);
+bool quiet();
+
+// A summary, note or warning line on standard error (none with -q).
+[[gnu::format(printf, 1, 2)]] void say(const char* format, ...);
+// Detail, with -v only.
+[[gnu::format(printf, 1, 2)]] void detail(const char* format, ...);
+
+// A job's progress: one line on standard error that rewrites itself, only
+// on a terminal, without -q, and once the job has run for a second.
+class Progress {
+ public:
+  Progress(std::string what, size_t total);
+  ~Progress();
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+  void update(size_t done);
+
+ private:
+  std::string what_;
+  size_t total_;
+  std::chrono::steady_clock::time_point start_;
+  bool shown_ = false;
+};
+
+// Refuses an output that exists as a file or as a folder that is not
+// empty, unless -y; "-", character devices and FIFOs are written in place.
+void check_output(const std::string& path);
+// Whether -y was given.
+bool overwrite();
+
+}  // namespace m4mesh::console
