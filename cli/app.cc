@@ -297,7 +297,7 @@ int run_m4mesh(int argc, const char* const* argv) {
   Decode3dArgs decode3d_args;
   CLI::App* decode3d_cmd = app.add_subcommand("decode3d", "Decode a mesh3d stream into OBJ frames or a .m4seq file");
   decode3d_cmd->add_option("input", decode3d_args.input, "mesh3d stream")->required();
-  decode3d_cmd->add_option("-o,--output", decode3d_args.output, "a folder for OBJ frames, a .m4seq file, a .pc2 file (with the faces and frame 0 in the .obj beside it), or a .f32 file (every frame's binary32 x, y, z, little-endian)")->required();
+  decode3d_cmd->add_option("-o,--output", decode3d_args.output, "a folder for OBJ frames, a .m4seq file, a .pc2 file (with the faces and frame 0 in the .obj beside it), PLY frames ('frames/*.ply': '*' becomes 0001, 0002, …), or a .f32 file (every frame's binary32 x, y, z, little-endian)")->required();
   decode3d_cmd->add_flag("--verify", decode3d_args.verify, "check every frame against its hash unit: OK or MISMATCH per frame");
   decode3d_cmd->add_option("--frames", decode3d_args.frames, "write frames A … B only (A:B, A: or :B; every frame is still decoded)");
   decode3d_cmd->add_flag("--keep-going", decode3d_args.keep_going,
@@ -322,9 +322,9 @@ int run_m4mesh(int argc, const char* const* argv) {
   metrics_cmd->add_flag("--per-frame", metrics_args.per_frame, "RMSE, max error and PSNR of every frame too");
 
   std::string convert_input, convert_output;
-  CLI::App* convert_cmd = app.add_subcommand("convert", "Convert a frame sequence to .m4seq, .pc2 (+ .obj) or OBJ frames");
+  CLI::App* convert_cmd = app.add_subcommand("convert", "Convert a frame sequence to .m4seq, .pc2 (+ .obj), PLY frames or OBJ frames");
   convert_cmd->add_option("input", convert_input, "frames or .m4seq")->required();
-  convert_cmd->add_option("output", convert_output, "a .m4seq file, a .pc2 file (with its .obj) or a folder")->required();
+  convert_cmd->add_option("output", convert_output, "a .m4seq file, a .pc2 file (with its .obj), PLY frames ('frames/*.ply') or a folder")->required();
 
   DemoOptions demo_options;
   CLI::App* demo_cmd = app.add_subcommand("demo", "Encode and decode an embedded waving-flag animation, check bit-exactness");

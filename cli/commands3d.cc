@@ -20,6 +20,7 @@
 #include "encoder/mesh3d/container_encoder.h"
 #include "encoder/mesh3d/quality_target.h"
 #include "mesh3d/metrics.h"
+#include "mesh3d/ply.h"
 #include "mesh3d/quantization.h"
 #include "syntax/mesh3d/base_mesh.h"
 
@@ -35,9 +36,10 @@ using console::say;
 namespace {
 
 // A sequence output's form from its name: a folder of OBJ frames (no
-// extension, or a trailing '/'), .m4seq, .pc2 (with its .obj) or .f32;
-// anything else is a usage error, not a folder.
-enum class SequenceOutput { kObjFolder, kM4seq, kPc2, kF32 };
+// extension, or a trailing '/'), .m4seq, .pc2 (with its .obj), PLY frames
+// (a .ply name, with a '*' for the frame number when there are several) or
+// .f32; anything else is a usage error, not a folder.
+enum class SequenceOutput { kObjFolder, kM4seq, kPc2, kPly, kF32 };
 SequenceOutput sequence_output(const std::string& output, bool f32_allowed) {
   if (output == "-")
     throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
@@ -48,16 +50,41 @@ SequenceOutput sequence_output(const std::string& output, bool f32_allowed) {
   if (extension.empty()) return SequenceOutput::kObjFolder;
   if (extension == ".m4seq") return SequenceOutput::kM4seq;
   if (extension == ".pc2") return SequenceOutput::kPc2;
+  if (extension == ".ply") return SequenceOutput::kPly;
   if (extension == ".f32" && f32_allowed) return SequenceOutput::kF32;
   throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
-              output + ": unknown output format '" + extension + "' (a folder of OBJ frames, .m4seq, .pc2" + (f32_allowed ? ", .f32" : "") +
+              output + ": unknown output format '" + extension + "' (a folder of OBJ frames, .m4seq, .pc2, .ply" + (f32_allowed ? ", .f32" : "") +
                   "; a folder whose name holds a dot takes a trailing '/')");
 }
 
-// A whole sequence to a .m4seq or .pc2 file.
+// PLY frames: the '*' of the name replaced by 0001, 0002, …; a name
+// without '*' takes one frame. Existing files are refused before any is written.
+void write_ply_frames(const MeshSequence& sequence, const std::string& output) {
+  const size_t star = fs::path(output).filename().string().find('*');
+  if (star == std::string::npos && sequence.frames.size() != 1)
+    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
+                output + ": " + std::to_string(sequence.frames.size()) + " frames need a name with '*' for the frame number (frames/*.ply)");
+  std::vector<std::string> paths;
+  for (size_t k = 0; k < sequence.frames.size(); ++k) {
+    std::string path = output;
+    if (star != std::string::npos) {
+      char number[24];
+      std::snprintf(number, sizeof number, "%04zu", k + 1);
+      path.replace(output.size() - fs::path(output).filename().string().size() + star, 1, number);
+    }
+    console::check_output(path);
+    paths.push_back(path);
+  }
+  if (const fs::path folder = fs::path(output).parent_path(); !folder.empty()) fs::create_directories(folder);
+  for (size_t k = 0; k < paths.size(); ++k) write_ply_frame(sequence.frames[k], sequence.faces, paths[k]);
+}
+
+// A whole sequence to a .m4seq, .pc2 or PLY output.
 void write_sequence_file(SequenceOutput form, const MeshSequence& sequence, const std::string& output) {
   if (form == SequenceOutput::kPc2)
     write_pc2_sequence(sequence, output);
+  else if (form == SequenceOutput::kPly)
+    write_ply_frames(sequence, output);
   else
     write_binary_sequence(sequence, output);
 }

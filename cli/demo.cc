@@ -5,61 +5,71 @@
 #include <cstdio>
 #include <numbers>
 
+#include "cli/console.h"
 #include "decoder/decoder.h"
 #include "encoder/encoder.h"
 
 namespace m4mesh {
 
-std::vector<MeshPlane> waving_flag(const DemoOptions& options) {
+MeshPlane waving_flag_plane(const DemoOptions& options, uint32_t t) {
   UniformParams grid{options.cols, options.rows, options.spacing, options.spacing, 0};
-  std::vector<MeshPlane> planes;
-  MeshPlane intra;
-  intra.info.kind = MeshKind::kUniform;
-  intra.info.uniform = grid;
-  intra.nodes = uniform_nodes(grid);
-  planes.push_back(intra);
-  const double amplitude = 1.5 * options.spacing;
-  for (uint32_t t = 1; t < options.frames; ++t) {
-    MeshPlane inter;
-    inter.info.intra = false;
-    inter.nodes = intra.nodes;
-    for (uint32_t r = 0; r < options.rows; ++r) {
-      for (uint32_t c = 0; c < options.cols; ++c) {
-        // The wave travels away from the pole (c = 0) and grows with c.
-        const double free_end = static_cast<double>(c) / (options.cols - 1);
-        const double phase = 2 * std::numbers::pi * (1.5 * free_end - t / 30.0) + 0.3 * r / options.rows;
-        Point& p = inter.nodes[r * options.cols + c];
-        p.x += static_cast<int32_t>(std::lround(0.25 * amplitude * free_end * (std::cos(phase) - 1)));
-        p.y += static_cast<int32_t>(std::lround(amplitude * free_end * std::sin(phase)));
-      }
-    }
-    planes.push_back(std::move(inter));
+  MeshPlane plane;
+  plane.nodes = uniform_nodes(grid);
+  if (t == 0) {
+    plane.info.kind = MeshKind::kUniform;
+    plane.info.uniform = grid;
+    return plane;
   }
-  return planes;
+  plane.info.intra = false;
+  const double amplitude = 1.5 * options.spacing;
+  for (uint32_t r = 0; r < options.rows; ++r)
+    for (uint32_t c = 0; c < options.cols; ++c) {
+      // The wave travels away from the pole (c = 0) and grows with c.
+      const double free_end = static_cast<double>(c) / (options.cols - 1);
+      const double phase = 2 * std::numbers::pi * (1.5 * free_end - t / 30.0) + 0.3 * r / options.rows;
+      Point& p = plane.nodes[r * options.cols + c];
+      p.x += static_cast<int32_t>(std::lround(0.25 * amplitude * free_end * (std::cos(phase) - 1)));
+      p.y += static_cast<int32_t>(std::lround(amplitude * free_end * std::sin(phase)));
+    }
+  return plane;
 }
 
 int run_demo(const DemoOptions& options) {
   using Clock = std::chrono::steady_clock;
-  const std::vector<MeshPlane> planes = waving_flag(options);
-  const double node_frames = static_cast<double>(options.cols) * options.rows * static_cast<double>(planes.size());
-  std::printf("m4mesh demo: waving flag, uniform %ux%u nodes, %zu planes\n", options.cols, options.rows, planes.size());
+  const double node_frames = static_cast<double>(options.cols) * options.rows * static_cast<double>(options.frames);
+  std::printf("m4mesh demo: waving flag, uniform %ux%u nodes, %u planes\n", options.cols, options.rows, options.frames);
 
-  const auto t0 = Clock::now();
-  const EncodeResult encoded = encode(planes);
-  const auto t1 = Clock::now();
+  // The planes are made as they are coded, and again to check each decoded
+  // one (making them is not timed).
+  double encode_s = 0, decode_s = 0;
+  Encoder encoder;
+  console::Progress encoding("encoding plane", options.frames);
+  for (uint32_t t = 0; t < options.frames; ++t) {
+    encoding.update(t + 1);
+    const MeshPlane plane = waving_flag_plane(options, t);
+    const auto start = Clock::now();
+    encoder.add(plane);
+    encode_s += std::chrono::duration<double>(Clock::now() - start).count();
+  }
+  auto start = Clock::now();
+  const EncodeResult encoded = encoder.finish();
+  encode_s += std::chrono::duration<double>(Clock::now() - start).count();
   Decoder decoder(encoded.stream);
-  size_t k = 0;
+  uint32_t k = 0;
   bool exact = true;
-  while (decoder.next()) {
-    exact = exact && k < planes.size() && std::equal(decoder.nodes().begin(), decoder.nodes().end(), planes[k].nodes.begin(),
-                                                     planes[k].nodes.end());
+  console::Progress decoding("decoding plane", options.frames);
+  for (start = Clock::now(); decoder.next(); start = Clock::now()) {
+    decoding.update(k + 1);
+    decode_s += std::chrono::duration<double>(Clock::now() - start).count();
+    if (k < options.frames) {
+      const MeshPlane plane = waving_flag_plane(options, k);
+      exact = exact && std::equal(decoder.nodes().begin(), decoder.nodes().end(), plane.nodes.begin(), plane.nodes.end());
+    }
     ++k;
   }
-  const auto t2 = Clock::now();
-  exact = exact && k == planes.size();
+  decode_s += std::chrono::duration<double>(Clock::now() - start).count();
+  exact = exact && k == options.frames;
 
-  const double encode_s = std::chrono::duration<double>(t1 - t0).count();
-  const double decode_s = std::chrono::duration<double>(t2 - t1).count();
   const double bits = 8.0 * static_cast<double>(encoded.stream.size());
   std::printf("stream: %zu bytes (%lld I-plane, %lld P-planes)\n", encoded.stream.size(),
               static_cast<long long>(encoded.intra_planes), static_cast<long long>(encoded.inter_planes));

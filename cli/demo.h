@@ -2,7 +2,6 @@
 #pragma once
 
 #include <cstdint>
-#include <vector>
 
 #include "mesh/plane.h"
 
@@ -15,10 +14,11 @@ struct DemoOptions {
   uint32_t frames = 120;
 };
 
-// A flag waving on a pole: a uniform I-plane then P-planes.
-std::vector<MeshPlane> waving_flag(const DemoOptions& options);
+// Plane t of a flag waving on a pole: a uniform I-plane (t = 0), then P-planes.
+MeshPlane waving_flag_plane(const DemoOptions& options, uint32_t t);
 
-// Encodes, decodes, checks bit-exactness and prints figures; returns the exit status.
+// Encodes, decodes, checks bit-exactness and prints figures; returns the
+// exit status. One plane at a time: memory does not grow with the frames.
 int run_demo(const DemoOptions& options);
 
 }  // namespace m4mesh

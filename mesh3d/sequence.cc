@@ -14,6 +14,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "mesh/obj.h"
+#include "mesh3d/ply.h"
 
 namespace m4mesh {
 
@@ -168,18 +169,19 @@ MeshSequence load_sequence(const std::string& path, bool progress) {
   namespace fs = std::filesystem;
   if (fs::is_regular_file(path) && fs::path(path).extension() == ".m4seq") return read_binary_sequence(path);
   if (fs::is_regular_file(path) && fs::path(path).extension() == ".pc2") return read_pc2_sequence(path);
-  // A folder of OFF frames when it holds any (OBJ frames otherwise).
-  auto is_off = [](const fs::path& p) {
+  // A folder of OFF or PLY frames when it holds any (OBJ frames otherwise);
+  // a file or a pattern by its extension.
+  auto frame_kind = [](const fs::path& p) {
     std::string e = p.extension().string();
     for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return e == ".off";
+    return e == ".off" || e == ".ply" ? e : std::string();
   };
   std::string extension = ".obj";
   if (fs::is_directory(path)) {
     for (const auto& entry : fs::directory_iterator(path))
-      if (is_off(entry.path())) extension = ".off";
-  } else if (is_off(path)) {
-    extension = ".off";
+      if (const std::string kind = frame_kind(entry.path()); !kind.empty()) extension = kind;
+  } else if (const std::string kind = frame_kind(path); !kind.empty()) {
+    extension = kind;
   }
   std::vector<std::string> unused;
   const std::vector<std::string> files = frame_files(path, extension, &unused);
@@ -189,7 +191,7 @@ MeshSequence load_sequence(const std::string& path, bool progress) {
   const bool report_progress = progress && files.size() > 10 && isatty(fileno(stderr));
   MeshSequence sequence;
   for (size_t k = 0; k < files.size(); ++k) {
-    MeshFrame frame = extension == ".off" ? read_off(files[k]) : read_obj_frame(files[k]);
+    MeshFrame frame = extension == ".off" ? read_off(files[k]) : extension == ".ply" ? read_ply(files[k]) : read_obj_frame(files[k]);
     if (k == 0) {
       if (frame.vertices.size() < 3 || frame.faces.empty()) throw input_error(files[k], 0, "a mesh needs vertices and faces");
       sequence.vertex_count = static_cast<uint32_t>(frame.vertices.size());

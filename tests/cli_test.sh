@@ -199,6 +199,17 @@ cp "$work/one.obj" "$work/one-before.obj"
 status=0; "$m4mesh" convert "$work/one.obj" "$work/one.pc2" > /dev/null 2> "$work/err" || status=$?
 [ "$status" = 2 ] && cmp -s "$work/one.obj" "$work/one-before.obj" && [ ! -e "$work/one.pc2" ] || fail "convert x.obj x.pc2: exit $status, $(cat "$work/err")"
 
+# PLY frames: one file per frame by a '*' pattern, read back alike; ASCII PLY reads too.
+"$m4mesh" decode3d "$work/t.m4m" -o "$work/ply/*.ply" 2> /dev/null || fail "decode3d -o 'ply/*.ply'"
+[ -f "$work/ply/0004.ply" ] && head -2 "$work/ply/0001.ply" | grep -q "^format binary_little_endian 1.0$" || fail "PLY frames not written"
+"$m4mesh" convert "$work/ply/*.ply" "$work/from-ply.m4seq" 2> /dev/null || fail "convert 'ply/*.ply'"
+cmp -s "$work/from-ply.m4seq" "$work/direct.m4seq" || fail "a PLY round trip differs from the .m4seq"
+status=0; "$m4mesh" decode3d "$work/t.m4m" -o "$work/one.ply" 2> "$work/err" || status=$?
+[ "$status" = 2 ] && grep -q "need a name with '\*'" "$work/err" || fail "several frames into one .ply: exit $status, $(cat "$work/err")"
+mkdir "$work/ascii"
+printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\nproperty uchar red\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 1\n1 0 0 2\n1 1 0 3\n0 1 0.5 4\n4 0 1 2 3\n' > "$work/ascii/1.ply"
+"$m4mesh" convert "$work/ascii" "$work/ascii.m4seq" 2> "$work/err" && grep -q "1 frames of 4 vertices" "$work/err" || fail "ASCII PLY: $(cat "$work/err")"
+
 # metrics: JSON and CSV, per frame; a warning when an outlier sets the box.
 "$m4mesh" metrics tests/data/tetra-frames "$work/t.m4m" --stream "$work/t.m4m" --json --per-frame > "$work/m.json" || fail "metrics --json"
 python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert len(d['frames'])==4 and 'kg_error_percent' in d and 'stream_rate_bpvf' in d" "$work/m.json" ||
