@@ -46,7 +46,8 @@ class DirectedEdgeIndex {
 // The connectivity decoded so far, in coding-order vertex numbers. An open
 // half-edge is one of a decoded face whose other side is not known yet;
 // each is a gate, visited first in, first out. Memory grows with the
-// vertices numbered and the faces attached, never with the header's counts.
+// vertices numbered and the faces attached, beyond a reserve the header's
+// count sets up to 2^20 faces.
 class GateTraversal {
  public:
   // At most this many candidates are offered for a gate.
@@ -111,8 +112,8 @@ struct GateAnswer {
 };
 
 // The connectivity: `traversal_faces` faces by the traversal, numbering
-// vertices as they appear. The oracle (writing only) has gate(), seed() and
-// numbered(c) for the vertex just numbered c.
+// vertices as they appear. The oracle (writing only) answers gate() and
+// seed_corner() and hears numbered(c) for the vertex just numbered c.
 template <class IO, class Oracle>
 void describe_traversal(IO& io, syntax::BaseMeshContexts& contexts, GateTraversal& traversal, uint32_t vertex_count,
                         uint32_t traversal_faces, Oracle* oracle) {
@@ -159,7 +160,9 @@ void describe_traversal(IO& io, syntax::BaseMeshContexts& contexts, GateTraversa
         c = answer.far_vertex;
         break;
     }
-    if (!traversal.attach(gate, c)) io.fail(ErrorKind::kStructure, "far_vertex", "a face that repeats a vertex or a directed edge");
+    if (!traversal.attach(gate, c))
+      io.fail(ErrorKind::kStructure, answer.symbol == GateSymbol::kCandidate ? "candidate_index" : "far_vertex",
+              "a face that repeats a vertex or a directed edge");
   }
 }
 

@@ -16,44 +16,29 @@ namespace {
 
 constexpr uint32_t kUnnumbered = 0xFFFFFFFF;
 
-uint64_t edge_key(uint32_t from, uint32_t to) { return (uint64_t{from} << 32) | to; }
-
 // The input mesh seen from the traversal: which faces it codes (the first
 // face of each directed edge, never a degenerate one) and which are loose,
 // and the numbering the traversal gives the vertices.
 class TraversalOracle {
  public:
-  TraversalOracle(std::span<const Triangle> faces, uint32_t vertex_count) : faces_(faces), coding_of_(vertex_count, kUnnumbered) {
-    std::vector<std::pair<uint64_t, uint32_t>> claimed;
-    claimed.reserve(3 * faces.size());
-    for (uint32_t f = 0; f < faces.size(); ++f)
-      for (int i = 0; i < 3; ++i) claimed.push_back({edge_key(faces[f].v[i], faces[f].v[(i + 1) % 3]), f});
-    std::sort(claimed.begin(), claimed.end());
-    std::vector<bool> loose(faces.size(), false);
+  TraversalOracle(std::span<const Triangle> faces, uint32_t vertex_count)
+      : faces_(faces), coding_of_(vertex_count, kUnnumbered), coded_(faces.size(), false) {
+    // In input order, a face is loose when it is degenerate or when a face
+    // before it that is not loose has one of its directed edges.
+    owner_.reserve(3 * faces.size());
     for (uint32_t f = 0; f < faces.size(); ++f) {
       const auto [a, b, c] = faces[f].v;
-      if (a == b || b == c || c == a) loose[f] = true;
-    }
-    // A face is loose when an earlier face that is not loose has one of its directed edges.
-    for (uint32_t f = 0; f < faces.size(); ++f) {
-      if (loose[f]) continue;
-      for (int i = 0; i < 3; ++i) {
-        const uint64_t k = edge_key(faces[f].v[i], faces[f].v[(i + 1) % 3]);
-        auto it = std::lower_bound(claimed.begin(), claimed.end(), std::pair<uint64_t, uint32_t>{k, 0});
-        for (; it != claimed.end() && it->first == k && it->second < f; ++it)
-          if (!loose[it->second]) loose[f] = true;
-      }
-    }
-    for (uint32_t f = 0; f < faces.size(); ++f) {
-      if (loose[f]) {
+      const bool loose = a == b || b == c || c == a || owner_.find(a, b) != DirectedEdgeIndex::kNone ||
+                         owner_.find(b, c) != DirectedEdgeIndex::kNone || owner_.find(c, a) != DirectedEdgeIndex::kNone;
+      if (loose) {
         loose_.push_back(f);
+        coded_[f] = true;
         continue;
       }
-      for (int i = 0; i < 3; ++i) edges_.push_back({edge_key(faces[f].v[i], faces[f].v[(i + 1) % 3]), f});
+      owner_.insert(a, b, f);
+      owner_.insert(b, c, f);
+      owner_.insert(c, a, f);
     }
-    std::sort(edges_.begin(), edges_.end());
-    coded_.assign(faces.size(), false);
-    for (uint32_t f : loose_) coded_[f] = true;
   }
 
   uint32_t traversal_faces() const { return static_cast<uint32_t>(faces_.size() - loose_.size()); }
@@ -68,14 +53,13 @@ class TraversalOracle {
 
   GateAnswer gate(HalfEdge gate, std::span<const uint32_t> candidates) {
     const uint32_t a = input_of_[gate.from], b = input_of_[gate.to];
-    const uint64_t k = edge_key(b, a);
-    const auto it = std::lower_bound(edges_.begin(), edges_.end(), std::pair<uint64_t, uint32_t>{k, 0});
-    if (it == edges_.end() || it->first != k) return {GateSymbol::kBorder, 0, 0};
-    if (coded_[it->second]) throw Error(ErrorKind::kInput, "base_mesh", kNoPlane, kNoOffset, "encoder: a face behind a gate is coded twice");
-    coded_[it->second] = true;
+    const uint32_t face = owner_.find(b, a);
+    if (face == DirectedEdgeIndex::kNone) return {GateSymbol::kBorder, 0, 0};
+    if (coded_[face]) throw Error(ErrorKind::kInput, "base_mesh", kNoPlane, kNoOffset, "encoder: a face behind a gate is coded twice");
+    coded_[face] = true;
     GateAnswer answer;
     uint32_t c = 0;
-    if (!known(faces_[it->second].third(a, b), c)) {
+    if (!known(faces_[face].third(a, b), c)) {
       answer.symbol = GateSymbol::kNewVertex;
       return answer;
     }
@@ -119,7 +103,7 @@ class TraversalOracle {
   std::span<const Triangle> faces_;
   std::vector<uint32_t> coding_of_, input_of_;
   std::vector<uint32_t> loose_;
-  std::vector<std::pair<uint64_t, uint32_t>> edges_;  // directed edge → its traversal face
+  DirectedEdgeIndex owner_;  // directed edge → its traversal face
   std::vector<bool> coded_;
   size_t next_seed_ = 0;
   uint32_t pending_ = 0;

@@ -75,17 +75,16 @@ void describe_index(IO& io, const char* name, uint32_t limit, uint32_t& index) {
   if (index >= limit) io.fail(ErrorKind::kOutOfRange, name, "an index beyond " + std::to_string(limit - 1));
 }
 
-// A gate's symbol. `context` is the traversal's;
-// `candidates` the number of vertices a face behind the gate can close on;
-// `visited` the vertices numbered so far. The symbol's value goes to
-// `candidate` (an index below `candidates`) or `far_vertex` (below
-// `visited`, coded as its difference from the gate's `from` vertex).
 // The contexts of a gate's bins, from the traversal (mesh3d/base_mesh.h).
 struct GateContext {
   int gate = 0;    // of gate_new_vertex and gate_candidate
   int choice = 0;  // of the first candidate_index bin
 };
 
+// A gate's symbol. `candidates` is the number of vertices a face behind the
+// gate can close on, `visited` the vertices numbered so far. The symbol's
+// value goes to `candidate` (an index below `candidates`) or `far_vertex`
+// (below `visited`, coded as its difference from the gate's `from` vertex).
 template <class IO>
 void describe_gate(IO& io, BaseMeshContexts& c, GateContext context, uint32_t candidates, uint32_t visited, uint32_t from,
                    GateSymbol& symbol, uint32_t& candidate, uint32_t& far_vertex) {
