@@ -299,7 +299,7 @@ int run_m4mesh(int argc, const char* const* argv) {
   decode3d_cmd->add_option("input", decode3d_args.input, "mesh3d stream")->required();
   decode3d_cmd->add_option("-o,--output", decode3d_args.output, "a folder for OBJ frames, a .m4seq file, a .pc2 file (with the faces and frame 0 in the .obj beside it), PLY frames ('frames/*.ply': '*' becomes 0001, 0002, …), or a .f32 file (every frame's binary32 x, y, z, little-endian)")->required();
   decode3d_cmd->add_flag("--verify", decode3d_args.verify, "check every frame against its hash unit: OK or MISMATCH per frame");
-  decode3d_cmd->add_option("--frames", decode3d_args.frames, "write frames A … B only (A:B, A: or :B; every frame is still decoded)");
+  decode3d_cmd->add_option("--frames", decode3d_args.frames, "frames A … B only (A:B, A: or :B): decoding starts at the last intra refresh at or before A (bfs3d, Affine-Octree --intra-period) and, without --verify, stops after B");
   decode3d_cmd->add_flag("--keep-going", decode3d_args.keep_going,
                          "on an error, keep the frames decoded before it (and say how many; the exit status is still 1)");
   decode3d_cmd->add_option("--max-bytes", decode3d_args.max_bytes,

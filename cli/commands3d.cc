@@ -252,6 +252,8 @@ int run_decode3d(const Decode3dArgs& args) {
                   decoder.header().vertex_count, decoder.header().face_count, decoder.header().frame_count);
   if (decoder.vertex_order() == kVertexOrderCoding)
     say("note: %s numbers its vertices in coding order (encode3d --reorder), not necessarily the input's", args.input.c_str());
+  if (const uint32_t start = first > 0 ? decoder.seek(first) : 0; start > 0)
+    console::detail("%s: decoding from the intra refresh at frame %u", args.input.c_str(), start);
   const bool to_folder = form == SequenceOutput::kObjFolder;
   // Frames go to a temporary folder beside the output (a trailing '/' is
   // not part of the name) that becomes the output only when all decoded.
@@ -279,6 +281,8 @@ int run_decode3d(const Decode3dArgs& args) {
         sequence.frames.push_back(std::move(frame));
       }
       written.push_back(decoder.frame_index());
+      // Past the range nothing is written; without --verify nothing more is needed.
+      if (decoder.frame_index() == last && !args.verify) break;
     }
   } catch (const Error& e) {
     if (!args.keep_going) {

@@ -38,6 +38,9 @@ class CodecDecoder3d {
   // refine frames already decoded); otherwise the container copies each
   // reported frame out before the next unit.
   virtual bool holds_all_frames() const { return false; }
+  // Before any unit: makes the codec's first unit the base mesh unit of
+  // `frame`, an intra refresh; false when the codec cannot start there.
+  virtual bool start_at(uint32_t frame) { return frame == 0; }
 
   // Symbols of arithmetic-coded sections are traced here when set.
   void set_trace(Trace* trace) { trace_ = trace; }

@@ -1,6 +1,6 @@
-// libFuzzer target: the 3D container, the Draco base mesh and every
-// registered 3D codec's decoder, plain, traced, and in the checker's
-// carry-on mode.
+// libFuzzer target: the 3D container, the base mesh and every registered
+// 3D codec's decoder, plain, from an intra refresh (seek), traced, and in
+// the checker's carry-on mode.
 #include <cstddef>
 #include <cstdint>
 #include <sstream>
@@ -16,6 +16,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     Decode3dOptions options;
     options.verify = true;
     Mesh3dDecoder decoder(stream, options);
+    while (decoder.next_frame()) {
+    }
+  } catch (const Error&) {
+  }
+  try {
+    Decode3dOptions options;
+    options.verify = true;
+    Mesh3dDecoder decoder(stream, options);
+    decoder.seek(size > 0 ? data[size - 1] : 0);
     while (decoder.next_frame()) {
     }
   } catch (const Error&) {

@@ -221,6 +221,31 @@ TEST(Bfs3d, RoundTripsWithBothPredictions) {
     }
 }
 
+// Seeking starts at the last intra refresh at or before the frame asked
+// for, and decodes from there exactly as a decoding from the start does.
+TEST(Bfs3d, SeekStartsAtTheLastIntraRefresh) {
+  const MeshSequence s = test_sequence(12, 8);
+  Encode3dOptions options;
+  options.codec_options["intra-period"] = "4";
+  options.hash_group = 3;
+  const std::vector<uint8_t> stream = encode_mesh3d(s, options).stream;
+  std::vector<std::vector<Float3>> all;
+  for (Mesh3dDecoder whole(stream); whole.next_frame();) all.push_back(whole.positions());
+  Mesh3dDecoder decoder(stream, verifying());
+  EXPECT_EQ(decoder.seek(9), 8u);
+  uint32_t frames = 0;
+  while (decoder.next_frame()) {
+    ASSERT_EQ(decoder.frame_index(), 8 + frames);
+    EXPECT_EQ(decoder.positions(), all[decoder.frame_index()]);
+    ++frames;
+  }
+  EXPECT_EQ(frames, 4u);
+  EXPECT_FALSE(decoder.first_mismatch().has_value());
+  EXPECT_FALSE(decoder.hash_result(5).has_value());  // before the refresh: never decoded, never checked
+  Mesh3dDecoder early(stream);
+  EXPECT_EQ(early.seek(3), 0u);  // no refresh before frame 4
+}
+
 TEST(Bfs3d, EncoderIsDeterministicAndHashesCatchChanges) {
   const MeshSequence s = test_sequence(4, 7);
   const std::vector<uint8_t> stream = encode_mesh3d(s).stream;

@@ -62,6 +62,28 @@ UnitHeader Mesh3dDecoder::read_unit_header(size_t index, bool traced) {
   return header;
 }
 
+uint32_t Mesh3dDecoder::seek(uint32_t frame) {
+  if (next_unit_ != 0 || codec_->holds_all_frames()) return 0;
+  size_t refresh = 0;
+  uint32_t start = 0;
+  for (size_t u = 1; u < parts_.units.size(); ++u) {
+    if (is_hash_unit(u)) continue;
+    const UnitHeader header = read_unit_header(u, false);
+    if (header.frame_index > frame) break;
+    if (header.type() == UnitType::kBaseMesh) {
+      refresh = u;
+      start = header.frame_index;
+    }
+  }
+  if (refresh == 0 || !codec_->start_at(start)) return 0;
+  next_unit_ = refresh;
+  next_display_ = start;
+  // Frames before the refresh are skipped: never output, and not missing.
+  if (decoded_.size() < start) decoded_.resize(start);
+  std::fill_n(decoded_.begin(), start, true);
+  return start;
+}
+
 std::optional<uint32_t> Mesh3dDecoder::vertex_order() const {
   for (const ContainerUnit& unit : parts_.units) {
     BitReader reader(unit.payload.data(), unit.payload.size());

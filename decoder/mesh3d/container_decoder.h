@@ -56,6 +56,13 @@ class Mesh3dDecoder {
   // Whether every unit refines every frame (a progressive codec).
   bool progressive() const { return codec_->holds_all_frames(); }
 
+  // Before the first unit: starts at the last intra refresh (a base mesh
+  // unit) at or before `frame`, when the stream has one and the codec can;
+  // returns the frame decoding starts at (0 when it cannot skip). Earlier
+  // frames are never output, and group hashes reaching back before the
+  // refresh stay unchecked.
+  uint32_t seek(uint32_t frame);
+
   // Decodes the next unit that is not a hash unit, then the hash units
   // that follow it; false after the last (when the stream's frames are
   // all decoded, else an error).

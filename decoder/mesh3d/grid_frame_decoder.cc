@@ -4,7 +4,7 @@ namespace m4mesh {
 
 void GridFrameDecoder::decode_unit(const UnitHeader& unit, syntax::ReadIO& io, std::vector<uint32_t>& decoded) {
   // The unit is the next frame even when it fails, so that a check carries on.
-  const uint32_t expected = started_ ? frame_index_ + 1 : 0;
+  const uint32_t expected = started_ ? frame_index_ + 1 : first_frame_;
   const bool first = !started_;
   started_ = true;
   frame_index_ = expected;
@@ -26,6 +26,12 @@ void GridFrameDecoder::decode_unit(const UnitHeader& unit, syntax::ReadIO& io, s
   } else {
     decode_frame(io, positions_);
   }
+}
+
+bool GridFrameDecoder::start_at(uint32_t frame) {
+  if (started_) return false;
+  first_frame_ = frame;
+  return true;
 }
 
 void GridFrameDecoder::frame(uint32_t, std::span<Float3> positions) const {

@@ -18,6 +18,7 @@ class GridFrameDecoder : public CodecDecoder3d {
   void decode_unit(const UnitHeader& unit, syntax::ReadIO& io, std::vector<uint32_t>& decoded) final;
   const std::vector<Triangle>& faces() const final { return faces_; }
   void frame(uint32_t index, std::span<Float3> positions) const final;
+  bool start_at(uint32_t frame) final;
 
  protected:
   // Called once the base mesh of frame 0 is known.
@@ -33,6 +34,7 @@ class GridFrameDecoder : public CodecDecoder3d {
   std::vector<Triangle> faces_;
   std::vector<IntPoint3> positions_;
   bool started_ = false;
+  uint32_t first_frame_ = 0;  // of the first unit: 0, or an intra refresh
   uint32_t frame_index_ = 0;
 };
 
