@@ -13,6 +13,7 @@
 #include "cli/commands3d.h"
 #include "cli/console.h"
 #include "cli/demo.h"
+#include "cli/rd.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "conformance/checker.h"
@@ -327,6 +328,13 @@ int run_m4mesh(int argc, const char* const* argv) {
   convert_cmd->add_option("output", convert_output, "a .m4seq file, a .pc2 file (with its .obj), PLY frames ('frames/*.ply') or a folder")->required();
 
   DemoOptions demo_options;
+  RdArgs rd_args;
+  CLI::App* rd_cmd = app.add_subcommand("rd", "Rate–distortion sweep: every 3D codec over its quality parameter, one row per point");
+  rd_cmd->add_option("input", rd_args.input, "a sequence (frames, .m4seq, .pc2)")->required();
+  rd_cmd->add_option("-o,--output", rd_args.output, "rows as .csv or .json (- : CSV on standard output)")->required();
+  rd_cmd->add_option("--codecs", rd_args.codecs, "comma-separated codecs (default: every codec)");
+  rd_cmd->add_flag("--json", rd_args.json, "JSON whatever the output's name");
+
   CLI::App* demo_cmd = app.add_subcommand("demo", "Encode and decode an embedded waving-flag animation, check bit-exactness");
   demo_cmd->add_option("--cols", demo_options.cols, "nodes per row")->check(CLI::Range(2, 1023));
   demo_cmd->add_option("--rows", demo_options.rows, "nodes per column")->check(CLI::Range(2, 1023));
@@ -369,6 +377,7 @@ int run_m4mesh(int argc, const char* const* argv) {
     if (*progressive_cmd) return current_file = progressive_args.stream, run_progressive(progressive_args);
     if (*convert_cmd) return run_convert(convert_input, convert_output);
     if (*demo_cmd) return run_demo(demo_options);
+    if (*rd_cmd) return current_file = rd_args.input, run_rd(rd_args);
   } catch (const Error& e) {
     std::cout.flush();
     // Input and file errors name their own file (and line); usage errors concern no file.

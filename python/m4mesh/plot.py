@@ -1,0 +1,71 @@
+"""Rate–distortion plots of an `m4mesh rd` sweep.
+
+    python3 -m m4mesh.plot rd.csv -o rd.png [--title TITLE]
+
+Two panels against bits per vertex per frame, one line per codec: the KG
+error (percent) and STED, both on log axes (every codec spans decades).
+"""
+
+import argparse
+import csv
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
+
+
+def read_points(path):
+    """The rows of an `m4mesh rd` CSV, grouped by codec in file order."""
+    codecs = {}
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            codecs.setdefault(row["codec"], []).append(
+                {key: float(row[key]) for key in ("bpvf", "kg_percent", "sted")}
+            )
+    if not codecs:
+        raise ValueError(f"{path}: no rate–distortion points")
+    return codecs
+
+
+def plot(codecs, output, title=None, width=10.0, height=4.2):
+    """Draws the two panels into `output` (PNG, SVG or PDF by its extension)."""
+    figure, axes = plt.subplots(1, 2, figsize=(width, height), constrained_layout=True)
+    for name, points in codecs.items():
+        points = sorted(points, key=lambda p: p["bpvf"])
+        rates = [p["bpvf"] for p in points]
+        for axis, key in zip(axes, ("kg_percent", "sted")):
+            # A lossless point has no place on a log axis.
+            kept = [(r, p[key]) for r, p in zip(rates, points) if p[key] > 0]
+            if kept:
+                axis.plot(*zip(*kept), marker="o", markersize=3, label=name)
+    for axis, label in zip(axes, ("KG error (%)", "STED")):
+        axis.set_xscale("log")
+        axis.set_yscale("log")
+        axis.set_xlabel("bits per vertex per frame")
+        axis.set_ylabel(label)
+        axis.grid(True, which="both", alpha=0.3)
+        axis.legend()
+    if title:
+        figure.suptitle(title)
+    figure.savefig(output, dpi=100)
+    plt.close(figure)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="python3 -m m4mesh.plot", description=__doc__.splitlines()[0])
+    parser.add_argument("csv", help="an `m4mesh rd` CSV")
+    parser.add_argument("-o", "--output", required=True, help="the picture (.png, .svg or .pdf)")
+    parser.add_argument("--title", help="a title above both panels")
+    args = parser.parse_args(argv)
+    try:
+        plot(read_points(args.csv), args.output, args.title)
+    except (OSError, ValueError, KeyError) as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,72 @@
+"""`m4mesh rd` and `python3 -m m4mesh.plot`, run as a user runs them."""
+
+import csv
+import json
+import os
+import subprocess
+import sys
+
+import matplotlib.image
+import pytest
+
+M4MESH = os.environ["M4MESH_BINARY"]
+SOURCE = os.environ["M4MESH_SOURCE_DIR"]
+FRAMES = os.path.join(SOURCE, "tests", "data", "tetra-frames")
+COLUMNS = ["codec", "parameter", "bytes", "bpvf", "kg_percent", "psnr_db", "rmse", "sted", "encode_s", "decode_s"]
+
+
+@pytest.fixture(scope="module")
+def sweep(tmp_path_factory):
+    out = tmp_path_factory.mktemp("rd") / "rd.csv"
+    subprocess.run([M4MESH, "rd", FRAMES, "-o", str(out)], check=True, capture_output=True)
+    return out
+
+
+def test_rows_are_complete(sweep):
+    with open(sweep, newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert rows and list(rows[0].keys()) == COLUMNS
+    assert {row["codec"] for row in rows} == {"bfs3d", "affine-octree", "lcc", "cpca-wpt"}
+    for row in rows:
+        assert all(row[c] != "" for c in COLUMNS)
+        assert int(row["bytes"]) > 0 and float(row["bpvf"]) > 0 and float(row["kg_percent"]) >= 0
+
+
+def test_bfs3d_error_falls_with_every_bit(sweep):
+    # bfs3d's grid step halves with each bit: its error never grows.
+    with open(sweep, newline="") as f:
+        rows = [row for row in csv.DictReader(f) if row["codec"] == "bfs3d"]
+    bits = [int(row["parameter"].split()[1]) for row in rows]
+    kg = [float(row["kg_percent"]) for row in rows]
+    assert bits == sorted(bits)
+    assert all(b <= a for a, b in zip(kg, kg[1:]))
+
+
+def test_json_holds_the_same_points(sweep, tmp_path):
+    out = tmp_path / "rd.json"
+    subprocess.run([M4MESH, "rd", FRAMES, "--codecs", "bfs3d,lcc", "-o", str(out)], check=True, capture_output=True)
+    points = json.loads(out.read_text())
+    assert {p["codec"] for p in points} == {"bfs3d", "lcc"}
+    assert set(points[0].keys()) == set(COLUMNS)
+
+
+def test_an_unknown_extension_is_a_usage_error(tmp_path):
+    result = subprocess.run([M4MESH, "rd", FRAMES, "-o", str(tmp_path / "rd.txt")], capture_output=True, text=True)
+    assert result.returncode == 2 and result.stderr.startswith("error: ")
+    assert not (tmp_path / "rd.txt").exists()
+
+
+def test_plot_draws_a_picture(sweep, tmp_path):
+    out = tmp_path / "rd.png"
+    subprocess.run([sys.executable, "-m", "m4mesh.plot", str(sweep), "-o", str(out), "--title", "tetra"], check=True)
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    pixels = matplotlib.image.imread(str(out))
+    assert pixels.shape[0] == 420 and pixels.shape[1] == 1000
+    assert pixels.std() > 0.01  # not one colour
+
+
+def test_plot_of_no_points_fails_cleanly(tmp_path):
+    empty = tmp_path / "empty.csv"
+    empty.write_text(",".join(COLUMNS) + "\n")
+    result = subprocess.run([sys.executable, "-m", "m4mesh.plot", str(empty), "-o", str(tmp_path / "x.png")], capture_output=True, text=True)
+    assert result.returncode == 1 and "no rate–distortion points" in result.stderr
