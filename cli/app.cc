@@ -13,6 +13,7 @@
 #include "cli/commands3d.h"
 #include "cli/console.h"
 #include "cli/demo.h"
+#include "cli/pictures.h"
 #include "cli/rd.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
@@ -328,6 +329,15 @@ int run_m4mesh(int argc, const char* const* argv) {
   convert_cmd->add_option("output", convert_output, "a .m4seq file, a .pc2 file (with its .obj), PLY frames ('frames/*.ply') or a folder")->required();
 
   DemoOptions demo_options;
+  RenderArgs render_args;
+  CLI::App* render_cmd = app.add_subcommand("render", "Draw a 2D mesh stream: its texture warped by every plane, as an animated GIF or one plane's PNG");
+  render_cmd->add_option("input", render_args.input, "2D mesh stream")->required();
+  render_cmd->add_option("-o,--output", render_args.output, "anim.gif (every plane) or frame.png (one plane)")->required();
+  render_cmd->add_option("--texture", render_args.texture, "a PNG laid on the I-plane's bounding box (default: a checkerboard)");
+  render_cmd->add_option("--plane", render_args.plane, "the plane a .png shows")->capture_default_str();
+  render_cmd->add_flag("--wireframe", render_args.wireframe, "draw the triangles' edges over the picture");
+  render_cmd->add_option("--fps", render_args.fps, "frames per second of a GIF")->capture_default_str();
+
   RdArgs rd_args;
   CLI::App* rd_cmd = app.add_subcommand("rd", "Rate–distortion sweep: every 3D codec over its quality parameter, one row per point");
   rd_cmd->add_option("input", rd_args.input, "a sequence (frames, .m4seq, .pc2)")->required();
@@ -339,6 +349,7 @@ int run_m4mesh(int argc, const char* const* argv) {
   demo_cmd->add_option("--cols", demo_options.cols, "nodes per row")->check(CLI::Range(2, 1023));
   demo_cmd->add_option("--rows", demo_options.rows, "nodes per column")->check(CLI::Range(2, 1023));
   demo_cmd->add_option("--frames", demo_options.frames, "planes")->check(CLI::Range(1, 100000));
+  demo_cmd->add_option("--gif", demo_options.gif, "also draw the decoded planes warping a checkerboard into this animated GIF");
 
   app.set_version_flag("--version", "m4mesh " M4MESH_VERSION);
   // Usage errors: one line, exit status 2 (help and --version: 0).
@@ -378,6 +389,7 @@ int run_m4mesh(int argc, const char* const* argv) {
     if (*convert_cmd) return run_convert(convert_input, convert_output);
     if (*demo_cmd) return run_demo(demo_options);
     if (*rd_cmd) return current_file = rd_args.input, run_rd(rd_args);
+    if (*render_cmd) return current_file = render_args.input, run_render(render_args);
   } catch (const Error& e) {
     std::cout.flush();
     // Input and file errors name their own file (and line); usage errors concern no file.

@@ -4,9 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <optional>
 
 #include "cli/console.h"
 #include "decoder/decoder.h"
+#include "render/texture_warp.h"
 #include "encoder/encoder.h"
 
 namespace m4mesh {
@@ -54,6 +56,16 @@ int run_demo(const DemoOptions& options) {
   auto start = Clock::now();
   const EncodeResult encoded = encoder.finish();
   encode_s += std::chrono::duration<double>(Clock::now() - start).count();
+  // The picture: every plane fits the rectangle of all of them.
+  Canvas canvas;
+  std::optional<GifWriter> gif;
+  std::optional<Image> texture;
+  std::optional<TextureWarp> warp;
+  if (!options.gif.empty()) {
+    console::check_output(options.gif);
+    for (uint32_t t = 0; t < options.frames; ++t) canvas = united(canvas, canvas_over(waving_flag_plane(options, t).nodes));
+    gif.emplace(options.gif, canvas.width, canvas.height, 4);
+  }
   Decoder decoder(encoded.stream);
   uint32_t k = 0;
   bool exact = true;
@@ -64,6 +76,14 @@ int run_demo(const DemoOptions& options) {
     if (k < options.frames) {
       const MeshPlane plane = waving_flag_plane(options, k);
       exact = exact && std::equal(decoder.nodes().begin(), decoder.nodes().end(), plane.nodes.begin(), plane.nodes.end());
+    }
+    if (gif) {
+      if (decoder.info().intra) {
+        const Canvas box = canvas_over(decoder.nodes());
+        texture = checkerboard(box.width, box.height);
+        warp.emplace(decoder.nodes(), decoder.triangles(), *texture, canvas);
+      }
+      gif->add(warp->render(decoder.nodes(), false));
     }
     ++k;
   }
@@ -77,6 +97,10 @@ int run_demo(const DemoOptions& options) {
   std::printf("encode: %.3f ms, %.1f M nodes/s\n", encode_s * 1e3, node_frames / encode_s / 1e6);
   std::printf("decode: %.3f ms, %.1f M nodes/s\n", decode_s * 1e3, node_frames / decode_s / 1e6);
   std::printf("decoded positions %s the input: %s\n", exact ? "match" : "DIFFER FROM", exact ? "bit-exact" : "FAILED");
+  if (gif) {
+    gif->finish();
+    std::printf("picture: %s, the decoded planes warping a checkerboard, %u × %u pixels\n", options.gif.c_str(), canvas.width, canvas.height);
+  }
   return exact ? 0 : 1;
 }
 

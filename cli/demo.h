@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "mesh/plane.h"
 
@@ -12,6 +13,7 @@ struct DemoOptions {
   uint32_t rows = 25;
   uint32_t spacing = 16;  // half pixels
   uint32_t frames = 120;
+  std::string gif;  // the decoded animation drawn on a checkerboard (empty: none)
 };
 
 // Plane t of a flag waving on a pole: a uniform I-plane (t = 0), then P-planes.

@@ -1,0 +1,130 @@
+#include "render/image.h"
+
+#include <gif_lib.h>
+#include <png.h>
+
+#include <cstring>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+
+namespace m4mesh {
+
+namespace {
+
+Error image_error(const std::string& path, const std::string& message) {
+  return Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, path + ": " + message);
+}
+
+// The colour cube of the GIF palette: 6 reds, 7 greens, 6 blues.
+constexpr int kReds = 6, kGreens = 7, kBlues = 6;
+uint8_t level(uint8_t value, int levels) { return static_cast<uint8_t>((value * (levels - 1) + 127) / 255); }
+GifByteType cube_index(const Rgb& c) {
+  return static_cast<GifByteType>((level(c.r, kReds) * kGreens + level(c.g, kGreens)) * kBlues + level(c.b, kBlues));
+}
+
+}  // namespace
+
+void write_png(const Image& image, const std::string& path) {
+  png_image png;
+  std::memset(&png, 0, sizeof png);
+  png.version = PNG_IMAGE_VERSION;
+  png.width = image.width;
+  png.height = image.height;
+  png.format = PNG_FORMAT_RGB;
+  png_alloc_size_t size = 0;
+  if (!png_image_write_to_memory(&png, nullptr, &size, 0, image.pixels.data(), 0, nullptr))
+    throw image_error(path, std::string("PNG: ") + png.message);
+  std::string bytes(size, '\0');
+  if (!png_image_write_to_memory(&png, bytes.data(), &size, 0, image.pixels.data(), 0, nullptr))
+    throw image_error(path, std::string("PNG: ") + png.message);
+  bytes.resize(size);
+  write_file_atomically(path, bytes);
+}
+
+Image read_png(const std::string& path) {
+  const std::vector<uint8_t> bytes = read_file(path);
+  png_image png;
+  std::memset(&png, 0, sizeof png);
+  png.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_memory(&png, bytes.data(), bytes.size())) throw image_error(path, std::string("not a PNG: ") + png.message);
+  if (png.width == 0 || png.height == 0 || png.width > 16384 || png.height > 16384) {
+    png_image_free(&png);
+    throw image_error(path, "a PNG of " + std::to_string(png.width) + " × " + std::to_string(png.height) + ": textures go to 16384 × 16384");
+  }
+  png.format = PNG_FORMAT_RGB;
+  Image image(png.width, png.height);
+  if (!png_image_finish_read(&png, nullptr, image.pixels.data(), 0, nullptr)) throw image_error(path, std::string("PNG: ") + png.message);
+  return image;
+}
+
+struct GifWriter::State {
+  AtomicFile file;
+  GifFileType* gif = nullptr;
+  uint32_t width, height, delay;
+  std::string path;
+  std::vector<GifByteType> row;
+};
+
+namespace {
+
+int write_to_file(GifFileType* gif, const GifByteType* data, int length) {
+  static_cast<AtomicFile*>(gif->UserData)->write(std::string_view(reinterpret_cast<const char*>(data), static_cast<size_t>(length)));
+  return length;
+}
+
+}  // namespace
+
+GifWriter::GifWriter(const std::string& path, uint32_t width, uint32_t height, uint32_t delay_centiseconds)
+    : state_(new State{AtomicFile(path), nullptr, width, height, delay_centiseconds, path, std::vector<GifByteType>(width)}) {
+  if (width == 0 || height == 0 || width > 65535 || height > 65535) throw image_error(path, "a GIF goes to 65535 × 65535 pixels");
+  int error = 0;
+  state_->gif = EGifOpen(&state_->file, write_to_file, &error);
+  if (!state_->gif) throw image_error(path, std::string("GIF: ") + GifErrorString(error));
+  ColorMapObject* palette = GifMakeMapObject(256, nullptr);
+  for (int r = 0; r < kReds; ++r)
+    for (int g = 0; g < kGreens; ++g)
+      for (int b = 0; b < kBlues; ++b)
+        palette->Colors[(r * kGreens + g) * kBlues + b] = {static_cast<GifByteType>(r * 255 / (kReds - 1)),
+                                                          static_cast<GifByteType>(g * 255 / (kGreens - 1)),
+                                                          static_cast<GifByteType>(b * 255 / (kBlues - 1))};
+  EGifSetGifVersion(state_->gif, true);
+  const int status = EGifPutScreenDesc(state_->gif, static_cast<int>(width), static_cast<int>(height), 8, 0, palette);
+  GifFreeMapObject(palette);
+  // Loop for ever: the NETSCAPE2.0 application extension.
+  static const GifByteType kLoop[] = {1, 0, 0};
+  if (status == GIF_ERROR || EGifPutExtensionLeader(state_->gif, APPLICATION_EXT_FUNC_CODE) == GIF_ERROR ||
+      EGifPutExtensionBlock(state_->gif, 11, "NETSCAPE2.0") == GIF_ERROR || EGifPutExtensionBlock(state_->gif, 3, kLoop) == GIF_ERROR ||
+      EGifPutExtensionTrailer(state_->gif) == GIF_ERROR)
+    throw image_error(path, std::string("GIF: ") + GifErrorString(state_->gif->Error));
+}
+
+GifWriter::~GifWriter() {
+  if (state_->gif) EGifCloseFile(state_->gif, nullptr);  // the file is not committed: it is removed
+}
+
+void GifWriter::add(const Image& frame) {
+  GifFileType* gif = state_->gif;
+  if (frame.width != state_->width || frame.height != state_->height) throw image_error(state_->path, "a GIF frame of another size");
+  GraphicsControlBlock control{DISPOSAL_UNSPECIFIED, false, static_cast<int>(state_->delay), NO_TRANSPARENT_COLOR};
+  GifByteType extension[4];
+  EGifGCBToExtension(&control, extension);
+  if (EGifPutExtension(gif, GRAPHICS_EXT_FUNC_CODE, 4, extension) == GIF_ERROR ||
+      EGifPutImageDesc(gif, 0, 0, static_cast<int>(frame.width), static_cast<int>(frame.height), false, nullptr) == GIF_ERROR)
+    throw image_error(state_->path, std::string("GIF: ") + GifErrorString(gif->Error));
+  for (uint32_t y = 0; y < frame.height; ++y) {
+    for (uint32_t x = 0; x < frame.width; ++x) state_->row[x] = cube_index(frame.at(x, y));
+    if (EGifPutLine(gif, state_->row.data(), static_cast<int>(frame.width)) == GIF_ERROR)
+      throw image_error(state_->path, std::string("GIF: ") + GifErrorString(gif->Error));
+  }
+}
+
+void GifWriter::finish() {
+  int error = 0;
+  const int status = EGifCloseFile(state_->gif, &error);
+  state_->gif = nullptr;
+  if (status == GIF_ERROR) throw image_error(state_->path, std::string("GIF: ") + GifErrorString(error));
+  state_->file.commit();
+}
+
+}  // namespace m4mesh

@@ -1,0 +1,47 @@
+// RGB pictures and their files: PNG through libpng, animated GIF through
+// giflib (a fixed 6 × 7 × 6 colour cube, so frames need no palette search).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace m4mesh {
+
+struct Rgb {
+  uint8_t r = 0, g = 0, b = 0;
+  friend bool operator==(const Rgb&, const Rgb&) = default;
+};
+
+struct Image {
+  uint32_t width = 0, height = 0;
+  std::vector<Rgb> pixels;  // row by row from the top
+
+  Image() = default;
+  Image(uint32_t w, uint32_t h, Rgb fill = {}) : width(w), height(h), pixels(size_t{w} * h, fill) {}
+  Rgb& at(uint32_t x, uint32_t y) { return pixels[size_t{y} * width + x]; }
+  const Rgb& at(uint32_t x, uint32_t y) const { return pixels[size_t{y} * width + x]; }
+};
+
+// Errors are kIo errors that name the file.
+void write_png(const Image& image, const std::string& path);
+Image read_png(const std::string& path);
+
+// An animated GIF written frame by frame (memory: one frame), looping.
+class GifWriter {
+ public:
+  GifWriter(const std::string& path, uint32_t width, uint32_t height, uint32_t delay_centiseconds);
+  ~GifWriter();
+  GifWriter(const GifWriter&) = delete;
+  GifWriter& operator=(const GifWriter&) = delete;
+  void add(const Image& frame);
+  // Completes the file (atomically, like every output).
+  void finish();
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace m4mesh
