@@ -338,6 +338,17 @@ int run_m4mesh(int argc, const char* const* argv) {
   render_cmd->add_flag("--wireframe", render_args.wireframe, "draw the triangles' edges over the picture");
   render_cmd->add_option("--fps", render_args.fps, "frames per second of a GIF")->capture_default_str();
 
+  Render3dArgs render3d_args;
+  CLI::App* render3d_cmd = app.add_subcommand("render3d", "Draw a 3D sequence or stream shaded; with --compare, beside its original, coloured by its error");
+  render3d_cmd->add_option("input", render3d_args.input, "a sequence (frames, .m4seq, .pc2) or a mesh3d stream")->required();
+  render3d_cmd->add_option("-o,--output", render3d_args.output, "frame.png (one frame) or anim.gif (every frame)")->required();
+  render3d_cmd->add_option("--compare", render3d_args.compare, "the original: drawn on the left, the input on the right coloured by its per-vertex error");
+  render3d_cmd->add_option("--frame", render3d_args.frame, "the frame a .png shows")->capture_default_str();
+  render3d_cmd->add_option("--size", render3d_args.size, "pixels per view (square)")->capture_default_str();
+  render3d_cmd->add_option("--azimuth", render3d_args.azimuth, "view direction around the vertical axis, degrees")->capture_default_str();
+  render3d_cmd->add_option("--elevation", render3d_args.elevation, "view direction above the horizon, degrees")->capture_default_str();
+  render3d_cmd->add_option("--fps", render3d_args.fps, "frames per second of a GIF")->capture_default_str();
+
   RdArgs rd_args;
   CLI::App* rd_cmd = app.add_subcommand("rd", "Rate–distortion sweep: every 3D codec over its quality parameter, one row per point");
   rd_cmd->add_option("input", rd_args.input, "a sequence (frames, .m4seq, .pc2)")->required();
@@ -390,6 +401,7 @@ int run_m4mesh(int argc, const char* const* argv) {
     if (*demo_cmd) return run_demo(demo_options);
     if (*rd_cmd) return current_file = rd_args.input, run_rd(rd_args);
     if (*render_cmd) return current_file = render_args.input, run_render(render_args);
+    if (*render3d_cmd) return current_file = render3d_args.input, run_render3d(render3d_args);
   } catch (const Error& e) {
     std::cout.flush();
     // Input and file errors name their own file (and line); usage errors concern no file.

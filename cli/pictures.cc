@@ -9,18 +9,39 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "decoder/decoder.h"
+#include "decoder/mesh3d/container_decoder.h"
+#include "render/shaded.h"
 #include "render/texture_warp.h"
 #include "syntax/mesh3d/container.h"
 
 namespace m4mesh {
 
-int run_render(const RenderArgs& args) {
-  namespace fs = std::filesystem;
-  refuse_overwriting(args.input, args.output);
-  const std::string extension = fs::path(args.output).extension().string();
+namespace {
+
+// The picture's form from its name: a GIF of every frame or a PNG of one.
+bool gif_output(const std::string& output, const char* command) {
+  const std::string extension = std::filesystem::path(output).extension().string();
   if (extension != ".gif" && extension != ".png")
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, args.output + ": render writes .gif (every plane) or .png (--plane K)");
-  if (!(args.fps > 0 && args.fps <= 100)) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--fps: 0 < fps ≤ 100");
+    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, output + ": " + command + " writes .gif (every frame) or .png (one frame)");
+  return extension == ".gif";
+}
+
+uint32_t gif_delay(double fps) {
+  if (!(fps > 0 && fps <= 100)) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--fps: 0 < fps ≤ 100");
+  return static_cast<uint32_t>(std::lround(100.0 / fps));
+}
+
+MeshSequence sequence_or_stream(const std::string& path) {
+  if (std::filesystem::is_regular_file(path) && is_mesh3d_stream(read_file(path))) return decode_mesh3d(read_file(path));
+  return load_sequence(path, !console::quiet());
+}
+
+}  // namespace
+
+int run_render(const RenderArgs& args) {
+  refuse_overwriting(args.input, args.output);
+  const bool to_gif = gif_output(args.output, "render");
+  const uint32_t delay = gif_delay(args.fps);
   console::check_output(args.output);
   const std::vector<uint8_t> stream = read_file(args.input);
   if (is_mesh3d_stream(stream))
@@ -29,7 +50,7 @@ int run_render(const RenderArgs& args) {
   Canvas canvas;
   uint32_t planes = 0;
   for (Decoder decoder(stream); decoder.next(); ++planes) canvas = united(canvas, canvas_over(decoder.nodes()));
-  if (args.output.ends_with(".png") && args.plane >= planes)
+  if (!to_gif && args.plane >= planes)
     throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
                 "--plane " + std::to_string(args.plane) + ": the stream has planes 0 … " + std::to_string(planes - 1));
   if (canvas.width > 8192 || canvas.height > 8192)
@@ -41,8 +62,7 @@ int run_render(const RenderArgs& args) {
   if (!args.texture.empty()) texture = read_png(args.texture);
   std::optional<TextureWarp> warp;
   std::optional<GifWriter> gif;
-  if (extension == ".gif")
-    gif.emplace(args.output, canvas.width, canvas.height, static_cast<uint32_t>(std::lround(100.0 / args.fps)));
+  if (to_gif) gif.emplace(args.output, canvas.width, canvas.height, delay);
   console::Progress progress("rendering plane", planes);
   Decoder decoder(stream);
   for (uint32_t k = 0; decoder.next(); ++k) {
@@ -64,6 +84,69 @@ int run_render(const RenderArgs& args) {
   if (gif) gif->finish();
   console::say("%s: %s, %u × %u pixels", args.output.c_str(), gif ? (std::to_string(planes) + " planes").c_str() : ("plane " + std::to_string(args.plane)).c_str(),
                canvas.width, canvas.height);
+  return 0;
+}
+
+int run_render3d(const Render3dArgs& args) {
+  refuse_overwriting(args.input, args.output);
+  if (!args.compare.empty()) refuse_overwriting(args.compare, args.output);
+  const bool gif = gif_output(args.output, "render3d");
+  const uint32_t delay = gif_delay(args.fps);
+  if (args.size < 16 || args.size > 4096) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--size: 16 … 4096 pixels");
+  console::check_output(args.output);
+  const MeshSequence shown = sequence_or_stream(args.input);
+  MeshSequence original;
+  if (!args.compare.empty()) {
+    original = sequence_or_stream(args.compare);
+    if (original.vertex_count != shown.vertex_count || original.frames.size() != shown.frames.size())
+      throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
+                  args.compare + ": " + std::to_string(original.vertex_count) + " vertices, " + std::to_string(original.frames.size()) +
+                      " frames; " + args.input + " has " + std::to_string(shown.vertex_count) + " and " + std::to_string(shown.frames.size()));
+  }
+  if (!gif && args.frame >= shown.frames.size())
+    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
+                "--frame " + std::to_string(args.frame) + ": the sequence has frames 0 … " + std::to_string(shown.frames.size() - 1));
+  const bool compare = !args.compare.empty();
+  const auto [lo, hi] = sequence_box(compare ? original : shown);
+  const Camera camera(lo, hi, args.azimuth, args.elevation, args.size);
+  // The colour scale: the largest error of the whole sequence, so that frames compare.
+  double max_error = 0;
+  if (compare)
+    for (size_t f = 0; f < shown.frames.size(); ++f)
+      for (uint32_t i = 0; i < shown.vertex_count; ++i) {
+        const Vec3 d{shown.frames[f][i].x - original.frames[f][i].x, shown.frames[f][i].y - original.frames[f][i].y,
+                     shown.frames[f][i].z - original.frames[f][i].z};
+        max_error = std::max(max_error, std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z));
+      }
+  const uint32_t width = compare ? 2 * args.size + 80 : args.size;
+  Image image(width, args.size);
+  auto draw = [&](size_t f) {
+    if (!compare) return draw_shaded(image, 0, camera, shown.frames[f], shown.faces);
+    std::vector<Rgb> colours(shown.vertex_count);
+    for (uint32_t i = 0; i < shown.vertex_count; ++i) {
+      const Vec3 d{shown.frames[f][i].x - original.frames[f][i].x, shown.frames[f][i].y - original.frames[f][i].y,
+                   shown.frames[f][i].z - original.frames[f][i].z};
+      colours[i] = error_colour(max_error > 0 ? std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z) / max_error : 0);
+    }
+    draw_shaded(image, 0, camera, original.frames[f], original.faces);
+    draw_shaded(image, args.size, camera, shown.frames[f], shown.faces, colours);
+    draw_legend(image, 2 * args.size, max_error);
+  };
+  if (!gif) {
+    draw(args.frame);
+    write_png(image, args.output);
+  } else {
+    GifWriter writer(args.output, width, args.size, delay);
+    console::Progress progress("rendering frame", shown.frames.size());
+    for (size_t f = 0; f < shown.frames.size(); ++f) {
+      progress.update(f + 1);
+      draw(f);
+      writer.add(image);
+    }
+    writer.finish();
+  }
+  console::say("%s: %u × %u pixels%s", args.output.c_str(), width, args.size,
+               compare ? (", largest error " + std::to_string(max_error)).c_str() : "");
   return 0;
 }
 

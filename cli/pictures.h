@@ -1,6 +1,7 @@
 // `m4mesh render`: a decoded 2D mesh animation as pictures, the texture
 // warped by each plane (render/texture_warp.h), to an animated GIF or one
-// plane's PNG.
+// plane's PNG. `m4mesh render3d`: shaded views of a 3D sequence or stream
+// (render/shaded.h), beside its original with the error as colours.
 #pragma once
 
 #include <cstdint>
@@ -17,5 +18,16 @@ struct RenderArgs {
   double fps = 25;
 };
 int run_render(const RenderArgs& args);
+
+struct Render3dArgs {
+  std::string input;    // a sequence or a mesh3d stream
+  std::string output;   // .png (one frame) or .gif (every frame)
+  std::string compare;  // the original: drawn beside, the input coloured by its error
+  uint32_t frame = 0;   // the frame of a .png
+  uint32_t size = 512;  // pixels per view
+  double azimuth = 30, elevation = 20;  // degrees
+  double fps = 25;
+};
+int run_render3d(const Render3dArgs& args);
 
 }  // namespace m4mesh

@@ -1,4 +1,4 @@
-"""`m4mesh render` and `m4mesh demo --gif`: real picture files, as a user opens them."""
+"""`m4mesh render`, `render3d` and `demo --gif`: real picture files, as a user opens them."""
 
 import os
 import subprocess
@@ -31,19 +31,19 @@ def stream(tmp_path_factory):
     return out
 
 
-def render(stream, out, *options):
-    subprocess.run([M4MESH, "render", str(stream), "-o", str(out), *options], check=True, capture_output=True)
+def draw(command, source, out, *options):
+    subprocess.run([M4MESH, command, str(source), "-o", str(out), *options], check=True, capture_output=True)
     return Image.open(out)
 
 
 def test_png_of_a_plane(stream, tmp_path):
-    picture = render(stream, tmp_path / "p2.png", "--plane", "2", "--wireframe")
+    picture = draw("render", stream, tmp_path / "p2.png", "--plane", "2", "--wireframe")
     assert picture.format == "PNG" and picture.size == (53, 32)  # nodes up to (104, 62) half pixels: pixels 0 … 52, 0 … 31
     assert len(set(picture.convert("RGB").getdata())) > 2
 
 
 def test_gif_of_every_plane(stream, tmp_path):
-    picture = render(stream, tmp_path / "all.gif", "--fps", "10")
+    picture = draw("render", stream, tmp_path / "all.gif", "--fps", "10")
     assert picture.format == "GIF" and picture.n_frames == 3 and picture.info["duration"] == 100
     assert len(set(picture.convert("RGB").getdata())) > 2
 
@@ -51,10 +51,10 @@ def test_gif_of_every_plane(stream, tmp_path):
 def test_zero_motion_shows_the_texture_unwarped(stream, tmp_path):
     texture = tmp_path / "texture.png"
     Image.effect_mandelbrot((40, 30), (-2, -1.2, 1, 1.2), 60).convert("RGB").save(texture)
-    still = render(stream, tmp_path / "p0.png", "--plane", "0", "--texture", str(texture))
-    zero = render(stream, tmp_path / "p1.png", "--plane", "1", "--texture", str(texture))
+    still = draw("render", stream, tmp_path / "p0.png", "--plane", "0", "--texture", str(texture))
+    zero = draw("render", stream, tmp_path / "p1.png", "--plane", "1", "--texture", str(texture))
     assert list(still.getdata()) == list(zero.getdata())
-    moved = render(stream, tmp_path / "p2.png", "--plane", "2", "--texture", str(texture))
+    moved = draw("render", stream, tmp_path / "p2.png", "--plane", "2", "--texture", str(texture))
     assert list(moved.getdata()) != list(still.getdata())
 
 
@@ -70,3 +70,24 @@ def test_demo_draws_the_flag(tmp_path):
     assert "bit-exact" in result.stdout
     picture = Image.open(out)
     assert picture.n_frames == 12 and picture.size[0] > 200
+
+
+FRAMES = os.path.join(os.environ["M4MESH_SOURCE_DIR"], "tests", "data", "tetra-frames")
+
+
+def test_render3d_png_and_gif(tmp_path):
+    picture = draw("render3d", FRAMES, tmp_path / "t.png", "--frame", "2", "--size", "128")
+    assert picture.format == "PNG" and picture.size == (128, 128)
+    assert len(set(picture.convert("RGB").getdata())) > 2
+    animation = draw("render3d", FRAMES, tmp_path / "t.gif", "--size", "64")
+    assert animation.n_frames == 4 and animation.size == (64, 64)
+
+
+def test_render3d_compare_puts_the_original_beside_the_error(tmp_path):
+    stream = tmp_path / "t.m4m"
+    subprocess.run([M4MESH, "encode3d", FRAMES, "--bits", "5", "-o", str(stream)], check=True, capture_output=True)
+    picture = draw("render3d", stream, tmp_path / "c.png", "--compare", FRAMES, "--size", "100").convert("RGB")
+    assert picture.size == (2 * 100 + 80, 100)
+    left = {picture.getpixel((x, y)) for x in range(100) for y in range(100)}
+    right = {picture.getpixel((x, y)) for x in range(100, 200) for y in range(100)}
+    assert len(left) > 2 and len(right) > 2 and left != right

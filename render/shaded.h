@@ -1,0 +1,46 @@
+// Shaded pictures of 3D meshes: an orthographic camera fitted to a box,
+// a z-buffer, Lambert shading lit from the viewer; optionally per-vertex
+// colours (an error through a colour map, with its legend).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "mesh/topology.h"
+#include "mesh3d/sequence.h"
+#include "render/image.h"
+
+namespace m4mesh {
+
+// Looks from azimuth and elevation (degrees) at a box, which fills
+// `size` × `size` pixels with a margin.
+class Camera {
+ public:
+  Camera(const Vec3& lo, const Vec3& hi, double azimuth, double elevation, uint32_t size);
+  // Pixel x, y and depth (larger: nearer the viewer).
+  std::array<double, 3> project(const Vec3& p) const;
+  const Vec3& toward_viewer() const { return view_; }
+  uint32_t size() const { return size_; }
+
+ private:
+  Vec3 right_, up_, view_, centre_;
+  double scale_;
+  uint32_t size_;
+};
+
+// The box of every frame of a sequence.
+std::pair<Vec3, Vec3> sequence_box(const MeshSequence& sequence);
+
+// One frame drawn into `image` at column `x0`: grey, or coloured per vertex
+// when `colours` is not empty.
+void draw_shaded(Image& image, uint32_t x0, const Camera& camera, std::span<const Vec3> positions, std::span<const Triangle> faces,
+                 std::span<const Rgb> colours = {});
+
+// The colour map of errors: 0 → dark blue … 1 → yellow (viridis-like).
+Rgb error_colour(double t);
+// A vertical colour bar at column x0 with its range written at its ends.
+void draw_legend(Image& image, uint32_t x0, double max_value);
+
+}  // namespace m4mesh
