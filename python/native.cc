@@ -1,0 +1,235 @@
+// The m4mesh Python module's native part (m4mesh._native): pybind11 over
+// the library, numpy arrays in and out; every m4mesh::Error becomes an
+// m4mesh.Error carrying its kind, element, frame and bit offset.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <sstream>
+
+#include "codecs3d/registry.h"
+#include "common/error.h"
+#include "conformance/runner.h"
+#include "decoder/decoder.h"
+#include "decoder/mesh3d/container_decoder.h"
+#include "encoder/mesh3d/container_encoder.h"
+#include "encoder/mesh3d/quality_target.h"
+#include "mesh3d/metrics.h"
+
+namespace py = pybind11;
+
+namespace m4mesh {
+namespace {
+
+using Frames = py::array_t<float, py::array::c_style | py::array::forcecast>;
+using Faces = py::array_t<int32_t, py::array::c_style | py::array::forcecast>;
+
+Error usage(const std::string& message) { return Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, message); }
+
+MeshSequence sequence_of(const Frames& frames, const Faces& faces) {
+  if (frames.ndim() != 3 || frames.shape(2) != 3) throw usage("frames: an array of shape (frames, vertices, 3)");
+  if (faces.ndim() != 2 || faces.shape(1) != 3) throw usage("faces: an array of shape (faces, 3)");
+  MeshSequence s;
+  s.vertex_count = static_cast<uint32_t>(frames.shape(1));
+  const auto f = frames.unchecked<3>();
+  s.frames.resize(static_cast<size_t>(frames.shape(0)), std::vector<Vec3>(s.vertex_count));
+  for (py::ssize_t k = 0; k < frames.shape(0); ++k)
+    for (py::ssize_t i = 0; i < frames.shape(1); ++i) s.frames[k][i] = {f(k, i, 0), f(k, i, 1), f(k, i, 2)};
+  const auto t = faces.unchecked<2>();
+  for (py::ssize_t k = 0; k < faces.shape(0); ++k) {
+    Triangle tri{};
+    for (int j = 0; j < 3; ++j) {
+      if (t(k, j) < 0 || static_cast<uint32_t>(t(k, j)) >= s.vertex_count) throw usage("faces: a vertex index out of range in face " + std::to_string(k));
+      tri.v[j] = static_cast<NodeIndex>(t(k, j));
+    }
+    s.faces.push_back(tri);
+  }
+  return s;
+}
+
+Frames frames_of(const MeshSequence& s) {
+  Frames out({static_cast<py::ssize_t>(s.frames.size()), static_cast<py::ssize_t>(s.vertex_count), py::ssize_t{3}});
+  auto o = out.mutable_unchecked<3>();
+  for (size_t k = 0; k < s.frames.size(); ++k)
+    for (uint32_t i = 0; i < s.vertex_count; ++i) {
+      o(k, i, 0) = static_cast<float>(s.frames[k][i].x);
+      o(k, i, 1) = static_cast<float>(s.frames[k][i].y);
+      o(k, i, 2) = static_cast<float>(s.frames[k][i].z);
+    }
+  return out;
+}
+
+Faces faces_of(std::span<const Triangle> faces) {
+  Faces out({static_cast<py::ssize_t>(faces.size()), py::ssize_t{3}});
+  auto o = out.mutable_unchecked<2>();
+  for (size_t k = 0; k < faces.size(); ++k)
+    for (int j = 0; j < 3; ++j) o(k, j) = static_cast<int32_t>(faces[k].v[j]);
+  return out;
+}
+
+std::span<const uint8_t> bytes_view(const py::bytes& stream) {
+  const std::string_view view = stream;
+  return {reinterpret_cast<const uint8_t*>(view.data()), view.size()};
+}
+
+py::bytes encode(const Frames& frames, const Faces& faces, const std::string& codec, bool hashes, uint32_t hash_group, bool reorder,
+                 const py::kwargs& options) {
+  Encode3dOptions o;
+  o.codec = codec;
+  o.hashes = hashes;
+  o.hash_group = hash_group;
+  o.reorder = reorder;
+  QualityTarget target;
+  for (const auto& [key, value] : options) {
+    std::string name = py::str(key);
+    std::replace(name.begin(), name.end(), '_', '-');
+    if (name == "target-kg") target.kg = value.cast<double>();
+    else if (name == "target-psnr") target.psnr = value.cast<double>();
+    else o.codec_options[name] = py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "1" : "0") : std::string(py::str(value));
+  }
+  const MeshSequence s = sequence_of(frames, faces);
+  Encode3dResult result;
+  {
+    py::gil_scoped_release release;
+    if (target.kg > 0 || target.psnr > 0)
+      result = encode_to_target(s, o, target, [](const TargetTrial&) {});
+    else
+      result = encode_mesh3d(s, o);
+  }
+  return py::bytes(reinterpret_cast<const char*>(result.stream.data()), result.stream.size());
+}
+
+py::tuple decode(const py::bytes& stream) {
+  MeshSequence s;
+  {
+    const std::span<const uint8_t> bytes = bytes_view(stream);
+    py::gil_scoped_release release;
+    s = decode_mesh3d(bytes);
+  }
+  return py::make_tuple(frames_of(s), faces_of(s.faces));
+}
+
+// A progressive stream's prefixes, unit by unit.
+class Progressive {
+ public:
+  explicit Progressive(py::bytes stream)
+      : stream_(std::move(stream)), decoder_(bytes_view(stream_)), parts_(split_container(bytes_view(stream_))) {
+    if (!decoder_.progressive())
+      throw usage(decoder_.codec().name + " decodes frame by frame; progressive decoding needs a progressive codec (cpca-wpt)");
+  }
+  // (units, bytes received, frames float32[F, V, 3]) after the next unit.
+  py::tuple next() {
+    if (!decoder_.next_unit()) throw py::stop_iteration();
+    ++units_;
+    const ObjectHeader& h = decoder_.header();
+    Frames frames({static_cast<py::ssize_t>(h.frame_count), static_cast<py::ssize_t>(h.vertex_count), py::ssize_t{3}});
+    for (uint32_t f = 0; f < h.frame_count; ++f)
+      decoder_.frame(f, std::span<Float3>(reinterpret_cast<Float3*>(frames.mutable_data(f)), h.vertex_count));
+    const size_t taken = decoder_.units_taken();
+    const uint64_t received = taken < parts_.units.size() ? parts_.units[taken].byte_offset : bytes_view(stream_).size();
+    return py::make_tuple(units_, received, frames);
+  }
+
+ private:
+  py::bytes stream_;
+  Mesh3dDecoder decoder_;
+  ContainerParts parts_;
+  size_t units_ = 0;
+};
+
+py::dict metrics(const Frames& original, const Frames& decoded, const Faces& faces) {
+  const MeshSequence a = sequence_of(original, faces), b = sequence_of(decoded, faces);
+  SequenceMetrics m;
+  {
+    py::gil_scoped_release release;
+    m = compare_sequences(a, b);
+  }
+  py::dict out;
+  out["kg_error"] = m.kg_error;
+  out["rmse"] = m.rmse;
+  out["max_error"] = m.max_error;
+  out["psnr"] = m.psnr;
+  out["sted_spatial"] = m.sted_spatial;
+  out["sted_temporal"] = m.sted_temporal;
+  out["sted"] = m.sted;
+  return out;
+}
+
+py::list read_2d(const py::bytes& stream) {
+  py::list planes;
+  Decoder decoder(bytes_view(stream));
+  while (decoder.next()) {
+    py::array_t<int32_t> nodes({static_cast<py::ssize_t>(decoder.nodes().size()), py::ssize_t{2}});
+    auto n = nodes.mutable_unchecked<2>();
+    for (size_t i = 0; i < decoder.nodes().size(); ++i) {
+      n(i, 0) = decoder.nodes()[i].x;
+      n(i, 1) = decoder.nodes()[i].y;
+    }
+    py::dict plane;
+    plane["intra"] = decoder.info().intra;
+    plane["nodes"] = nodes;
+    plane["triangles"] = faces_of(decoder.triangles());
+    planes.append(plane);
+  }
+  return planes;
+}
+
+py::dict conform(const std::string& suite, const std::string& decoder_command) {
+  std::ostringstream report;
+  ConformResult r;
+  {
+    py::gil_scoped_release release;
+    r = run_conformance({suite, decoder_command}, report);
+  }
+  py::dict out;
+  out["passed"] = r.passed;
+  out["failed"] = r.failed;
+  out["skipped"] = r.skipped;
+  out["report"] = report.str();
+  return out;
+}
+
+}  // namespace
+}  // namespace m4mesh
+
+PYBIND11_MODULE(_native, m) {
+  using namespace m4mesh;
+  m.doc() = "m4mesh's library from Python (the m4mesh package re-exports it)";
+  // Kept for the interpreter's lifetime (a static py::object would outlive it).
+  static const py::handle error_class = py::object(py::module_::import("m4mesh._errors").attr("Error")).release();
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const Error& e) {
+      const py::object error = error_class(e.what(), to_string(e.kind()), e.element(), e.plane(), e.bit_offset(), e.message());
+      PyErr_SetObject(error_class.ptr(), error.ptr());
+    }
+  });
+  m.def("codecs", [] {
+    std::vector<std::string> names;
+    for (const Codec3d& c : codecs3d()) names.push_back(c.name);
+    return names;
+  }, "The registered 3D codecs' names.");
+  m.def("encode", &encode, py::arg("frames"), py::arg("faces"), py::arg("codec") = "bfs3d", py::arg("hashes") = true,
+        py::arg("hash_group") = 16, py::arg("reorder") = false,
+        R"(A 3D stream (bytes) of frames float32[F, V, 3] with faces int32[T, 3].
+
+codec: a name of m4mesh.codecs(). Its options as keywords, dashes as
+underscores (bits=12, me=5, theta_bits=6, noise="auto", …; True is "1");
+target_kg=X or target_psnr=Y searches the codec's quality for the smallest
+stream that reaches it. hashes, hash_group, reorder: as encode3d's.)");
+  m.def("decode", &decode, py::arg("stream"),
+        "(frames float32[F, V, 3], faces int32[T, 3]) of a 3D stream, every frame checked against its hash units.");
+  py::class_<Progressive>(m, "progressive", "Iterates over a progressive stream's prefixes: (units, bytes received, frames) after each unit.")
+      .def(py::init<py::bytes>(), py::arg("stream"))
+      .def("__iter__", [](Progressive& self) -> Progressive& { return self; })
+      .def("__next__", &Progressive::next);
+  m.def("metrics", &metrics, py::arg("original"), py::arg("decoded"), py::arg("faces"),
+        "KG error (%), RMSE, max error, PSNR (dB), STED spatial, temporal and combined, as `m4mesh metrics`.");
+  m.def("read_2d", &read_2d, py::arg("stream"),
+        "A 2D stream's planes: a list of {'intra': bool, 'nodes': int32[N, 2] (half pixels), 'triangles': int32[T, 3]}.");
+  m.def("conform", &conform, py::arg("suite"), py::arg("decoder") = "",
+        "Runs a conformance suite (a folder with manifest.json) through m4mesh's decoder or the command `decoder` "
+        "('mydec {in} {out}'): {'passed', 'failed', 'skipped', 'report'}.");
+}

@@ -1,0 +1,109 @@
+"""The m4mesh Python module: the same streams and MD5s as the command line
+on every 3D conformance stream, every codec, and m4mesh.Error on bad input."""
+
+import hashlib
+import json
+import os
+import struct
+import subprocess
+
+import numpy as np
+import pytest
+
+import m4mesh
+
+M4MESH = os.environ["M4MESH_BINARY"]
+SOURCE = os.environ["M4MESH_SOURCE_DIR"]
+SUITE = os.path.join(SOURCE, "conformance", "mesh3d")
+MANIFEST = json.load(open(os.path.join(SUITE, "manifest.json")))["streams"]
+FRAMES = os.path.join(SOURCE, "tests", "data", "tetra-frames")
+
+
+def stream_of(case):
+    with open(os.path.join(SUITE, case["file"]), "rb") as f:
+        return f.read()
+
+
+@pytest.mark.parametrize("case", [c for c in MANIFEST if c["expect"] == "decode"], ids=lambda c: c["id"])
+def test_decodes_every_conformance_stream_to_its_md5(case):
+    frames, faces = m4mesh.decode(stream_of(case))
+    assert frames.dtype == np.float32 and frames.shape[2] == 3 and faces.shape[1] == 3
+    assert hashlib.md5(frames.astype("<f4").tobytes()).hexdigest() == case["decoded_md5"]
+
+
+@pytest.mark.parametrize("case", [c for c in MANIFEST if c["expect"] == "error"], ids=lambda c: c["id"])
+def test_rejects_every_bad_conformance_stream_as_the_manifest_says(case):
+    with pytest.raises(m4mesh.Error) as caught:
+        m4mesh.decode(stream_of(case))
+    assert caught.value.kind == case["error_kind"]
+    assert caught.value.element == case["error_element"]
+    assert caught.value.frame == case["error_plane"]
+
+
+@pytest.fixture(scope="module")
+def tetra(tmp_path_factory):
+    """The test frames as arrays, through the command line's .m4seq."""
+    path = tmp_path_factory.mktemp("tetra") / "t.m4seq"
+    subprocess.run([M4MESH, "convert", FRAMES, str(path)], check=True, capture_output=True)
+    data = path.read_bytes()
+    vertices, face_count, frame_count = struct.unpack_from("<3I", data, 7)
+    faces = np.frombuffer(data, "<u4", face_count * 3, 19).reshape(face_count, 3).astype(np.int32)
+    frames = np.frombuffer(data, "<f4", frame_count * vertices * 3, 19 + 12 * face_count).reshape(frame_count, vertices, 3)
+    return frames, faces
+
+
+@pytest.mark.parametrize("codec,options,flags", [
+    ("bfs3d", {"bits": 10, "parallelogram": True}, ["--bits", "10", "--parallelogram"]),
+    ("affine-octree", {"me": 5}, ["--me", "5"]),
+    ("lcc", {"theta_bits": 6, "mode": "download"}, ["--theta-bits", "6", "--mode", "download"]),
+    ("cpca-wpt", {"clusters": 2}, ["--clusters", "2"]),
+])
+def test_encodes_the_same_bytes_as_the_command_line(tetra, tmp_path, codec, options, flags):
+    out = tmp_path / "cli.m4m"
+    subprocess.run([M4MESH, "encode3d", FRAMES, "--codec", codec, *flags, "-o", str(out)], check=True, capture_output=True)
+    frames, faces = tetra
+    assert m4mesh.encode(frames, faces, codec=codec, **options) == out.read_bytes()
+
+
+def test_a_quality_target_and_the_metrics(tetra):
+    frames, faces = tetra
+    stream = m4mesh.encode(frames, faces, codec="bfs3d", target_kg=0.5, hashes=False)
+    decoded, decoded_faces = m4mesh.decode(stream)
+    measured = m4mesh.metrics(frames, decoded, decoded_faces)
+    assert 0 < measured["kg_error"] <= 0.5
+    assert m4mesh.metrics(frames, frames, faces)["kg_error"] == 0
+
+
+def test_progressive_decoding_ends_at_the_whole_stream():
+    stream = stream_of(next(c for c in MANIFEST if c["id"] == "cpca-01-wpt"))
+    steps = list(m4mesh.progressive(stream))
+    assert [units for units, _, _ in steps] == list(range(1, len(steps) + 1))
+    assert steps[-1][1] == len(stream)
+    assert np.array_equal(steps[-1][2], m4mesh.decode(stream)[0])
+    with pytest.raises(m4mesh.Error, match="progressive"):
+        m4mesh.progressive(stream_of(MANIFEST[0]))
+
+
+def test_reads_2d_planes():
+    with open(os.path.join(SOURCE, "conformance", "streams", "p01-hand-3x3.m4m"), "rb") as f:
+        planes = m4mesh.read_2d(f.read())
+    assert len(planes) == 3 and planes[0]["intra"] and not planes[1]["intra"]
+    assert planes[0]["nodes"].shape == (9, 2) and planes[0]["triangles"].shape[1] == 3
+
+
+def test_runs_the_conformance_suite():
+    result = m4mesh.conform(SUITE)
+    assert result["failed"] == 0 and result["passed"] == len(MANIFEST)
+
+
+def test_bad_arguments_raise_m4mesh_error(tetra):
+    frames, faces = tetra
+    with pytest.raises(m4mesh.Error) as caught:
+        m4mesh.encode(frames[:, :, :2], faces)
+    assert caught.value.kind == "usage"
+    with pytest.raises(m4mesh.Error) as caught:
+        m4mesh.encode(frames, faces, codec="nonesuch")
+    assert "nonesuch" in str(caught.value)
+    with pytest.raises(m4mesh.Error) as caught:
+        m4mesh.decode(b"\x00\x00\x01\xc4 not a stream")
+    assert caught.value.offset >= 0 or caught.value.kind in ("truncated", "structure")
