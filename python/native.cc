@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <cstring>
 #include <sstream>
 
 #include "codecs3d/registry.h"
@@ -32,16 +33,23 @@ MeshSequence sequence_of(const Frames& frames, const Faces& faces) {
   if (faces.ndim() != 2 || faces.shape(1) != 3) throw usage("faces: an array of shape (faces, 3)");
   MeshSequence s;
   s.vertex_count = static_cast<uint32_t>(frames.shape(1));
-  const auto f = frames.unchecked<3>();
+  // Read by bytes: an array over a buffer (np.frombuffer) need not be aligned.
+  const auto* f = static_cast<const char*>(static_cast<const py::array&>(frames).data());
   s.frames.resize(static_cast<size_t>(frames.shape(0)), std::vector<Vec3>(s.vertex_count));
-  for (py::ssize_t k = 0; k < frames.shape(0); ++k)
-    for (py::ssize_t i = 0; i < frames.shape(1); ++i) s.frames[k][i] = {f(k, i, 0), f(k, i, 1), f(k, i, 2)};
-  const auto t = faces.unchecked<2>();
+  for (size_t k = 0; k < s.frames.size(); ++k)
+    for (uint32_t i = 0; i < s.vertex_count; ++i, f += 3 * sizeof(float)) {
+      float xyz[3];
+      std::memcpy(xyz, f, sizeof xyz);
+      s.frames[k][i] = Vec3{xyz[0], xyz[1], xyz[2]};
+    }
+  const auto* t = static_cast<const char*>(static_cast<const py::array&>(faces).data());
   for (py::ssize_t k = 0; k < faces.shape(0); ++k) {
     Triangle tri{};
-    for (int j = 0; j < 3; ++j) {
-      if (t(k, j) < 0 || static_cast<uint32_t>(t(k, j)) >= s.vertex_count) throw usage("faces: a vertex index out of range in face " + std::to_string(k));
-      tri.v[j] = static_cast<NodeIndex>(t(k, j));
+    for (int j = 0; j < 3; ++j, t += sizeof(int32_t)) {
+      int32_t v = 0;
+      std::memcpy(&v, t, sizeof v);
+      if (v < 0 || static_cast<uint32_t>(v) >= s.vertex_count) throw usage("faces: a vertex index out of range in face " + std::to_string(k));
+      tri.v[j] = static_cast<NodeIndex>(v);
     }
     s.faces.push_back(tri);
   }

@@ -42,7 +42,7 @@ def test_rejects_every_bad_conformance_stream_as_the_manifest_says(case):
 
 @pytest.fixture(scope="module")
 def tetra(tmp_path_factory):
-    """The test frames as arrays, through the command line's .m4seq."""
+    """The test frames as arrays over the bytes of the command line's .m4seq (unaligned: the module must read them so)."""
     path = tmp_path_factory.mktemp("tetra") / "t.m4seq"
     subprocess.run([M4MESH, "convert", FRAMES, str(path)], check=True, capture_output=True)
     data = path.read_bytes()
