@@ -21,10 +21,6 @@ const char* const kSequences[] = {"horse-gallop",
                                   "openfamc_testdata/handstand_mesh",
                                   "cloth/flag/flag.pc2"};
 
-std::string label(int64_t index) {
-  return bench::fs::exists(bench::kData / kSequences[index]) ? kSequences[index] : "synthetic";
-}
-
 std::vector<IntPoint3> grid_positions(const MeshSequence& s, int bits) {
   const Grid grid = Grid::over(s.frames[0], bits, true);
   std::vector<IntPoint3> q(s.vertex_count);
@@ -56,7 +52,7 @@ void BM_BaseMeshRate(benchmark::State& state) {
   state.counters["m4mesh_reorder"] = 8.0 * static_cast<double>(base_unit(s, q, true).size()) / v;
   state.counters["draco_eb"] = 8.0 * static_cast<double>(draco_grid_size(s.faces, q, true)) / v;
   state.counters["draco_seq"] = 8.0 * static_cast<double>(draco_grid_size(s.faces, q, false)) / v;
-  state.SetLabel(label(state.range(0)) + " " + std::to_string(bits) + " bits");
+  state.SetLabel(bench::label(kSequences[state.range(0)]) + " " + std::to_string(bits) + " bits");
 }
 BENCHMARK(BM_BaseMeshRate)->ArgsProduct({{0, 1, 2, 3, 4, 5}, {10, 12, 14}})->Unit(benchmark::kMillisecond)->Iterations(1);
 
@@ -69,7 +65,7 @@ void BM_BaseMeshDecode(benchmark::State& state) {
     syntax::ReadIO io(reader);
     benchmark::DoNotOptimize(read_base_mesh(io, header, nullptr).positions.data());
   }
-  state.SetLabel(label(state.range(0)));
+  state.SetLabel(bench::label(kSequences[state.range(0)]));
   state.counters["vertices/s"] = benchmark::Counter(static_cast<double>(state.iterations()) * s.vertex_count, benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_BaseMeshDecode)->Arg(0)->Unit(benchmark::kMillisecond);

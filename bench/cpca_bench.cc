@@ -22,7 +22,6 @@ namespace {
 const char* const kSequences[] = {"pcow", "horse-gallop", "openfamc_testdata/dance_mesh", "openfamc_testdata/dog_mesh",
                                   "openfamc_testdata/handstand_mesh"};
 
-std::string label(int64_t which) { return bench::fs::exists(bench::kData / kSequences[which]) ? kSequences[which] : "synthetic"; }
 
 Encode3dOptions options(const std::string& codec, CodecOptionValues values) {
   Encode3dOptions o;
@@ -61,7 +60,7 @@ void BM_CpcaCurve(benchmark::State& state) {
   }
   state.counters["final_KG"] = points.back().second;
   state.counters["final_bpvf"] = bpvf(static_cast<double>(points.back().first), s);
-  state.SetLabel(label(state.range(0)) + (rpt ? " RPT" : " WPT"));
+  state.SetLabel(bench::label(kSequences[state.range(0)]) + (rpt ? " RPT" : " WPT"));
 }
 BENCHMARK(BM_CpcaCurve)->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}})->Iterations(1)->Unit(benchmark::kMillisecond);
 
@@ -75,7 +74,7 @@ void BM_AnchorPoint(benchmark::State& state) {
     r = encode_mesh3d(s, affine ? options("affine-octree", {{"me", "5"}}) : options("bfs3d", {{"parallelogram", "1"}}));
   state.counters["KG"] = kg_error(s, decode_mesh3d(r.stream));
   state.counters["bpvf"] = bpvf(static_cast<double>(r.stream.size()), s);
-  state.SetLabel(label(state.range(0)) + (affine ? " affine-octree ME 5%" : " bfs3d 12 bits"));
+  state.SetLabel(bench::label(kSequences[state.range(0)]) + (affine ? " affine-octree ME 5%" : " bfs3d 12 bits"));
 }
 BENCHMARK(BM_AnchorPoint)->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1}})->Iterations(1)->Unit(benchmark::kMillisecond);
 
@@ -95,7 +94,7 @@ void BM_CpcaTableV(benchmark::State& state) {
   state.counters["PSNR"] = psnr(s, decoded);
   state.counters["KG"] = kg_error(s, decoded);
   state.counters["paper_PSNR"] = state.range(0) == 492 ? 16.64 : 23.7;
-  state.SetLabel(label(0));
+  state.SetLabel(bench::label(kSequences[0]));
 }
 BENCHMARK(BM_CpcaTableV)->Arg(492)->Arg(165)->Iterations(1)->Unit(benchmark::kMillisecond);
 
@@ -110,7 +109,7 @@ void BM_CpcaEncodeTime(benchmark::State& state) {
     if (name.find("seconds") != std::string::npos) state.counters[name.substr(0, name.find(' '))] = value;
   state.counters["order_bytes"] = static_cast<double>(r.statistics.at(2).second);
   state.counters["report_total_s"] = state.range(0) == 0 ? 10.88 + 5.23 + 0.0416 : 4.484 + 0.57 + 0.0379;
-  state.SetLabel(label(state.range(0)));
+  state.SetLabel(bench::label(kSequences[state.range(0)]));
 }
 BENCHMARK(BM_CpcaEncodeTime)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
@@ -122,12 +121,7 @@ void BM_CpcaRefinementPass(benchmark::State& state) {
   const std::vector<uint8_t> stream = encode_mesh3d(s, options("cpca-wpt", {})).stream;
   // The clusters' sizes, from the header's cluster map.
   const ContainerParts parts = split_container(stream);
-  BitReader reader(parts.object_payload.data(), parts.object_payload.size());
-  syntax::ReadIO io(reader);
-  ObjectHeader object;
-  CpcaHeader header;
-  syntax::describe(io, object);
-  syntax::describe(io, header);
+  const auto [object, header] = read_headers<CpcaHeader>(parts);
   const std::vector<std::vector<NodeIndex>> members =
       cpca_members(syntax::read_cluster_map<false>(header, object.vertex_count, syntax::SectionPlace{}), header.cluster_count);
   double vertex_frames = 0;
@@ -143,7 +137,7 @@ void BM_CpcaRefinementPass(benchmark::State& state) {
     }
   }
   state.counters["vertex_frames/s"] = benchmark::Counter(vertex_frames * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
-  state.SetLabel(label(0));
+  state.SetLabel(bench::label(kSequences[0]));
 }
 BENCHMARK(BM_CpcaRefinementPass)->Unit(benchmark::kMillisecond);
 

@@ -26,7 +26,7 @@ void BM_CodecAuto(benchmark::State& state) {
   const double vertex_frames = static_cast<double>(s.vertex_count) * static_cast<double>(s.frames.size());
   state.counters["bytes"] = static_cast<double>(result.stream.size());
   state.counters["bpvf"] = 8.0 * static_cast<double>(result.stream.size()) / vertex_frames;
-  std::string label = bench::fs::exists(bench::kData / kSequences[state.range(0)]) ? kSequences[state.range(0)] : "synthetic";
+  std::string label = bench::label(kSequences[state.range(0)]);
   label += " KG<=" + std::to_string(target.kg).substr(0, 3) + ":";
   for (const TargetTrial& t : trials) {
     label += " " + t.codec + (t.meets ? " " + t.parameter + " " + std::to_string(t.bytes) + " B" : " misses");

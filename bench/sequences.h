@@ -54,7 +54,8 @@ inline const MeshSequence& sequence(const std::string& name) {
 
 inline const char* const kNames[] = {"horse-gallop", "pcow"};
 
-// The name of sequence kNames[index], or "synthetic" when its data is absent.
-inline std::string label(int64_t index) { return fs::exists(kData / kNames[index]) ? kNames[index] : "synthetic"; }
+// The sequence's name, or "synthetic" when its data is absent.
+inline std::string label(const std::string& name) { return fs::exists(kData / name) ? name : "synthetic"; }
+inline std::string label(int64_t index) { return label(std::string(kNames[index])); }
 
 }  // namespace m4mesh::bench

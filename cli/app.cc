@@ -53,7 +53,6 @@ struct EncodeArgs {
 
 int run_encode(const EncodeArgs& args) {
   refuse_overwriting(args.input, args.output);
-  console::check_output(args.output);
   std::vector<MeshPlane> planes;
   if (args.input == "-" || is_decoded_text(args.input)) {
     const std::vector<uint8_t> bytes = read_file(args.input);
@@ -96,7 +95,6 @@ struct DecodeArgs {
 
 int run_decode(const DecodeArgs& args) {
   refuse_overwriting(args.input, args.output);
-  if (!args.output.empty()) console::check_output(args.output);
   const std::vector<uint8_t> stream = read_file(args.input);
   if (is_mesh3d_stream(stream)) {
     if (args.output.empty() || args.md5_only || args.keep_going)
@@ -353,7 +351,7 @@ int run_m4mesh(int argc, const char* const* argv) {
   CLI::App* rd_cmd = app.add_subcommand("rd", "Rate–distortion sweep: every 3D codec over its quality parameter, one row per point");
   rd_cmd->add_option("input", rd_args.input, "a sequence (frames, .m4seq, .pc2)")->required();
   rd_cmd->add_option("-o,--output", rd_args.output, "rows as .csv or .json (- : CSV on standard output)")->required();
-  rd_cmd->add_option("--codecs", rd_args.codecs, "comma-separated codecs (default: every codec)");
+  rd_cmd->add_option("--codecs", rd_args.codecs, "comma-separated codecs (default: every codec)")->delimiter(',');
   rd_cmd->add_flag("--json", rd_args.json, "JSON whatever the output's name");
 
   CLI::App* demo_cmd = app.add_subcommand("demo", "Encode and decode an embedded waving-flag animation, check bit-exactness");

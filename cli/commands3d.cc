@@ -91,19 +91,29 @@ void write_sequence_file(SequenceOutput form, const MeshSequence& sequence, cons
 
 }  // namespace
 
+MeshSequence load_sequence_or_stream(const std::string& path) {
+  if (fs::is_regular_file(path)) {
+    const std::vector<uint8_t> bytes = read_file(path);
+    if (is_mesh3d_stream(bytes)) return decode_mesh3d(bytes);
+  }
+  return load_sequence(path, !console::quiet());
+}
+
 void refuse_overwriting(const std::string& input, const std::string& output) {
-  if (input == "-" || output == "-") return;
-  // A PC2 cache comes with the OBJ beside it (its faces), as an input and as an output.
-  auto with_faces = [](const std::string& path) {
-    std::vector<fs::path> paths{path};
-    if (fs::path(path).extension() == ".pc2") paths.push_back(pc2_faces_path(path));
-    return paths;
-  };
-  std::error_code ignored;
-  for (const fs::path& in : with_faces(input))
-    for (const fs::path& out : with_faces(output))
-      if (fs::equivalent(in, out, ignored))
-        throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, out.string() + ": the output is the input; refusing to overwrite it");
+  if (input != "-" && output != "-") {
+    // A PC2 cache comes with the OBJ beside it (its faces), as an input and as an output.
+    auto with_faces = [](const std::string& path) {
+      std::vector<fs::path> paths{path};
+      if (fs::path(path).extension() == ".pc2") paths.push_back(pc2_faces_path(path));
+      return paths;
+    };
+    std::error_code ignored;
+    for (const fs::path& in : with_faces(input))
+      for (const fs::path& out : with_faces(output))
+        if (fs::equivalent(in, out, ignored))
+          throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, out.string() + ": the output is the input; refusing to overwrite it");
+  }
+  console::check_output(output);
 }
 
 void add_codec_options(CLI::App& command, Encode3dArgs& args) {
@@ -135,7 +145,6 @@ void add_codec_options(CLI::App& command, Encode3dArgs& args) {
 
 int run_encode3d(const Encode3dArgs& args) {
   refuse_overwriting(args.input, args.output);
-  console::check_output(args.output);
   if (fs::is_regular_file(args.input) && is_mesh3d_stream(read_file(args.input)))
     throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
                 args.input + ": a mesh3d stream; encode3d takes frames (m4mesh decode3d turns a stream into frames)");
@@ -233,7 +242,6 @@ std::pair<uint32_t, uint32_t> frame_range(const std::string& text) {
 
 int run_decode3d(const Decode3dArgs& args) {
   refuse_overwriting(args.input, args.output);
-  console::check_output(args.output);
   const auto [first, last] = frame_range(args.frames);
   std::vector<uint8_t> stream = read_file(args.input);
   if (args.max_bytes > 0) {
@@ -431,11 +439,7 @@ int run_metrics(const MetricsArgs& args) {
       rates.push_back({"refinement_rate_bpvf", "(refinement units over vertices × frames)", 8.0 * static_cast<double>(refinement_bytes) / (v * f)});
     rates.push_back({"stream_rate_bpvf", "(the whole stream over vertices × frames)", 8.0 * static_cast<double>(stream.size()) / (v * f)});
   }
-  MeshSequence decoded;
-  if (fs::is_regular_file(args.decoded) && is_mesh3d_stream(read_file(args.decoded)))
-    decoded = decode_mesh3d(read_file(args.decoded));
-  else
-    decoded = load_sequence(args.decoded, !console::quiet());
+  const MeshSequence decoded = load_sequence_or_stream(args.decoded);
   for (const std::string& warning : metrics_warnings(original)) say("warning: %s", warning.c_str());
   const SequenceMetrics m = compare_sequences(original, decoded);
   const std::vector<FrameMetrics> frames = args.per_frame ? per_frame_metrics(original, decoded) : std::vector<FrameMetrics>{};
@@ -492,7 +496,6 @@ int run_metrics(const MetricsArgs& args) {
 
 int run_convert(const std::string& input, const std::string& output) {
   refuse_overwriting(input, output);
-  console::check_output(output);
   const SequenceOutput form = sequence_output(output, false);
   const MeshSequence sequence = load_sequence(input, !console::quiet());
   if (form == SequenceOutput::kObjFolder)

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "codecs3d/options.h"
+#include "mesh3d/sequence.h"
 
 namespace CLI {
 class App;
@@ -11,7 +12,11 @@ class App;
 
 namespace m4mesh {
 
-// Writing onto an input is refused before anything is read (a usage error).
+// A sequence's frames, or a mesh3d stream's decoded frames (read once).
+MeshSequence load_sequence_or_stream(const std::string& path);
+
+// Before anything is read, usage errors for an output that is an input,
+// or that exists without -y (console::check_output).
 void refuse_overwriting(const std::string& input, const std::string& output);
 
 struct Encode3dArgs {

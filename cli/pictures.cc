@@ -31,18 +31,12 @@ uint32_t gif_delay(double fps) {
   return static_cast<uint32_t>(std::lround(100.0 / fps));
 }
 
-MeshSequence sequence_or_stream(const std::string& path) {
-  if (std::filesystem::is_regular_file(path) && is_mesh3d_stream(read_file(path))) return decode_mesh3d(read_file(path));
-  return load_sequence(path, !console::quiet());
-}
-
 }  // namespace
 
 int run_render(const RenderArgs& args) {
-  refuse_overwriting(args.input, args.output);
   const bool to_gif = gif_output(args.output, "render");
   const uint32_t delay = gif_delay(args.fps);
-  console::check_output(args.output);
+  refuse_overwriting(args.input, args.output);
   const std::vector<uint8_t> stream = read_file(args.input);
   if (is_mesh3d_stream(stream))
     throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, args.input + ": a mesh3d stream; render draws 2D mesh streams");
@@ -88,16 +82,15 @@ int run_render(const RenderArgs& args) {
 }
 
 int run_render3d(const Render3dArgs& args) {
-  refuse_overwriting(args.input, args.output);
-  if (!args.compare.empty()) refuse_overwriting(args.compare, args.output);
   const bool gif = gif_output(args.output, "render3d");
   const uint32_t delay = gif_delay(args.fps);
   if (args.size < 16 || args.size > 4096) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--size: 16 … 4096 pixels");
-  console::check_output(args.output);
-  const MeshSequence shown = sequence_or_stream(args.input);
+  refuse_overwriting(args.input, args.output);
+  if (!args.compare.empty()) refuse_overwriting(args.compare, args.output);
+  const MeshSequence shown = load_sequence_or_stream(args.input);
   MeshSequence original;
   if (!args.compare.empty()) {
-    original = sequence_or_stream(args.compare);
+    original = load_sequence_or_stream(args.compare);
     if (original.vertex_count != shown.vertex_count || original.frames.size() != shown.frames.size())
       throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
                   args.compare + ": " + std::to_string(original.vertex_count) + " vertices, " + std::to_string(original.frames.size()) +
@@ -109,25 +102,22 @@ int run_render3d(const Render3dArgs& args) {
   const bool compare = !args.compare.empty();
   const auto [lo, hi] = sequence_box(compare ? original : shown);
   const Camera camera(lo, hi, args.azimuth, args.elevation, args.size);
+  auto error_at = [&](size_t f, uint32_t i) {
+    const Vec3& a = shown.frames[f][i];
+    const Vec3& b = original.frames[f][i];
+    return std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z));
+  };
   // The colour scale: the largest error of the whole sequence, so that frames compare.
   double max_error = 0;
   if (compare)
     for (size_t f = 0; f < shown.frames.size(); ++f)
-      for (uint32_t i = 0; i < shown.vertex_count; ++i) {
-        const Vec3 d{shown.frames[f][i].x - original.frames[f][i].x, shown.frames[f][i].y - original.frames[f][i].y,
-                     shown.frames[f][i].z - original.frames[f][i].z};
-        max_error = std::max(max_error, std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z));
-      }
+      for (uint32_t i = 0; i < shown.vertex_count; ++i) max_error = std::max(max_error, error_at(f, i));
   const uint32_t width = compare ? 2 * args.size + 80 : args.size;
   Image image(width, args.size);
   auto draw = [&](size_t f) {
     if (!compare) return draw_shaded(image, 0, camera, shown.frames[f], shown.faces);
     std::vector<Rgb> colours(shown.vertex_count);
-    for (uint32_t i = 0; i < shown.vertex_count; ++i) {
-      const Vec3 d{shown.frames[f][i].x - original.frames[f][i].x, shown.frames[f][i].y - original.frames[f][i].y,
-                   shown.frames[f][i].z - original.frames[f][i].z};
-      colours[i] = error_colour(max_error > 0 ? std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z) / max_error : 0);
-    }
+    for (uint32_t i = 0; i < shown.vertex_count; ++i) colours[i] = error_colour(max_error > 0 ? error_at(f, i) / max_error : 0);
     draw_shaded(image, 0, camera, original.frames[f], original.faces);
     draw_shaded(image, args.size, camera, shown.frames[f], shown.faces, colours);
     draw_legend(image, 2 * args.size, max_error);

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -23,14 +22,6 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-std::vector<std::string> split_names(const std::string& text) {
-  std::vector<std::string> names;
-  std::stringstream in(text);
-  for (std::string name; std::getline(in, name, ',');)
-    if (!name.empty()) names.push_back(name);
-  return names;
 }
 
 // The registry rows of the codecs named, or every row.
@@ -99,20 +90,18 @@ std::string rd_json(const std::vector<RdPoint>& points) {
 
 int run_rd(const RdArgs& args) {
   namespace fs = std::filesystem;
-  refuse_overwriting(args.input, args.output);
   const std::string extension = args.output == "-" ? "" : fs::path(args.output).extension().string();
   if (args.output != "-" && extension != ".csv" && extension != ".json")
     throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, args.output + ": rd writes .csv or .json (or - for CSV on standard output)");
   const bool json = args.json || extension == ".json";
-  console::check_output(args.output);
+  refuse_overwriting(args.input, args.output);
   const MeshSequence sequence = load_sequence(args.input, !console::quiet());
-  const std::vector<std::string> codecs = split_names(args.codecs);
   size_t total = 0;
-  for (const Codec3d* codec : codec_rows(codecs)) total += codec->quality.coarse_to_fine.size();
+  for (const Codec3d* codec : codec_rows(args.codecs)) total += codec->quality.coarse_to_fine.size();
   console::Progress progress("rate-distortion point", total);
   size_t done = 0;
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<RdPoint> points = rd_sweep(sequence, codecs, [&](const RdPoint& p) {
+  const std::vector<RdPoint> points = rd_sweep(sequence, args.codecs, [&](const RdPoint& p) {
     progress.update(++done);
     console::detail("%s %s: %llu bytes, %.4f bpvf, KG %.5f", p.codec.c_str(), p.parameter.c_str(), static_cast<unsigned long long>(p.bytes),
                     p.bpvf, p.kg);

@@ -31,7 +31,7 @@ std::string rd_json(const std::vector<RdPoint>& points);
 struct RdArgs {
   std::string input;
   std::string output;  // .csv or .json; "-": CSV on standard output
-  std::string codecs;  // comma-separated; empty: every codec
+  std::vector<std::string> codecs;  // empty: every codec
   bool json = false;
 };
 int run_rd(const RdArgs& args);

@@ -313,24 +313,12 @@ std::vector<SuiteCase> lcc_cases(bool traced) {
   return suite;
 }
 
-// A stream's object header and codec header, read from its object payload
-// (the codec header's sections point into `parts`).
-template <class Header>
-std::pair<ObjectHeader, Header> headers_of(const ContainerParts& parts) {
-  BitReader reader(parts.object_payload.data(), parts.object_payload.size());
-  syntax::ReadIO in(reader);
-  std::pair<ObjectHeader, Header> headers;
-  syntax::describe(in, headers.first);
-  syntax::describe(in, headers.second);
-  return headers;
-}
-
 // The byte of the object payload where a header field starts, found by
 // name in the description of the stream's own headers.
 template <class Header>
 size_t header_byte(const std::vector<uint8_t>& stream, const char* name) {
   const ContainerParts parts = split_container(stream);
-  auto [object, header] = headers_of<Header>(parts);
+  auto [object, header] = read_headers<Header>(parts);
   syntax::CountIO count(name);
   syntax::describe(count, object);
   syntax::describe(count, header);
@@ -340,7 +328,7 @@ size_t header_byte(const std::vector<uint8_t>& stream, const char* name) {
 // An lcc predicted frame unit of `stream` (stream mode) whose residuals are
 // 0 but every rho's, which is the largest the syntax allows.
 std::vector<uint8_t> lcc_predicted_unit(const std::vector<uint8_t>& stream, std::vector<uint8_t> unit_header) {
-  const auto [object, header] = headers_of<LccHeader>(split_container(stream));
+  const auto [object, header] = read_headers<LccHeader>(split_container(stream));
   const LccOrder order = lcc_order(decode_mesh3d(stream).faces, object.vertex_count);
   LccIndices residuals{std::vector<int32_t>(3 * order.direct.size()), std::vector<int32_t>(3 * order.steps.size())};
   for (size_t i = 1; i < residuals.steps.size(); i += 3) residuals.steps[i] = int32_t{2} << header.rh_bits;
@@ -487,7 +475,7 @@ std::vector<SuiteCase> cpca_rejected_cases(const std::vector<SuiteCase>& valid) 
     const size_t start = refinement_unit(parts, 0);
     const uint32_t cluster = parts.units[start].payload[kClusterByte];
     // The cluster's size, from the header's cluster map.
-    const auto [object, header] = headers_of<CpcaHeader>(parts);
+    const auto [object, header] = read_headers<CpcaHeader>(parts);
     const std::vector<uint32_t> cluster_of = syntax::read_cluster_map<false>(header, object.vertex_count, syntax::SectionPlace{});
     std::vector<std::pair<int, int32_t>> coefficient_beyond(3 * static_cast<size_t>(std::count(cluster_of.begin(), cluster_of.end(), cluster)));
     for (size_t j = 0; j < coefficient_beyond.size(); ++j) coefficient_beyond[j] = {static_cast<int>(j % 3), 0};

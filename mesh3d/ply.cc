@@ -9,6 +9,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "mesh3d/little_endian.h"
 
 namespace m4mesh {
 
@@ -204,17 +205,14 @@ void write_ply_frame(std::span<const Vec3> positions, std::span<const Triangle> 
   std::string out = "ply\nformat binary_little_endian 1.0\ncomment m4mesh\nelement vertex " + std::to_string(positions.size()) +
                     "\nproperty float x\nproperty float y\nproperty float z\nelement face " + std::to_string(faces.size()) +
                     "\nproperty list uchar int vertex_indices\nend_header\n";
-  auto put = [&out](uint32_t v) {
-    for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xFF);
-  };
   for (const Vec3& v : positions) {
-    put(std::bit_cast<uint32_t>(static_cast<float>(v.x)));
-    put(std::bit_cast<uint32_t>(static_cast<float>(v.y)));
-    put(std::bit_cast<uint32_t>(static_cast<float>(v.z)));
+    put_f32(out, static_cast<float>(v.x));
+    put_f32(out, static_cast<float>(v.y));
+    put_f32(out, static_cast<float>(v.z));
   }
   for (const Triangle& t : faces) {
     out += static_cast<char>(3);
-    for (NodeIndex v : t.v) put(v);
+    for (NodeIndex v : t.v) put_u32(out, v);
   }
   write_file_atomically(path, out);
 }

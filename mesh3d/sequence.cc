@@ -14,6 +14,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "mesh/obj.h"
+#include "mesh3d/little_endian.h"
 #include "mesh3d/ply.h"
 
 namespace m4mesh {
@@ -26,16 +27,6 @@ constexpr uint64_t kMaxVertices = uint64_t{1} << 26;
 
 Error io(const std::string& path, const std::string& message) {
   return Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, path + ": " + message);
-}
-
-// Little-endian fields of .m4seq, written and read byte by byte.
-void put_u32(std::string& out, uint32_t v) {
-  for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xFF);
-}
-void put_f32(std::string& out, float f) {
-  uint32_t bits;
-  std::memcpy(&bits, &f, 4);
-  put_u32(out, bits);
 }
 
 class ByteReader {
@@ -69,6 +60,16 @@ class ByteReader {
   const char* format_;
   size_t pos_ = 0;
 };
+
+// Every frame's positions as binary32 x, y, z.
+void put_positions(std::string& out, const std::vector<std::vector<Vec3>>& frames) {
+  for (const std::vector<Vec3>& frame : frames)
+    for (const Vec3& v : frame) {
+      put_f32(out, static_cast<float>(v.x));
+      put_f32(out, static_cast<float>(v.y));
+      put_f32(out, static_cast<float>(v.z));
+    }
+}
 
 // A frame's positions, every one finite.
 void read_positions(ByteReader& r, std::vector<Vec3>& frame, const std::string& path) {
@@ -213,12 +214,7 @@ void write_binary_sequence(const MeshSequence& s, const std::string& path) {
   put_u32(out, static_cast<uint32_t>(s.frames.size()));
   for (const Triangle& t : s.faces)
     for (NodeIndex v : t.v) put_u32(out, v);
-  for (const std::vector<Vec3>& frame : s.frames)
-    for (const Vec3& v : frame) {
-      put_f32(out, static_cast<float>(v.x));
-      put_f32(out, static_cast<float>(v.y));
-      put_f32(out, static_cast<float>(v.z));
-    }
+  put_positions(out, s.frames);
   write_file_atomically(path, out);
 }
 
@@ -290,12 +286,7 @@ void write_pc2_sequence(const MeshSequence& s, const std::string& path) {
   put_f32(out, 0.0f);  // start frame
   put_f32(out, 1.0f);  // sample rate
   put_u32(out, static_cast<uint32_t>(s.frames.size()));
-  for (const std::vector<Vec3>& frame : s.frames)
-    for (const Vec3& v : frame) {
-      put_f32(out, static_cast<float>(v.x));
-      put_f32(out, static_cast<float>(v.y));
-      put_f32(out, static_cast<float>(v.z));
-    }
+  put_positions(out, s.frames);
   write_obj_frame(s.frames.at(0), s.faces, pc2_faces_path(path));
   write_file_atomically(path, out);
 }

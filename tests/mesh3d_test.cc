@@ -253,12 +253,7 @@ TEST(Bfs3d, EncoderIsDeterministicAndHashesCatchChanges) {
   // The same units under a header whose grid origin moved by one binary32 step:
   // the stream still decodes, but no frame matches its hash any more.
   const ContainerParts parts = split_container(stream);
-  BitReader reader(parts.object_payload.data(), parts.object_payload.size());
-  syntax::ReadIO in(reader);
-  ObjectHeader header;
-  Bfs3dHeader codec;
-  syntax::describe(in, header);
-  syntax::describe(in, codec);
+  auto [header, codec] = read_headers<Bfs3dHeader>(parts);
   codec.origin[0] += 1;
   BitWriter writer;
   syntax::WriteIO out(writer);

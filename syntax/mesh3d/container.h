@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "syntax/io.h"
@@ -145,6 +146,20 @@ class ContainerWriter {
   void start_code(uint32_t code);
   std::vector<uint8_t> bytes_;
 };
+
+// A stream's object header and codec header, read from its object payload
+// (the codec header's sections point into `parts`).
+template <class CodecHeader>
+std::pair<ObjectHeader, CodecHeader> read_headers(const ContainerParts& parts) {
+  BitReader reader(parts.object_payload.data(), parts.object_payload.size());
+  syntax::ReadIO in(reader);
+  std::pair<ObjectHeader, CodecHeader> headers;
+  // Unqualified: the codec header's describe() is found where this is used.
+  using syntax::describe;
+  describe(in, headers.first);
+  describe(in, headers.second);
+  return headers;
+}
 
 // Whether a stream starts with mesh3d_object_start_code.
 bool is_mesh3d_stream(std::span<const uint8_t> stream);
