@@ -49,6 +49,12 @@ class CodecDecoder3d {
   Trace* trace_ = nullptr;
 };
 
+// A rule on a value reconstructed after the unit's sections are decoded,
+// placed at the unit data's first bit (docs/container3d.md, "Errors").
+[[noreturn]] inline void fail_reconstruction(const syntax::ReadIO& io, ErrorKind kind, const char* element, const std::string& message) {
+  io.fail_at(kind, element, syntax::unit_data_offset() - 32, message);
+}
+
 // A base mesh unit's data: the faces and the first frame's grid positions
 // (docs/base_mesh.md), its symbols traced when `trace` is set.
 BaseMesh read_base_mesh(syntax::ReadIO& io, const ObjectHeader& header, Trace* trace);

@@ -39,6 +39,7 @@ ordered_json to_json(const ManifestEntry& e, SuiteKind kind) {
     j["error_kind"] = e.error_kind;
     j["error_element"] = e.error_element;
     j["error_plane"] = e.error_plane;
+    j["error_offset"] = e.error_offset;
   }
   return j;
 }
@@ -61,12 +62,25 @@ ManifestEntry from_json(const ordered_json& j, SuiteKind kind) {
     e.error_kind = j.at("error_kind").get<std::string>();
     e.error_element = j.at("error_element").get<std::string>();
     e.error_plane = j.at("error_plane").get<int64_t>();
+    e.error_offset = j.at("error_offset").get<int64_t>();
   }
   return e;
 }
 
 std::string md5_of(const std::vector<uint8_t>& bytes) {
   return md5_hex(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
+
+// Where m4mesh's decoder places the error of a stream to reject; the
+// generator refuses a case whose error is not the one it claims.
+int64_t rejection_offset(SuiteKind kind, const SuiteCase& c, int method) {
+  try {
+    decoded_output_md5(kind, c.stream, method);
+  } catch (const Error& error) {
+    if (error.kind() == c.error_kind && error.element() == c.error_element && error.plane() == c.error_plane) return error.bit_offset();
+    throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, c.id + ": the decoder reports " + error.what() + ", not the case's error");
+  }
+  throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, c.id + ": a stream to reject decodes");
 }
 
 }  // namespace
@@ -138,6 +152,7 @@ Manifest write_suite(const std::string& folder, SuiteKind kind, const std::vecto
       e.error_kind = to_string(c.error_kind);
       e.error_element = c.error_element;
       e.error_plane = c.error_plane;
+      e.error_offset = rejection_offset(kind, c, e.method);
     }
     write_file_atomically((fs::path(folder) / e.file).string(), std::string_view(reinterpret_cast<const char*>(c.stream.data()), c.stream.size()));
     manifest.entries.push_back(std::move(e));

@@ -30,6 +30,7 @@ struct ManifestEntry {
   std::string error_kind;
   std::string error_element;
   int64_t error_plane = -1;  // 3D: the frame
+  int64_t error_offset = -1;  // the bit the error is placed at (-1: a rule about the whole stream)
 };
 
 struct Manifest {

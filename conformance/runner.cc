@@ -44,9 +44,10 @@ Outcome run_ours(SuiteKind kind, const ManifestEntry& e, const std::vector<uint8
     return {Outcome::kPass, md5};
   } catch (const Error& error) {
     if (e.valid) return {Outcome::kFail, error.what()};
-    if (to_string(error.kind()) != e.error_kind || error.element() != e.error_element || error.plane() != e.error_plane)
+    if (to_string(error.kind()) != e.error_kind || error.element() != e.error_element || error.plane() != e.error_plane ||
+        error.bit_offset() != e.error_offset)
       return {Outcome::kFail, std::string(to_string(error.kind())) + ": " + error.what() + "; expected " + e.error_kind + " at " + unit +
-                                  std::to_string(e.error_plane) + ", " + e.error_element};
+                                  std::to_string(e.error_plane) + ", " + e.error_element + " at bit " + std::to_string(e.error_offset)};
     return {Outcome::kPass, std::string(to_string(error.kind())) + ": " + error.what()};
   }
 }

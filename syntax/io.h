@@ -31,17 +31,43 @@ class IOBase {
   int64_t plane() const { return plane_; }
   Trace* trace() const { return trace_; }
 
+  // An error is placed at the first bit of the element it names: of the
+  // last field of that name read (also when a rule checks it later), else
+  // of the element in hand (docs/container3d.md, "Errors").
   [[noreturn]] void fail(ErrorKind kind, const char* element, const std::string& message) const {
-    throw Error(kind, element, plane_, static_cast<int64_t>(element_start_), message);
+    fail_at(kind, element, start_of(element), message);
+  }
+  [[noreturn]] void fail_at(ErrorKind kind, const char* element, uint64_t offset, const std::string& message) const {
+    throw Error(kind, element, plane_, static_cast<int64_t>(offset), message);
   }
   void require(bool ok, ErrorKind kind, const char* element, const char* message) const {
     if (!ok) fail(kind, element, message);
   }
+  // Records where a field (or a structure: "base_mesh") starts, for later errors.
+  void note_start(const char* name, uint64_t offset) {
+    for (FieldStart& f : starts_)
+      if (std::string_view(f.name) == name) {
+        f.offset = offset;
+        return;
+      }
+    starts_.push_back({name, offset});
+  }
 
  protected:
+  uint64_t start_of(const char* element) const {
+    for (const FieldStart& f : starts_)
+      if (std::string_view(f.name) == element) return f.offset;
+    return element_start_;
+  }
+
+  struct FieldStart {
+    const char* name;
+    uint64_t offset;
+  };
   int64_t plane_ = kNoPlane;
   uint64_t element_start_ = 0;
   Trace* trace_ = nullptr;
+  std::vector<FieldStart> starts_;  // one per field name, so bounded by the syntax
 };
 
 class ReadIO : public IOBase {
@@ -54,6 +80,7 @@ class ReadIO : public IOBase {
   template <class T>
   void field(const char* name, int bits, T& value) {
     element_start_ = reader_.position();
+    note_start(name, element_start_);
     uint32_t raw = reader_.read(bits);
     if (reader_.overrun()) truncated(name);
     value = static_cast<T>(raw);
@@ -71,6 +98,7 @@ class ReadIO : public IOBase {
   template <class T>
   void vlc(const char* name, const VlcTable& table, T& symbol) {
     element_start_ = reader_.position();
+    note_start(name, element_start_);
     VlcTable::Match match = table.match(reader_.peek(table.max_length()));
     if (match.length == 0 || static_cast<uint64_t>(match.length) > reader_.bits_left()) {
       if (reader_.bits_left() < static_cast<uint64_t>(table.max_length()) || match.length != 0) truncated(name);
@@ -110,7 +138,7 @@ class ReadIO : public IOBase {
   void resize(std::vector<T>& items, uint32_t count, const char* element, int min_bits_each = 1) {
     if (static_cast<uint64_t>(count) * static_cast<uint64_t>(min_bits_each) > reader_.bits_left()) {
       element_start_ = reader_.position();
-      fail(ErrorKind::kTruncated, element,
+      fail_at(ErrorKind::kTruncated, element, element_start_,
            std::to_string(count) + " items cannot fit in the " + std::to_string(reader_.bits_left()) +
                " bits left");
     }
@@ -120,6 +148,7 @@ class ReadIO : public IOBase {
   // The next `length` bytes (byte-aligned).
   void section(const char* name, uint64_t length, std::span<const uint8_t>& bytes) {
     element_start_ = reader_.position();
+    note_start(name, element_start_);
     require(reader_.byte_aligned(), ErrorKind::kStructure, name, "a byte section not byte-aligned");
     if (length > reader_.bits_left() / 8)
       fail(ErrorKind::kTruncated, name, std::to_string(length) + " bytes where " + std::to_string(reader_.bits_left() / 8) + " are left");

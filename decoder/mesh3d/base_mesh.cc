@@ -43,6 +43,7 @@ BaseMesh read_symbols(IO& symbols, const BaseMeshData& data, const ObjectHeader&
 
 BaseMesh read_base_mesh(syntax::ReadIO& io, const ObjectHeader& header, Trace* trace) {
   BaseMeshData data;
+  io.note_start("base_mesh", io.reader().position());  // rules about the whole base mesh are placed at its start
   syntax::describe(io, data);
   if (data.loose_face_count > header.face_count)
     io.fail(ErrorKind::kOutOfRange, "loose_face_count", "more loose faces than the object's face_count");

@@ -57,7 +57,7 @@ class Bfs3dDecoder final : public GridFrameDecoder {
       for (int axis = 0; axis < 3; ++axis) {
         const int64_t q = positions[n][axis] + predict_motion(order_, k, motion_, axis, parallelogram) + residuals_[axis][k];
         if (q > kMaxQuantized || q < -kMaxQuantized)
-          io.fail(ErrorKind::kOutOfRange, "motion_residual", "vertex " + std::to_string(n) + " leaves ±2^26 grid steps");
+          fail_reconstruction(io, ErrorKind::kOutOfRange, "motion_residual", "vertex " + std::to_string(n) + " leaves ±2^26 grid steps");
         motion_[n][axis] = static_cast<int32_t>(q - positions[n][axis]);
         positions[n][axis] = static_cast<int32_t>(q);
       }

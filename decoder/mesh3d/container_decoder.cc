@@ -31,7 +31,7 @@ Mesh3dDecoder::Mesh3dDecoder(std::span<const uint8_t> stream, const Decode3dOpti
   try {
     syntax::describe(io, header_);
     codec_row_ = find_codec3d(header_.codec_id);
-    if (!codec_row_) throw Error(ErrorKind::kReservedValue, "codec_id", kNoPlane, 8, "unknown codec " + std::to_string(header_.codec_id));
+    if (!codec_row_) io.fail(ErrorKind::kReservedValue, "codec_id", "unknown codec " + std::to_string(header_.codec_id));
     codec_ = codec_row_->make_decoder(header_, io);
     if (reader.bits_left() != 0)
       throw Error(ErrorKind::kStructure, "object_payload", kNoPlane, static_cast<int64_t>(reader.position()),
@@ -120,6 +120,8 @@ void Mesh3dDecoder::read_unit_data(size_t index, int64_t frame, Read&& read) {
   reader.seek(syntax::unit_data_offset() - 32);
   syntax::ReadIO io(reader, options_.trace);
   io.set_plane(frame);
+  // The unit header was read before: errors the codec finds in it are placed there too.
+  for (const char* field : {"unit_type", "frame_index"}) io.note_start(field, syntax::unit_header_offset(field) - 32);
   try {
     read(io);
   } catch (const Error& e) {

@@ -101,30 +101,11 @@ class CpcaDecoder final : public CodecDecoder3d {
 }  // namespace
 
 std::unique_ptr<CodecDecoder3d> make_cpca_wpt_decoder(const ObjectHeader& object, syntax::ReadIO& io) {
-  const uint64_t header_start = io.reader().position();
   CpcaHeader header;
   syntax::describe(io, header);
-  // Errors of fields read before, located at the field: the object
-  // header's from the payload's start, the codec header's from its own.
-  auto object_field = [&object](const char* name) {
-    syntax::CountIO count(name);
-    ObjectHeader copy = object;
-    syntax::describe(count, copy);
-    return static_cast<int64_t>(count.offset_of_watched());
-  };
-  auto header_field = [&header, header_start](const char* name) {
-    syntax::CountIO count(name);
-    CpcaHeader copy = header;
-    syntax::describe(count, copy);
-    return static_cast<int64_t>(header_start + count.offset_of_watched());
-  };
-  auto fail_at = [](ErrorKind kind, const char* element, int64_t offset, const std::string& message) {
-    throw Error(kind, element, kNoPlane, offset, message);
-  };
-  if (object.frame_count == 0)
-    fail_at(ErrorKind::kStructure, "frame_count", object_field("frame_count"), "the clustered-PCA codec needs the frame count");
+  if (object.frame_count == 0) io.fail(ErrorKind::kStructure, "frame_count", "the clustered-PCA codec needs the frame count");
   if (uint64_t{object.vertex_count} * object.frame_count > kCpcaMaxVertexFrames)
-    fail_at(ErrorKind::kLimit, "frame_count", object_field("frame_count"), "more than 2^22 vertex-frames");
+    io.fail(ErrorKind::kLimit, "frame_count", "more than 2^22 vertex-frames");
   const uint8_t* payload = io.reader().data();
   const syntax::SectionPlace place{"cluster_map_bins", "cluster_map_raw", 8 * static_cast<uint64_t>(header.map_bins.data() - payload),
                                    8 * static_cast<uint64_t>(header.map_raw.data() - payload), kNoPlane};
@@ -133,7 +114,7 @@ std::unique_ptr<CodecDecoder3d> make_cpca_wpt_decoder(const ObjectHeader& object
   const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, header.cluster_count);
   for (uint32_t c = 0; c < header.cluster_count; ++c)
     if (members[c].empty())
-      fail_at(ErrorKind::kStructure, "cluster_count", header_field("cluster_count"), "cluster " + std::to_string(c) + " has no vertex");
+      io.fail(ErrorKind::kStructure, "cluster_count", "cluster " + std::to_string(c) + " has no vertex");
   return std::make_unique<CpcaDecoder>(object, header, cluster_of);
 }
 

@@ -95,7 +95,7 @@ class LccDecoder final : public CodecDecoder3d {
     for (size_t i = 0; i < indices.direct.size(); ++i) {
       const int64_t q = int64_t{prediction.direct[i]} + residuals_.direct[i];
       if (q > kMaxQuantized || q < -kMaxQuantized)
-        io.fail(ErrorKind::kOutOfRange, "direct_position", "vertex " + std::to_string(model_->order().direct[i / 3]) + " leaves ±2^26 grid steps");
+        fail_reconstruction(io, ErrorKind::kOutOfRange, "direct_position", "vertex " + std::to_string(model_->order().direct[i / 3]) + " leaves ±2^26 grid steps");
       indices.direct[i] = static_cast<int32_t>(q);
     }
     const int32_t theta_limit = model_->theta_limit(), rh_limit = model_->rh_limit();
@@ -105,7 +105,7 @@ class LccDecoder final : public CodecDecoder3d {
       for (size_t j = i + 1; j < i + 3; ++j) {
         indices.steps[j] = prediction.steps[j] + residuals_.steps[j];
         if (indices.steps[j] < -rh_limit || indices.steps[j] > rh_limit)
-          io.fail(ErrorKind::kOutOfRange, j == i + 1 ? "rho" : "zeta",
+          fail_reconstruction(io, ErrorKind::kOutOfRange, j == i + 1 ? "rho" : "zeta",
                   "step " + std::to_string(i / 3) + ": prediction and residual leave ±2^rh_bits");
       }
     }
