@@ -275,6 +275,7 @@ int run_m4mesh(int argc, const char* const* argv) {
   conform_cmd->add_option("--decoder", conform_options.decoder_command,
                           "external decoder command: {in} stream, {out} output to write (§9 text; for the 3D suite every frame's "
                           "binary32 bytes, as decode3d -o FILE.f32), {method} 1 or 2");
+  conform_cmd->add_flag("--coverage", conform_options.coverage, "after the table, what the valid streams reach of the catalog of normative items");
 
   std::string suite_folder;
   CLI::App* generate_cmd = app.add_subcommand("generate-suite", "Regenerate the conformance streams and manifest");

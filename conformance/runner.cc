@@ -6,11 +6,16 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <optional>
+#include <set>
+#include <sstream>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/md5.h"
+#include "conformance/coverage.h"
+#include "conformance/coverage3d.h"
 #include "conformance/manifest.h"
 
 namespace m4mesh {
@@ -105,6 +110,39 @@ Outcome run_external(SuiteKind kind, const ManifestEntry& e, const std::string& 
   return {Outcome::kPass, md5};
 }
 
+// Per area: the catalog's items the suite's valid streams reach, and the
+// ones they do not.
+void print_coverage(const fs::path& suite, const Manifest& manifest, std::ostream& out) {
+  std::set<std::string> reached;
+  std::map<std::string, std::set<std::string>> catalog;
+  if (manifest.kind == SuiteKind::kMesh3d) {
+    catalog = coverage_catalog3d();
+    for (const ManifestEntry& e : manifest.entries)
+      if (e.valid) reached.merge(coverage_items3d(read_file((suite / e.file).string())));
+  } else {
+    catalog["2d"] = required_value_classes();
+    for (const ManifestEntry& e : manifest.entries) reached.insert(e.classes.begin(), e.classes.end());
+  }
+  size_t total = 0, hit = 0;
+  std::ostringstream missing;
+  for (const auto& [area, items] : catalog) {
+    size_t area_hit = 0;
+    for (const std::string& i : items) {
+      if (reached.count(i)) ++area_hit;
+      else missing << "  not reached: " << i << "\n";
+    }
+    out << "coverage " << area << ": " << area_hit << " / " << items.size() << " items reached\n";
+    total += items.size();
+    hit += area_hit;
+  }
+  std::set<std::string> errors;
+  for (const ManifestEntry& e : manifest.entries)
+    if (!e.valid) errors.insert(e.error_kind + " " + e.error_element);
+  out << missing.str() << "coverage: " << hit << " / " << total << " items reached; " << errors.size()
+      << " error kinds by element tested by the streams to reject:\n";
+  for (const std::string& e : errors) out << "  " << e << "\n";
+}
+
 }  // namespace
 
 ConformResult run_conformance(const ConformOptions& options, std::ostream& out) {
@@ -139,6 +177,7 @@ ConformResult run_conformance(const ConformOptions& options, std::ostream& out) 
   out << result.passed << " passed, " << result.failed << " failed";
   if (result.skipped) out << ", " << result.skipped << " skipped";
   out << "\n";
+  if (options.coverage) print_coverage(suite, manifest, out);
   return result;
 }
 

@@ -15,6 +15,9 @@ struct ConformOptions {
   // for the shell; the command's own redirections are left alone. Empty:
   // m4mesh's own decoder.
   std::string decoder_command;
+  // After the table: what the suite's valid streams reach of the catalog
+  // of normative items (conformance/coverage.h, coverage3d.h), and what not.
+  bool coverage = false;
 };
 
 struct ConformResult {

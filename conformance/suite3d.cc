@@ -10,6 +10,7 @@
 
 #include "common/atomic_file.h"
 #include "common/md5.h"
+#include "common/random.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/lcc.h"
@@ -133,6 +134,30 @@ MeshSequence waving_flag(int frames, int n, bool collapse) {
   return s;
 }
 
+// A long strip of n × rows quads, flat in frame 0, then under a slow wave
+// along x whose amplitude grows across the strip.
+MeshSequence waving_strip(int frames, int n, int rows) {
+  MeshSequence s;
+  auto at = [n](int i, int j) { return static_cast<NodeIndex>(j * (n + 1) + i); };
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < n; ++i) {
+      s.faces.push_back({{at(i, j), at(i + 1, j), at(i + 1, j + 1)}});
+      s.faces.push_back({{at(i, j), at(i + 1, j + 1), at(i, j + 1)}});
+    }
+  s.vertex_count = static_cast<uint32_t>((n + 1) * (rows + 1));
+  for (int f = 0; f < frames; ++f) {
+    std::vector<Vec3> frame;
+    for (int j = 0; j <= rows; ++j)
+      for (int i = 0; i <= n; ++i) {
+        const double x = static_cast<double>(i) / n, z = static_cast<double>(j) / rows, p = x - 0.125 * f / 8;
+        const double wave = f == 0 ? 0 : 0.5 * p * (1 - p) * (p - 0.5) * (1 + 0.25 * z) * (1 + 0.3 * z * z);
+        frame.push_back({x - 0.0625 * wave * wave, wave, static_cast<double>(j) / n});
+      }
+    s.frames.push_back(std::move(frame));
+  }
+  return s;
+}
+
 // The flag's rest shape in a file (the lcc codec's --reference takes one).
 std::string rest_shape_file(const MeshSequence& flag) {
   MeshSequence rest = flag;
@@ -161,6 +186,45 @@ MeshSequence moving_tetrahedron(int frames) {
   for (int f = 0; f < frames; ++f) {
     const double t = 0.25 * f;
     s.frames.push_back({{t, 0, 0}, {1 + t * t, 0, 0}, {0, 1 - 0.5 * t, 0}, {0.5 * t, 0, 1}});
+  }
+  return s;
+}
+
+// Tight clusters of 6 vertices, in pairs 12, 20, 40 and 80 steps of a
+// 24-bit grid apart, inside the unit box: on every odd frame one cluster
+// of each pair moves rigidly and the other at random, and on even frames
+// both return. Cells split down to depth 20, where the closest pair is a
+// leaf of 12 vertices; rigid clusters met deeper than 15 are matrix leaves.
+MeshSequence deep_clusters(int frames) {
+  constexpr double kStep = 1.0 / (1 << 24);
+  MeshSequence s;
+  std::vector<Vec3> base = {{0, 0, 0}, {1, 1, 1}, {1, 0, 0}};
+  s.faces.push_back({{0, 1, 2}});
+  const Vec3 centres[4] = {{0.3125, 0.6875, 0.4375}, {0.8125, 0.1875, 0.5625}, {0.5, 0.5, 0.5}, {0.25, 0.25, 0.75}};
+  const int apart[4] = {12, 20, 40, 80};
+  std::vector<NodeIndex> first;
+  for (int c = 0; c < 4; ++c)
+    for (int half = 0; half < 2; ++half) {
+      const NodeIndex start = static_cast<NodeIndex>(base.size());
+      first.push_back(start);
+      for (int j = 0; j < 6; ++j)
+        base.push_back({centres[c].x + kStep * (j % 2 + half * apart[c]), centres[c].y + kStep * (j / 2 % 2), centres[c].z + kStep * (j / 4)});
+      for (NodeIndex j = 1; j < 5; ++j) s.faces.push_back({{start, start + j, start + j + 1}});
+    }
+  s.vertex_count = static_cast<uint32_t>(base.size());
+  SplitMix64 random(8);
+  for (int f = 0; f < frames; ++f) {
+    std::vector<Vec3> frame = base;
+    if (f % 2 == 1)
+      for (size_t k = 0; k < first.size(); ++k) {
+        const Vec3 shift{random.uniform(-64, 64) / 1024.0, random.uniform(-64, 64) / 1024.0, random.uniform(-64, 64) / 1024.0};
+        for (NodeIndex v = first[k]; v < first[k] + 6; ++v) {
+          const bool rigid = k % 2 == 0;
+          const Vec3 d = rigid ? shift : Vec3{random.uniform(-64, 64) / 1024.0, random.uniform(-64, 64) / 1024.0, random.uniform(-64, 64) / 1024.0};
+          frame[v] = {base[v].x + d.x, base[v].y + d.y, base[v].z + d.z};
+        }
+      }
+    s.frames.push_back(std::move(frame));
   }
   return s;
 }
@@ -266,6 +330,13 @@ std::vector<SuiteCase> affine_octree_cases(bool traced) {
   suite.push_back(valid("ao-06-direct-root", "4 vertices: the root cell codes direct motion", {"ao-cell"}, moving_tetrahedron(5), affine("1"), traced));
   suite.push_back(valid("ao-07-coplanar", "a flat sheet rotating: singular cells, one matrix per frame", {"ao-cell", "ao-reconstruction"},
                         rotating_sheet(5), affine("1"), traced));
+  {
+    Encode3dOptions o = affine("0.1");
+    o.codec_options["bits"] = "24";
+    o.codec_options["max-depth"] = "20";
+    suite.push_back(valid("ao-08-deep", "cells down to depth 20 (depth contexts 15 with both bins), a leaf of 12 vertices at the deepest depth",
+                          {"ao-cell", "ao-reconstruction"}, deep_clusters(5), o, traced));
+  }
   return suite;
 }
 
@@ -309,6 +380,11 @@ std::vector<SuiteCase> lcc_cases(bool traced) {
   suite.push_back(valid("lcc-08-temporal-download", "lcc, download mode, temporal prediction every 8 frames against a rest shape",
                         {"lcc", "lcc-temporal"}, longer, lcc({{"temporal", "1"}, {"gop", "8"}, {"mode", "download"}, {"reference", rest}}),
                         traced));
+  // A 1-ulp difference in an angle or a frame axis moves a decoded binary64
+  // position by far less than a binary32 step: it shows in the output only
+  // after a long chain of steps, and then in a few coordinates.
+  suite.push_back(valid("lcc-09-long-chains", "a 200 × 3 strip at b_θ 12: chains of 600 steps, where a 1-ulp angle or axis changes the output",
+                        {"lcc"}, waving_strip(6, 200, 3), lcc({{"theta-bits", "12"}}), traced));
   std::filesystem::remove(rest);
   return suite;
 }
@@ -569,6 +645,44 @@ MeshSequence awkward_mesh(int frames) {
   return s;
 }
 
+// A wheel of 2k faces around a top vertex, whose rim is the top of k
+// strips (arms) rising from a fan at the bottom; arm i is shorter by
+// min(i, k − i), so that the traversal, spreading both ways around the
+// fan, reaches every arm's top in the same wave. The top vertex then has
+// an open half-edge per arm, and the wheel's faces between arms close on
+// candidates 1 … 7, or, past the 8-candidate cut, far vertices. Last, a
+// loose face (v, v, u) on the seed's third corner v and first corner u.
+MeshSequence crown(int frames, int k, int length) {
+  MeshSequence s;
+  std::vector<Vec3> base = {{0, 0, 2}, {0, 0, -1}};
+  std::vector<std::vector<NodeIndex>> columns(static_cast<size_t>(2 * k));
+  for (int j = 0; j < 2 * k; ++j) {
+    const int arm = j / 2, rows = length - std::min(arm, k - arm);
+    for (int t = 0; t <= rows; ++t) {
+      columns[static_cast<size_t>(j)].push_back(static_cast<NodeIndex>(base.size()));
+      base.push_back({static_cast<double>(j) * 0.25, static_cast<double>(j % 2) * 0.125 + 0.0625 * t, 1 - static_cast<double>(t) / rows});
+    }
+  }
+  auto column = [&](int j) -> const std::vector<NodeIndex>& { return columns[static_cast<size_t>(j % (2 * k))]; };
+  for (int j = 0; j < 2 * k; ++j) s.faces.push_back({{1, column(j + 1).back(), column(j).back()}});
+  for (int arm = 0; arm < k; ++arm) {
+    const std::vector<NodeIndex>&l = column(2 * arm), &r = column(2 * arm + 1);
+    for (size_t t = 0; t + 1 < l.size(); ++t) {
+      s.faces.push_back({{l[t], l[t + 1], r[t + 1]}});
+      s.faces.push_back({{l[t], r[t + 1], r[t]}});
+    }
+  }
+  for (int j = 0; j < 2 * k; ++j) s.faces.push_back({{0, column(j).front(), column(j + 1).front()}});
+  s.faces.push_back({{column(0).back(), column(0).back(), 1}});
+  s.vertex_count = static_cast<uint32_t>(base.size());
+  for (int f = 0; f < frames; ++f) {
+    std::vector<Vec3> frame = base;
+    for (Vec3& p : frame) p = {p.x + 0.125 * f * p.z, p.y - 0.0625 * f * p.x, p.z};
+    s.frames.push_back(std::move(frame));
+  }
+  return s;
+}
+
 // The base mesh: every kind of face and vertex, in the input order and in
 // coding order; a row-major sheet, whose input numbers parallelograms predict.
 std::vector<SuiteCase> base_mesh_cases(bool traced) {
@@ -582,6 +696,8 @@ std::vector<SuiteCase> base_mesh_cases(bool traced) {
                         reorder, traced));
   suite.push_back(valid("base-03-row-major", "a row-major sheet: input numbers predicted by parallelograms", {"base-mesh"},
                         rotating_sheet(3), Encode3dOptions{}, traced));
+  suite.push_back(valid("base-04-crown", "gates with up to 8 candidates: candidate indices 1 … 7, the cut at 8, and a loose face (v, v, u)",
+                        {"base-mesh"}, crown(2, 12, 12), Encode3dOptions{}, traced));
   return suite;
 }
 

@@ -13,7 +13,8 @@ if it is killed after all.
 
     python3 scripts/mutants.py                 # every mutant
     python3 scripts/mutants.py --subset ci     # the fast subset CI runs
-    python3 scripts/mutants.py --only lcc-01   # one mutant (repeatable)
+    python3 scripts/mutants.py --only lc-01    # one mutant (repeatable)
+    python3 scripts/mutants.py --area lcc      # one area's mutants (repeatable)
 
 Exit status 0 when every mutant not marked equivalent is killed and every
 mutant applies and builds.
@@ -38,8 +39,8 @@ def run(command, cwd, timeout=None, log=None):
 
 
 def copy_checkout(work):
-    """The tracked files of the checkout (with uncommitted edits) into work/src."""
-    files = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, check=True, capture_output=True).stdout.split(b"\0")
+    """The checkout's files as git sees them (uncommitted and new ones too) into work/src."""
+    files = subprocess.run(["git", "ls-files", "-z", "--cached", "--others", "--exclude-standard"], cwd=ROOT, check=True, capture_output=True).stdout.split(b"\0")
     src = work / "src"
     for name in files:
         if not name:
@@ -76,8 +77,9 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--subset", choices=["ci"], help="only the mutants marked for CI")
     parser.add_argument("--only", action="append", default=[], metavar="ID", help="only this mutant (repeatable)")
+    parser.add_argument("--area", action="append", default=[], choices=AREAS, help="only this area's mutants (repeatable)")
     parser.add_argument("--work", default="/tmp/m4mesh-mutants", help="work folder: the copy, its build and the log")
-    parser.add_argument("--timeout", type=int, default=300, help="seconds a conformance run may take")
+    parser.add_argument("--timeout", type=int, default=60, help="seconds a conformance run may take (it takes about one)")
     args = parser.parse_args()
 
     mutants = json.loads((ROOT / "conformance" / "mutants.json").read_text())
@@ -87,6 +89,8 @@ def main():
         sys.exit(f"mutants.json: ids used twice: {', '.join(duplicated)}")
     if args.subset == "ci":
         mutants = [m for m in mutants if m.get("ci")]
+    if args.area:
+        mutants = [m for m in mutants if m["area"] in args.area]
     if args.only:
         unknown = set(args.only) - set(ids)
         if unknown:

@@ -1,0 +1,193 @@
+#include "conformance/coverage3d.h"
+
+#include <sstream>
+#include <vector>
+
+#include "codecs3d/registry.h"
+#include "decoder/mesh3d/container_decoder.h"
+#include "syntax/mesh3d/residual.h"
+
+namespace m4mesh {
+
+namespace {
+
+using Residual = syntax::ResidualCoder<1>;
+
+std::string item(const std::string& area, const std::string& text) { return area + ": " + text; }
+std::string bin_item(const std::string& area, const std::string& name, int context, int value) {
+  return item(area, name + " ctx " + std::to_string(context) + " = " + std::to_string(value));
+}
+
+// A residual family (syntax/mesh3d/residual.h) on `channels`, whose prefix
+// length e cannot exceed max_e: its zero flag and prefix bins by class.
+void residual_family(std::set<std::string>& out, const std::string& area, const std::string& name, std::initializer_list<int> channels,
+                     int max_e = Residual::kMaxPrefix) {
+  for (int channel : channels)
+    for (int cls = 0; cls < Residual::kClasses; ++cls) {
+      const int base = (channel * Residual::kClasses + cls) * (Residual::kPrefixContexts + 1);
+      for (int v = 0; v < 2; ++v) out.insert(bin_item(area, name + "_nonzero", base, v));
+      for (int slot = 0; slot < Residual::kPrefixContexts; ++slot) {
+        const bool last = slot == Residual::kPrefixContexts - 1;  // bins i ≥ 11 share it
+        if (slot <= max_e) out.insert(bin_item(area, name + "_prefix", base + 1 + slot, 0));
+        if (slot < max_e || (last && max_e > slot)) out.insert(bin_item(area, name + "_prefix", base + 1 + slot, 1));
+      }
+    }
+}
+
+// The area of a codec's own symbols and fields.
+std::string codec_area(uint32_t codec_id) {
+  const Codec3d* row = find_codec3d(codec_id);
+  return row ? row->name : "unknown";
+}
+
+bool is_base_mesh_symbol(const std::string& name) {
+  for (const char* prefix : {"gate_", "candidate_index", "seed_", "position_", "order_", "far_", "loose_vertex"})
+    if (name.starts_with(prefix)) return true;
+  return false;
+}
+
+// One line of a 3D trace: its frame (−1 for the object), element name,
+// value, and for a bin its context.
+struct TraceLine {
+  int64_t frame = -1;
+  std::string name;
+  int64_t value = 0;
+  bool bin = false;
+  int context = 0;
+};
+
+bool parse(const std::string& text, TraceLine& line) {
+  std::istringstream in(text);
+  std::vector<std::string> words;
+  for (std::string w; in >> w;) words.push_back(w);
+  size_t at = 0;
+  if (words.size() > 4 && words[0] == "unit") {
+    line.frame = std::stoll(words[3]);
+    at = 4;
+  } else if (!words.empty() && (words[0] == "object" || words[0] == "end")) {
+    at = 1;
+  }
+  if (words.size() < at + 4) return false;
+  line.name = words[at + 1];
+  line.bin = words[at + 2] == "b";
+  if (words[at + 3].starts_with("0x") || words[at + 3].starts_with("'") || words[at + 2] == "B") return false;
+  line.value = std::stoll(words[at + 3]);
+  if (line.bin) line.context = std::stoi(words.back());
+  return true;
+}
+
+}  // namespace
+
+std::set<std::string> coverage_items3d(std::span<const uint8_t> stream) {
+  std::ostringstream text;
+  Trace trace(text);
+  Decode3dOptions options;
+  options.trace = &trace;
+  Mesh3dDecoder decoder(stream, options);
+  while (decoder.next_frame()) {
+  }
+  const std::string area = codec_area(decoder.header().codec_id);
+  std::set<std::string> items;
+  std::istringstream lines(text.str());
+  uint32_t kind = 0;  // cpca-wpt's unit_kind of the unit in hand
+  for (std::string l; std::getline(lines, l);) {
+    TraceLine t;
+    if (!parse(l, t)) continue;
+    const std::string& n = t.name;
+    const std::string where = is_base_mesh_symbol(n) ? "base-mesh" : area;
+    if (t.bin) {
+      items.insert(bin_item(where, n, t.context, static_cast<int>(t.value)));
+      continue;
+    }
+    if (n == "unit_type" && t.value == 0 && t.frame > 0) items.insert(item(area, "intra refresh (a base mesh unit at a later frame)"));
+    if (n == "unit_type" && t.value == 3) items.insert(item("container", "frame hash unit"));
+    if (n == "unit_type" && t.value == 4) items.insert(item("container", "group hash unit"));
+    if (n == "frame_count" && t.value == 0) items.insert(item("container", "frame_count = 0 (streaming)"));
+    if (n == "vertex_order") items.insert(item("base-mesh", "vertex_order = " + std::to_string(t.value)));
+    if (n == "loose_face_count" && t.value > 0) items.insert(item("base-mesh", "loose faces"));
+    if (n == "quantization_bits" && (t.value == 4 || t.value == 24)) items.insert(item(area, "quantization_bits = " + std::to_string(t.value)));
+    if (n == "prediction_mode" || n == "reference_mode" || n == "coding_mode") items.insert(item(area, n + " = " + std::to_string(t.value)));
+    if (n == "temporal_gop") items.insert(item(area, t.value == 0 ? "temporal_gop = 0" : "temporal_gop > 0"));
+    if ((n == "theta_bits" && (t.value == 2 || t.value == 15)) || (n == "rh_bits" && (t.value == 1 || t.value == 20)) ||
+        (n == "max_depth" && (t.value == 1 || t.value == 20)) || (n == "fraction_bits" && (t.value == 0 || t.value == 16)))
+      items.insert(item(area, n + " = " + std::to_string(t.value)));
+    if (n == "direct_shift") items.insert(item(area, t.value == 0 ? "direct_shift = 0" : "direct_shift > 0"));
+    if (n == "cluster_count") items.insert(item(area, t.value == 1 ? "cluster_count = 1" : "cluster_count > 1"));
+    if (n == "unit_kind") kind = static_cast<uint32_t>(t.value);
+    if (n == "shift") {
+      const char* relation = t.value < 16 ? "< 16" : t.value == 16 ? "= 16" : "> 16";
+      items.insert(item(area, std::string(kind == 0 ? "start" : "component") + " shift " + relation));
+    }
+  }
+  return items;
+}
+
+std::map<std::string, std::set<std::string>> coverage_catalog3d() {
+  std::map<std::string, std::set<std::string>> c;
+  // The base mesh. deg(a), deg(b) ≥ 1 at every gate (a gate lies on a
+  // decoded face), so no context with a degree 0 is reachable;
+  // gate_candidate is read only with candidates ≥ 1, candidate_index's
+  // first bin only with 2 or more.
+  std::set<std::string>& base = c["base-mesh"];
+  for (int v = 0; v < 2; ++v) {
+    for (int candidates = 0; candidates <= 3; ++candidates)
+      for (int degree = 1; degree <= 7; ++degree) {
+        base.insert(bin_item("base-mesh", "gate_new_vertex", candidates * 8 + degree, v));
+        if (candidates > 0) base.insert(bin_item("base-mesh", "gate_candidate", candidates * 8 + degree, v));
+      }
+    for (int b = 1; b <= 7; ++b)
+      for (int a = 1; a <= 7; ++a) base.insert(bin_item("base-mesh", "candidate_index", b * 8 + a, v));
+    for (int later = 64; later <= 67; ++later) base.insert(bin_item("base-mesh", "candidate_index", later, v));
+    for (int border = 0; border < 2; ++border) base.insert(bin_item("base-mesh", "gate_border", border, v));
+    base.insert(bin_item("base-mesh", "seed_new_vertex", 0, v));
+  }
+  residual_family(base, "base-mesh", "position", {0, 1, 2, 3, 4, 5});
+  residual_family(base, "base-mesh", "order", {0});
+  residual_family(base, "base-mesh", "far", {0});
+  for (int order = 0; order <= 2; ++order) base.insert(item("base-mesh", "vertex_order = " + std::to_string(order)));
+  base.insert(item("base-mesh", "loose faces"));
+
+  std::set<std::string>& container = c["container"];
+  for (const char* s : {"frame hash unit", "group hash unit", "frame_count = 0 (streaming)"}) container.insert(item("container", s));
+
+  std::set<std::string>& bfs = c["bfs3d"];
+  residual_family(bfs, "bfs3d", "motion", {0});
+  for (const char* s : {"prediction_mode = 0", "prediction_mode = 1", "intra refresh (a base mesh unit at a later frame)", "quantization_bits = 4",
+                        "quantization_bits = 24"})
+    bfs.insert(item("bfs3d", s));
+
+  std::set<std::string>& ao = c["affine-octree"];
+  for (int v = 0; v < 2; ++v)
+    for (int depth = 0; depth < 16; ++depth) {
+      ao.insert(bin_item("affine-octree", "split_flag", depth, v));
+      ao.insert(bin_item("affine-octree", "direct_flag", depth, v));
+    }
+  residual_family(ao, "affine-octree", "matrix", {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11});
+  residual_family(ao, "affine-octree", "direct", {12, 13, 14});
+  for (const char* s : {"intra refresh (a base mesh unit at a later frame)", "direct_shift = 0", "direct_shift > 0", "max_depth = 1", "max_depth = 20",
+                        "quantization_bits = 4", "quantization_bits = 24"})
+    ao.insert(item("affine-octree", s));
+
+  std::set<std::string>& lcc = c["lcc"];
+  residual_family(lcc, "lcc", "direct", {0, 1, 2, 6, 7, 8});
+  residual_family(lcc, "lcc", "theta", {3, 9});
+  residual_family(lcc, "lcc", "rho", {4, 10});
+  residual_family(lcc, "lcc", "zeta", {5, 11});
+  for (const char* s : {"reference_mode = 0", "reference_mode = 1", "coding_mode = 0", "coding_mode = 1", "temporal_gop = 0", "temporal_gop > 0",
+                        "theta_bits = 2", "theta_bits = 15", "rh_bits = 1", "rh_bits = 20", "quantization_bits = 4", "quantization_bits = 24"})
+    lcc.insert(item("lcc", s));
+
+  // cpca-wpt: cluster differences lie within ±254, so e ≤ 7.
+  std::set<std::string>& cpca = c["cpca-wpt"];
+  residual_family(cpca, "cpca-wpt", "cluster", {0}, 7);
+  residual_family(cpca, "cpca-wpt", "translation", {0, 1, 2});
+  residual_family(cpca, "cpca-wpt", "basis", {0, 1, 2});
+  residual_family(cpca, "cpca-wpt", "coefficient", {3});
+  for (const char* s : {"start shift < 16", "start shift = 16", "start shift > 16", "component shift < 16", "component shift = 16",
+                        "component shift > 16", "cluster_count = 1", "cluster_count > 1", "fraction_bits = 0", "fraction_bits = 16",
+                        "quantization_bits = 4", "quantization_bits = 24"})
+    cpca.insert(item("cpca-wpt", s));
+  return c;
+}
+
+}  // namespace m4mesh
