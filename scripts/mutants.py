@@ -51,7 +51,7 @@ def copy_checkout(work):
         target = src / relative
         target.parent.mkdir(parents=True, exist_ok=True)
         if not target.exists() or target.read_bytes() != (ROOT / relative).read_bytes():
-            shutil.copy2(ROOT / relative, target)
+            shutil.copyfile(ROOT / relative, target)  # a new mtime, so that make rebuilds what changed
     return src
 
 

@@ -18,5 +18,8 @@ cmake --build build-sanitize -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-sanitize --output-on-failure -j"$jobs"
 
+echo "== mutation testing: the CI subset (the whole run: python3 scripts/mutants.py)"
+python3 scripts/mutants.py --subset ci --work "${TMPDIR:-/tmp}/m4mesh-mutants-ci"
+
 echo "== fuzzing: each target for ${M4MESH_FUZZ_SECONDS:-60}s"
 bash scripts/fuzz.sh "${M4MESH_FUZZ_SECONDS:-60}"

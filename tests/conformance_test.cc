@@ -11,6 +11,9 @@
 #include "conformance/checker.h"
 #include "conformance/coverage.h"
 #include "conformance/manifest.h"
+#include "decoder/decoder.h"
+#include "decoder/mesh3d/container_decoder.h"
+#include "syntax/mesh3d/container.h"
 #include "syntax/mesh_object.h"
 #include "syntax/values.h"
 #include "tests/test_util.h"
@@ -41,6 +44,61 @@ TEST(Conformance, RegenerationGivesIdenticalBytes) {
     EXPECT_EQ(committed, regenerated.entries.size()) << sub << "/streams holds files the manifest does not list";
   }
   fs::remove_all(folder);
+}
+
+// The rule of docs/container3d.md ("Errors") and docs/decisions.md (3): an
+// error that names a field is placed at that field's first bit. Checked
+// against the decoder's own trace, which prints each field where it
+// starts, for every stream to reject whose element is a traced field
+// (truncation stops inside the element, before it is traced; trailing data
+// is placed after the end code it names; missing frames have no offset).
+TEST(Conformance, RejectionsArePlacedAtTheFirstBitOfTheirField) {
+  int checked = 0;
+  for (const char* sub : {".", "mesh3d"}) {
+    const Manifest manifest = read_manifest((kSuite / sub / "manifest.json").string());
+    for (const ManifestEntry& e : manifest.entries) {
+      if (e.valid || e.error_kind == "truncated" || e.error_kind == "trailing-data") continue;
+      const std::vector<uint8_t> stream = read_file((kSuite / sub / e.file).string());
+      std::ostringstream text;
+      Trace trace(text);
+      try {
+        if (manifest.kind == SuiteKind::kMesh3d) {
+          Decode3dOptions options;
+          options.trace = &trace;
+          Mesh3dDecoder decoder(stream, options);
+          while (decoder.next_frame()) {
+          }
+        } else {
+          DecoderOptions options;
+          options.trace = &trace;
+          decode_to_text(stream, options, {});
+        }
+      } catch (const Error&) {
+      }
+      // The last traced line of the element: "[unit K frame F | object]  OFFSET  NAME ...".
+      int64_t expected = -1;
+      std::istringstream lines(text.str());
+      for (std::string line; std::getline(lines, line);) {
+        std::istringstream in(line);
+        std::vector<std::string> w;
+        for (std::string word; in >> word;) w.push_back(word);
+        size_t at = 0;
+        uint64_t base = 0;
+        if (w.size() > 4 && w[0] == "unit") {
+          base = 8 * split_container(stream).units.at(std::stoul(w[1])).byte_offset;
+          at = 4;
+        } else if (!w.empty() && w[0] == "object") {
+          at = 1;
+        }
+        if (w.size() < at + 2 || w[at + 1] != e.error_element || w[at].find(':') != std::string::npos) continue;
+        expected = static_cast<int64_t>(base + std::stoull(w[at]));
+      }
+      if (expected < 0) continue;  // not a traced field: a structure, a section's symbols, a whole-stream rule
+      EXPECT_EQ(e.error_offset, expected) << sub << "/" << e.id << ": " << e.error_element;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 45);
 }
 
 TEST(Conformance, SuiteSize) {
