@@ -15,6 +15,8 @@
 #include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/lcc.h"
 #include "mesh3d/quantization.h"
+#include "syntax/mesh3d/affine_octree.h"
+#include "syntax/mesh3d/bfs3d.h"
 #include "syntax/mesh3d/cpca_wpt.h"
 #include "syntax/mesh3d/entropy_io.h"
 #include "syntax/mesh3d/lcc.h"
@@ -849,11 +851,11 @@ std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
   suite.push_back(invalid("x-43-group-empty", "group_frames 0", {"container-hash"},
                           edited(grouped, [&](ContainerParts& p) { first_group(p).payload[group_frames_byte] = 0; }), ErrorKind::kOutOfRange,
                           "group_frames", 0));
-  suite.push_back(invalid("x-44-group-beyond", "a group of frames 8 … 11 where frame_count is 10", {"container-hash"},
+  suite.push_back(invalid("x-44-group-beyond", "a group of frames 8 … 10 where frame_count is 10: one frame past the end", {"container-hash"},
                           edited(grouped,
                                  [&](ContainerParts& p) {
                                    ContainerUnit& last = p.units[p.units.size() - 1];
-                                   last.payload[group_frames_byte] = 4;  // frames 8 and 9 are the last group
+                                   last.payload[group_frames_byte] = 3;  // frames 8 and 9 are the last group
                                  }),
                           ErrorKind::kStructure, "group_frames", 8));
   suite.push_back(invalid("x-45-group-md5-cut", "a group hash unit one byte short", {"container-hash"},
@@ -866,9 +868,14 @@ std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
   suite.push_back(invalid("x-46-base-vertex-order", "vertex_order 3", {"base-mesh"},
                           edited(awkward, [&](ContainerParts& p) { base_unit(p)[order_byte] = 3; }), ErrorKind::kOutOfRange,
                           "vertex_order", 0));
-  suite.push_back(invalid("x-47-base-loose-faces", "more loose faces than faces", {"base-mesh"},
-                          edited(awkward, [&](ContainerParts& p) { base_unit(p)[order_byte + 1] = 0x40; }), ErrorKind::kOutOfRange,
-                          "loose_face_count", 0));
+  suite.push_back(invalid("x-47-base-loose-faces", "loose_face_count one more than face_count", {"base-mesh"},
+                          edited(awkward,
+                                 [&](ContainerParts& p) {
+                                   const uint8_t* faces = &p.object_payload[6];  // face_count, after version, codec_id, vertex_count
+                                   const uint32_t count = (uint32_t{faces[0]} << 24 | uint32_t{faces[1]} << 16 | uint32_t{faces[2]} << 8 | faces[3]) + 1;
+                                   for (int i = 0; i < 4; ++i) base_unit(p)[order_byte + 1 + static_cast<size_t>(i)] = static_cast<uint8_t>(count >> (24 - 8 * i));
+                                 }),
+                          ErrorKind::kOutOfRange, "loose_face_count", 0));
   suite.push_back(invalid("x-48-base-raw-left-over", "a byte after the raw bits", {"base-mesh"},
                           edited(awkward, [&](ContainerParts& p) { base_unit(p).push_back(0x00); }), ErrorKind::kStructure, "base_mesh", 0));
   suite.push_back(invalid("x-49-base-bins-left-over", "a zero byte after the last bin, counted by arithmetic_bytes", {"base-mesh"},
@@ -882,6 +889,34 @@ std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
                                    ++unit[length + 3];  // fewer than 255 bytes of bins
                                  }),
                           ErrorKind::kStructure, "base_mesh", 0));
+  // Each at the edge of its rule, so that a decoder whose check is one off accepts it.
+  suite.push_back(invalid("x-50-frame-index-at-count", "a seventh frame unit labelled frame 6 where frame_count is 6", {"container-units"},
+                          edited(base,
+                                 [](ContainerParts& p) {
+                                   ContainerUnit extra = unit_of(p, UnitType::kFrame, 5);
+                                   extra.payload[4] = 6;
+                                   p.units.push_back(std::move(extra));
+                                 }),
+                          ErrorKind::kStructure, "frame_index", 6));
+  {
+    std::vector<uint8_t> trailing = base;
+    trailing.push_back(0x00);
+    suite.push_back(invalid("x-51-trailing-byte", "a zero byte after the end code", {"container"}, trailing, ErrorKind::kTrailingData,
+                            "mesh_object_end_code", kNoPlane));
+  }
+  suite.push_back(invalid("x-52-version", "version 2", {"container"}, edited(base, [](ContainerParts& p) { p.object_payload[0] = 2; }),
+                          ErrorKind::kReservedValue, "version", kNoPlane));
+  suite.push_back(invalid("x-53-vertex-count-short", "vertex_count 3 for a tetrahedron: its fourth vertex is one too many", {"base-mesh"},
+                          edited(find(valid, "ao-06-direct-root"), [](ContainerParts& p) { p.object_payload[5] = 3; }), ErrorKind::kStructure,
+                          "gate_new_vertex", 0));
+  const size_t max_depth = header_byte<AffineOctreeHeader>(base, "max_depth");
+  suite.push_back(invalid("x-54-max-depth-21", "max_depth 21", {"ao-header"},
+                          edited(base, [max_depth](ContainerParts& p) { p.object_payload[max_depth] = 21; }), ErrorKind::kOutOfRange,
+                          "max_depth", kNoPlane));
+  const size_t prediction = header_byte<Bfs3dHeader>(bfs3d, "prediction_mode");
+  suite.push_back(invalid("x-55-bfs3d-prediction-2", "prediction_mode 2", {"bfs3d"},
+                          edited(bfs3d, [prediction](ContainerParts& p) { p.object_payload[prediction] = 2; }), ErrorKind::kOutOfRange,
+                          "prediction_mode", kNoPlane));
   return suite;
 }
 

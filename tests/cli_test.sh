@@ -95,6 +95,11 @@ status=0; "$m4mesh" encode3d tests/data/tetra-frames -o "$work/t3.m4m" --bits 99
 # conform finds ./conformance, or the source tree's around the build folder; elsewhere it asks for the folder.
 "$m4mesh" conform > "$work/conform" || fail "conform from the source folder"
 grep -q " passed, 0 failed" "$work/conform" || fail "conform report: $(tail -1 "$work/conform")"
+# --coverage: per area what the valid streams reach, then what they do not.
+"$m4mesh" conform "$source/conformance/mesh3d" --coverage > "$work/coverage" || fail "conform --coverage"
+grep -q "^coverage base-mesh: [0-9]* / [0-9]* items reached$" "$work/coverage" || fail "coverage per area: $(grep ^coverage "$work/coverage")"
+grep -q "not reached: " "$work/coverage" || fail "coverage lists the items not reached"
+grep -q "^  structure frame_index$" "$work/coverage" || fail "coverage lists the errors tested"
 status=0; (cd "$work" && "$m4mesh" conform > /dev/null 2> "$work/err") || status=$?
 m4mesh_dir="$(cd "$(dirname "$m4mesh")/../.." && pwd)"
 if [ -f "$m4mesh_dir/conformance/manifest.json" ]; then
