@@ -403,16 +403,21 @@ size_t header_byte(const std::vector<uint8_t>& stream, const char* name) {
   return static_cast<size_t>(count.offset_of_watched() / 8);
 }
 
-// An lcc predicted frame unit of `stream` (stream mode) whose residuals are
-// 0 but every rho's, which is the largest the syntax allows.
-std::vector<uint8_t> lcc_predicted_unit(const std::vector<uint8_t>& stream, std::vector<uint8_t> unit_header) {
+// An lcc frame unit of `stream` (stream mode), an anchor or a frame
+// predicted between two, whose residuals are 0 but every rho's, `times`
+// 2^rh_bits + `extra` (written even beyond what the syntax allows).
+std::vector<uint8_t> lcc_rho_unit(const std::vector<uint8_t>& stream, std::vector<uint8_t> unit_header, bool predicted, int32_t times,
+                                  int32_t extra) {
   const auto [object, header] = read_headers<LccHeader>(split_container(stream));
   const LccOrder order = lcc_order(decode_mesh3d(stream).faces, object.vertex_count);
   LccIndices residuals{std::vector<int32_t>(3 * order.direct.size()), std::vector<int32_t>(3 * order.steps.size())};
-  for (size_t i = 1; i < residuals.steps.size(); i += 3) residuals.steps[i] = int32_t{2} << header.rh_bits;
+  const int32_t rho = times * (int32_t{1} << header.rh_bits) + extra;
+  for (size_t i = 1; i < residuals.steps.size(); i += 3) residuals.steps[i] = rho;
   syntax::ResidualCoder<syntax::kLccChannels> coder;
   syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
-  syntax::describe_symbols(symbols, coder, true, residuals.direct, residuals.steps, int32_t{1} << header.theta_bits, int32_t{1} << header.rh_bits);
+  // The writer's limit, raised to let rho through (a predicted frame's residuals may reach twice the limit).
+  const int32_t limit = std::max(int32_t{1} << header.rh_bits, predicted ? (rho + 1) / 2 : rho);
+  syntax::describe_symbols(symbols, coder, predicted, residuals.direct, residuals.steps, int32_t{1} << header.theta_bits, limit);
   const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
   LccFrameData data{static_cast<uint32_t>(bins.size()), bins, raw};
   BitWriter writer;
@@ -833,9 +838,18 @@ std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
   suite.push_back(invalid("x-25-lcc-rho-beyond-prediction", "predicted frame 3 whose rho residuals push rho beyond ±2^rh_bits",
                           {"lcc-temporal"}, edited(temporal, [&](ContainerParts& p) {
                             ContainerUnit& unit = unit_of(p, UnitType::kFrame, 3);
-                            unit.payload = lcc_predicted_unit(temporal, {unit.payload.begin(), unit.payload.begin() + 5});
+                            unit.payload = lcc_rho_unit(temporal, {unit.payload.begin(), unit.payload.begin() + 5}, true, 2, 0);
                           }),
                           ErrorKind::kOutOfRange, "rho", 3));
+  // Frame 1 of a stream without temporal prediction, an anchor, with every
+  // rho residual 2^rh_bits + 1: one beyond an anchor's range, within a
+  // predicted frame's.
+  suite.push_back(invalid("x-56-lcc-anchor-rho", "an anchor whose rho residuals are 2^rh_bits + 1", {"lcc"},
+                          edited(cloth, [&](ContainerParts& p) {
+                            ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
+                            unit.payload = lcc_rho_unit(cloth, {unit.payload.begin(), unit.payload.begin() + 5}, false, 1, 1);
+                          }),
+                          ErrorKind::kOutOfRange, "rho", 1));
   for (SuiteCase& c : cpca_rejected_cases(valid)) suite.push_back(std::move(c));
   // Group hash units (after hash-01's frame 3, a group of frames 0 … 3).
   const std::vector<uint8_t> grouped = find(valid, "hash-01-groups");
