@@ -690,6 +690,34 @@ MeshSequence crown(int frames, int k, int length) {
   return s;
 }
 
+// An n × n grid whose quads split along either diagonal at random: vertex
+// degrees from 2 to 8, so that gates meet most pairs of degrees, each pair
+// and its mirror many times.
+MeshSequence irregular_grid(int frames, int n) {
+  MeshSequence s;
+  auto at = [n](int x, int y) { return static_cast<NodeIndex>(y * (n + 1) + x); };
+  SplitMix64 random(16);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const NodeIndex a = at(x, y), b = at(x + 1, y), c = at(x + 1, y + 1), d = at(x, y + 1);
+      if (random.next() % 2) {
+        s.faces.push_back({{a, b, c}});
+        s.faces.push_back({{a, c, d}});
+      } else {
+        s.faces.push_back({{a, b, d}});
+        s.faces.push_back({{b, c, d}});
+      }
+    }
+  s.vertex_count = static_cast<uint32_t>((n + 1) * (n + 1));
+  for (int f = 0; f < frames; ++f) {
+    std::vector<Vec3> frame;
+    for (int y = 0; y <= n; ++y)
+      for (int x = 0; x <= n; ++x) frame.push_back({static_cast<double>(x), y + 0.125 * f, 0.125 * ((7 * x + 3 * y) % 5)});
+    s.frames.push_back(std::move(frame));
+  }
+  return s;
+}
+
 // The base mesh: every kind of face and vertex, in the input order and in
 // coding order; a row-major sheet, whose input numbers parallelograms predict.
 std::vector<SuiteCase> base_mesh_cases(bool traced) {
@@ -705,6 +733,8 @@ std::vector<SuiteCase> base_mesh_cases(bool traced) {
                         rotating_sheet(3), Encode3dOptions{}, traced));
   suite.push_back(valid("base-04-crown", "gates with up to 8 candidates: candidate indices 1 … 7, the cut at 8, and a loose face (v, v, u)",
                         {"base-mesh"}, crown(2, 12, 12), Encode3dOptions{}, traced));
+  suite.push_back(valid("base-05-irregular", "a grid of random diagonals: gate and candidate contexts over most pairs of degrees, both ways",
+                        {"base-mesh"}, irregular_grid(2, 16), Encode3dOptions{}, traced));
   return suite;
 }
 
