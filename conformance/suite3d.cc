@@ -718,6 +718,30 @@ MeshSequence irregular_grid(int frames, int n) {
   return s;
 }
 
+// The irregular grid, 16 × 16 = 2^8 vertices numbered at random (so that
+// the gate's vertex predicts input numbers better than parallelograms),
+// with loose faces: a degenerate one, and faces repeating a directed edge
+// of the grid with another third vertex, so that parallelograms across
+// those edges take the first face of the edge.
+MeshSequence shuffled_grid(int frames) {
+  MeshSequence s = irregular_grid(frames, 15);
+  std::vector<NodeIndex> number(s.vertex_count);
+  for (NodeIndex v = 0; v < s.vertex_count; ++v) number[v] = v;
+  SplitMix64 random(256);
+  for (size_t i = number.size() - 1; i > 0; --i) std::swap(number[i], number[static_cast<size_t>(random.next() % (i + 1))]);
+  const size_t grid_faces = s.faces.size();
+  for (size_t f = 37; f < grid_faces; f += 83) s.faces.push_back({{s.faces[f].v[0], s.faces[f].v[1], 0}});
+  s.faces.push_back({{5, 5, 6}});
+  for (Triangle& t : s.faces)
+    for (NodeIndex& v : t.v) v = number[v];
+  for (std::vector<Vec3>& frame : s.frames) {
+    std::vector<Vec3> shuffled(frame.size());
+    for (size_t v = 0; v < frame.size(); ++v) shuffled[number[v]] = frame[v];
+    frame = std::move(shuffled);
+  }
+  return s;
+}
+
 // The base mesh: every kind of face and vertex, in the input order and in
 // coding order; a row-major sheet, whose input numbers parallelograms predict.
 std::vector<SuiteCase> base_mesh_cases(bool traced) {
@@ -735,6 +759,8 @@ std::vector<SuiteCase> base_mesh_cases(bool traced) {
                         {"base-mesh"}, crown(2, 12, 12), Encode3dOptions{}, traced));
   suite.push_back(valid("base-05-irregular", "a grid of random diagonals: gate and candidate contexts over most pairs of degrees, both ways",
                         {"base-mesh"}, irregular_grid(2, 16), Encode3dOptions{}, traced));
+  suite.push_back(valid("base-06-shuffled", "256 vertices numbered at random (vertex order 1), loose faces on a 2^8 index, parallelograms "
+                        "across edges that loose faces repeat", {"base-mesh"}, shuffled_grid(2), Encode3dOptions{}, traced));
   return suite;
 }
 
