@@ -403,6 +403,29 @@ size_t header_byte(const std::vector<uint8_t>& stream, const char* name) {
   return static_cast<size_t>(count.offset_of_watched() / 8);
 }
 
+// An Affine-Octree frame unit of `stream` whose only cell, the root, is a
+// leaf with the identity matrix but element 0 one above what matrix_bits
+// allows (written with twice the range at the same fraction bits).
+std::vector<uint8_t> ao_matrix_beyond_unit(const std::vector<uint8_t>& stream, std::vector<uint8_t> unit_header) {
+  const auto [object, header] = read_headers<AffineOctreeHeader>(split_container(stream));
+  AffineOctreeHeader wider = header;
+  ++wider.matrix_bits;
+  ++wider.matrix_range_log2;
+  AffineCell cell;
+  for (int i = 0; i < 3; ++i) cell.matrix[static_cast<size_t>(5 * i)] = int32_t{1} << header.fraction_bits();
+  cell.matrix[0] = header.matrix_max() + 1;
+  AffineCellCoder coder(wider);
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+  coder.describe(symbols, 0, object.vertex_count, cell);
+  const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
+  AffineFrame data{0, static_cast<uint32_t>(bins.size()), bins, raw};
+  BitWriter writer;
+  syntax::WriteIO out(writer);
+  syntax::describe(out, data);
+  unit_header.insert(unit_header.end(), writer.bytes().begin(), writer.bytes().end());
+  return unit_header;
+}
+
 // An lcc frame unit of `stream` (stream mode), an anchor or a frame
 // predicted between two, whose residuals are 0 but every rho's, `times`
 // 2^rh_bits + `extra` (written even beyond what the syntax allows).
@@ -979,6 +1002,13 @@ std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
   suite.push_back(invalid("x-53-vertex-count-short", "vertex_count 3 for a tetrahedron: its fourth vertex is one too many", {"base-mesh"},
                           edited(find(valid, "ao-06-direct-root"), [](ContainerParts& p) { p.object_payload[5] = 3; }), ErrorKind::kStructure,
                           "gate_new_vertex", 0));
+  suite.push_back(invalid("x-57-ao-matrix-beyond", "a root leaf whose matrix element 0 is one above matrix_bits' range", {"ao-cell"},
+                          edited(base,
+                                 [&](ContainerParts& p) {
+                                   ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
+                                   unit.payload = ao_matrix_beyond_unit(base, {unit.payload.begin(), unit.payload.begin() + 5});
+                                 }),
+                          ErrorKind::kOutOfRange, "matrix_residual", 1));
   const size_t max_depth = header_byte<AffineOctreeHeader>(base, "max_depth");
   suite.push_back(invalid("x-54-max-depth-21", "max_depth 21", {"ao-header"},
                           edited(base, [max_depth](ContainerParts& p) { p.object_payload[max_depth] = 21; }), ErrorKind::kOutOfRange,
