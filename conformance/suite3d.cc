@@ -387,6 +387,8 @@ std::vector<SuiteCase> lcc_cases(bool traced) {
   // after a long chain of steps, and then in a few coordinates.
   suite.push_back(valid("lcc-09-long-chains", "a 200 × 3 strip at b_θ 12: chains of 600 steps, where a 1-ulp angle or axis changes the output",
                         {"lcc"}, waving_strip(6, 200, 3), lcc({{"theta-bits", "12"}}), traced));
+  suite.push_back(valid("lcc-10-long-chains-coarse", "a 400 × 3 strip at b_θ 2: every angle a multiple of π/4, the table's octant ends",
+                        {"lcc"}, waving_strip(6, 400, 3), lcc({{"theta-bits", "2"}}), traced));
   std::filesystem::remove(rest);
   return suite;
 }
