@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 #include <sstream>
+#include <string_view>
 
 #include "common/atomic_file.h"
 #include "common/md5.h"
@@ -403,6 +404,47 @@ size_t header_byte(const std::vector<uint8_t>& stream, const char* name) {
   syntax::describe(count, object);
   syntax::describe(count, header);
   return static_cast<size_t>(count.offset_of_watched() / 8);
+}
+
+// Writes bins as EntropyWriteIO does, but every prefix bin as 1, so that a
+// residual's prefix never ends; stops where a decoder must fail.
+class EndlessPrefixIO {
+ public:
+  static constexpr bool kReading = false;
+  struct Stop {};
+  explicit EndlessPrefixIO(syntax::EntropyWriteIO<false>& io) : io_(io) {}
+  void bin(const char* name, BinContext& state, int context, bool& value) {
+    if (std::string_view(name).ends_with("_prefix")) value = true;
+    io_.bin(name, state, context, value);
+  }
+  void raw(const char* name, int bits, uint32_t& value) { io_.raw(name, bits, value); }
+  [[noreturn]] void fail(ErrorKind, const char*, const std::string&) const { throw Stop{}; }
+
+ private:
+  syntax::EntropyWriteIO<false>& io_;
+};
+
+// A bfs3d frame unit whose first x residual has a prefix of 31 ones, one
+// past the longest code (e + k ≤ 30).
+std::vector<uint8_t> bfs3d_endless_prefix_unit(std::vector<uint8_t> unit_header) {
+  const syntax::SectionPlace place;
+  syntax::EntropyWriteIO<false> symbols(place);
+  EndlessPrefixIO endless(symbols);
+  syntax::ResidualCoder<1> coder;
+  int32_t residual = 1;
+  try {
+    coder.describe(endless, 0, residual, syntax::kMotionResidual);
+  } catch (const EndlessPrefixIO::Stop&) {
+  }
+  const std::vector<uint8_t> bins = symbols.finish_bins();
+  Bfs3dFrame frame;
+  frame.arithmetic_bytes[0] = static_cast<uint32_t>(bins.size());
+  frame.bins[0] = bins;
+  BitWriter writer;
+  syntax::WriteIO out(writer);
+  syntax::describe(out, frame);
+  unit_header.insert(unit_header.end(), writer.bytes().begin(), writer.bytes().end());
+  return unit_header;
 }
 
 // An Affine-Octree frame unit of `stream` whose only cell, the root, is a
@@ -1015,6 +1057,13 @@ std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
   suite.push_back(invalid("x-54-max-depth-21", "max_depth 21", {"ao-header"},
                           edited(base, [max_depth](ContainerParts& p) { p.object_payload[max_depth] = 21; }), ErrorKind::kOutOfRange,
                           "max_depth", kNoPlane));
+  suite.push_back(invalid("x-58-residual-prefix-31", "a residual whose prefix has 31 bins '1': one past the longest code", {"container"},
+                          edited(bfs3d,
+                                 [](ContainerParts& p) {
+                                   ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
+                                   unit.payload = bfs3d_endless_prefix_unit({unit.payload.begin(), unit.payload.begin() + 5});
+                                 }),
+                          ErrorKind::kInvalidCode, "motion_residual", 1));
   const size_t prediction = header_byte<Bfs3dHeader>(bfs3d, "prediction_mode");
   suite.push_back(invalid("x-55-bfs3d-prediction-2", "prediction_mode 2", {"bfs3d"},
                           edited(bfs3d, [prediction](ContainerParts& p) { p.object_payload[prediction] = 2; }), ErrorKind::kOutOfRange,
