@@ -14,9 +14,11 @@
 #include "common/random.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
+#include "mesh3d/base_mesh.h"
 #include "mesh3d/lcc.h"
 #include "mesh3d/quantization.h"
 #include "syntax/mesh3d/affine_octree.h"
+#include "syntax/mesh3d/base_mesh.h"
 #include "syntax/mesh3d/bfs3d.h"
 #include "syntax/mesh3d/cpca_wpt.h"
 #include "syntax/mesh3d/entropy_io.h"
@@ -424,6 +426,61 @@ class EndlessPrefixIO {
   syntax::EntropyWriteIO<false>& io_;
 };
 
+// Writes as EntropyWriteIO does and stops at the first rule the symbols
+// break, where a decoder must fail.
+class StopAtFailureIO {
+ public:
+  static constexpr bool kReading = false;
+  struct Stop {};
+  explicit StopAtFailureIO(syntax::EntropyWriteIO<false>& io) : io_(io) {}
+  void bin(const char* name, BinContext& state, int context, bool& value) { io_.bin(name, state, context, value); }
+  void raw(const char* name, int bits, uint32_t& value) { io_.raw(name, bits, value); }
+  [[noreturn]] void fail(ErrorKind, const char*, const std::string&) const { throw Stop{}; }
+
+ private:
+  syntax::EntropyWriteIO<false>& io_;
+};
+
+// Answers the traversal's questions for a base mesh that breaks a rule: a
+// first seed of new vertices but for `old_corner` (vertex 0, when it is
+// not −1), then every gate answered as the far vertex `far` (3 by default:
+// the first seed's vertices are 0, 1 and 2, so 3 is not numbered yet).
+struct BrokenBaseMesh {
+  int old_corner = -1;
+  uint32_t far = 3;
+  bool seed_corner(int corner, uint32_t& vertex) {
+    vertex = 0;
+    return corner == old_corner;
+  }
+  void numbered(uint32_t) {}
+  GateAnswer gate(HalfEdge, std::span<const uint32_t>) { return {GateSymbol::kFarVertex, 0, far}; }
+};
+
+// A base mesh unit for frame 0 of an object of `vertex_count` vertices and
+// `face_count` faces whose traversal the oracle breaks.
+std::vector<uint8_t> broken_base_mesh_unit(std::vector<uint8_t> unit_header, uint32_t vertex_count, uint32_t face_count, BrokenBaseMesh oracle) {
+  const syntax::SectionPlace place;
+  syntax::EntropyWriteIO<false> symbols(place);
+  StopAtFailureIO io(symbols);
+  syntax::BaseMeshContexts contexts;
+  GateTraversal traversal(face_count);
+  try {
+    describe_traversal(io, contexts, traversal, vertex_count, face_count, &oracle);
+  } catch (const StopAtFailureIO::Stop&) {
+  }
+  const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
+  BaseMeshData data;
+  data.vertex_order = kVertexOrderCoding;
+  data.arithmetic_bytes = static_cast<uint32_t>(bins.size());
+  data.bins = bins;
+  data.raw = raw;
+  BitWriter writer;
+  syntax::WriteIO out(writer);
+  syntax::describe(out, data);
+  unit_header.insert(unit_header.end(), writer.bytes().begin(), writer.bytes().end());
+  return unit_header;
+}
+
 // A bfs3d frame unit whose first x residual has a prefix of 31 ones, one
 // past the longest code (e + k ≤ 30).
 std::vector<uint8_t> bfs3d_endless_prefix_unit(std::vector<uint8_t> unit_header) {
@@ -797,7 +854,9 @@ MeshSequence shuffled_grid(int frames) {
   SplitMix64 random(256);
   for (size_t i = number.size() - 1; i > 0; --i) std::swap(number[i], number[static_cast<size_t>(random.next() % (i + 1))]);
   const size_t grid_faces = s.faces.size();
-  for (size_t f = 37; f < grid_faces; f += 83) s.faces.push_back({{s.faces[f].v[0], s.faces[f].v[1], 0}});
+  // The top edge c → d of a quad's second face, again with the seed's first
+  // vertex: the parallelogram of the vertex above crosses it.
+  for (size_t f = 37; f < grid_faces; f += 82) s.faces.push_back({{s.faces[f].v[1], s.faces[f].v[2], s.faces[0].v[0]}});
   s.faces.push_back({{5, 5, 6}});
   for (Triangle& t : s.faces)
     for (NodeIndex& v : t.v) v = number[v];
@@ -1064,6 +1123,22 @@ std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
                                    unit.payload = bfs3d_endless_prefix_unit({unit.payload.begin(), unit.payload.begin() + 5});
                                  }),
                           ErrorKind::kInvalidCode, "motion_residual", 1));
+  {
+    // Base mesh units of the box and sheet (ao-01) broken by the traversal's answers.
+    const ObjectHeader object = read_headers<AffineOctreeHeader>(split_container(base)).first;
+    auto broken = [&](BrokenBaseMesh oracle) {
+      return edited(base, [&](ContainerParts& p) {
+        ContainerUnit& unit = unit_of(p, UnitType::kBaseMesh, 0);
+        unit.payload = broken_base_mesh_unit({unit.payload.begin(), unit.payload.begin() + 5}, object.vertex_count, object.face_count, oracle);
+      });
+    };
+    BrokenBaseMesh seed_repeats;
+    seed_repeats.old_corner = 1;
+    suite.push_back(invalid("x-59-base-seed-repeats", "a seed face whose second corner is its first vertex again", {"base-mesh"},
+                            broken(seed_repeats), ErrorKind::kStructure, "seed_vertex", 0));
+    suite.push_back(invalid("x-60-base-far-unnumbered", "a far vertex equal to the count of vertices numbered so far", {"base-mesh"},
+                            broken(BrokenBaseMesh{}), ErrorKind::kOutOfRange, "far_vertex", 0));
+  }
   const size_t prediction = header_byte<Bfs3dHeader>(bfs3d, "prediction_mode");
   suite.push_back(invalid("x-55-bfs3d-prediction-2", "prediction_mode 2", {"bfs3d"},
                           edited(bfs3d, [prediction](ContainerParts& p) { p.object_payload[prediction] = 2; }), ErrorKind::kOutOfRange,
