@@ -80,13 +80,7 @@ bool parse(const std::string& text, TraceLine& line) {
 
 std::set<std::string> coverage_items3d(std::span<const uint8_t> stream) {
   std::ostringstream text;
-  Trace trace(text);
-  Decode3dOptions options;
-  options.trace = &trace;
-  Mesh3dDecoder decoder(stream, options);
-  while (decoder.next_frame()) {
-  }
-  const std::string area = codec_area(decoder.header().codec_id);
+  const std::string area = codec_area(trace_mesh3d(stream, text));
   std::set<std::string> items;
   std::istringstream lines(text.str());
   uint32_t kind = 0;  // cpca-wpt's unit_kind of the unit in hand

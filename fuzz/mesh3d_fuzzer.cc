@@ -31,12 +31,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   try {
     std::ostringstream text;
-    Trace trace(text);
-    Decode3dOptions options;
-    options.trace = &trace;
-    Mesh3dDecoder decoder(stream, options);
-    while (decoder.next_unit()) {
-    }
+    trace_mesh3d(stream, text);
   } catch (const Error&) {
   }
   check_mesh3d(stream);

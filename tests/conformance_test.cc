@@ -63,11 +63,7 @@ TEST(Conformance, RejectionsArePlacedAtTheFirstBitOfTheirField) {
       Trace trace(text);
       try {
         if (manifest.kind == SuiteKind::kMesh3d) {
-          Decode3dOptions options;
-          options.trace = &trace;
-          Mesh3dDecoder decoder(stream, options);
-          while (decoder.next_frame()) {
-          }
+          trace_mesh3d(stream, text);
         } else {
           DecoderOptions options;
           options.trace = &trace;

@@ -17,12 +17,7 @@ namespace fs = std::filesystem;
 
 std::string decoder_trace(const std::vector<uint8_t>& stream) {
   std::ostringstream text;
-  Trace trace(text);
-  Decode3dOptions options;
-  options.trace = &trace;
-  Mesh3dDecoder decoder(stream, options);
-  while (decoder.next_unit()) {
-  }
+  trace_mesh3d(stream, text);
   return text.str();
 }
 

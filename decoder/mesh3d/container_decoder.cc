@@ -334,4 +334,14 @@ MeshSequence decode_mesh3d(std::span<const uint8_t> stream) {
   return s;
 }
 
+uint32_t trace_mesh3d(std::span<const uint8_t> stream, std::ostream& out) {
+  Trace trace(out);
+  Decode3dOptions options;
+  options.trace = &trace;
+  Mesh3dDecoder decoder(stream, options);
+  while (decoder.next_unit()) {
+  }
+  return decoder.header().codec_id;
+}
+
 }  // namespace m4mesh

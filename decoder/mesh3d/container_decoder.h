@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <ostream>
 #include <span>
 #include <string>
 #include <vector>
@@ -139,5 +140,9 @@ void for_each_prefix(std::span<const uint8_t> stream,
 
 // The whole sequence (tests, tools); fails on a hash mismatch.
 MeshSequence decode_mesh3d(std::span<const uint8_t> stream);
+
+// Decodes every unit, tracing every element to `out` (the lines before an
+// error stay there when the error is thrown); returns the codec's id.
+uint32_t trace_mesh3d(std::span<const uint8_t> stream, std::ostream& out);
 
 }  // namespace m4mesh
