@@ -356,7 +356,18 @@ std::vector<SuiteCase> bfs3d_cases(bool traced) {
     suite.push_back(valid("bfs3d-02-parallelogram-intra", "bfs3d, parallelogram prediction, 10 bits, intra every 4 frames",
                           {"bfs3d", "container-units"}, shape, o, traced));
   }
-
+  {
+    // bfs3d-01 with frame_count 0 (streaming); its trace is the encoder's with that field's value edited.
+    const SuiteCase& counted = suite.front();
+    SuiteCase streaming = decode_case("bfs3d-03-streaming", "bfs3d-01 with frame_count 0: a stream of unknown length", {"container", "container-units"},
+                                      edited(counted.stream, [](ContainerParts& p) { std::fill_n(p.object_payload.begin() + 10, 4, 0); }));
+    std::istringstream lines(counted.encoder_trace);
+    for (std::string line; std::getline(lines, line);) {
+      if (line.starts_with("object") && line.find(" frame_count ") != std::string::npos) line = line.substr(0, line.find_last_not_of("0123456789") + 1) + "0";
+      streaming.encoder_trace += line + "\n";
+    }
+    suite.push_back(std::move(streaming));
+  }
   return suite;
 }
 
