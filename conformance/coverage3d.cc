@@ -1,7 +1,7 @@
 #include "conformance/coverage3d.h"
 
+#include <optional>
 #include <sstream>
-#include <vector>
 
 #include "codecs3d/registry.h"
 #include "decoder/mesh3d/container_decoder.h"
@@ -46,36 +46,6 @@ bool is_base_mesh_symbol(const std::string& name) {
   return false;
 }
 
-// One line of a 3D trace: its frame (−1 for the object), element name,
-// value, and for a bin its context.
-struct TraceLine {
-  int64_t frame = -1;
-  std::string name;
-  int64_t value = 0;
-  bool bin = false;
-  int context = 0;
-};
-
-bool parse(const std::string& text, TraceLine& line) {
-  std::istringstream in(text);
-  std::vector<std::string> words;
-  for (std::string w; in >> w;) words.push_back(w);
-  size_t at = 0;
-  if (words.size() > 4 && words[0] == "unit") {
-    line.frame = std::stoll(words[3]);
-    at = 4;
-  } else if (!words.empty() && (words[0] == "object" || words[0] == "end")) {
-    at = 1;
-  }
-  if (words.size() < at + 4) return false;
-  line.name = words[at + 1];
-  line.bin = words[at + 2] == "b";
-  if (words[at + 3].starts_with("0x") || words[at + 3].starts_with("'") || words[at + 2] == "B") return false;
-  line.value = std::stoll(words[at + 3]);
-  if (line.bin) line.context = std::stoi(words.back());
-  return true;
-}
-
 }  // namespace
 
 std::set<std::string> coverage_items3d(std::span<const uint8_t> stream) {
@@ -85,31 +55,32 @@ std::set<std::string> coverage_items3d(std::span<const uint8_t> stream) {
   std::istringstream lines(text.str());
   uint32_t kind = 0;  // cpca-wpt's unit_kind of the unit in hand
   for (std::string l; std::getline(lines, l);) {
-    TraceLine t;
-    if (!parse(l, t)) continue;
-    const std::string& n = t.name;
+    const std::optional<TraceLine> line = parse_trace_line(l);
+    if (!line || !line->numeric()) continue;
+    const std::string& n = line->name;
+    const int64_t value = std::stoll(line->value);
     const std::string where = is_base_mesh_symbol(n) ? "base-mesh" : area;
-    if (t.bin) {
-      items.insert(bin_item(where, n, t.context, static_cast<int>(t.value)));
+    if (line->bin()) {
+      items.insert(bin_item(where, n, line->context, static_cast<int>(value)));
       continue;
     }
-    if (n == "unit_type" && t.value == 0 && t.frame > 0) items.insert(item(area, "intra refresh (a base mesh unit at a later frame)"));
-    if (n == "unit_type" && t.value == 3) items.insert(item("container", "frame hash unit"));
-    if (n == "unit_type" && t.value == 4) items.insert(item("container", "group hash unit"));
-    if (n == "frame_count" && t.value == 0) items.insert(item("container", "frame_count = 0 (streaming)"));
-    if (n == "vertex_order") items.insert(item("base-mesh", "vertex_order = " + std::to_string(t.value)));
-    if (n == "loose_face_count" && t.value > 0) items.insert(item("base-mesh", "loose faces"));
-    if (n == "quantization_bits" && (t.value == 4 || t.value == 24)) items.insert(item(area, "quantization_bits = " + std::to_string(t.value)));
-    if (n == "prediction_mode" || n == "reference_mode" || n == "coding_mode") items.insert(item(area, n + " = " + std::to_string(t.value)));
-    if (n == "temporal_gop") items.insert(item(area, t.value == 0 ? "temporal_gop = 0" : "temporal_gop > 0"));
-    if ((n == "theta_bits" && (t.value == 2 || t.value == 15)) || (n == "rh_bits" && (t.value == 1 || t.value == 20)) ||
-        (n == "max_depth" && (t.value == 1 || t.value == 20)) || (n == "fraction_bits" && (t.value == 0 || t.value == 16)))
-      items.insert(item(area, n + " = " + std::to_string(t.value)));
-    if (n == "direct_shift") items.insert(item(area, t.value == 0 ? "direct_shift = 0" : "direct_shift > 0"));
-    if (n == "cluster_count") items.insert(item(area, t.value == 1 ? "cluster_count = 1" : "cluster_count > 1"));
-    if (n == "unit_kind") kind = static_cast<uint32_t>(t.value);
+    if (n == "unit_type" && value == 0 && line->frame > 0) items.insert(item(area, "intra refresh (a base mesh unit at a later frame)"));
+    if (n == "unit_type" && value == 3) items.insert(item("container", "frame hash unit"));
+    if (n == "unit_type" && value == 4) items.insert(item("container", "group hash unit"));
+    if (n == "frame_count" && value == 0) items.insert(item("container", "frame_count = 0 (streaming)"));
+    if (n == "vertex_order") items.insert(item("base-mesh", "vertex_order = " + std::to_string(value)));
+    if (n == "loose_face_count" && value > 0) items.insert(item("base-mesh", "loose faces"));
+    if (n == "quantization_bits" && (value == 4 || value == 24)) items.insert(item(area, "quantization_bits = " + std::to_string(value)));
+    if (n == "prediction_mode" || n == "reference_mode" || n == "coding_mode") items.insert(item(area, n + " = " + std::to_string(value)));
+    if (n == "temporal_gop") items.insert(item(area, value == 0 ? "temporal_gop = 0" : "temporal_gop > 0"));
+    if ((n == "theta_bits" && (value == 2 || value == 15)) || (n == "rh_bits" && (value == 1 || value == 20)) ||
+        (n == "max_depth" && (value == 1 || value == 20)) || (n == "fraction_bits" && (value == 0 || value == 16)))
+      items.insert(item(area, n + " = " + std::to_string(value)));
+    if (n == "direct_shift") items.insert(item(area, value == 0 ? "direct_shift = 0" : "direct_shift > 0"));
+    if (n == "cluster_count") items.insert(item(area, value == 1 ? "cluster_count = 1" : "cluster_count > 1"));
+    if (n == "unit_kind") kind = static_cast<uint32_t>(value);
     if (n == "shift") {
-      const char* relation = t.value < 16 ? "< 16" : t.value == 16 ? "= 16" : "> 16";
+      const char* relation = value < 16 ? "< 16" : value == 16 ? "= 16" : "> 16";
       items.insert(item(area, std::string(kind == 0 ? "start" : "component") + " shift " + relation));
     }
   }

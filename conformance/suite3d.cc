@@ -110,6 +110,19 @@ MeshSequence rotating_sheet(int frames) {
   return s;
 }
 
+// The faces of an n × rows sheet of quads, row by row, vertex (i, j)
+// numbered j (n + 1) + i, each quad cut along the same diagonal.
+std::vector<Triangle> sheet_faces(int n, int rows) {
+  std::vector<Triangle> faces;
+  auto at = [n](int i, int j) { return static_cast<NodeIndex>(j * (n + 1) + i); };
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < n; ++i) {
+      faces.push_back({{at(i, j), at(i + 1, j), at(i + 1, j + 1)}});
+      faces.push_back({{at(i, j), at(i + 1, j + 1), at(i, j + 1)}});
+    }
+  return faces;
+}
+
 // A cloth-like flag: an n × n sheet in the plane y = 0 (its rest shape,
 // frame 0), whose later frames carry a cubic wave travelling along x, and
 // a vertex in no face. With `collapse`, one triangle on the coding path
@@ -117,11 +130,7 @@ MeshSequence rotating_sheet(int frames) {
 MeshSequence waving_flag(int frames, int n, bool collapse) {
   MeshSequence s;
   auto at = [n](int i, int j) { return static_cast<NodeIndex>(j * (n + 1) + i); };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      s.faces.push_back({{at(i, j), at(i + 1, j), at(i + 1, j + 1)}});
-      s.faces.push_back({{at(i, j), at(i + 1, j + 1), at(i, j + 1)}});
-    }
+  s.faces = sheet_faces(n, n);
   s.vertex_count = static_cast<uint32_t>((n + 1) * (n + 1) + 1);
   for (int f = 0; f < frames; ++f) {
     std::vector<Vec3> frame;
@@ -143,12 +152,7 @@ MeshSequence waving_flag(int frames, int n, bool collapse) {
 // along x whose amplitude grows across the strip.
 MeshSequence waving_strip(int frames, int n, int rows) {
   MeshSequence s;
-  auto at = [n](int i, int j) { return static_cast<NodeIndex>(j * (n + 1) + i); };
-  for (int j = 0; j < rows; ++j)
-    for (int i = 0; i < n; ++i) {
-      s.faces.push_back({{at(i, j), at(i + 1, j), at(i + 1, j + 1)}});
-      s.faces.push_back({{at(i, j), at(i + 1, j + 1), at(i, j + 1)}});
-    }
+  s.faces = sheet_faces(n, rows);
   s.vertex_count = static_cast<uint32_t>((n + 1) * (rows + 1));
   for (int f = 0; f < frames; ++f) {
     std::vector<Vec3> frame;

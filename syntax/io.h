@@ -43,27 +43,37 @@ class IOBase {
   void require(bool ok, ErrorKind kind, const char* element, const char* message) const {
     if (!ok) fail(kind, element, message);
   }
-  // Records where a field (or a structure: "base_mesh") starts, for later errors.
+  // Records where a field (or a structure: "base_mesh") starts, for later
+  // errors. Called for every field read: names are string literals, so the
+  // pointer usually matches before any characters are compared.
   void note_start(const char* name, uint64_t offset) {
     for (FieldStart& f : starts_)
-      if (std::string_view(f.name) == name) {
+      if (f.name == name) {
         f.offset = offset;
         return;
       }
-    starts_.push_back({name, offset});
+    if (const size_t i = index_of(name); i < starts_.size())
+      starts_[i].offset = offset;
+    else
+      starts_.push_back({name, offset});
   }
 
  protected:
   uint64_t start_of(const char* element) const {
-    for (const FieldStart& f : starts_)
-      if (std::string_view(f.name) == element) return f.offset;
-    return element_start_;
+    const size_t i = index_of(element);
+    return i < starts_.size() ? starts_[i].offset : element_start_;
   }
 
   struct FieldStart {
     const char* name;
     uint64_t offset;
   };
+  // The entry of that name, or starts_.size().
+  size_t index_of(const char* name) const {
+    for (size_t i = 0; i < starts_.size(); ++i)
+      if (std::string_view(starts_[i].name) == name) return i;
+    return starts_.size();
+  }
   int64_t plane_ = kNoPlane;
   uint64_t element_start_ = 0;
   Trace* trace_ = nullptr;

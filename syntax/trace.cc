@@ -1,7 +1,9 @@
 #include "syntax/trace.h"
 
 #include <cstdio>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace m4mesh {
 
@@ -55,6 +57,28 @@ void Trace::bin(std::string_view section, uint64_t index, std::string_view name,
 void Trace::raw(std::string_view section, uint64_t bit, std::string_view name, int bits, int64_t value) {
   prefix(std::string(section) + ":" + std::to_string(bit), name, std::to_string(bits));
   out_ << value << '\n';
+}
+
+std::optional<TraceLine> parse_trace_line(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> words;
+  for (std::string w; in >> w;) words.push_back(w);
+  TraceLine t;
+  size_t at = 0;
+  if (words.size() > 4 && words[0] == "unit") {
+    t.unit = std::stoll(words[1]);
+    t.frame = std::stoll(words[3]);
+    at = 4;
+  } else if (!words.empty() && (words[0] == "object" || words[0] == "end")) {
+    at = 1;
+  }
+  if (words.size() < at + 4) return std::nullopt;
+  t.position = words[at];
+  t.name = words[at + 1];
+  t.size = words[at + 2];
+  t.value = words[at + 3];
+  if (t.bin() && words.size() == at + 6) t.context = std::stoi(words[at + 5]);
+  return t;
 }
 
 }  // namespace m4mesh

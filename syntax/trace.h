@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <span>
 #include <string>
@@ -47,5 +48,27 @@ class Trace {
   std::string location_;
   uint64_t offset_base_ = 0;
 };
+
+// One line of a trace read back (tools and tests): for a 3D line its unit
+// (−1 for the object and the end code) and frame (−1 outside a unit), then
+// the position ("144", or "bins:17" inside a section), the name, the size
+// ("32", "b" for a bin, "B" for a byte section) and the value as printed;
+// for a bin, its context.
+struct TraceLine {
+  int64_t unit = -1;
+  int64_t frame = -1;
+  std::string position;
+  std::string name;
+  std::string size;
+  std::string value;
+  int context = -1;
+
+  bool bin() const { return size == "b"; }
+  // Whether `value` is a number (not a start code, a bit string or bytes).
+  bool numeric() const { return size != "B" && !value.starts_with("0x") && !value.starts_with("'"); }
+};
+
+// Nothing for a line that is not one Trace printed.
+std::optional<TraceLine> parse_trace_line(const std::string& line);
 
 }  // namespace m4mesh

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -15,6 +16,7 @@
 #include "decoder/mesh3d/container_decoder.h"
 #include "syntax/mesh3d/container.h"
 #include "syntax/mesh_object.h"
+#include "syntax/trace.h"
 #include "syntax/values.h"
 #include "tests/test_util.h"
 
@@ -71,23 +73,16 @@ TEST(Conformance, RejectionsArePlacedAtTheFirstBitOfTheirField) {
         }
       } catch (const Error&) {
       }
-      // The last traced line of the element: "[unit K frame F | object]  OFFSET  NAME ...".
+      // The last traced line of the element placed at a bit of its payload
+      // (offsets count from the unit's start code, or the stream's start).
+      const std::vector<ContainerUnit> units = manifest.kind == SuiteKind::kMesh3d ? split_container(stream).units : std::vector<ContainerUnit>{};
       int64_t expected = -1;
       std::istringstream lines(text.str());
-      for (std::string line; std::getline(lines, line);) {
-        std::istringstream in(line);
-        std::vector<std::string> w;
-        for (std::string word; in >> word;) w.push_back(word);
-        size_t at = 0;
-        uint64_t base = 0;
-        if (w.size() > 4 && w[0] == "unit") {
-          base = 8 * split_container(stream).units.at(std::stoul(w[1])).byte_offset;
-          at = 4;
-        } else if (!w.empty() && w[0] == "object") {
-          at = 1;
-        }
-        if (w.size() < at + 2 || w[at + 1] != e.error_element || w[at].find(':') != std::string::npos) continue;
-        expected = static_cast<int64_t>(base + std::stoull(w[at]));
+      for (std::string l; std::getline(lines, l);) {
+        const std::optional<TraceLine> line = parse_trace_line(l);
+        if (!line || line->name != e.error_element || line->position.find(':') != std::string::npos) continue;
+        const uint64_t base = line->unit < 0 ? 0 : 8 * units.at(static_cast<size_t>(line->unit)).byte_offset;
+        expected = static_cast<int64_t>(base + std::stoull(line->position));
       }
       if (expected < 0) continue;  // not a traced field: a structure, a section's symbols, a whole-stream rule
       EXPECT_EQ(e.error_offset, expected) << sub << "/" << e.id << ": " << e.error_element;

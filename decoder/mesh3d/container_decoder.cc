@@ -121,7 +121,9 @@ void Mesh3dDecoder::read_unit_data(size_t index, int64_t frame, Read&& read) {
   syntax::ReadIO io(reader, options_.trace);
   io.set_plane(frame);
   // The unit header was read before: errors the codec finds in it are placed there too.
-  for (const char* field : {"unit_type", "frame_index"}) io.note_start(field, syntax::unit_header_offset(field) - 32);
+  static const uint64_t kUnitType = syntax::unit_header_offset("unit_type") - 32, kFrameIndex = syntax::unit_header_offset("frame_index") - 32;
+  io.note_start("unit_type", kUnitType);
+  io.note_start("frame_index", kFrameIndex);
   try {
     read(io);
   } catch (const Error& e) {
