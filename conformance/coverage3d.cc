@@ -18,6 +18,17 @@ std::string bin_item(const std::string& area, const std::string& name, int conte
   return item(area, name + " ctx " + std::to_string(context) + " = " + std::to_string(value));
 }
 
+// A residual symbol's bin (syntax/mesh3d/residual.h) by channel, class of
+// the previous residual and prefix slot, from its trace context number.
+std::string residual_bin_item(const std::string& area, const std::string& name, int context, int value) {
+  const int group = context / (Residual::kPrefixContexts + 1), slot = context % (Residual::kPrefixContexts + 1) - 1;
+  std::string text = name + " channel " + std::to_string(group / Residual::kClasses) + " class " + std::to_string(group % Residual::kClasses);
+  if (slot >= 0) text += " bin " + std::to_string(slot) + (slot == Residual::kPrefixContexts - 1 ? "+" : "");
+  return item(area, text + " = " + std::to_string(value));
+}
+
+bool is_residual_bin(const std::string& name) { return name.ends_with("_nonzero") || name.ends_with("_prefix"); }
+
 // A residual family (syntax/mesh3d/residual.h) on `channels`, whose prefix
 // length e cannot exceed max_e: its zero flag and prefix bins by class.
 void residual_family(std::set<std::string>& out, const std::string& area, const std::string& name, std::initializer_list<int> channels,
@@ -25,11 +36,11 @@ void residual_family(std::set<std::string>& out, const std::string& area, const 
   for (int channel : channels)
     for (int cls = 0; cls < Residual::kClasses; ++cls) {
       const int base = (channel * Residual::kClasses + cls) * (Residual::kPrefixContexts + 1);
-      for (int v = 0; v < 2; ++v) out.insert(bin_item(area, name + "_nonzero", base, v));
+      for (int v = 0; v < 2; ++v) out.insert(residual_bin_item(area, name + "_nonzero", base, v));
       for (int slot = 0; slot < Residual::kPrefixContexts; ++slot) {
         const bool last = slot == Residual::kPrefixContexts - 1;  // bins i ≥ 11 share it
-        if (slot <= max_e) out.insert(bin_item(area, name + "_prefix", base + 1 + slot, 0));
-        if (slot < max_e || (last && max_e > slot)) out.insert(bin_item(area, name + "_prefix", base + 1 + slot, 1));
+        if (slot <= max_e) out.insert(residual_bin_item(area, name + "_prefix", base + 1 + slot, 0));
+        if (slot < max_e || (last && max_e > slot)) out.insert(residual_bin_item(area, name + "_prefix", base + 1 + slot, 1));
       }
     }
 }
@@ -61,7 +72,7 @@ std::set<std::string> coverage_items3d(std::span<const uint8_t> stream) {
     const int64_t value = std::stoll(line->value);
     const std::string where = is_base_mesh_symbol(n) ? "base-mesh" : area;
     if (line->bin()) {
-      items.insert(bin_item(where, n, line->context, static_cast<int>(value)));
+      items.insert((is_residual_bin(n) ? residual_bin_item : bin_item)(where, n, line->context, static_cast<int>(value)));
       continue;
     }
     if (n == "unit_type" && value == 0 && line->frame > 0) items.insert(item(area, "intra refresh (a base mesh unit at a later frame)"));
@@ -109,6 +120,8 @@ std::map<std::string, std::set<std::string>> coverage_catalog3d() {
   residual_family(base, "base-mesh", "position", {0, 1, 2, 3, 4, 5});
   residual_family(base, "base-mesh", "order", {0});
   residual_family(base, "base-mesh", "far", {0});
+  // A far residual of 0 names the gate's own vertex a: the face (b, a, a) is a `structure` error.
+  for (int cls = 0; cls < Residual::kClasses; ++cls) base.erase(residual_bin_item("base-mesh", "far_nonzero", cls * (Residual::kPrefixContexts + 1), 0));
   for (int order = 0; order <= 2; ++order) base.insert(item("base-mesh", "vertex_order = " + std::to_string(order)));
   base.insert(item("base-mesh", "loose faces"));
 

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -162,6 +163,44 @@ MeshSequence waving_strip(int frames, int n, int rows) {
         const double wave = f == 0 ? 0 : 0.5 * p * (1 - p) * (p - 0.5) * (1 + 0.25 * z) * (1 + 0.3 * z * z);
         frame.push_back({x - 0.0625 * wave * wave, wave, static_cast<double>(j) / n});
       }
+    s.frames.push_back(std::move(frame));
+  }
+  return s;
+}
+
+// An n × n sheet in the box's middle and `loose` vertices in no face
+// beside it, which stay put and now and then (one time in `one_in`), each
+// coordinate on its own, jump to ±2^−u · m/8 off their place (u from 2 to
+// 23, m from 1 to 8) or back: residuals of many prefix lengths after a
+// zero, a short and a long one. Two more vertices in no face hold the unit
+// box. Dyadic values only, the same doubles everywhere.
+MeshSequence spiky_sheet(int frames, int n, int loose, uint64_t seed, int one_in) {
+  MeshSequence s;
+  s.faces = sheet_faces(n, n);
+  const int moving = (n + 1) * (n + 1) + loose;
+  s.vertex_count = static_cast<uint32_t>(moving + 2);
+  SplitMix64 random(seed);
+  std::vector<Vec3> offset(static_cast<size_t>(moving));
+  auto jump = [&](double& d) {
+    if (random.next() % static_cast<uint64_t>(one_in)) return;
+    if (d != 0 && random.next() % 2) {
+      d = 0;
+      return;
+    }
+    d = std::ldexp(random.uniform(1, 8) / 8.0, -random.uniform(2, 23)) * (random.next() % 2 ? 1 : -1);
+  };
+  for (int f = 0; f < frames; ++f) {
+    std::vector<Vec3> frame;
+    for (int v = 0; v < moving; ++v) {
+      Vec3& d = offset[static_cast<size_t>(v)];
+      jump(d.x);
+      jump(d.y);
+      jump(d.z);
+      const int i = v % (n + 1), j = v / (n + 1);  // the loose vertices continue the sheet's rows, a quarter higher
+      frame.push_back({0.25 + 0.5 * i / n + d.x, 0.25 + 0.5 * j / n + d.y, (j > n ? 0.75 : 0.5) + d.z});
+    }
+    frame.push_back({0, 0, 0});
+    frame.push_back({1, 1, 1});
     s.frames.push_back(std::move(frame));
   }
   return s;
@@ -346,6 +385,20 @@ std::vector<SuiteCase> affine_octree_cases(bool traced) {
     suite.push_back(valid("ao-08-deep", "cells down to depth 20 (depth contexts 15 with both bins), a leaf of 12 vertices at the deepest depth",
                           {"ao-cell", "ao-reconstruction"}, deep_clusters(5), o, traced));
   }
+  {
+    Encode3dOptions o = affine("0.1", 24);
+    o.codec_options["bits"] = "24";
+    o.codec_options["max-depth"] = "20";
+    suite.push_back(valid("ao-09-spikes", "vertices that jump by 2^−2 … 2^−23 of the box on a 24-bit grid: matrix and direct residuals of many "
+                          "prefix lengths, leaves at every depth", {"ao-cell"}, spiky_sheet(8, 16, 100, 42, 30), o, traced));
+  }
+  {
+    Encode3dOptions o = affine("0.1", 8);
+    o.codec_options["bits"] = "4";
+    o.codec_options["max-depth"] = "1";
+    suite.push_back(valid("ao-10-shallow", "max_depth 1 on a 4-bit grid: leaves of many vertices at depth 1, matrix or direct", {"ao-header", "ao-cell"},
+                          spiky_sheet(4, 4, 8, 48, 3), o, traced));
+  }
   return suite;
 }
 
@@ -371,6 +424,17 @@ std::vector<SuiteCase> bfs3d_cases(bool traced) {
       streaming.encoder_trace += line + "\n";
     }
     suite.push_back(std::move(streaming));
+  }
+  {
+    Encode3dOptions o;
+    o.codec_options = {{"bits", "24"}};
+    suite.push_back(valid("bfs3d-04-spikes", "vertices that jump by 2^−2 … 2^−23 of the box on a 24-bit grid: motion residuals of every prefix "
+                          "length after each class", {"bfs3d"}, spiky_sheet(16, 16, 0, 41, 60), o, traced));
+  }
+  {
+    Encode3dOptions o;
+    o.codec_options = {{"bits", "4"}};
+    suite.push_back(valid("bfs3d-05-four-bits", "the coarsest grid, 4 bits", {"bfs3d"}, spiky_sheet(4, 4, 8, 49, 3), o, traced));
   }
   return suite;
 }
@@ -403,6 +467,20 @@ std::vector<SuiteCase> lcc_cases(bool traced) {
   // A 1-ulp difference in an angle or a frame axis moves a decoded binary64
   // position by far less than a binary32 step: it shows in the output only
   // after a long chain of steps, and then in a few coordinates.
+  suite.push_back(valid("lcc-11-spikes", "vertices that jump by 2^−2 … 2^−23 of the box on a 24-bit grid, b_θ 15, b_rh 20", {"lcc"},
+                        spiky_sheet(8, 16, 100, 44, 40), lcc({{"theta-bits", "15"}, {"rh-bits", "20"}, {"bits", "24"}}), traced));
+  suite.push_back(valid("lcc-12-spikes-temporal", "lcc-11's jumps under temporal prediction, an anchor every 4 frames", {"lcc", "lcc-temporal"},
+                        spiky_sheet(9, 16, 100, 45, 40), lcc({{"theta-bits", "15"}, {"rh-bits", "20"}, {"bits", "24"}, {"temporal", "1"}, {"gop", "4"}}),
+                        traced));
+  {
+    // The first face, coded directly, on a line parallel to z in the last
+    // frame: the steps from it take the tie rule's axis x.
+    MeshSequence line = waving_flag(4, 6, false);
+    std::vector<Vec3>& last = line.frames.back();
+    for (int k = 0; k < 3; ++k) last[line.faces[0].v[static_cast<size_t>(k)]] = {0.5, 0.25, 0.25 * k};
+    suite.push_back(valid("lcc-13-vertical-line", "a triangle on a line parallel to z: the degenerate frame's axis by the tie rule", {"lcc"}, line,
+                          lcc({}), traced));
+  }
   suite.push_back(valid("lcc-09-long-chains", "a 200 × 3 strip at b_θ 12: chains of 600 steps, where a 1-ulp angle or axis changes the output",
                         {"lcc"}, waving_strip(6, 200, 3), lcc({{"theta-bits", "12"}}), traced));
   suite.push_back(valid("lcc-10-long-chains-coarse", "a 400 × 3 strip at b_θ 2: every angle a multiple of π/4, the table's octant ends",
@@ -458,22 +536,25 @@ class StopAtFailureIO {
 
 // Answers the traversal's questions for a base mesh that breaks a rule: a
 // first seed of new vertices but for `old_corner` (vertex 0, when it is
-// not −1), then every gate answered as the far vertex `far` (3 by default:
-// the first seed's vertices are 0, 1 and 2, so 3 is not numbered yet).
+// not −1), then every gate answered `answer`: by default the far vertex 3
+// (the first seed's vertices are 0, 1 and 2, so 3 is not numbered yet).
 struct BrokenBaseMesh {
   int old_corner = -1;
-  uint32_t far = 3;
+  GateAnswer answer{GateSymbol::kFarVertex, 0, 3};
   bool seed_corner(int corner, uint32_t& vertex) {
     vertex = 0;
     return corner == old_corner;
   }
   void numbered(uint32_t) {}
-  GateAnswer gate(HalfEdge, std::span<const uint32_t>) { return {GateSymbol::kFarVertex, 0, far}; }
+  GateAnswer gate(HalfEdge, std::span<const uint32_t>) { return answer; }
 };
 
 // A base mesh unit for frame 0 of an object of `vertex_count` vertices and
-// `face_count` faces whose traversal the oracle breaks.
-std::vector<uint8_t> broken_base_mesh_unit(std::vector<uint8_t> unit_header, uint32_t vertex_count, uint32_t face_count, BrokenBaseMesh oracle) {
+// `face_count` faces whose traversal the oracle breaks; or, when the
+// traversal completes, with no loose face and the vertex order (order 1)
+// given by `order_differences`, which breaks it.
+std::vector<uint8_t> broken_base_mesh_unit(std::vector<uint8_t> unit_header, uint32_t vertex_count, uint32_t face_count, BrokenBaseMesh oracle,
+                                           std::vector<int32_t> order_differences = {}) {
   const syntax::SectionPlace place;
   syntax::EntropyWriteIO<false> symbols(place);
   StopAtFailureIO io(symbols);
@@ -481,11 +562,13 @@ std::vector<uint8_t> broken_base_mesh_unit(std::vector<uint8_t> unit_header, uin
   GateTraversal traversal(face_count);
   try {
     describe_traversal(io, contexts, traversal, vertex_count, face_count, &oracle);
+    describe_loose_faces(io, vertex_count, std::span<Triangle>());
+    for (int32_t& d : order_differences) contexts.order.describe(io, 0, d, syntax::kOrderNames);
   } catch (const StopAtFailureIO::Stop&) {
   }
   const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
   BaseMeshData data;
-  data.vertex_order = kVertexOrderCoding;
+  data.vertex_order = order_differences.empty() ? kVertexOrderCoding : kVertexOrderFromGate;
   data.arithmetic_bytes = static_cast<uint32_t>(bins.size());
   data.bins = bins;
   data.raw = raw;
@@ -599,6 +682,10 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
   suite.push_back(valid("cpca-05-coarse", "the coarsest noise step on a 4-bit grid", {"cpca"}, flag,
                         cpca({{"clusters", "3"}, {"noise", "12"}, {"bits", "4"}}), traced));
   suite.push_back(valid("cpca-06-one-cluster", "one cluster", {"cpca"}, flag, cpca({{"clusters", "1"}}), traced));
+  suite.push_back(valid("cpca-08-spikes", "vertices that jump by 2^−2 … 2^−23 of the box on a 24-bit grid", {"cpca"},
+                        spiky_sheet(8, 16, 0, 43, 30), cpca({{"clusters", "3"}, {"bits", "24"}, {"noise", "-4"}, {"components", "4096"}}), traced));
+  suite.push_back(valid("cpca-09-many-clusters", "200 clusters over 389 vertices: cluster numbers far apart", {"cpca"},
+                        spiky_sheet(4, 16, 100, 47, 3), cpca({{"clusters", "200"}, {"bits", "24"}}), traced));
   suite.push_back(valid("cpca-07-no-fraction", "a 24-bit grid: fraction_bits 0", {"cpca"}, flag, cpca({{"clusters", "2"}, {"bits", "24"}}),
                         traced));
   return suite;
@@ -857,22 +944,12 @@ MeshSequence irregular_grid(int frames, int n) {
   return s;
 }
 
-// The irregular grid, 16 × 16 = 2^8 vertices numbered at random (so that
-// the gate's vertex predicts input numbers better than parallelograms),
-// with loose faces: a degenerate one, and faces repeating a directed edge
-// of the grid with another third vertex, so that parallelograms across
-// those edges take the first face of the edge.
-MeshSequence shuffled_grid(int frames) {
-  MeshSequence s = irregular_grid(frames, 15);
+// The same sequence with its vertices numbered at random.
+void renumber_at_random(MeshSequence& s, uint64_t seed) {
   std::vector<NodeIndex> number(s.vertex_count);
   for (NodeIndex v = 0; v < s.vertex_count; ++v) number[v] = v;
-  SplitMix64 random(256);
+  SplitMix64 random(seed);
   for (size_t i = number.size() - 1; i > 0; --i) std::swap(number[i], number[static_cast<size_t>(random.next() % (i + 1))]);
-  const size_t grid_faces = s.faces.size();
-  // The top edge c → d of a quad's second face, again with the seed's first
-  // vertex: the parallelogram of the vertex above crosses it.
-  for (size_t f = 37; f < grid_faces; f += 82) s.faces.push_back({{s.faces[f].v[1], s.faces[f].v[2], s.faces[0].v[0]}});
-  s.faces.push_back({{5, 5, 6}});
   for (Triangle& t : s.faces)
     for (NodeIndex& v : t.v) v = number[v];
   for (std::vector<Vec3>& frame : s.frames) {
@@ -880,6 +957,21 @@ MeshSequence shuffled_grid(int frames) {
     for (size_t v = 0; v < frame.size(); ++v) shuffled[number[v]] = frame[v];
     frame = std::move(shuffled);
   }
+}
+
+// The irregular grid, 16 × 16 = 2^8 vertices numbered at random (so that
+// the gate's vertex predicts input numbers better than parallelograms),
+// with loose faces: a degenerate one, and faces repeating a directed edge
+// of the grid with another third vertex, so that parallelograms across
+// those edges take the first face of the edge.
+MeshSequence shuffled_grid(int frames) {
+  MeshSequence s = irregular_grid(frames, 15);
+  const size_t grid_faces = s.faces.size();
+  // The top edge c → d of a quad's second face, again with the seed's first
+  // vertex: the parallelogram of the vertex above crosses it.
+  for (size_t f = 37; f < grid_faces; f += 82) s.faces.push_back({{s.faces[f].v[1], s.faces[f].v[2], s.faces[0].v[0]}});
+  s.faces.push_back({{5, 5, 6}});
+  renumber_at_random(s, 256);
   return s;
 }
 
@@ -900,8 +992,16 @@ std::vector<SuiteCase> base_mesh_cases(bool traced) {
                         {"base-mesh"}, crown(2, 12, 12), Encode3dOptions{}, traced));
   suite.push_back(valid("base-05-irregular", "a grid of random diagonals: gate and candidate contexts over most pairs of degrees, both ways",
                         {"base-mesh"}, irregular_grid(2, 16), Encode3dOptions{}, traced));
+  Encode3dOptions bits24;
+  bits24.codec_options = {{"bits", "24"}};
   suite.push_back(valid("base-06-shuffled", "256 vertices numbered at random (vertex order 1), loose faces on a 2^8 index, parallelograms "
                         "across edges that loose faces repeat", {"base-mesh"}, shuffled_grid(2), Encode3dOptions{}, traced));
+  {
+    MeshSequence spiky = spiky_sheet(2, 32, 200, 46, 4);
+    renumber_at_random(spiky, 1289);
+    suite.push_back(valid("base-07-spikes", "1,291 vertices numbered at random, a quarter of them off their place by 2^−2 … 2^−23 of the box on a "
+                          "24-bit grid: position and order residuals of every prefix length", {"base-mesh"}, spiky, bits24, traced));
+  }
   return suite;
 }
 
@@ -1153,6 +1253,23 @@ std::vector<SuiteCase> rejected_cases(const std::vector<SuiteCase>& valid) {
                             broken(seed_repeats), ErrorKind::kStructure, "seed_vertex", 0));
     suite.push_back(invalid("x-60-base-far-unnumbered", "a far vertex equal to the count of vertices numbered so far", {"base-mesh"},
                             broken(BrokenBaseMesh{}), ErrorKind::kOutOfRange, "far_vertex", 0));
+  }
+  {
+    // One triangle (a seed, three border gates) whose last vertex takes the
+    // rank one past the single input number left.
+    MeshSequence triangle;
+    triangle.vertex_count = 3;
+    triangle.faces = {{{0, 1, 2}}};
+    triangle.frames = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}}};
+    BrokenBaseMesh borders;
+    borders.answer = {GateSymbol::kBorder, 0, 0};
+    suite.push_back(invalid("x-61-base-order-past", "a vertex order whose last difference is one past the input numbers not taken", {"base-mesh"},
+                            edited(encode_mesh3d(triangle, Encode3dOptions{}).stream,
+                                   [&](ContainerParts& p) {
+                                     ContainerUnit& unit = unit_of(p, UnitType::kBaseMesh, 0);
+                                     unit.payload = broken_base_mesh_unit({unit.payload.begin(), unit.payload.begin() + 5}, 3, 1, borders, {0, 0, 1});
+                                   }),
+                            ErrorKind::kOutOfRange, "vertex_order_difference", 0));
   }
   const size_t prediction = header_byte<Bfs3dHeader>(bfs3d, "prediction_mode");
   suite.push_back(invalid("x-55-bfs3d-prediction-2", "prediction_mode 2", {"bfs3d"},
