@@ -3,6 +3,7 @@
 #include "decoder/decoder.h"
 #include "mesh/cdt.h"
 #include "syntax/describe.h"
+#include "syntax/mesh_object.h"
 
 namespace m4mesh {
 
@@ -38,7 +39,7 @@ class Checker {
     reader_.seek(uint64_t{next} * 8);
     return true;
   }
-  bool check_geometry(const MeshGeometry& geometry, int64_t plane, uint64_t start);
+  bool check_geometry(const MeshObjectPlane& plane, int64_t index, uint64_t start);
 
   std::span<const uint8_t> stream_;
   BitReader reader_;
@@ -46,18 +47,23 @@ class Checker {
   CheckReport report_;
 };
 
-bool Checker::check_geometry(const MeshGeometry& geometry, int64_t plane, uint64_t start) {
+bool Checker::check_geometry(const MeshObjectPlane& plane, int64_t index, uint64_t start) {
+  const MeshGeometry& geometry = plane.geometry;
   if (geometry.mesh_type_code == kMeshTypeUniform) return true;
   const std::vector<Point> nodes = delaunay_node_positions(geometry.delaunay);
   const uint32_t boundary = geometry.delaunay.nr_of_boundary_nodes;
-  const std::vector<std::string> violations = delaunay_node_violations(nodes, boundary, kMaxGeometryReports);
-  for (const std::string& v : violations) error(ErrorKind::kGeometry, plane, "MeshGeometry", start, v);
+  auto at = [&](NodeIndex node) { return node == kNoNode ? start : start + syntax::delaunay_node_offset(plane, node); };
+  const std::vector<GeometryViolation> violations = delaunay_node_violations(nodes, boundary, kMaxGeometryReports);
+  for (const GeometryViolation& v : violations) error(ErrorKind::kGeometry, index, "MeshGeometry", at(v.node), v.message);
   if (!violations.empty()) return false;
   try {
     const MeshTopology mesh = constrained_delaunay(nodes, boundary);
     method2_order(mesh.triangles, mesh.neighbours, nodes.size(), 0, boundary - 1);
+  } catch (const GeometryError& e) {
+    error(e.kind(), index, "MeshGeometry", at(e.node()), e.message());
+    return false;
   } catch (const Error& e) {
-    error(e.kind(), plane, "MeshGeometry", start, e.message());
+    error(e.kind(), index, "MeshGeometry", start, e.message());
     return false;
   }
   return true;
@@ -108,7 +114,7 @@ CheckReport Checker::run() {
     for (uint64_t bit : start_code_emulations(stream_, start + 32, reader_.position()))
       warning(k, "", bit, "start-code emulation: 23 zero bits then a 1");
     if (plane.new_mesh_flag)
-      mesh_valid = check_geometry(plane.geometry, k, start);
+      mesh_valid = check_geometry(plane, k, start);
     else if (!mesh_valid)
       error(ErrorKind::kStructure, k, "new_mesh_flag", start + 32, "a P-plane after an I-plane that is not valid");
   }

@@ -3,6 +3,7 @@
 #include "mesh/cdt.h"
 #include "mesh/decoded_text.h"
 #include "mesh/uniform.h"
+#include "syntax/mesh_object.h"
 #include "syntax/values.h"
 
 namespace m4mesh {
@@ -59,6 +60,9 @@ void Decoder::decode_geometry(const MeshGeometry& g, uint64_t plane_start) {
     try {
       mesh_ = constrained_delaunay(nodes_, info_.boundary);
       build_order();
+    } catch (const GeometryError& e) {
+      const uint64_t at = e.node() == kNoNode ? plane_start : plane_start + syntax::delaunay_node_offset(plane_, e.node());
+      throw plane_error(e.kind(), "MeshGeometry", plane_index(), at, e.message());
     } catch (const Error& e) {
       throw plane_error(e.kind(), "MeshGeometry", plane_index(), plane_start, e.message());
     }

@@ -18,9 +18,7 @@ constexpr int32_t kMaxCoordinate = 1023;
 // coordinates keep incircle() exact in 64 bits.
 constexpr Point kSuper[3] = {{-3072, -1024}, {5120, -1024}, {512, 6144}};
 
-Error geometry_error(const std::string& message) {
-  return Error(ErrorKind::kGeometry, "", kNoPlane, kNoOffset, message);
-}
+GeometryError geometry_error(const std::string& message, NodeIndex node = kNoNode) { return GeometryError({message, node}); }
 
 inline int next(int i) { return i == 2 ? 0 : i + 1; }
 inline int prev(int i) { return i == 0 ? 2 : i - 1; }
@@ -247,9 +245,9 @@ bool Triangulation::find_edge(uint32_t u, uint32_t w, uint32_t& t_out, int& i_ou
 void Triangulation::node_on_edge(uint32_t node, uint32_t a, uint32_t b) const {
   const std::string edge = "(" + std::to_string(a) + ", " + std::to_string(b) + ")";
   if (node >= boundary_count_)
-    throw geometry_error("interior node " + std::to_string(node) + " is not strictly inside the boundary: it lies on boundary edge " + edge);
-  throw geometry_error("boundary node " + std::to_string(node) + " lies on boundary edge " + edge +
-                       ": the boundary is not simple");
+    throw geometry_error("interior node " + std::to_string(node) + " is not strictly inside the boundary: it lies on boundary edge " + edge,
+                         node);
+  throw geometry_error("boundary node " + std::to_string(node) + " lies on boundary edge " + edge + ": the boundary is not simple", node);
 }
 
 // Makes (a, b) an edge (Sloan's flips), then restores the Delaunay
@@ -403,7 +401,7 @@ MeshTopology Triangulation::interior_triangles() {
     covered[tri.v[0]] = covered[tri.v[1]] = covered[tri.v[2]] = 1;
   }
   for (uint32_t v = boundary_count_; v < node_count_; ++v)
-    if (!covered[v]) throw geometry_error("interior node " + std::to_string(v) + " lies outside the boundary");
+    if (!covered[v]) throw geometry_error("interior node " + std::to_string(v) + " lies outside the boundary", v);
   return mesh;
 }
 
@@ -416,11 +414,12 @@ bool delaunay_flip(const Point& pa, const Point& pb, const Point& pc, const Poin
   return std::min(b, d) < std::min(a, c);
 }
 
-std::vector<std::string> delaunay_node_violations(std::span<const Point> nodes, uint32_t boundary_count,
-                                                  size_t max_reports) {
-  std::vector<std::string> found;
-  auto report = [&](std::string message) {
-    if (found.size() < max_reports) found.push_back(std::move(message));
+GeometryError::GeometryError(const GeometryViolation& v) : Error(ErrorKind::kGeometry, "", kNoPlane, kNoOffset, v.message), node_(v.node) {}
+
+std::vector<GeometryViolation> delaunay_node_violations(std::span<const Point> nodes, uint32_t boundary_count, size_t max_reports) {
+  std::vector<GeometryViolation> found;
+  auto report = [&](std::string message, NodeIndex node = kNoNode) {
+    if (found.size() < max_reports) found.push_back({std::move(message), node});
   };
   const uint32_t n = static_cast<uint32_t>(nodes.size());
   if (boundary_count < 3 || boundary_count > n) {
@@ -430,7 +429,7 @@ std::vector<std::string> delaunay_node_violations(std::span<const Point> nodes, 
   bool coordinates_ok = true;
   for (uint32_t i = 0; i < n; ++i) {
     if (nodes[i].x < 0 || nodes[i].x > kMaxCoordinate || nodes[i].y < 0 || nodes[i].y > kMaxCoordinate) {
-      report("node " + std::to_string(i) + " lies outside 0…1023");
+      report("node " + std::to_string(i) + " lies outside 0…1023", i);
       coordinates_ok = false;
     }
   }
@@ -438,7 +437,7 @@ std::vector<std::string> delaunay_node_violations(std::span<const Point> nodes, 
   NodeIndex top_left = 0;
   for (uint32_t i = 1; i < n; ++i)
     if (more_top_left(nodes[i], nodes[top_left])) top_left = i;
-  if (top_left != 0) report("node 0 is not the top-left node (node " + std::to_string(top_left) + " is)");
+  if (top_left != 0) report("node 0 is not the top-left node (node " + std::to_string(top_left) + " is)", top_left);
 
   // Coordinates are 10-bit: an occupancy bitmap finds duplicates in linear time.
   std::vector<uint64_t> occupied((size_t{1} << 20) / 64, 0);
@@ -447,7 +446,7 @@ std::vector<std::string> delaunay_node_violations(std::span<const Point> nodes, 
     const uint64_t bit = uint64_t{1} << (cell % 64);
     if (occupied[cell / 64] & bit) {
       const uint32_t first = static_cast<uint32_t>(std::find(nodes.begin(), nodes.begin() + i, nodes[i]) - nodes.begin());
-      report("nodes " + std::to_string(first) + " and " + std::to_string(i) + " coincide");
+      report("nodes " + std::to_string(first) + " and " + std::to_string(i) + " coincide", i);
     }
     occupied[cell / 64] |= bit;
   }
@@ -475,7 +474,7 @@ std::vector<std::string> delaunay_node_violations(std::span<const Point> nodes, 
     const Point &p0 = nodes[(i + b - 1) % b], &p1 = nodes[i], &p2 = nodes[(i + 1) % b];
     if (orient(p0, p1, p2) == 0 &&
         (int64_t{p0.x} - p1.x) * (p2.x - p1.x) + (int64_t{p0.y} - p1.y) * (p2.y - p1.y) > 0)
-      report("the boundary folds back on itself at node " + std::to_string(i));
+      report("the boundary folds back on itself at node " + std::to_string(i), i);
   }
   struct Box {
     int32_t x0, y0, x1, y1;
@@ -508,8 +507,8 @@ std::vector<std::string> delaunay_node_violations(std::span<const Point> nodes, 
 }
 
 void validate_delaunay_nodes(std::span<const Point> nodes, uint32_t boundary_count) {
-  const std::vector<std::string> violations = delaunay_node_violations(nodes, boundary_count, 1);
-  if (!violations.empty()) throw geometry_error(violations.front());
+  const std::vector<GeometryViolation> violations = delaunay_node_violations(nodes, boundary_count, 1);
+  if (!violations.empty()) throw GeometryError(violations.front());
 }
 
 MeshTopology constrained_delaunay(std::span<const Point> nodes, uint32_t boundary_count, const CdtOptions& options) {

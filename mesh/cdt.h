@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "common/error.h"
 #include "mesh/geometry.h"
 #include "mesh/topology.h"
 
@@ -23,15 +24,32 @@ struct CdtOptions {
   bool shuffle = true;
 };
 
-// Checks §6.1 (kGeometry errors name the node): coordinates 0 … 1023, node 0
-// the top-left node, no duplicates, a simple counterclockwise boundary.
+// A §6.1 violation and the node it is placed at (docs/decisions.md, 3):
+// the later node of a pair, kNoNode for the boundary as a whole.
+struct GeometryViolation {
+  std::string message;
+  NodeIndex node = kNoNode;
+};
+
+// A kGeometry error that remembers its node.
+class GeometryError : public Error {
+ public:
+  explicit GeometryError(const GeometryViolation& v);
+  NodeIndex node() const { return node_; }
+
+ private:
+  NodeIndex node_;
+};
+
+// Checks §6.1 (throws GeometryError): coordinates 0 … 1023, node 0 the
+// top-left node, no duplicates, a simple counterclockwise boundary.
 // Interior nodes strictly inside are checked by constrained_delaunay().
 void validate_delaunay_nodes(std::span<const Point> nodes, uint32_t boundary_count);
 // Every such violation, up to max_reports of them (empty when valid).
-std::vector<std::string> delaunay_node_violations(std::span<const Point> nodes, uint32_t boundary_count,
-                                                  size_t max_reports);
+std::vector<GeometryViolation> delaunay_node_violations(std::span<const Point> nodes, uint32_t boundary_count, size_t max_reports);
 
-// Validates, then triangulates. Triangles are clockwise (orient > 0).
+// Validates, then triangulates (GeometryError when a node lies on a
+// boundary edge or outside the boundary). Triangles are clockwise (orient > 0).
 MeshTopology constrained_delaunay(std::span<const Point> nodes, uint32_t boundary_count,
                                            const CdtOptions& options = {});
 

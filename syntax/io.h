@@ -267,14 +267,15 @@ class WriteIO : public IOBase {
 class CountIO : public IOBase {
  public:
   static constexpr bool kReading = false;
-  // With `watched`, offset_of_watched() is where the first field of that name starts.
-  explicit CountIO(const char* watched = nullptr) : watched_(watched) {}
+  // With `watched`, offset_of_watched() is where the field or VLC of that
+  // name starts, its first or its `occurrence`-th (from 0).
+  explicit CountIO(const char* watched = nullptr, uint64_t occurrence = 0) : watched_(watched), occurrence_(occurrence) {}
   uint64_t bits() const { return bits_; }
   uint64_t offset_of_watched() const { return watched_offset_; }
 
   template <class T>
   void field(const char* name, int bits, T&) {
-    if (watched_ && watched_offset_ == kNotSeen && std::string_view(name) == watched_) watched_offset_ = bits_;
+    watch(name);
     bits_ += static_cast<uint64_t>(bits);
   }
   template <class T>
@@ -285,6 +286,7 @@ class CountIO : public IOBase {
   template <class T>
   void vlc(const char* name, const VlcTable& table, T& symbol) {
     if (!table.has_symbol(symbol)) fail(ErrorKind::kOutOfRange, name, "value has no code");
+    watch(name);
     bits_ += static_cast<uint64_t>(table.code(symbol).length);
   }
   void start_code(const char*, uint32_t) { bits_ += 32; }
@@ -299,9 +301,14 @@ class CountIO : public IOBase {
   void require_length(const char*, uint64_t) const {}
 
  private:
+  void watch(const char* name) {
+    if (watched_ && watched_offset_ == kNotSeen && std::string_view(name) == watched_ && seen_++ == occurrence_) watched_offset_ = bits_;
+  }
+
   static constexpr uint64_t kNotSeen = ~uint64_t{0};
   uint64_t bits_ = 0;
   const char* watched_;
+  uint64_t occurrence_, seen_ = 0;
   uint64_t watched_offset_ = kNotSeen;
 };
 

@@ -52,6 +52,13 @@ std::vector<uint8_t> MeshObjectWriter::finish(bool with_end_code) {
   return writer_.take_bytes();
 }
 
+uint64_t delaunay_node_offset(MeshObjectPlane plane, uint32_t node) {
+  CountIO count(node == 0 ? "node0_x" : "delta_x_len_vlc", node == 0 ? 0 : node - 1);
+  uint32_t mesh_nodes = 0;
+  describe(count, plane, mesh_nodes);
+  return count.offset_of_watched();
+}
+
 MeshObject read_mesh_object(std::span<const uint8_t> stream, Trace* trace) {
   MeshObjectReader reader(stream, trace);
   MeshObject object;

@@ -61,6 +61,10 @@ class MeshObjectWriter {
   uint32_t mesh_nodes_ = 0;
 };
 
+// Where node `node` of an I-plane's Delaunay geometry begins (its node0_x,
+// else its delta_x_len_vlc), in bits from the plane's start code.
+uint64_t delaunay_node_offset(MeshObjectPlane plane, uint32_t node);
+
 // The whole stream in memory (tests, tools).
 MeshObject read_mesh_object(std::span<const uint8_t> stream, Trace* trace = nullptr);
 std::vector<uint8_t> write_mesh_object(MeshObject& object, Trace* trace = nullptr);

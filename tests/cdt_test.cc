@@ -202,27 +202,28 @@ TEST(Cdt, CoordinatesAtBothEnds) {
   expect_valid_cdt(nodes, 4, cdt(nodes, 4));
 }
 
-void expect_geometry_error(const std::vector<Point>& nodes, uint32_t boundary, const std::string& fragment) {
+void expect_geometry_error(const std::vector<Point>& nodes, uint32_t boundary, const std::string& fragment, NodeIndex node = kNoNode) {
   try {
     constrained_delaunay(nodes, boundary);
     ADD_FAILURE() << "accepted, expected: " << fragment;
-  } catch (const Error& e) {
+  } catch (const GeometryError& e) {
     EXPECT_EQ(e.kind(), ErrorKind::kGeometry);
     EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    EXPECT_EQ(e.node(), node) << e.what();
   }
 }
 
 TEST(Cdt, InvalidGeometryIsReportedWithTheNode) {
   expect_geometry_error({{0, 0}, {10, 0}, {0, 10}}, 3, "clockwise");
   expect_geometry_error({{0, 0}, {0, 10}, {0, 20}}, 3, "zero area");
-  expect_geometry_error({{0, 0}, {0, 10}, {10, 10}, {10, 0}, {20, 5}}, 4, "interior node 4 lies outside");
-  expect_geometry_error({{0, 0}, {0, 10}, {10, 10}, {10, 0}, {10, 5}}, 4, "interior node 4 is not strictly inside");
-  expect_geometry_error({{0, 0}, {0, 10}, {10, 10}, {10, 0}, {5, 5}, {5, 5}}, 4, "nodes 4 and 5 coincide");
-  expect_geometry_error({{5, 5}, {0, 10}, {10, 10}, {10, 0}}, 4, "node 0 is not the top-left node (node 3 is)");
+  expect_geometry_error({{0, 0}, {0, 10}, {10, 10}, {10, 0}, {20, 5}}, 4, "interior node 4 lies outside", 4);
+  expect_geometry_error({{0, 0}, {0, 10}, {10, 10}, {10, 0}, {10, 5}}, 4, "interior node 4 is not strictly inside", 4);
+  expect_geometry_error({{0, 0}, {0, 10}, {10, 10}, {10, 0}, {5, 5}, {5, 5}}, 4, "nodes 4 and 5 coincide", 5);
+  expect_geometry_error({{5, 5}, {0, 10}, {10, 10}, {10, 0}}, 4, "node 0 is not the top-left node (node 3 is)", 3);
   expect_geometry_error({{0, 0}, {0, 20}, {10, 0}, {12, 14}}, 4, "touch");  // crossed edges
-  expect_geometry_error({{0, 0}, {0, 10}, {10, 10}, {10, 1024}}, 4, "node 3 lies outside 0…1023");
-  expect_geometry_error({{0, 0}, {0, 20}, {0, 10}, {10, 5}}, 4, "folds back");
-  expect_geometry_error({{0, 0}, {0, 10}, {5, 5}, {10, 10}, {10, 0}, {5, 5}}, 5, "coincide");
+  expect_geometry_error({{0, 0}, {0, 10}, {10, 10}, {10, 1024}}, 4, "node 3 lies outside 0…1023", 3);
+  expect_geometry_error({{0, 0}, {0, 20}, {0, 10}, {10, 5}}, 4, "folds back", 1);
+  expect_geometry_error({{0, 0}, {0, 10}, {5, 5}, {10, 10}, {10, 0}, {5, 5}}, 5, "coincide", 5);
 }
 
 }  // namespace

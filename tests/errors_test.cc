@@ -4,6 +4,9 @@
 
 #include "decoder/decoder.h"
 #include "encoder/encoder.h"
+#include "syntax/mesh_object.h"
+#include "syntax/values.h"
+#include "syntax/vlc.h"
 #include "tests/test_util.h"
 
 namespace m4mesh {
@@ -180,6 +183,52 @@ TEST(Errors, MessageNamesPlaneElementAndOffset) {
   const std::optional<Error> error = decode_error(stream_of(uniform_plane_bits("11") + kEnd));
   ASSERT_TRUE(error);
   EXPECT_EQ(std::string(error->what()), "plane 0, mesh_type_code at bit 65: reserved value");
+}
+
+// A Delaunay I-plane of these nodes (no geometry check on writing), and
+// the bit where each node's first element starts.
+std::vector<uint8_t> delaunay_stream(const std::vector<Point>& nodes, uint32_t boundary, std::vector<int64_t>& node_bits) {
+  syntax::MeshObjectWriter writer;
+  MeshObjectPlane plane;
+  plane.new_mesh_flag = 1;
+  plane.geometry.mesh_type_code = kMeshTypeDelaunay;
+  DelaunayGeometry& g = plane.geometry.delaunay;
+  g.nr_of_mesh_nodes = static_cast<uint32_t>(nodes.size());
+  g.nr_of_boundary_nodes = boundary;
+  g.node0_x = static_cast<uint32_t>(nodes[0].x);
+  g.node0_y = static_cast<uint32_t>(nodes[0].y);
+  int64_t bit = 32 + 32 + 1 + 2 + 16 + 10;  // object and plane start codes, flag, type, counts
+  node_bits = {bit};
+  bit += 20;
+  for (size_t i = 1; i < nodes.size(); ++i) {
+    node_bits.push_back(bit);
+    const NodeDelta d{delta_code(nodes[i].x - nodes[i - 1].x), delta_code(nodes[i].y - nodes[i - 1].y)};
+    for (const DeltaCode& c : {d.x, d.y}) bit += delta_length_table().code(c.length).length + c.length;
+    g.deltas.push_back(d);
+  }
+  writer.write(plane);
+  return writer.finish();
+}
+
+TEST(Errors, GeometryErrorsNamingANodeArePlacedAtThatNode) {
+  struct Case {
+    std::vector<Point> nodes;
+    uint32_t boundary;
+    int node;  // -1: the plane's start code
+  } cases[] = {
+      {{{0, 0}, {0, 100}, {100, 100}, {100, 0}, {50, 50}, {60, 40}, {50, 50}}, 4, 6},  // coincident: the later
+      {{{50, 50}, {0, 100}, {100, 100}, {100, 0}}, 4, 3},                              // the top-left node
+      {{{0, 0}, {0, 100}, {100, 100}, {100, 0}, {150, 50}}, 4, 4},                     // outside the boundary
+      {{{0, 0}, {0, 100}, {100, 100}, {100, 0}, {100, 50}}, 4, 4},                     // on a boundary edge
+      {{{0, 0}, {0, 200}, {0, 100}, {100, 50}}, 4, 1},                                 // a fold
+      {{{0, 0}, {100, 0}, {100, 100}, {0, 100}}, 4, -1},                               // clockwise
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(testing::Message() << "case with " << c.nodes.size() << " nodes, node " << c.node);
+    std::vector<int64_t> node_bits;
+    const std::vector<uint8_t> stream = delaunay_stream(c.nodes, c.boundary, node_bits);
+    expect_error(stream, ErrorKind::kGeometry, "MeshGeometry", 0, c.node < 0 ? 32 : node_bits[static_cast<size_t>(c.node)]);
+  }
 }
 
 }  // namespace
