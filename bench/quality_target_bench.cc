@@ -15,7 +15,7 @@ const char* const kSequences[] = {"horse-gallop", "pcow", "openfamc_testdata/dan
 
 void BM_CodecAuto(benchmark::State& state) {
   const MeshSequence& s = bench::sequence(kSequences[state.range(0)]);
-  const QualityTarget target{static_cast<double>(state.range(1)) / 10.0, 0};
+  const QualityTarget target{static_cast<double>(state.range(1)) / 10.0, std::nullopt};
   std::string chosen;
   std::vector<TargetTrial> trials;
   Encode3dResult result;
@@ -27,7 +27,7 @@ void BM_CodecAuto(benchmark::State& state) {
   state.counters["bytes"] = static_cast<double>(result.stream.size());
   state.counters["bpvf"] = 8.0 * static_cast<double>(result.stream.size()) / vertex_frames;
   std::string label = bench::label(kSequences[state.range(0)]);
-  label += " KG<=" + std::to_string(target.kg).substr(0, 3) + ":";
+  label += " KG<=" + std::to_string(*target.kg).substr(0, 3) + ":";
   for (const TargetTrial& t : trials) {
     label += " " + t.codec + (t.meets ? " " + t.parameter + " " + std::to_string(t.bytes) + " B" : " misses");
     if (t.codec == chosen) state.counters["kg"] = t.kg;

@@ -52,6 +52,7 @@ struct EncodeArgs {
 };
 
 int run_encode(const EncodeArgs& args) {
+  refuse_trace_to_output(args.trace, args.output);
   refuse_overwriting(args.input, args.output);
   std::vector<MeshPlane> planes;
   if (args.input == "-" || is_decoded_text(args.input)) {
@@ -59,7 +60,7 @@ int run_encode(const EncodeArgs& args) {
     planes = parse_decoded_text(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), args.input);
   } else {
     std::vector<std::string> unused;
-    const std::vector<std::string> files = frame_files(args.input, ".obj", &unused);
+    const std::vector<std::string> files = frame_files(args.input, {".obj"}, &unused);
     if (!unused.empty())
       console::say("warning: %s: %zu files not used (not .obj frames), %s%s", args.input.c_str(), unused.size(), unused.front().c_str(),
                    unused.size() > 1 ? ", …" : "");
@@ -216,6 +217,7 @@ int run_conform(ConformOptions options) {
 }
 
 int run_generate_suite(const std::string& folder) {
+  console::check_output(folder);
   generate_suites(folder);
   console::say("%s: the 2D suite; %s/mesh3d: the 3D suite; each with streams/ and manifest.json", folder.c_str(), folder.c_str());
   return 0;
@@ -282,8 +284,8 @@ int run_m4mesh(int argc, const char* const* argv) {
   generate_cmd->add_option("folder", suite_folder, "output folder")->required();
 
   Encode3dArgs encode3d_args;
-  CLI::App* encode3d_cmd = app.add_subcommand("encode3d", "Encode an animated 3D mesh (OBJ/OFF frames or .m4seq) into a mesh3d stream");
-  encode3d_cmd->add_option("input", encode3d_args.input, "a folder of frames, a pattern with '*', or a .m4seq file")->required();
+  CLI::App* encode3d_cmd = app.add_subcommand("encode3d", "Encode an animated 3D mesh (OBJ, OFF or PLY frames, .m4seq or .pc2) into a mesh3d stream");
+  encode3d_cmd->add_option("input", encode3d_args.input, "a folder of OBJ, OFF or PLY frames (one kind, numbered), a pattern with '*' (quoted), a .m4seq file (- : from standard input) or a .pc2 file with its .obj")->required();
   encode3d_cmd->add_option("-o,--output", encode3d_args.output, "output stream (.m4m)")->required();
   add_codec_options(*encode3d_cmd, encode3d_args);
   encode3d_cmd->add_flag("--no-hash", encode3d_args.no_hash, "leave out the decoded-frame hash units");
@@ -296,9 +298,10 @@ int run_m4mesh(int argc, const char* const* argv) {
   encode3d_cmd->add_flag("--trace", encode3d_args.trace, "print every syntax element written, as `m4mesh trace` prints them");
 
   Decode3dArgs decode3d_args;
-  CLI::App* decode3d_cmd = app.add_subcommand("decode3d", "Decode a mesh3d stream into OBJ frames or a .m4seq file");
+  CLI::App* decode3d_cmd = app.add_subcommand("decode3d", "Decode a mesh3d stream into OBJ or PLY frames, a .m4seq, .pc2 or .f32 file");
   decode3d_cmd->add_option("input", decode3d_args.input, "mesh3d stream")->required();
-  decode3d_cmd->add_option("-o,--output", decode3d_args.output, "a folder for OBJ frames, a .m4seq file, a .pc2 file (with the faces and frame 0 in the .obj beside it), PLY frames ('frames/*.ply': '*' becomes 0001, 0002, …), or a .f32 file (every frame's binary32 x, y, z, little-endian)")->required();
+  decode3d_cmd->add_option("-o,--output", decode3d_args.output, "a folder for OBJ frames, a .m4seq file, a .pc2 file (with the faces and frame 0 in the .obj beside it), PLY frames ('frames/*.ply': '*' becomes 0001, 0002, …), a .f32 file (every frame's binary32 x, y, z, little-endian), or - (standard output, --format)")->required();
+  decode3d_cmd->add_option("--format", decode3d_args.format, "with -o - (standard output): m4seq (default) or f32")->check(CLI::IsMember({"m4seq", "f32"}));
   decode3d_cmd->add_flag("--verify", decode3d_args.verify, "check every frame against its hash unit: OK or MISMATCH per frame");
   decode3d_cmd->add_option("--frames", decode3d_args.frames, "frames A … B only (A:B, A: or :B): decoding starts at the last intra refresh at or before A (bfs3d, Affine-Octree --intra-period) and, without --verify, stops after B");
   decode3d_cmd->add_flag("--keep-going", decode3d_args.keep_going,
@@ -383,31 +386,30 @@ int run_m4mesh(int argc, const char* const* argv) {
   }
   console::set_level(quiet ? console::Level::kQuiet : verbose ? console::Level::kVerbose : console::Level::kNormal);
   console::set_overwrite(overwrite);
-  std::string current_file;
   try {
-    if (*encode_cmd) return current_file = encode_args.input, run_encode(encode_args);
-    if (*decode_cmd) return current_file = decode_args.input, run_decode(decode_args);
-    if (*trace_cmd) return current_file = trace_input, run_trace(trace_input);
-    if (*info_cmd) return current_file = info_input, run_info(info_input);
-    if (*check_cmd) return current_file = check_input, run_check(check_input);
+    if (*encode_cmd) return console::set_input(encode_args.input), run_encode(encode_args);
+    if (*decode_cmd) return console::set_input(decode_args.input), run_decode(decode_args);
+    if (*trace_cmd) return console::set_input(trace_input), run_trace(trace_input);
+    if (*info_cmd) return console::set_input(info_input), run_info(info_input);
+    if (*check_cmd) return console::set_input(check_input), run_check(check_input);
     if (*conform_cmd) return run_conform(conform_options);
     if (*generate_cmd) return run_generate_suite(suite_folder);
-    if (*encode3d_cmd) return current_file = encode3d_args.input, run_encode3d(encode3d_args);
-    if (*decode3d_cmd) return current_file = decode3d_args.input, run_decode3d(decode3d_args);
-    if (*metrics_cmd) return run_metrics(metrics_args);
-    if (*progressive_cmd) return current_file = progressive_args.stream, run_progressive(progressive_args);
-    if (*convert_cmd) return run_convert(convert_input, convert_output);
+    if (*encode3d_cmd) return console::set_input(encode3d_args.input), run_encode3d(encode3d_args);
+    if (*decode3d_cmd) return console::set_input(decode3d_args.input), run_decode3d(decode3d_args);
+    if (*metrics_cmd) return run_metrics(metrics_args);  // names each input as it reads it
+    if (*progressive_cmd) return run_progressive(progressive_args);
+    if (*convert_cmd) return console::set_input(convert_input), run_convert(convert_input, convert_output);
     if (*demo_cmd) return run_demo(demo_options);
-    if (*rd_cmd) return current_file = rd_args.input, run_rd(rd_args);
-    if (*render_cmd) return current_file = render_args.input, run_render(render_args);
-    if (*render3d_cmd) return current_file = render3d_args.input, run_render3d(render3d_args);
+    if (*rd_cmd) return console::set_input(rd_args.input), run_rd(rd_args);
+    if (*render_cmd) return console::set_input(render_args.input), run_render(render_args);
+    if (*render3d_cmd) return run_render3d(render3d_args);
   } catch (const Error& e) {
     std::cout.flush();
     // Input and file errors name their own file (and line); usage errors concern no file.
-    if (e.kind() == ErrorKind::kInput || e.kind() == ErrorKind::kIo || e.kind() == ErrorKind::kUsage || current_file.empty())
+    if (e.kind() == ErrorKind::kInput || e.kind() == ErrorKind::kIo || e.kind() == ErrorKind::kUsage || console::input().empty())
       std::fprintf(stderr, "error: %s\n", e.what());
     else
-      std::fprintf(stderr, "error: %s: %s\n", current_file.c_str(), e.what());
+      std::fprintf(stderr, "error: %s: %s\n", console::input().c_str(), e.what());
     return e.kind() == ErrorKind::kUsage ? 2 : 1;
   } catch (const std::exception& e) {
     // A failure of the system (file system, memory) rather than of the input.

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <chrono>
@@ -17,6 +18,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "decoder/mesh3d/container_decoder.h"
+#include "encoder/mesh3d/base_mesh.h"
 #include "encoder/mesh3d/container_encoder.h"
 #include "encoder/mesh3d/quality_target.h"
 #include "mesh3d/metrics.h"
@@ -38,13 +40,18 @@ namespace {
 // A sequence output's form from its name: a folder of OBJ frames (no
 // extension, or a trailing '/'), .m4seq, .pc2 (with its .obj), PLY frames
 // (a .ply name, with a '*' for the frame number when there are several) or
-// .f32; anything else is a usage error, not a folder.
+// .f32; anything else is a usage error, not a folder. Standard output ("-")
+// takes `format`: m4seq (the default) or f32.
 enum class SequenceOutput { kObjFolder, kM4seq, kPc2, kPly, kF32 };
-SequenceOutput sequence_output(const std::string& output, bool f32_allowed) {
-  if (output == "-")
+SequenceOutput sequence_output(const std::string& output, bool f32_allowed, const std::string& format = "") {
+  if (output == "-") {
+    if (format.empty() || format == "m4seq") return SequenceOutput::kM4seq;
+    if (format == "f32" && f32_allowed) return SequenceOutput::kF32;
     throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
-                "frames go to a folder or a file, not to standard output: -o FOLDER/, FILE.m4seq, FILE.pc2" +
-                    std::string(f32_allowed ? " or FILE.f32" : ""));
+                "--format " + format + ": standard output takes m4seq" + std::string(f32_allowed ? " or f32" : ""));
+  }
+  if (!format.empty())
+    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--format is for -o - (standard output); a file's form comes from its name");
   const fs::path path(output);
   const std::string extension = path.filename().empty() ? "" : path.extension().string();
   if (extension.empty()) return SequenceOutput::kObjFolder;
@@ -89,14 +96,58 @@ void write_sequence_file(SequenceOutput form, const MeshSequence& sequence, cons
     write_binary_sequence(sequence, output);
 }
 
+// Whether a file name is one obj_frame_name gives (0001.obj, …).
+bool is_obj_frame_name(const std::string& name) {
+  const std::string stem = name.size() > 4 ? name.substr(0, name.size() - 4) : "";
+  return name.ends_with(".obj") && stem.size() >= 4 && std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// The OBJ frames written into `staging` become the frames of `folder`:
+// its earlier frame files (0001.obj, …) go, its other files stay.
+void install_obj_frames(const fs::path& staging, const fs::path& output) {
+  fs::path folder = output.lexically_normal();
+  if (folder.filename().empty()) folder = folder.parent_path();
+  if (!fs::exists(folder)) {
+    fs::rename(staging, folder);
+    return;
+  }
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder))
+    if (entry.is_regular_file() && is_obj_frame_name(entry.path().filename().string())) fs::remove(entry.path());
+  for (const fs::directory_entry& entry : fs::directory_iterator(staging)) fs::rename(entry.path(), folder / entry.path().filename());
+  fs::remove(staging);
+}
+
+// A staging folder beside `output` (a trailing '/' is not part of the
+// name), of this process's own: nothing the user did not name is touched.
+fs::path staging_folder(const std::string& output) {
+  fs::path folder = fs::path(output).lexically_normal();
+  if (folder.filename().empty()) folder = folder.parent_path();
+  return folder.string() + ".partial-" + std::to_string(getpid());
+}
+
 }  // namespace
 
-MeshSequence load_sequence_or_stream(const std::string& path) {
-  if (fs::is_regular_file(path)) {
+MeshSequence load_sequence_or_stream(const std::string& path, bool* coding_order) {
+  console::set_input(path);
+  if (coding_order) *coding_order = false;
+  if (path == "-" || fs::is_regular_file(path)) {
     const std::vector<uint8_t> bytes = read_file(path);
-    if (is_mesh3d_stream(bytes)) return decode_mesh3d(bytes);
+    if (is_mesh3d_stream(bytes)) {
+      if (coding_order) *coding_order = Mesh3dDecoder(bytes).vertex_order() == kVertexOrderCoding;
+      return decode_mesh3d(bytes);
+    }
   }
   return load_sequence(path, !console::quiet());
+}
+
+MeshSequence original_as_decoded(const MeshSequence& original, const MeshSequence& decoded, bool coding_order, const std::string& decoded_name) {
+  if (!coding_order || original.vertex_count != decoded.vertex_count) return original;
+  // The faces alone fix the coding order: the encoder's plan gives the numbering back.
+  const MeshSequence renumbered = in_coding_order(original, plan_base_mesh(original.faces, original.vertex_count, true), true);
+  if (!same_faces(renumbered.faces, decoded.faces))
+    throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
+                decoded_name + " numbers its vertices in coding order, but its faces are not the original's in that order: not a stream of this original");
+  return renumbered;
 }
 
 void refuse_overwriting(const std::string& input, const std::string& output) {
@@ -114,6 +165,11 @@ void refuse_overwriting(const std::string& input, const std::string& output) {
           throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, out.string() + ": the output is the input; refusing to overwrite it");
   }
   console::check_output(output);
+}
+
+void refuse_trace_to_output(bool trace, const std::string& output) {
+  if (trace && output == "-")
+    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--trace prints to standard output, which -o - takes: write the stream to a file");
 }
 
 void add_codec_options(CLI::App& command, Encode3dArgs& args) {
@@ -144,6 +200,7 @@ void add_codec_options(CLI::App& command, Encode3dArgs& args) {
 }
 
 int run_encode3d(const Encode3dArgs& args) {
+  refuse_trace_to_output(args.trace, args.output);
   refuse_overwriting(args.input, args.output);
   if (fs::is_regular_file(args.input) && is_mesh3d_stream(read_file(args.input)))
     throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
@@ -162,14 +219,17 @@ int run_encode3d(const Encode3dArgs& args) {
   options.reorder = args.reorder;
   options.frame_rate_num = static_cast<uint32_t>(args.fps);
   options.trace = args.trace ? &trace : nullptr;
-  console::Progress progress("encoding frame", sequence.frames.size());
-  options.progress = [&](size_t done, size_t) { progress.update(done); };
+  // Codecs count their own steps: frames, or cpca-wpt's units.
+  console::Progress progress("encoding", sequence.frames.size());
+  options.progress = [&](size_t done, size_t total) { progress.update(done, total); };
   const QualityTarget target{args.target_kg, args.target_psnr};
-  const bool targeted = target.kg > 0 || target.psnr > 0;
+  const bool targeted = target.set();
+  if (targeted) check_target(target);
   if (args.codec == "auto" && !targeted) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--codec auto needs --target-kg or --target-psnr");
   if (targeted && args.trace) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--trace and a quality target: trace the stream the search keeps");
   const double bits = 8.0 / (static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size()));
   auto print_trial = [&](const TargetTrial& t) {
+    progress.finish();
     say("  %-14s %-22s %10llu bytes %8.4f bpvf  KG %9.5f  PSNR %8.3f  %s", t.codec.c_str(), t.parameter.c_str(),
                  static_cast<unsigned long long>(t.bytes), static_cast<double>(t.bytes) * bits, t.kg, t.psnr,
                  t.meets ? "meets" : "misses");
@@ -187,6 +247,7 @@ int run_encode3d(const Encode3dArgs& args) {
     result = encode_mesh3d(sequence, options);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  progress.finish();
   write_file_atomically(args.output, std::string_view(reinterpret_cast<const char*>(result.stream.data()), result.stream.size()));
   const double vertex_frames = static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size() - 1);
   std::string line = args.output + ": " + std::to_string(result.stream.size()) + " bytes";
@@ -254,7 +315,7 @@ int run_decode3d(const Decode3dArgs& args) {
   }
   Decode3dOptions options;
   options.verify = args.verify;
-  const SequenceOutput form = sequence_output(args.output, true);
+  const SequenceOutput form = sequence_output(args.output, true, args.format);
   Mesh3dDecoder decoder(stream, options);
   console::detail("%s: codec %s, %u vertices, %u faces, %u frames", args.input.c_str(), decoder.codec().name.c_str(),
                   decoder.header().vertex_count, decoder.header().face_count, decoder.header().frame_count);
@@ -263,12 +324,8 @@ int run_decode3d(const Decode3dArgs& args) {
   if (const uint32_t start = first > 0 ? decoder.seek(first) : 0; start > 0)
     console::detail("%s: decoding from the intra refresh at frame %u", args.input.c_str(), start);
   const bool to_folder = form == SequenceOutput::kObjFolder;
-  // Frames go to a temporary folder beside the output (a trailing '/' is
-  // not part of the name) that becomes the output only when all decoded.
-  fs::path folder = fs::path(args.output).lexically_normal();
-  if (folder.filename().empty()) folder = folder.parent_path();
-  // A name of this process's own: nothing the user did not name is touched.
-  const fs::path temporary = folder.string() + ".partial-" + std::to_string(getpid());
+  // Frames go to a staging folder that gives the output its frames only when all are decoded.
+  const fs::path temporary = staging_folder(args.output);
   console::Progress progress("decoding frame", decoder.header().frame_count);
   MeshSequence sequence;
   sequence.vertex_count = decoder.header().vertex_count;
@@ -303,14 +360,14 @@ int run_decode3d(const Decode3dArgs& args) {
     fs::remove_all(temporary);
     throw;
   }
+  progress.finish();
   if (written.empty() && failed) {
     std::fprintf(stderr, "%s: no frame decoded before the error; nothing written\n", args.input.c_str());
     return 1;
   }
   if (written.empty()) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--frames " + args.frames + ": the stream has no frame there");
   if (to_folder) {
-    fs::remove_all(folder);  // empty, or replaced with -y
-    fs::rename(temporary, folder);
+    install_obj_frames(temporary, fs::path(args.output));
   } else if (form == SequenceOutput::kF32) {
     std::string bytes;
     for (const std::vector<Vec3>& frame : sequence.frames) {
@@ -330,19 +387,27 @@ int run_decode3d(const Decode3dArgs& args) {
   }
   say("%s: %zu frames of %u vertices%s", args.output.c_str(), written.size(), decoder.header().vertex_count,
               decoder.has_end_code() || args.max_bytes > 0 ? "" : " (warning: no end code)");
-  // Hash units may check a group of frames after its last: the results come at the end.
-  int mismatches = 0, unchecked = 0;
+  // Hash units may check a group of frames after its last: the results come
+  // at the end, on standard error when the frames fill standard output.
+  std::FILE* report = args.output == "-" ? stderr : stdout;
+  std::vector<uint32_t> mismatched, unchecked;
   for (uint32_t f : written) {
     const std::optional<bool> ok = decoder.hash_result(f);
-    if (args.verify) std::printf("frame %u: %s\n", f, !ok ? "NO HASH" : *ok ? "OK" : "MISMATCH");
-    mismatches += ok.has_value() && !*ok;
-    unchecked += !ok.has_value();
+    if (args.verify) std::fprintf(report, "frame %u: %s\n", f, !ok ? "NO HASH" : *ok ? "OK" : "MISMATCH");
+    if (ok.has_value() && !*ok) mismatched.push_back(f);
+    if (!ok.has_value()) unchecked.push_back(f);
   }
-  if (args.verify) {
-    std::printf("verify: %d mismatches, %d frames without a hash\n", mismatches, unchecked);
-    return mismatches == 0 && unchecked == 0 ? 0 : 1;
-  }
-  return mismatches == 0 ? 0 : 1;
+  if (args.verify) std::fprintf(report, "verify: %zu mismatches, %zu frames without a hash\n", mismatched.size(), unchecked.size());
+  if (!mismatched.empty())
+    std::fprintf(stderr, "error: %s: %zu decoded frames differ from their hash unit (the first: frame %u)\n", args.input.c_str(),
+                 mismatched.size(), mismatched.front());
+  // --verify promises that every frame was checked: a frame without a hash fails it.
+  if (args.verify && !unchecked.empty())
+    std::fprintf(stderr,
+                 "error: %s: --verify: %zu frames carry no hash to check (the first: frame %u): the stream was encoded with --no-hash, "
+                 "or --frames starts inside a group whose hash covers frames not decoded\n",
+                 args.input.c_str(), unchecked.size(), unchecked.front());
+  return mismatched.empty() && (!args.verify || unchecked.empty()) ? 0 : 1;
 }
 
 namespace {
@@ -397,6 +462,9 @@ int run_info3d(const std::string& input) {
     std::printf("  frames: %.3f bits/vertex/frame\n",
                 8.0 * static_cast<double>(sizes[frame_units]) / (static_cast<double>(h.vertex_count) * (h.frame_count - 1)));
   std::printf("  end code %s\n", parts.has_end_code ? "present" : "MISSING");
+  // A stream cut short or broken is not summarised as if it were whole: every unit is decoded.
+  while (decoder.next_unit()) {
+  }
   return 0;
 }
 
@@ -413,7 +481,8 @@ int run_trace3d(const std::string& input) {
 
 int run_metrics(const MetricsArgs& args) {
   if (args.json && args.csv) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--json or --csv, not both");
-  const MeshSequence original = load_sequence(args.original, !console::quiet());
+  console::set_input(args.original);
+  const MeshSequence given_original = load_sequence(args.original, !console::quiet());
   // The stream is checked against the sequence before anything is printed.
   struct Rate {
     const char* key;
@@ -422,15 +491,16 @@ int run_metrics(const MetricsArgs& args) {
   };
   std::vector<Rate> rates;
   if (!args.stream.empty()) {
+    console::set_input(args.stream);
     const std::vector<uint8_t> stream = read_file(args.stream);
     const ObjectHeader h = Mesh3dDecoder(stream).header();
-    if (h.vertex_count != original.vertex_count || h.face_count != original.faces.size() || h.frame_count != original.frames.size())
+    if (h.vertex_count != given_original.vertex_count || h.face_count != given_original.faces.size() || h.frame_count != given_original.frames.size())
       throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
                   args.stream + ": a stream of " + std::to_string(h.vertex_count) + " vertices, " + std::to_string(h.face_count) + " faces, " +
-                      std::to_string(h.frame_count) + " frames, not of the sequence compared (" + std::to_string(original.vertex_count) +
-                      ", " + std::to_string(original.faces.size()) + ", " + std::to_string(original.frames.size()) + ")");
+                      std::to_string(h.frame_count) + " frames, not of the sequence compared (" + std::to_string(given_original.vertex_count) +
+                      ", " + std::to_string(given_original.faces.size()) + ", " + std::to_string(given_original.frames.size()) + ")");
     const UnitSizes sizes = unit_sizes(split_container(stream), stream.size());
-    const double v = static_cast<double>(original.vertex_count), f = static_cast<double>(original.frames.size());
+    const double v = static_cast<double>(given_original.vertex_count), f = static_cast<double>(given_original.frames.size());
     const uint64_t frame_bytes = sizes.bytes[static_cast<uint32_t>(UnitType::kFrame)];
     const uint64_t refinement_bytes = sizes.bytes[static_cast<uint32_t>(UnitType::kRefinement)];
     if (frame_bytes > 0 && f > 1)
@@ -439,7 +509,9 @@ int run_metrics(const MetricsArgs& args) {
       rates.push_back({"refinement_rate_bpvf", "(refinement units over vertices × frames)", 8.0 * static_cast<double>(refinement_bytes) / (v * f)});
     rates.push_back({"stream_rate_bpvf", "(the whole stream over vertices × frames)", 8.0 * static_cast<double>(stream.size()) / (v * f)});
   }
-  const MeshSequence decoded = load_sequence_or_stream(args.decoded);
+  bool coding_order = false;
+  const MeshSequence decoded = load_sequence_or_stream(args.decoded, &coding_order);
+  const MeshSequence original = original_as_decoded(given_original, decoded, coding_order, args.decoded);
   for (const std::string& warning : metrics_warnings(original)) say("warning: %s", warning.c_str());
   const SequenceMetrics m = compare_sequences(original, decoded);
   const std::vector<FrameMetrics> frames = args.per_frame ? per_frame_metrics(original, decoded) : std::vector<FrameMetrics>{};
@@ -498,17 +570,34 @@ int run_convert(const std::string& input, const std::string& output) {
   refuse_overwriting(input, output);
   const SequenceOutput form = sequence_output(output, false);
   const MeshSequence sequence = load_sequence(input, !console::quiet());
-  if (form == SequenceOutput::kObjFolder)
-    write_obj_frames(sequence, output);
-  else
+  if (form == SequenceOutput::kObjFolder) {
+    const fs::path staging = staging_folder(output);
+    try {
+      write_obj_frames(sequence, staging.string());
+      install_obj_frames(staging, fs::path(output));
+    } catch (...) {
+      fs::remove_all(staging);
+      throw;
+    }
+  } else
     write_sequence_file(form, sequence, output);
   say("%s: %zu frames of %u vertices", output.c_str(), sequence.frames.size(), sequence.vertex_count);
   return 0;
 }
 
 int run_progressive(const ProgressiveArgs& args) {
-  const MeshSequence original = load_sequence(args.original, !console::quiet());
+  console::set_input(args.original);
+  const MeshSequence given_original = load_sequence(args.original, !console::quiet());
+  console::set_input(args.stream);
   const std::vector<uint8_t> stream = read_file(args.stream);
+  Mesh3dDecoder first_unit(stream);
+  if (!first_unit.progressive())
+    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
+                args.stream + ": " + first_unit.codec().name + " decodes frame by frame; progressive needs a progressive codec (cpca-wpt)");
+  first_unit.next_unit();  // the base mesh: the decoded faces
+  const MeshSequence faces_only{first_unit.header().vertex_count, first_unit.faces(), {}};
+  const MeshSequence original =
+      original_as_decoded(given_original, faces_only, first_unit.vertex_order() == kVertexOrderCoding, args.stream);
   const MetricsReference reference(original);
   const uint64_t step = args.step > 0 ? args.step : std::max<uint64_t>(1, stream.size() / 40);
   // Units: the base mesh and refinements (hash units count in the bytes).

@@ -1,6 +1,7 @@
 // The 3D commands of the m4mesh tool.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "codecs3d/options.h"
@@ -12,9 +13,18 @@ class App;
 
 namespace m4mesh {
 
-// A sequence's frames, or a mesh3d stream's decoded frames (read once).
-MeshSequence load_sequence_or_stream(const std::string& path);
+// A sequence's frames, or a mesh3d stream's decoded frames (read once);
+// `coding_order` tells whether a stream numbers its vertices in coding
+// order (encode3d --reorder).
+MeshSequence load_sequence_or_stream(const std::string& path, bool* coding_order = nullptr);
 
+// The original numbered as `decoded` numbers its vertices: when a stream
+// of encode3d --reorder was decoded, in coding order (the encoder's plan of
+// the original's faces); an input error when it is not this original's.
+MeshSequence original_as_decoded(const MeshSequence& original, const MeshSequence& decoded, bool coding_order, const std::string& decoded_name);
+
+// A usage error when the trace and the stream would share standard output.
+void refuse_trace_to_output(bool trace, const std::string& output);
 // Before anything is read, usage errors for an output that is an input,
 // or that exists without -y (console::check_output).
 void refuse_overwriting(const std::string& input, const std::string& output);
@@ -24,7 +34,7 @@ struct Encode3dArgs {
   std::string output;
   std::string codec = "bfs3d";       // or "auto": every codec at the target, the smallest kept
   CodecOptionValues codec_options;  // only those given
-  double target_kg = 0, target_psnr = 0;  // a quality target (0: none)
+  std::optional<double> target_kg, target_psnr;  // a quality target
   bool no_hash = false;
   bool reorder = false;      // vertices renumbered in coding order
   uint32_t hash_group = 16;  // frames per group hash unit; 1: a frame hash unit per frame
@@ -38,7 +48,8 @@ int run_encode3d(const Encode3dArgs& args);
 
 struct Decode3dArgs {
   std::string input;
-  std::string output;  // a folder of OBJ frames, or a .m4seq file
+  std::string output;  // a folder of OBJ frames, a .m4seq, .pc2, .ply or .f32 file, or "-"
+  std::string format;  // of "-": m4seq or f32
   bool verify = false;
   uint64_t max_bytes = 0;  // decode only the longest prefix of at most this many bytes (0: all)
   std::string frames;      // "A:B": write frames A … B only ("A:", ":B"); empty: all

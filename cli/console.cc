@@ -14,6 +14,7 @@ namespace {
 
 Level g_level = Level::kNormal;
 bool g_overwrite = false;
+std::string g_input;
 
 void vsay(const char* format, va_list args) {
   std::vfprintf(stderr, format, args);
@@ -25,6 +26,8 @@ void vsay(const char* format, va_list args) {
 void set_level(Level level) { g_level = level; }
 void set_overwrite(bool overwrite) { g_overwrite = overwrite; }
 bool overwrite() { return g_overwrite; }
+void set_input(const std::string& path) { g_input = path == "-" ? "standard input" : path; }
+const std::string& input() { return g_input; }
 bool quiet() { return g_level == Level::kQuiet; }
 
 void say(const char* format, ...) {
@@ -45,8 +48,16 @@ void detail(const char* format, ...) {
 
 Progress::Progress(std::string what, size_t total) : what_(std::move(what)), total_(total), start_(std::chrono::steady_clock::now()) {}
 
-Progress::~Progress() {
+Progress::~Progress() { finish(); }
+
+void Progress::finish() {
   if (shown_) std::fprintf(stderr, "\r%*s\r", static_cast<int>(what_.size() + 32), "");
+  shown_ = false;
+}
+
+void Progress::update(size_t done, size_t total) {
+  total_ = total;
+  update(done);
 }
 
 void Progress::update(size_t done) {

@@ -29,6 +29,10 @@ class Progress {
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
   void update(size_t done);
+  // With a total the job learnt on the way.
+  void update(size_t done, size_t total);
+  // Clears the line, so that what comes next starts on a clean one.
+  void finish();
 
  private:
   std::string what_;
@@ -42,5 +46,9 @@ class Progress {
 void check_output(const std::string& path);
 // Whether -y was given.
 bool overwrite();
+
+// The input a command is reading, named by its errors ("-": standard input).
+void set_input(const std::string& path);
+const std::string& input();
 
 }  // namespace m4mesh::console

@@ -87,14 +87,19 @@ int run_render3d(const Render3dArgs& args) {
   if (args.size < 16 || args.size > 4096) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--size: 16 … 4096 pixels");
   refuse_overwriting(args.input, args.output);
   if (!args.compare.empty()) refuse_overwriting(args.compare, args.output);
-  const MeshSequence shown = load_sequence_or_stream(args.input);
+  bool coding_order = false;
+  const MeshSequence shown = load_sequence_or_stream(args.input, &coding_order);
   MeshSequence original;
   if (!args.compare.empty()) {
-    original = load_sequence_or_stream(args.compare);
+    original = original_as_decoded(load_sequence_or_stream(args.compare), shown, coding_order, args.input);
     if (original.vertex_count != shown.vertex_count || original.frames.size() != shown.frames.size())
       throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
                   args.compare + ": " + std::to_string(original.vertex_count) + " vertices, " + std::to_string(original.frames.size()) +
                       " frames; " + args.input + " has " + std::to_string(shown.vertex_count) + " and " + std::to_string(shown.frames.size()));
+    // Vertex i of one must be vertex i of the other, or the error map is false.
+    if (!same_faces(original.faces, shown.faces))
+      throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
+                  args.compare + " and " + args.input + " have other faces (or the same faces numbered otherwise): not a sequence and its decoding");
   }
   if (!gif && args.frame >= shown.frames.size())
     throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,

@@ -106,6 +106,7 @@ int run_rd(const RdArgs& args) {
     console::detail("%s %s: %llu bytes, %.4f bpvf, KG %.5f", p.codec.c_str(), p.parameter.c_str(), static_cast<unsigned long long>(p.bytes),
                     p.bpvf, p.kg);
   });
+  progress.finish();
   const std::string text = json ? rd_json(points) : rd_csv(points);
   write_file_atomically(args.output, text);
   console::say("%s: %zu points in %.1f s", args.output.c_str(), points.size(), seconds_since(start));

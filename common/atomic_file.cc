@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "common/error.h"
 
@@ -73,11 +74,16 @@ void AtomicFile::commit() {
 
 std::vector<uint8_t> read_file(const std::string& path) {
   if (path == "-") {
-    std::vector<uint8_t> bytes;
-    uint8_t buffer[65536];
-    for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, stdin)) > 0;) bytes.insert(bytes.end(), buffer, buffer + n);
-    if (std::ferror(stdin)) throw io_error("standard input", "cannot read");
-    return bytes;
+    // Read once and kept: a command may look at its input before it reads it.
+    static std::optional<std::vector<uint8_t>> standard_input;
+    if (!standard_input) {
+      std::vector<uint8_t> bytes;
+      uint8_t buffer[65536];
+      for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, stdin)) > 0;) bytes.insert(bytes.end(), buffer, buffer + n);
+      if (std::ferror(stdin)) throw io_error("standard input", "cannot read");
+      standard_input = std::move(bytes);
+    }
+    return *standard_input;
   }
   std::error_code ignored;
   if (std::filesystem::is_directory(path, ignored)) throw io_error(path, "a folder, not a file");

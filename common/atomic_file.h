@@ -28,7 +28,7 @@ class AtomicFile {
   std::FILE* file_ = nullptr;
 };
 
-// A whole file; "-" is standard input.
+// A whole file; "-" is standard input (read once, then the same bytes again).
 std::vector<uint8_t> read_file(const std::string& path);
 void write_file_atomically(const std::string& path, std::string_view data);
 

@@ -21,10 +21,11 @@ const char* to_string(ErrorKind kind) {
   return "unknown";
 }
 
-static std::string compose(const std::string& element, int64_t plane, int64_t bit_offset,
-                           const std::string& message) {
+static std::string compose(const std::string& element, int64_t plane, int64_t bit_offset, const std::string& message, bool mesh3d,
+                           int64_t unit) {
   std::string s;
-  if (plane != kNoPlane) s += "plane " + std::to_string(plane);
+  if (mesh3d && unit != kNoUnit) s += "unit " + std::to_string(unit);
+  if (plane != kNoPlane) s += (s.empty() ? "" : ", ") + std::string(mesh3d ? "frame " : "plane ") + std::to_string(plane);
   if (!element.empty()) {
     if (!s.empty()) s += ", ";
     s += element;
@@ -34,14 +35,25 @@ static std::string compose(const std::string& element, int64_t plane, int64_t bi
   return s + message;
 }
 
-Error::Error(ErrorKind kind, std::string element, int64_t plane, int64_t bit_offset,
-             const std::string& message)
-    : std::runtime_error(compose(element, plane, bit_offset, message)),
+Error::Error(ErrorKind kind, std::string element, int64_t plane, int64_t bit_offset, const std::string& message)
+    : std::runtime_error(compose(element, plane, bit_offset, message, false, kNoUnit)),
       kind_(kind),
       element_(std::move(element)),
       plane_(plane),
       bit_offset_(bit_offset),
       message_(message) {}
+
+Error::Error(ErrorKind kind, std::string element, int64_t plane, int64_t bit_offset, const std::string& message, int64_t unit)
+    : std::runtime_error(compose(element, plane, bit_offset, message, true, unit)),
+      kind_(kind),
+      element_(std::move(element)),
+      plane_(plane),
+      bit_offset_(bit_offset),
+      message_(message),
+      mesh3d_(true),
+      unit_(unit) {}
+
+Error Error::in_mesh3d(int64_t unit) const { return Error(kind_, element_, plane_, bit_offset_, message_, unit); }
 
 Error input_error(const std::string& file, int64_t line, const std::string& message) {
   std::string text = file;

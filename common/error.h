@@ -28,6 +28,7 @@ const char* to_string(ErrorKind kind);
 
 inline constexpr int64_t kNoPlane = -1;
 inline constexpr int64_t kNoOffset = -1;
+inline constexpr int64_t kNoUnit = -1;
 
 class Error : public std::runtime_error {
  public:
@@ -35,18 +36,28 @@ class Error : public std::runtime_error {
   Error(ErrorKind kind, std::string element, int64_t plane, int64_t bit_offset,
         const std::string& message);
 
+  // The same error in a 3D stream, where plane() is a frame: what() is
+  // "unit U, frame F, ELEMENT at bit N: MESSAGE" (kNoUnit: outside any unit).
+  Error in_mesh3d(int64_t unit) const;
+
   ErrorKind kind() const { return kind_; }
   const std::string& element() const { return element_; }
   int64_t plane() const { return plane_; }
   int64_t bit_offset() const { return bit_offset_; }
   const std::string& message() const { return message_; }
+  bool mesh3d() const { return mesh3d_; }
+  int64_t unit() const { return unit_; }
 
  private:
+  Error(ErrorKind kind, std::string element, int64_t plane, int64_t bit_offset, const std::string& message, int64_t unit);
+
   ErrorKind kind_;
   std::string element_;
   int64_t plane_;
   int64_t bit_offset_;
   std::string message_;
+  bool mesh3d_ = false;
+  int64_t unit_ = kNoUnit;
 };
 
 // An encoder-input or file error that names the file and line.

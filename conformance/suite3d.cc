@@ -1301,7 +1301,7 @@ std::vector<uint8_t> decoded_frames3d(const std::vector<uint8_t>& stream) {
     out.insert(out.end(), bytes.begin(), bytes.end());
   }
   if (const std::optional<uint32_t> f = decoder.first_mismatch())
-    throw Error(ErrorKind::kStructure, "frame_md5", *f, kNoOffset, "the decoded frame does not match its hash");
+    throw Error(ErrorKind::kStructure, "frame_md5", *f, kNoOffset, "the decoded frame does not match its hash").in_mesh3d(kNoUnit);
   return out;
 }
 

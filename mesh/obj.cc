@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "common/error.h"
@@ -93,10 +94,14 @@ ObjFrame read_obj(const std::string& path) {
   return frame;
 }
 
-std::vector<std::string> frame_files(const std::string& folder_or_pattern, const std::string& extension, std::vector<std::string>* unused) {
+std::vector<std::string> frame_files(const std::string& folder_or_pattern, std::initializer_list<const char*> kinds, std::vector<std::string>* unused) {
   namespace fs = std::filesystem;
+  auto lower = [](std::string text) {
+    for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return text;
+  };
   fs::path folder;
-  std::string prefix, suffix = extension;
+  std::string prefix, suffix;  // a pattern's parts around '*'; empty for a folder
   const fs::path given(folder_or_pattern);
   if (fs::is_directory(given)) {
     folder = given;
@@ -109,26 +114,40 @@ std::vector<std::string> frame_files(const std::string& folder_or_pattern, const
   } else {
     throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, folder_or_pattern + ": no such file, folder or pattern");
   }
-  auto lower = [](std::string text) {
-    for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return text;
-  };
+  const bool pattern = !prefix.empty() || !suffix.empty();
   std::vector<fs::path> files;
+  std::map<std::string, fs::path> kinds_found;  // extension → its first file, by name
   for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
     if (!entry.is_regular_file()) continue;
     const std::string name = entry.path().filename().string();
-    if (name.size() >= prefix.size() + suffix.size() && name.starts_with(prefix) && lower(name).ends_with(lower(suffix)))
-      files.push_back(entry.path());
-    else if (unused && prefix.empty() && suffix == extension)
-      unused->push_back(entry.path().string());
+    const std::string extension = lower(entry.path().extension().string());
+    const bool frame = pattern ? name.size() >= prefix.size() + suffix.size() && name.starts_with(prefix) && lower(name).ends_with(lower(suffix))
+                               : std::any_of(kinds.begin(), kinds.end(), [&](const char* k) { return extension == k; });
+    if (!frame) {
+      if (unused && !pattern) unused->push_back(entry.path().string());
+      continue;
+    }
+    files.push_back(entry.path());
+    if (auto [it, added] = kinds_found.try_emplace(extension, entry.path()); !added && entry.path() < it->second) it->second = entry.path();
   }
   if (files.empty()) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, folder_or_pattern + ": no frame files");
+  if (kinds_found.size() > 1) {
+    std::string examples;
+    for (const auto& [extension, file] : kinds_found) examples += (examples.empty() ? "" : ", ") + file.filename().string();
+    throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
+                folder_or_pattern + ": frames of " + std::to_string(kinds_found.size()) + " kinds (" + examples +
+                    "): one kind per folder, or a pattern such as " + (folder / ("*" + kinds_found.begin()->first)).string());
+  }
   std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
     const int64_t na = frame_number(a), nb = frame_number(b);
     return na != nb ? na < nb : a < b;
   });
+  if (files.size() > 1 && frame_number(files.front()) < 0)
+    throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
+                files.front().string() + ": a frame file without a number among " + std::to_string(files.size()) +
+                    " frames (each frame file's name holds its frame number)");
   for (size_t k = 1; k < files.size(); ++k)
-    if (frame_number(files[k]) >= 0 && frame_number(files[k]) == frame_number(files[k - 1]))
+    if (frame_number(files[k]) == frame_number(files[k - 1]))
       throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
                   files[k - 1].string() + " and " + files[k].string() + " are both frame " + std::to_string(frame_number(files[k])));
   if (unused) std::sort(unused->begin(), unused->end());

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -19,12 +20,14 @@ struct ObjFrame {
 // face indices out of range.
 ObjFrame read_obj(const std::string& path);
 
-// The frame files of a folder (every *.obj, or *.off with that extension,
-// in any case: *.OBJ too) or of a pattern with '*', in the numeric order
-// of the number in the file name (2.obj before 10.obj); two files of the
-// same number (1.obj, 0001.obj) are an input error. A single file is a
-// sequence of one frame. `unused` receives a folder's other files.
-std::vector<std::string> frame_files(const std::string& folder_or_pattern, const std::string& extension = ".obj",
+// The frame files of a folder or of a pattern with '*', in the numeric
+// order of the number in the file name (2.obj before 10.obj). A folder's
+// frames are its files of one of `kinds` (extensions, in any case: *.OBJ
+// too); files of two kinds are an input error naming one of each, and its
+// other files go to `unused`. Several frames must each have a number, and
+// two files of the same number (1.obj, 0001.obj) are an input error. A
+// single file is a sequence of one frame.
+std::vector<std::string> frame_files(const std::string& folder_or_pattern, std::initializer_list<const char*> kinds = {".obj"},
                                      std::vector<std::string>* unused = nullptr);
 
 }  // namespace m4mesh

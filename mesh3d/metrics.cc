@@ -16,11 +16,11 @@ double distance(const Vec3& a, const Vec3& b) {
 }
 
 void require_comparable(const MeshSequence& a, const MeshSequence& b) {
-  if (a.vertex_count != b.vertex_count || a.frames.size() != b.frames.size() || !same_faces(a.faces, b.faces))
-    throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
-                "the sequences differ in vertex count, frame count or faces (" + std::to_string(a.vertex_count) + "/" +
-                    std::to_string(b.vertex_count) + " vertices, " + std::to_string(a.frames.size()) + "/" +
-                    std::to_string(b.frames.size()) + " frames)");
+  std::string differences;
+  if (a.vertex_count != b.vertex_count) differences += ", " + std::to_string(a.vertex_count) + "/" + std::to_string(b.vertex_count) + " vertices";
+  if (a.frames.size() != b.frames.size()) differences += ", " + std::to_string(a.frames.size()) + "/" + std::to_string(b.frames.size()) + " frames";
+  if (differences.empty() && !same_faces(a.faces, b.faces)) differences = ", other faces (or the same faces numbered otherwise: a sequence decoded from a stream of encode3d --reorder is compared through the stream itself)";
+  if (!differences.empty()) throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "the sequences differ: " + differences.substr(2));
   if (a.frames.empty()) throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "no frames to compare");
 }
 

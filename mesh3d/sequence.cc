@@ -26,7 +26,7 @@ constexpr size_t kMagicSize = sizeof kMagic - 1;
 constexpr uint64_t kMaxVertices = uint64_t{1} << 26;
 
 Error io(const std::string& path, const std::string& message) {
-  return Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, path + ": " + message);
+  return Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, (path == "-" ? "standard input" : path) + ": " + message);
 }
 
 class ByteReader {
@@ -168,24 +168,13 @@ MeshFrame read_off(const std::string& path) {
 
 MeshSequence load_sequence(const std::string& path, bool progress) {
   namespace fs = std::filesystem;
-  if (fs::is_regular_file(path) && fs::path(path).extension() == ".m4seq") return read_binary_sequence(path);
+  // Standard input holds a .m4seq file.
+  if (path == "-" || (fs::is_regular_file(path) && fs::path(path).extension() == ".m4seq")) return read_binary_sequence(path);
   if (fs::is_regular_file(path) && fs::path(path).extension() == ".pc2") return read_pc2_sequence(path);
-  // A folder of OFF or PLY frames when it holds any (OBJ frames otherwise);
-  // a file or a pattern by its extension.
-  auto frame_kind = [](const fs::path& p) {
-    std::string e = p.extension().string();
-    for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return e == ".off" || e == ".ply" ? e : std::string();
-  };
-  std::string extension = ".obj";
-  if (fs::is_directory(path)) {
-    for (const auto& entry : fs::directory_iterator(path))
-      if (const std::string kind = frame_kind(entry.path()); !kind.empty()) extension = kind;
-  } else if (const std::string kind = frame_kind(path); !kind.empty()) {
-    extension = kind;
-  }
   std::vector<std::string> unused;
-  const std::vector<std::string> files = frame_files(path, extension, &unused);
+  const std::vector<std::string> files = frame_files(path, {".obj", ".off", ".ply"}, &unused);
+  std::string extension = fs::path(files.front()).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (progress && !unused.empty())
     std::fprintf(stderr, "warning: %s: %zu files not used (not %s frames), %s%s\n", path.c_str(), unused.size(), extension.c_str(),
                  unused.front().c_str(), unused.size() > 1 ? ", …" : "");

@@ -23,9 +23,11 @@ struct MeshSequence {
   std::vector<std::vector<Vec3>> frames;
 };
 
-// A folder of frames (.obj or .off), a pattern with '*', a single frame
-// file, a .m4seq file, or a .pc2 file with its faces in the .obj beside it. Every frame must have the first frame's vertex
-// count and faces; the error names the first frame that differs.
+// A folder of frames (.obj, .off or .ply: frame_files), a pattern with
+// '*', a single frame file, a .m4seq file ("-": one on standard input), or
+// a .pc2 file with its faces in the .obj beside it. Every frame must have
+// the first frame's vertex count and faces; the error names the first
+// frame that differs.
 MeshSequence load_sequence(const std::string& path, bool report_progress = false);
 
 // .m4seq: "M4SEQ1\n", vertex_count u32, face_count u32, frame_count u32,

@@ -100,7 +100,10 @@ py::bytes encode(const Frames& frames, const Faces& faces, const std::string& co
   Encode3dResult result;
   {
     py::gil_scoped_release release;
-    if (target.kg > 0 || target.psnr > 0)
+    std::string chosen;
+    if (codec == "auto")
+      result = encode_smallest(s, o, target, [](const TargetTrial&) {}, chosen);  // a usage error without a target
+    else if (target.set())
       result = encode_to_target(s, o, target, [](const TargetTrial&) {});
     else
       result = encode_mesh3d(s, o);
@@ -223,10 +226,12 @@ PYBIND11_MODULE(_native, m) {
         py::arg("hash_group") = 16, py::arg("reorder") = false,
         R"(A 3D stream (bytes) of frames float32[F, V, 3] with faces int32[T, 3].
 
-codec: a name of m4mesh.codecs(). Its options as keywords, dashes as
-underscores (bits=12, me=5, theta_bits=6, noise="auto", …; True is "1");
-target_kg=X or target_psnr=Y searches the codec's quality for the smallest
-stream that reaches it. hashes, hash_group, reorder: as encode3d's.)");
+codec: a name of m4mesh.codecs(), or "auto" (every codec at the target,
+the smallest stream kept). Its options as keywords, dashes as underscores
+(bits=12, me=5, theta_bits=6, noise="auto", …; True is "1"); target_kg=X
+or target_psnr=Y (a finite number above 0) searches the codec's quality
+for the smallest stream that reaches it. hashes, hash_group, reorder: as
+encode3d's.)");
   m.def("decode", &decode, py::arg("stream"),
         "(frames float32[F, V, 3], faces int32[T, 3]) of a 3D stream, every frame checked against its hash units.");
   py::class_<Progressive>(m, "progressive", "Iterates over a progressive stream's prefixes: (units, bytes received, frames) after each unit.")

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Installs, builds and runs the main job: `m4mesh demo` on the embedded
-# waving flag, drawing the decoded animation into build/demo-flag.gif.
+# Installs, builds the tool and the Python module (build/python), and runs
+# the main job: `m4mesh demo` on the embedded waving flag, drawing the
+# decoded animation into build/demo-flag.gif.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
-cmake --build build -j"$(nproc)" --target m4mesh
+cmake --build build -j"$(nproc)" --target m4mesh m4mesh_python m4mesh_python_files
 ./build/cli/m4mesh demo --gif build/demo-flag.gif -y

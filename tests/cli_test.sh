@@ -250,8 +250,71 @@ status=0; "$m4mesh" encode3d tests/data/tetra-frames --bits 8 -o "$work/conv.m4m
 mkdir "$work/taken" && touch "$work/taken/mine.txt"
 status=0; "$m4mesh" decode3d "$work/conv.m4m" -o "$work/taken" 2> "$work/err" || status=$?
 [ "$status" = 2 ] && [ -f "$work/taken/mine.txt" ] || fail "decode3d into a folder that is not empty: exit $status"
+touch "$work/taken/0099.obj"  # a frame of an earlier decoding
 "$m4mesh" -y decode3d "$work/conv.m4m" -o "$work/taken" 2> /dev/null || fail "decode3d -y into a folder"
-[ -f "$work/taken/0001.obj" ] && [ ! -e "$work/taken/mine.txt" ] || fail "decode3d -y did not replace the folder"
+[ -f "$work/taken/0001.obj" ] && [ ! -e "$work/taken/0099.obj" ] || fail "decode3d -y did not replace the folder's frames"
+[ -f "$work/taken/mine.txt" ] || fail "decode3d -y removed a file it does not write"
+"$m4mesh" -y convert tests/data/tetra-frames "$work/taken" 2> /dev/null && [ -f "$work/taken/mine.txt" ] || fail "convert -y removed a file it does not write"
+
+# Standard input and output for 3D streams.
+"$m4mesh" decode3d "$work/conv.m4m" -o "$work/conv.m4seq" 2> /dev/null
+"$m4mesh" decode3d "$work/conv.m4m" -o "$work/conv.f32" 2> /dev/null
+"$m4mesh" info - < "$work/conv.m4m" | grep -q "mesh3d container" || fail "info - of a 3D stream"
+cmp -s <("$m4mesh" trace - < "$work/conv.m4m") <("$m4mesh" trace "$work/conv.m4m") || fail "trace - of a 3D stream"
+"$m4mesh" decode3d - -o - < "$work/conv.m4m" 2> /dev/null | cmp -s - "$work/conv.m4seq" || fail "decode3d - -o -"
+"$m4mesh" decode3d "$work/conv.m4m" -o - --format f32 2> /dev/null | cmp -s - "$work/conv.f32" || fail "decode3d -o - --format f32"
+"$m4mesh" decode - -o "$work/stdin-decode.m4seq" < "$work/conv.m4m" 2> "$work/err" && cmp -s "$work/stdin-decode.m4seq" "$work/conv.m4seq" ||
+  fail "decode - of a 3D stream: $(cat "$work/err")"
+cmp -s <("$m4mesh" metrics tests/data/tetra-frames - < "$work/conv.m4m" 2> /dev/null) <("$m4mesh" metrics tests/data/tetra-frames "$work/conv.m4m" 2> /dev/null) ||
+  fail "metrics ORIGINAL -"
+"$m4mesh" encode3d - -o "$work/from-stdin.m4m" < "$work/conv.m4seq" 2> /dev/null || fail "encode3d - (a .m4seq on standard input)"
+"$m4mesh" render3d - -o "$work/stdin.png" < "$work/conv.m4m" 2> /dev/null && [ -s "$work/stdin.png" ] || fail "render3d -"
+
+# A stream numbered in coding order (--reorder) is measured against its original renumbered alike:
+# bfs3d decodes the same grid positions either way, so every figure is the plain stream's.
+"$m4mesh" encode3d tests/data/tetra-frames --reorder -o "$work/reordered.m4m" 2> /dev/null
+"$m4mesh" decode3d "$work/reordered.m4m" -o "$work/reordered.m4seq" 2> /dev/null
+cmp -s "$work/reordered.m4seq" "$work/conv.m4seq" && fail "--reorder kept the input's numbering: the check below proves nothing"
+"$m4mesh" encode3d tests/data/tetra-frames -o "$work/plain.m4m" 2> /dev/null
+cmp -s <("$m4mesh" metrics tests/data/tetra-frames "$work/reordered.m4m" 2>&1) <("$m4mesh" metrics tests/data/tetra-frames "$work/plain.m4m" 2>&1) ||
+  fail "metrics of a --reorder stream differ from the plain stream's"
+"$m4mesh" render3d "$work/reordered.m4m" --compare tests/data/tetra-frames -o "$work/reordered.png" 2> "$work/err.reordered"
+"$m4mesh" render3d "$work/plain.m4m" --compare tests/data/tetra-frames -o "$work/plain.png" 2> "$work/err.plain"
+[ "$(grep -o 'largest error .*' "$work/err.reordered")" = "$(grep -o 'largest error .*' "$work/err.plain")" ] || fail "render3d --compare of a --reorder stream"
+status=0; "$m4mesh" metrics tests/data/tetra-frames "$work/reordered.m4seq" 2> "$work/err" || status=$?
+[ "$status" = 1 ] && grep -q "compared through the stream itself" "$work/err" || fail "metrics of frames decoded from a --reorder stream: exit $status"
+"$m4mesh" progressive "$work/reordered.m4m" tests/data/tetra-frames > /dev/null 2> "$work/err" && fail "progressive of a bfs3d stream"
+grep -q "progressive needs a progressive codec" "$work/err" || fail "progressive of a bfs3d stream: $(cat "$work/err")"
+
+# Quality targets that are not targets, and a trace that would share standard output with the stream.
+for bad in "--target-kg -1" "--target-kg 0" "--target-kg nan" "--target-psnr -5" "--codec auto --target-kg inf"; do
+  status=0; "$m4mesh" encode3d tests/data/tetra-frames $bad -o "$work/bad-target.m4m" 2> "$work/err" || status=$?
+  [ "$status" = 2 ] && [ ! -e "$work/bad-target.m4m" ] || fail "encode3d $bad: exit $status, $(cat "$work/err")"
+done
+status=0; "$m4mesh" encode3d --trace tests/data/tetra-frames -o - > /dev/null 2> "$work/err" || status=$?
+[ "$status" = 2 ] && grep -q "trace prints to standard output" "$work/err" || fail "encode3d --trace -o -: exit $status"
+
+# Frame folders: one kind of frame file, each with its number.
+mkdir "$work/mixed" && cp tests/data/tetra-frames/*.obj "$work/mixed/"
+printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' > "$work/mixed/output0001.off"
+status=0; "$m4mesh" encode3d "$work/mixed" -o "$work/mixed.m4m" 2> "$work/err" || status=$?
+[ "$status" = 1 ] && grep -q "frames of 2 kinds" "$work/err" && grep -q "output0001.off" "$work/err" || fail "a folder of .obj and .off frames: exit $status"
+rm "$work/mixed/output0001.off" && touch "$work/mixed/x.obj"
+status=0; "$m4mesh" encode3d "$work/mixed" -o "$work/mixed.m4m" 2> "$work/err" || status=$?
+[ "$status" = 1 ] && grep -q "x.obj: a frame file without a number" "$work/err" || fail "an unnumbered frame file: exit $status"
+
+# --verify without hashes, 3D words in 3D errors, a stream cut short, progress of cpca-wpt.
+"$m4mesh" encode3d tests/data/tetra-frames --no-hash -o "$work/no-hash.m4m" 2> /dev/null
+status=0; "$m4mesh" decode3d "$work/no-hash.m4m" -o "$work/no-hash.f32" --verify > /dev/null 2> "$work/err" || status=$?
+[ "$status" = 1 ] && grep -q "^error: .*no-hash.m4m: --verify: 4 frames carry no hash" "$work/err" || fail "--verify without hashes: exit $status, $(cat "$work/err")"
+head -c $(( $(stat -c %s "$work/conv.m4m") / 2 )) "$work/conv.m4m" > "$work/half.m4m"
+status=0; "$m4mesh" info "$work/half.m4m" > /dev/null 2> "$work/err" || status=$?
+[ "$status" = 1 ] && grep -Eq "^error: .*half.m4m: unit [0-9]+, frame [0-9]+, [a-z_]+ at bit [0-9]+: " "$work/err" || fail "info of half a stream: exit $status, $(cat "$work/err")"
+status=0; "$m4mesh" decode3d "$work/half.m4m" -o "$work/half.f32" 2> "$work/err" || status=$?
+[ "$status" = 1 ] && ! grep -q "plane" "$work/err" && grep -q "unit [0-9]*, frame" "$work/err" || fail "a 3D error in 2D words: $(cat "$work/err")"
+status=0; "$m4mesh" metrics tests/data/tetra-frames "$work/half.m4m" 2> "$work/err" || status=$?
+[ "$status" = 1 ] && grep -q "^error: $work/half.m4m: unit" "$work/err" || fail "metrics: the error does not name the stream: $(cat "$work/err")"
+
 status=0; "$m4mesh" -q -v info "$work/conv.m4m" > /dev/null 2> "$work/err" || status=$?
 [ "$status" = 2 ] || fail "-q -v: exit $status"
 

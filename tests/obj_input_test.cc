@@ -56,7 +56,7 @@ TEST(ObjInput, FramesAreReadInNumericOrder) {
   EXPECT_TRUE(files[2].ends_with("f10.obj"));
   EXPECT_EQ(frame_files(dir.path() + "/f1*.obj").size(), 2u);
   std::vector<std::string> unused;
-  frame_files(dir.path(), ".obj", &unused);
+  frame_files(dir.path(), {".obj"}, &unused);
   ASSERT_EQ(unused.size(), 1u);
   EXPECT_TRUE(unused[0].ends_with("notes.txt"));
 }
@@ -73,6 +73,32 @@ TEST(ObjInput, ExtensionsInAnyCaseAndNoFrameTwice) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("are both frame 1"), std::string::npos) << e.what();
   }
+}
+
+void expect_input_error(const std::string& path, std::initializer_list<const char*> kinds, const std::string& fragment) {
+  try {
+    frame_files(path, kinds);
+    ADD_FAILURE() << "accepted; expected: " << fragment;
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::kInput) << e.what();
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+
+TEST(ObjInput, FramesOfTwoKindsOrWithoutANumberAreAnError) {
+  TempDir mixed;
+  for (const char* name : {"0001.obj", "0002.obj", "0003.obj"}) mixed.write(name, grid_obj(0));
+  mixed.write("output0001.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  expect_input_error(mixed.path(), {".obj", ".off", ".ply"}, "frames of 2 kinds (0001.obj, output0001.off)");
+  EXPECT_EQ(frame_files(mixed.path() + "/*.obj", {".obj", ".off", ".ply"}).size(), 3u);  // a pattern picks one kind
+  EXPECT_EQ(frame_files(mixed.path(), {".obj"}).size(), 3u);                             // 2D: the .off is not a frame
+
+  const std::string unnumbered = mixed.path() + "/unnumbered";
+  fs::create_directories(unnumbered);
+  mixed.write("unnumbered/x.obj", grid_obj(0));
+  EXPECT_EQ(frame_files(unnumbered).size(), 1u);  // one frame needs no number
+  mixed.write("unnumbered/2.obj", grid_obj(0));
+  expect_input_error(unnumbered, {".obj"}, "x.obj: a frame file without a number");
 }
 
 TEST(ObjInput, AGridBecomesAUniformMesh) {

@@ -3,6 +3,8 @@
 // --codec auto keeps the smallest of the codecs.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "codecs3d/registry.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/quality_target.h"
@@ -62,6 +64,15 @@ TEST(QualityTarget, UnreachableAndConflictingTargetsAreUsageErrors) {
   const MeshSequence s = test::test_sequence(4, 23);
   Encode3dOptions options;
   EXPECT_THROW(encode_to_target(s, options, {}, [](const TargetTrial&) {}), Error);
+  for (const QualityTarget& nonsense : {QualityTarget{.kg = -1}, QualityTarget{.kg = 0}, QualityTarget{.kg = std::nan("")},
+                                        QualityTarget{.psnr = -5}, QualityTarget{.psnr = INFINITY}, QualityTarget{.kg = 1, .psnr = 40}}) {
+    try {
+      encode_to_target(s, options, nonsense, [](const TargetTrial&) { ADD_FAILURE() << "a trial for a target that is not one"; });
+      ADD_FAILURE() << "accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::kUsage) << e.what();
+    }
+  }
   EXPECT_THROW(encode_to_target(s, options, {.kg = 1e-9}, [](const TargetTrial&) {}), Error);
   options.codec_options["bits"] = "12";
   EXPECT_THROW(encode_to_target(s, options, {.kg = 1}, [](const TargetTrial&) {}), Error);

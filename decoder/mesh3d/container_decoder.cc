@@ -15,10 +15,10 @@ namespace {
 // An error inside a payload, moved to the stream: its offset counted from
 // the payload start becomes one from the stream start (the payload follows
 // a 32-bit start code); `frame` is used when the error names none.
-Error located(const Error& e, uint64_t start_code_byte, int64_t frame) {
+Error located(const Error& e, uint64_t start_code_byte, int64_t frame, int64_t unit) {
   const int64_t start = static_cast<int64_t>(start_code_byte * 8);
   const int64_t at = e.bit_offset() == kNoOffset ? start : start + 32 + e.bit_offset();
-  return Error(e.kind(), e.element(), e.plane() == kNoPlane ? frame : e.plane(), at, e.message());
+  return Error(e.kind(), e.element(), e.plane() == kNoPlane ? frame : e.plane(), at, e.message()).in_mesh3d(unit);
 }
 
 }  // namespace
@@ -38,13 +38,14 @@ Mesh3dDecoder::Mesh3dDecoder(std::span<const uint8_t> stream, const Decode3dOpti
                   std::to_string(reader.bits_left() / 8) + " bytes left over after the " + codec_row_->name + " header");
     codec_->set_trace(options_.trace);
   } catch (const Error& e) {
-    throw located(e, 0, kNoPlane);
+    throw located(e, 0, kNoPlane, kNoUnit);
   }
   decoded_.resize(header_.frame_count);
 }
 
 void Mesh3dDecoder::fail(ErrorKind kind, size_t index, int64_t frame, const char* element, const std::string& message) const {
-  throw Error(kind, element, frame, static_cast<int64_t>(parts_.units[index].byte_offset * 8 + syntax::unit_header_offset(element)), message);
+  throw Error(kind, element, frame, static_cast<int64_t>(parts_.units[index].byte_offset * 8 + syntax::unit_header_offset(element)), message)
+      .in_mesh3d(static_cast<int64_t>(index));
 }
 
 UnitHeader Mesh3dDecoder::read_unit_header(size_t index, bool traced) {
@@ -57,7 +58,7 @@ UnitHeader Mesh3dDecoder::read_unit_header(size_t index, bool traced) {
   try {
     syntax::describe(io, header);
   } catch (const Error& e) {
-    throw located(e, unit.byte_offset, frame);
+    throw located(e, unit.byte_offset, frame, static_cast<int64_t>(index));
   }
   return header;
 }
@@ -127,7 +128,7 @@ void Mesh3dDecoder::read_unit_data(size_t index, int64_t frame, Read&& read) {
   try {
     read(io);
   } catch (const Error& e) {
-    throw located(e, unit.byte_offset, frame);
+    throw located(e, unit.byte_offset, frame, static_cast<int64_t>(index));
   }
 }
 
@@ -221,11 +222,12 @@ void Mesh3dDecoder::check_group_hash(size_t index, const UnitHeader& header) {
 void Mesh3dDecoder::finish() {
   if (finished_) return;
   finished_ = true;
-  if (parts_.units.empty()) throw Error(ErrorKind::kTruncated, "base_mesh", 0, kNoOffset, "the stream has no base mesh unit");
+  if (parts_.units.empty()) throw Error(ErrorKind::kTruncated, "base_mesh", 0, kNoOffset, "the stream has no base mesh unit").in_mesh3d(kNoUnit);
   for (uint32_t f = 0; f < header_.frame_count; ++f)
     if (!decoded_[f])
       throw Error(ErrorKind::kTruncated, "mesh3d_unit_start_code", f, kNoOffset,
-                  "the stream ends before frame " + std::to_string(f) + " of " + std::to_string(header_.frame_count) + " is decoded");
+                  "the stream ends before frame " + std::to_string(f) + " of " + std::to_string(header_.frame_count) + " is decoded")
+          .in_mesh3d(kNoUnit);
   if (options_.trace && parts_.has_end_code) options_.trace->begin_payload("end", "mesh_object_end_code", kMeshObjectEndCode);
 }
 
@@ -331,7 +333,7 @@ MeshSequence decode_mesh3d(std::span<const uint8_t> stream) {
     s.frames.push_back(std::move(frame));
   }
   if (const std::optional<uint32_t> f = decoder.first_mismatch())
-    throw Error(ErrorKind::kStructure, "frame_md5", *f, kNoOffset, "the decoded frame does not match its hash");
+    throw Error(ErrorKind::kStructure, "frame_md5", *f, kNoOffset, "the decoded frame does not match its hash").in_mesh3d(kNoUnit);
   s.faces = decoder.faces();
   return s;
 }

@@ -1,6 +1,7 @@
 #include "encoder/mesh3d/container_encoder.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "codecs3d/registry.h"
@@ -92,6 +93,19 @@ class ContainerSink final : public UnitSink {
 Encode3dResult encode_mesh3d(const MeshSequence& input, const Encode3dOptions& options) {
   if (input.frames.empty() || input.vertex_count < 3 || input.faces.empty()) throw encode_error("a sequence needs frames, vertices and faces");
   if (input.vertex_count > kMaxVertices3d || input.faces.size() > kMaxFaces3d) throw encode_error("the mesh exceeds the container's limits");
+  for (size_t f = 0; f < input.frames.size(); ++f) {
+    const std::vector<Vec3>& frame = input.frames[f];
+    if (frame.size() != input.vertex_count)
+      throw encode_error("frame " + std::to_string(f) + " has " + std::to_string(frame.size()) + " vertices, not " + std::to_string(input.vertex_count));
+    for (size_t v = 0; v < frame.size(); ++v)
+      if (!std::isfinite(frame[v].x) || !std::isfinite(frame[v].y) || !std::isfinite(frame[v].z))
+        throw encode_error("frame " + std::to_string(f) + ", vertex " + std::to_string(v) + ": a position that is not a finite number (" +
+                           std::to_string(frame[v].x) + ", " + std::to_string(frame[v].y) + ", " + std::to_string(frame[v].z) + ")");
+  }
+  for (size_t k = 0; k < input.faces.size(); ++k)
+    for (NodeIndex v : input.faces[k].v)
+      if (v >= input.vertex_count)
+        throw encode_error("face " + std::to_string(k) + " names vertex " + std::to_string(v) + " of " + std::to_string(input.vertex_count));
   if (options.reorder && options.codec_options.count("reference"))
     throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--reorder and --reference: the rest shape's vertices would keep the input's numbers");
   const BaseMeshPlan plan = plan_base_mesh(input.faces, input.vertex_count, options.reorder);

@@ -1,6 +1,7 @@
 #include "encoder/mesh3d/quality_target.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 
@@ -29,20 +30,28 @@ TargetTrial trial(const MeshSequence& s, Encode3dOptions options, const QualityT
   if (!result.input_of.empty()) reordered = renumbered(s, result.input_of);
   const MeshSequence& original = reordered ? *reordered : s;
   TargetTrial t{options.codec, parameter, result.stream.size(), kg_error(original, result.decoded), psnr(original, result.decoded), false};
-  t.meets = target.kg > 0 ? t.kg <= target.kg : t.psnr >= target.psnr;
+  t.meets = target.kg ? t.kg <= *target.kg : t.psnr >= *target.psnr;
   return t;
 }
 
 }  // namespace
 
+void check_target(const QualityTarget& target) {
+  if (target.kg.has_value() == target.psnr.has_value()) throw usage_error("give one quality target: --target-kg or --target-psnr");
+  const double value = target.kg ? *target.kg : *target.psnr;
+  if (!std::isfinite(value) || value <= 0)
+    throw usage_error(std::string(target.kg ? "--target-kg " : "--target-psnr ") + std::to_string(value) + ": a target is a finite number above 0" +
+                      (target.kg ? " (percent)" : " (dB)"));
+}
+
 Encode3dResult encode_to_target(const MeshSequence& s, const Encode3dOptions& options, const QualityTarget& target,
                                 const TrialReport& report) {
-  if ((target.kg > 0) == (target.psnr > 0)) throw usage_error("give one quality target: --target-kg or --target-psnr");
+  check_target(target);
   const Codec3d& codec = codec3d_by_name(options.codec);
   Encode3dResult result;
-  if (target.kg > 0 && has_option(codec, "target-kg")) {
+  if (target.kg && has_option(codec, "target-kg")) {
     Encode3dOptions own = options;
-    own.codec_options["target-kg"] = std::to_string(target.kg);
+    own.codec_options["target-kg"] = std::to_string(*target.kg);
     const TargetTrial t = trial(s, own, target, "its own search", result);
     report(t);
     if (!t.meets) throw usage_error("the target is out of reach for " + codec.name);
@@ -76,6 +85,7 @@ Encode3dResult encode_to_target(const MeshSequence& s, const Encode3dOptions& op
 
 Encode3dResult encode_smallest(const MeshSequence& s, const Encode3dOptions& options, const QualityTarget& target,
                                const TrialReport& report_codec, std::string& chosen) {
+  check_target(target);
   Encode3dResult best;
   for (const Codec3d& codec : codecs3d()) {
     Encode3dOptions tried = options;

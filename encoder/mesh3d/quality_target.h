@@ -6,17 +6,22 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "encoder/mesh3d/container_encoder.h"
 
 namespace m4mesh {
 
-// One of the two is set (> 0).
+// One of the two is set, to a finite number above 0 (check_target).
 struct QualityTarget {
-  double kg = 0;    // KG error at most this (percent)
-  double psnr = 0;  // PSNR at least this (dB)
+  std::optional<double> kg = std::nullopt;    // KG error at most this (percent)
+  std::optional<double> psnr = std::nullopt;  // PSNR at least this (dB)
+  bool set() const { return kg || psnr; }
 };
+
+// A usage error unless exactly one target is set, finite and above 0.
+void check_target(const QualityTarget& target);
 
 // One encoding tried: the codec, its knob's value ("" for the codec's own
 // search), the stream's size and the decoded quality.

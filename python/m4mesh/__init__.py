@@ -15,6 +15,10 @@ from ._errors import Error
 __all__ = ["Error", "codecs", "conform", "decode", "encode", "metrics", "progressive", "read_2d"]
 
 
+def __dir__():
+    return sorted(set(__all__) | {"plot"})
+
+
 def __getattr__(name):
     # The native part loads on first use: m4mesh.plot needs only matplotlib.
     if name in __all__:

@@ -19,11 +19,19 @@ import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 def read_points(path):
     """The rows of an `m4mesh rd` CSV, grouped by codec in file order."""
     codecs = {}
+    needed = ("codec", "bpvf", "kg_percent", "sted")
     with open(path, newline="") as f:
-        for row in csv.DictReader(f):
-            codecs.setdefault(row["codec"], []).append(
-                {key: float(row[key]) for key in ("bpvf", "kg_percent", "sted")}
+        reader = csv.DictReader(f)
+        missing = [key for key in needed if key not in (reader.fieldnames or [])]
+        if missing:
+            raise ValueError(
+                f"{path}: not a CSV of `m4mesh rd`: no column {', '.join(missing)} (it has {', '.join(reader.fieldnames or []) or 'none'})"
             )
+        for line, row in enumerate(reader, start=2):
+            try:
+                codecs.setdefault(row["codec"], []).append({key: float(row[key]) for key in needed[1:]})
+            except (TypeError, ValueError):
+                raise ValueError(f"{path}:{line}: a row whose bpvf, kg_percent or sted is not a number") from None
     if not codecs:
         raise ValueError(f"{path}: no rate–distortion points")
     return codecs
@@ -61,7 +69,7 @@ def main(argv=None):
     args = parser.parse_args(argv)
     try:
         plot(read_points(args.csv), args.output, args.title)
-    except (OSError, ValueError, KeyError) as e:
+    except (OSError, ValueError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 1
     return 0

@@ -107,3 +107,34 @@ def test_bad_arguments_raise_m4mesh_error(tetra):
     with pytest.raises(m4mesh.Error) as caught:
         m4mesh.decode(b"\x00\x00\x01\xc4 not a stream")
     assert caught.value.offset >= 0 or caught.value.kind in ("truncated", "structure")
+
+
+def test_nan_frames_name_the_frame_and_vertex(tetra):
+    frames, faces = tetra
+    frames = frames.copy()
+    frames[2, 1, 0] = float("nan")
+    with pytest.raises(m4mesh.Error) as caught:
+        m4mesh.encode(frames, faces)
+    assert caught.value.kind == "input" and "frame 2, vertex 1" in str(caught.value)
+
+
+@pytest.mark.parametrize("target", [{"target_kg": -1}, {"target_kg": 0}, {"target_kg": float("nan")}, {"target_psnr": -5}])
+def test_a_target_that_is_not_one_is_a_usage_error(tetra, target):
+    frames, faces = tetra
+    with pytest.raises(m4mesh.Error) as caught:
+        m4mesh.encode(frames, faces, **target)
+    assert caught.value.kind == "usage"
+
+
+def test_auto_keeps_the_smallest_codec_at_the_target(tetra):
+    frames, faces = tetra
+    stream = m4mesh.encode(frames, faces, codec="auto", target_kg=1)
+    decoded, decoded_faces = m4mesh.decode(stream)
+    assert m4mesh.metrics(frames, decoded, decoded_faces)["kg_error"] <= 1
+    with pytest.raises(m4mesh.Error) as caught:
+        m4mesh.encode(frames, faces, codec="auto")
+    assert caught.value.kind == "usage"
+
+
+def test_dir_lists_the_calls():
+    assert {"encode", "decode", "metrics", "progressive", "conform", "plot"} <= set(dir(m4mesh))

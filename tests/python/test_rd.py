@@ -70,3 +70,10 @@ def test_plot_of_no_points_fails_cleanly(tmp_path):
     empty.write_text(",".join(COLUMNS) + "\n")
     result = subprocess.run([sys.executable, "-m", "m4mesh.plot", str(empty), "-o", str(tmp_path / "x.png")], capture_output=True, text=True)
     assert result.returncode == 1 and "no rate–distortion points" in result.stderr
+
+
+def test_plot_of_a_csv_not_from_rd_names_the_missing_columns(tmp_path):
+    other = tmp_path / "metrics.csv"
+    other.write_text("kg_error_percent,rmse\n0.1,0.2\n")
+    result = subprocess.run([sys.executable, "-m", "m4mesh.plot", str(other), "-o", str(tmp_path / "x.png")], capture_output=True, text=True)
+    assert result.returncode == 1 and "not a CSV of `m4mesh rd`: no column codec, bpvf, kg_percent, sted" in result.stderr
