@@ -70,6 +70,11 @@ int run_encode(const EncodeArgs& args) {
       frames.push_back(read_obj(files[k]));
       progress.update(k + 1);
     }
+    progress.finish();
+    if (std::string kinds; !frames.empty() && !frames.front().dropped.empty()) {
+      for (const std::string& kind : frames.front().dropped) kinds += (kinds.empty() ? "" : ", ") + kind;
+      console::say("note: %s: only x, y and faces are coded; its %s records are left out", files.front().c_str(), kinds.c_str());
+    }
     planes = planes_from_frames(frames, files, args.scale).planes;
   }
   Trace trace(std::cout);
@@ -300,8 +305,9 @@ int run_m4mesh(int argc, const char* const* argv) {
   Decode3dArgs decode3d_args;
   CLI::App* decode3d_cmd = app.add_subcommand("decode3d", "Decode a mesh3d stream into OBJ or PLY frames, a .m4seq, .pc2 or .f32 file");
   decode3d_cmd->add_option("input", decode3d_args.input, "mesh3d stream")->required();
-  decode3d_cmd->add_option("-o,--output", decode3d_args.output, "a folder for OBJ frames, a .m4seq file, a .pc2 file (with the faces and frame 0 in the .obj beside it), PLY frames ('frames/*.ply': '*' becomes 0001, 0002, …), a .f32 file (every frame's binary32 x, y, z, little-endian), or - (standard output, --format)")->required();
+  decode3d_cmd->add_option("-o,--output", decode3d_args.output, "a folder for OBJ frames, a .m4seq file, a .pc2 file (with the faces and frame 0 in the .obj beside it), PLY frames ('frames/*.ply': '*' becomes 0001, 0002, …), a .f32 file (every frame's binary32 x, y, z, little-endian), or - (standard output, --format); optional with --md5");
   decode3d_cmd->add_option("--format", decode3d_args.format, "with -o - (standard output): m4seq (default) or f32")->check(CLI::IsMember({"m4seq", "f32"}));
+  decode3d_cmd->add_flag("--md5", decode3d_args.md5, "print the MD5 of every decoded frame's binary32 x, y, z (the 3D conformance hash)");
   decode3d_cmd->add_flag("--verify", decode3d_args.verify, "check every frame against its hash unit: OK or MISMATCH per frame");
   decode3d_cmd->add_option("--frames", decode3d_args.frames, "frames A … B only (A:B, A: or :B): decoding starts at the last intra refresh at or before A (bfs3d, Affine-Octree --intra-period) and, without --verify, stops after B");
   decode3d_cmd->add_flag("--keep-going", decode3d_args.keep_going,
@@ -339,6 +345,7 @@ int run_m4mesh(int argc, const char* const* argv) {
   render_cmd->add_option("--plane", render_args.plane, "the plane a .png shows")->capture_default_str();
   render_cmd->add_flag("--wireframe", render_args.wireframe, "draw the triangles' edges over the picture");
   render_cmd->add_option("--fps", render_args.fps, "frames per second of a GIF")->capture_default_str();
+  render_cmd->add_option("--size", render_args.size, "the picture's longer side in pixels (default: one pixel per half pixel of the mesh)");
 
   Render3dArgs render3d_args;
   CLI::App* render3d_cmd = app.add_subcommand("render3d", "Draw a 3D sequence or stream shaded; with --compare, beside its original, coloured by its error");
@@ -350,6 +357,11 @@ int run_m4mesh(int argc, const char* const* argv) {
   render3d_cmd->add_option("--azimuth", render3d_args.azimuth, "view direction around the vertical axis, degrees")->capture_default_str();
   render3d_cmd->add_option("--elevation", render3d_args.elevation, "view direction above the horizon, degrees")->capture_default_str();
   render3d_cmd->add_option("--fps", render3d_args.fps, "frames per second of a GIF")->capture_default_str();
+  render3d_cmd->add_option("--view", render3d_args.view,
+                           "follow: each frame centred at the largest frame's scale; fit: each frame filling the view; sequence: the whole sequence's box")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, View>{{"follow", View::kFollow}, {"fit", View::kFit}, {"sequence", View::kSequence}}))
+      ->default_str("follow");
+  render3d_cmd->add_option("--max-error", render3d_args.max_error, "the error coloured yellow (the top of the scale): one scale across pictures");
 
   RdArgs rd_args;
   CLI::App* rd_cmd = app.add_subcommand("rd", "Rate–distortion sweep: every 3D codec over its quality parameter, one row per point");
@@ -376,6 +388,15 @@ int run_m4mesh(int argc, const char* const* argv) {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
     return app.exit(e);
+  } catch (const CLI::ExtrasError& e) {
+    // Many surplus paths that exist: most likely a pattern the shell expanded.
+    int files = 0;
+    for (int i = 1; i < argc; ++i) files += std::filesystem::is_regular_file(argv[i]);
+    if (files > 2)
+      std::fprintf(stderr, "error: %d files where the command takes fewer: quote a pattern ('dir/*.obj') so that m4mesh, not the shell, expands it\n", files);
+    else
+      std::fprintf(stderr, "error: %s (m4mesh --help)\n", e.what());
+    return 2;
   } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "error: %s (m4mesh --help)\n", e.what());
     return 2;

@@ -11,12 +11,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <set>
 
 #include "cli/console.h"
 #include "codecs3d/registry.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/md5.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/base_mesh.h"
 #include "encoder/mesh3d/container_encoder.h"
@@ -250,14 +252,20 @@ int run_encode3d(const Encode3dArgs& args) {
   progress.finish();
   write_file_atomically(args.output, std::string_view(reinterpret_cast<const char*>(result.stream.data()), result.stream.size()));
   const double vertex_frames = static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size() - 1);
-  std::string line = args.output + ": " + std::to_string(result.stream.size()) + " bytes";
   char figure[160];
+  // The whole stream's rate is rd's bpvf and metrics' stream rate.
+  std::snprintf(figure, sizeof figure, " (%.4f bits/vertex/frame)",
+                8.0 * static_cast<double>(result.stream.size()) / (static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size())));
+  std::string line = args.output + ": " + std::to_string(result.stream.size()) + " bytes" + figure;
   for (uint32_t t = 0; t < kUnitTypes; ++t) {
     const uint64_t bytes = result.unit_bytes[t];
     if (bytes == 0) continue;
     std::snprintf(figure, sizeof figure, ", %s %llu bytes", unit_type_name(static_cast<UnitType>(t)), static_cast<unsigned long long>(bytes));
     line += figure;
-    if (static_cast<UnitType>(t) == UnitType::kBaseMesh)
+    if (static_cast<UnitType>(t) == UnitType::kBaseMesh && result.unit_count[t] > 1)
+      std::snprintf(figure, sizeof figure, " in %llu units (%.2f bits/vertex each)", static_cast<unsigned long long>(result.unit_count[t]),
+                    8.0 * static_cast<double>(bytes) / static_cast<double>(result.unit_count[t]) / sequence.vertex_count);
+    else if (static_cast<UnitType>(t) == UnitType::kBaseMesh)
       std::snprintf(figure, sizeof figure, " (%.2f bits/vertex)", 8.0 * static_cast<double>(bytes) / sequence.vertex_count);
     else if (static_cast<UnitType>(t) == UnitType::kFrame && vertex_frames > 0)
       std::snprintf(figure, sizeof figure, " (%.3f bits/vertex/frame)", 8.0 * static_cast<double>(bytes) / vertex_frames);
@@ -302,7 +310,9 @@ std::pair<uint32_t, uint32_t> frame_range(const std::string& text) {
 }  // namespace
 
 int run_decode3d(const Decode3dArgs& args) {
-  refuse_overwriting(args.input, args.output);
+  const bool writes = !args.output.empty();
+  if (!writes && !args.md5) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "decode3d needs -o OUTPUT, or --md5");
+  if (writes) refuse_overwriting(args.input, args.output);
   const auto [first, last] = frame_range(args.frames);
   std::vector<uint8_t> stream = read_file(args.input);
   if (args.max_bytes > 0) {
@@ -315,7 +325,7 @@ int run_decode3d(const Decode3dArgs& args) {
   }
   Decode3dOptions options;
   options.verify = args.verify;
-  const SequenceOutput form = sequence_output(args.output, true, args.format);
+  const SequenceOutput form = writes ? sequence_output(args.output, true, args.format) : SequenceOutput::kF32;
   Mesh3dDecoder decoder(stream, options);
   console::detail("%s: codec %s, %u vertices, %u faces, %u frames", args.input.c_str(), decoder.codec().name.c_str(),
                   decoder.header().vertex_count, decoder.header().face_count, decoder.header().frame_count);
@@ -323,7 +333,8 @@ int run_decode3d(const Decode3dArgs& args) {
     say("note: %s numbers its vertices in coding order (encode3d --reorder), not necessarily the input's", args.input.c_str());
   if (const uint32_t start = first > 0 ? decoder.seek(first) : 0; start > 0)
     console::detail("%s: decoding from the intra refresh at frame %u", args.input.c_str(), start);
-  const bool to_folder = form == SequenceOutput::kObjFolder;
+  const bool to_folder = writes && form == SequenceOutput::kObjFolder;
+  Md5 md5;  // of every frame's binary32 bytes: the 3D conformance hash
   // Frames go to a staging folder that gives the output its frames only when all are decoded.
   const fs::path temporary = staging_folder(args.output);
   console::Progress progress("decoding frame", decoder.header().frame_count);
@@ -336,6 +347,12 @@ int run_decode3d(const Decode3dArgs& args) {
     while (decoder.next_frame()) {
       progress.update(decoder.frame_index() + 1);
       if (decoder.frame_index() < first || decoder.frame_index() > last) continue;
+      if (args.md5) {
+        const std::vector<uint8_t> bytes = frame_bytes(decoder.positions());
+        md5.update(bytes.data(), bytes.size());
+      }
+      written.push_back(decoder.frame_index());
+      if (!writes) continue;
       std::vector<Vec3> frame;
       frame.reserve(decoder.positions().size());
       for (const Float3& p : decoder.positions()) frame.push_back({p[0], p[1], p[2]});
@@ -345,7 +362,6 @@ int run_decode3d(const Decode3dArgs& args) {
       } else {
         sequence.frames.push_back(std::move(frame));
       }
-      written.push_back(decoder.frame_index());
       // Past the range nothing is written; without --verify nothing more is needed.
       if (decoder.frame_index() == last && !args.verify) break;
     }
@@ -366,7 +382,8 @@ int run_decode3d(const Decode3dArgs& args) {
     return 1;
   }
   if (written.empty()) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--frames " + args.frames + ": the stream has no frame there");
-  if (to_folder) {
+  if (!writes) {
+  } else if (to_folder) {
     install_obj_frames(temporary, fs::path(args.output));
   } else if (form == SequenceOutput::kF32) {
     std::string bytes;
@@ -385,11 +402,12 @@ int run_decode3d(const Decode3dArgs& args) {
     std::fprintf(stderr, "%s: decoded %zu frames before the error; %s holds them\n", args.input.c_str(), written.size(), args.output.c_str());
     return 1;
   }
-  say("%s: %zu frames of %u vertices%s", args.output.c_str(), written.size(), decoder.header().vertex_count,
+  say("%s: %zu frames of %u vertices%s", writes ? args.output.c_str() : args.input.c_str(), written.size(), decoder.header().vertex_count,
               decoder.has_end_code() || args.max_bytes > 0 ? "" : " (warning: no end code)");
   // Hash units may check a group of frames after its last: the results come
   // at the end, on standard error when the frames fill standard output.
   std::FILE* report = args.output == "-" ? stderr : stdout;
+  if (args.md5) std::fprintf(report, "%s\n", md5.hex_digest().c_str());
   std::vector<uint32_t> mismatched, unchecked;
   for (uint32_t f : written) {
     const std::optional<bool> ok = decoder.hash_result(f);
@@ -503,11 +521,13 @@ int run_metrics(const MetricsArgs& args) {
     const double v = static_cast<double>(given_original.vertex_count), f = static_cast<double>(given_original.frames.size());
     const uint64_t frame_bytes = sizes.bytes[static_cast<uint32_t>(UnitType::kFrame)];
     const uint64_t refinement_bytes = sizes.bytes[static_cast<uint32_t>(UnitType::kRefinement)];
-    if (frame_bytes > 0 && f > 1)
-      rates.push_back({"frame_rate_bpvf", "(frame units over vertices × (frames − 1))", 8.0 * static_cast<double>(frame_bytes) / (v * (f - 1))});
-    if (refinement_bytes > 0)
-      rates.push_back({"refinement_rate_bpvf", "(refinement units over vertices × frames)", 8.0 * static_cast<double>(refinement_bytes) / (v * f)});
-    rates.push_back({"stream_rate_bpvf", "(the whole stream over vertices × frames)", 8.0 * static_cast<double>(stream.size()) / (v * f)});
+    // The same columns for every codec: the whole stream first (rd's bpvf), a part a codec lacks empty (JSON: null).
+    constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+    rates.push_back({"stream_rate_bpvf", "(the whole stream over vertices × frames, as rd's bpvf)", 8.0 * static_cast<double>(stream.size()) / (v * f)});
+    rates.push_back({"frame_rate_bpvf", "(frame units over vertices × (frames − 1))",
+                     frame_bytes > 0 && f > 1 ? 8.0 * static_cast<double>(frame_bytes) / (v * (f - 1)) : kNone});
+    rates.push_back({"refinement_rate_bpvf", "(refinement units over vertices × frames)",
+                     refinement_bytes > 0 ? 8.0 * static_cast<double>(refinement_bytes) / (v * f) : kNone});
   }
   bool coding_order = false;
   const MeshSequence decoded = load_sequence_or_stream(args.decoded, &coding_order);
@@ -529,7 +549,7 @@ int run_metrics(const MetricsArgs& args) {
     auto value = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
     nlohmann::json out;
     for (const auto& [key, figure] : figures) out[key] = value(figure);
-    for (const Rate& r : rates) out[r.key] = r.value;
+    for (const Rate& r : rates) out[r.key] = value(r.value);
     if (args.per_frame)
       for (size_t f = 0; f < frames.size(); ++f)
         out["frames"].push_back({{"frame", f}, {"rmse", frames[f].rmse}, {"max_error", frames[f].max_error}, {"psnr_db", value(frames[f].psnr)}});
@@ -546,7 +566,7 @@ int run_metrics(const MetricsArgs& args) {
     }
     for (const Rate& r : rates) {
       header += std::string(",") + r.key;
-      row += "," + number(r.value);
+      row += "," + (std::isnan(r.value) ? std::string() : number(r.value));
     }
     std::printf("%s\n%s\n", header.c_str(), row.c_str());
   } else {
@@ -557,7 +577,8 @@ int run_metrics(const MetricsArgs& args) {
     std::printf("STED spatial  %.9g\n", m.sted_spatial);
     std::printf("STED temporal %.9g\n", m.sted_temporal);
     std::printf("STED          %.9g\n", m.sted);
-    for (const Rate& r : rates) std::printf("%-13s %.4f bits/vertex/frame %s\n", r.key[0] == 's' ? "stream" : "rate", r.value, r.label);
+    for (const Rate& r : rates)
+      if (!std::isnan(r.value)) std::printf("%-13s %.4f bits/vertex/frame %s\n", r.key[0] == 's' ? "stream" : "rate", r.value, r.label);
     if (args.per_frame) {
       std::printf("%6s %16s %16s %10s\n", "frame", "RMSE", "max error", "PSNR dB");
       for (size_t f = 0; f < frames.size(); ++f) std::printf("%6zu %16.9g %16.9g %10.3f\n", f, frames[f].rmse, frames[f].max_error, frames[f].psnr);

@@ -54,6 +54,7 @@ struct Decode3dArgs {
   uint64_t max_bytes = 0;  // decode only the longest prefix of at most this many bytes (0: all)
   std::string frames;      // "A:B": write frames A … B only ("A:", ":B"); empty: all
   bool keep_going = false;  // on an error, keep the frames decoded before it
+  bool md5 = false;         // print the MD5 of every frame's binary32 bytes (the output is then optional)
 };
 int run_decode3d(const Decode3dArgs& args);
 

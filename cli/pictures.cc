@@ -6,6 +6,7 @@
 
 #include "cli/commands3d.h"
 #include "cli/console.h"
+#include "codecs3d/registry.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "decoder/decoder.h"
@@ -31,6 +32,17 @@ uint32_t gif_delay(double fps) {
   return static_cast<uint32_t>(std::lround(100.0 / fps));
 }
 
+// A stream's codec and rate ("bfs3d 2.35 bpvf"), empty for a sequence.
+std::string stream_label(const std::string& path, const MeshSequence& decoded) {
+  if (path != "-" && !std::filesystem::is_regular_file(path)) return "";
+  const std::vector<uint8_t> bytes = read_file(path);
+  if (!is_mesh3d_stream(bytes)) return "";
+  char text[96];
+  std::snprintf(text, sizeof text, "%s %.3f BPVF", Mesh3dDecoder(bytes).codec().name.c_str(),
+                8.0 * static_cast<double>(bytes.size()) / (static_cast<double>(decoded.vertex_count) * static_cast<double>(decoded.frames.size())));
+  return text;
+}
+
 }  // namespace
 
 int run_render(const RenderArgs& args) {
@@ -51,12 +63,17 @@ int run_render(const RenderArgs& args) {
     throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
                 args.input + ": the planes span " + std::to_string(canvas.width) + " × " + std::to_string(canvas.height) +
                     " pixels; render draws up to 8192 × 8192");
+  if (args.size != 0 && (args.size < 16 || args.size > 8192)) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--size: 16 … 8192 pixels");
+  const double zoom = args.size == 0 ? 1.0 : static_cast<double>(args.size) / std::max(canvas.width, canvas.height);
+  const uint32_t width = std::max<uint32_t>(1, static_cast<uint32_t>(std::lround(canvas.width * zoom)));
+  const uint32_t height = std::max<uint32_t>(1, static_cast<uint32_t>(std::lround(canvas.height * zoom)));
+  auto sized = [&](const Image& picture) { return args.size == 0 ? picture : resized(picture, width, height); };
   // Second pass: each plane drawn as it is decoded.
   std::optional<Image> texture;
   if (!args.texture.empty()) texture = read_png(args.texture);
   std::optional<TextureWarp> warp;
   std::optional<GifWriter> gif;
-  if (to_gif) gif.emplace(args.output, canvas.width, canvas.height, delay);
+  if (to_gif) gif.emplace(args.output, width, height, delay);
   console::Progress progress("rendering plane", planes);
   Decoder decoder(stream);
   for (uint32_t k = 0; decoder.next(); ++k) {
@@ -69,15 +86,15 @@ int run_render(const RenderArgs& args) {
       warp.emplace(decoder.nodes(), decoder.triangles(), *texture, canvas);
     }
     if (gif) {
-      gif->add(warp->render(decoder.nodes(), args.wireframe));
+      gif->add(sized(warp->render(decoder.nodes(), args.wireframe)));
     } else if (k == args.plane) {
-      write_png(warp->render(decoder.nodes(), args.wireframe), args.output);
+      write_png(sized(warp->render(decoder.nodes(), args.wireframe)), args.output);
       break;
     }
   }
   if (gif) gif->finish();
   console::say("%s: %s, %u × %u pixels", args.output.c_str(), gif ? (std::to_string(planes) + " planes").c_str() : ("plane " + std::to_string(args.plane)).c_str(),
-               canvas.width, canvas.height);
+               width, height);
   return 0;
 }
 
@@ -85,6 +102,9 @@ int run_render3d(const Render3dArgs& args) {
   const bool gif = gif_output(args.output, "render3d");
   const uint32_t delay = gif_delay(args.fps);
   if (args.size < 16 || args.size > 4096) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--size: 16 … 4096 pixels");
+  if (args.max_error && !(std::isfinite(*args.max_error) && *args.max_error > 0))
+    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--max-error: a finite error above 0");
+  if (args.max_error && args.compare.empty()) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--max-error colours the error: it needs --compare");
   refuse_overwriting(args.input, args.output);
   if (!args.compare.empty()) refuse_overwriting(args.compare, args.output);
   bool coding_order = false;
@@ -105,27 +125,38 @@ int run_render3d(const Render3dArgs& args) {
     throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
                 "--frame " + std::to_string(args.frame) + ": the sequence has frames 0 … " + std::to_string(shown.frames.size() - 1));
   const bool compare = !args.compare.empty();
-  const auto [lo, hi] = sequence_box(compare ? original : shown);
-  const Camera camera(lo, hi, args.azimuth, args.elevation, args.size);
+  const std::vector<std::pair<Vec3, Vec3>> boxes = view_boxes(compare ? original : shown, args.view);
   auto error_at = [&](size_t f, uint32_t i) {
     const Vec3& a = shown.frames[f][i];
     const Vec3& b = original.frames[f][i];
     return std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z));
   };
-  // The colour scale: the largest error of the whole sequence, so that frames compare.
+  // The colour scale: --max-error (one scale across pictures), else the
+  // largest error of the whole sequence, so that frames compare.
   double max_error = 0;
   if (compare)
     for (size_t f = 0; f < shown.frames.size(); ++f)
       for (uint32_t i = 0; i < shown.vertex_count; ++i) max_error = std::max(max_error, error_at(f, i));
+  const double scale = args.max_error ? *args.max_error : max_error;
+  const std::string label = stream_label(args.input, shown);
   const uint32_t width = compare ? 2 * args.size + 80 : args.size;
   Image image(width, args.size);
   auto draw = [&](size_t f) {
-    if (!compare) return draw_shaded(image, 0, camera, shown.frames[f], shown.faces);
-    std::vector<Rgb> colours(shown.vertex_count);
-    for (uint32_t i = 0; i < shown.vertex_count; ++i) colours[i] = error_colour(max_error > 0 ? error_at(f, i) / max_error : 0);
-    draw_shaded(image, 0, camera, original.frames[f], original.faces);
-    draw_shaded(image, args.size, camera, shown.frames[f], shown.faces, colours);
-    draw_legend(image, 2 * args.size, max_error);
+    const Camera camera(boxes[f].first, boxes[f].second, args.azimuth, args.elevation, args.size);
+    if (!compare) {
+      draw_shaded(image, 0, camera, shown.frames[f], shown.faces);
+    } else {
+      std::vector<Rgb> colours(shown.vertex_count);
+      for (uint32_t i = 0; i < shown.vertex_count; ++i) colours[i] = error_colour(scale > 0 ? error_at(f, i) / scale : 0);
+      draw_shaded(image, 0, camera, original.frames[f], original.faces);
+      draw_shaded(image, args.size, camera, shown.frames[f], shown.faces, colours);
+      draw_legend(image, 2 * args.size, scale);
+      draw_text(image, 8, 8, "ORIGINAL", 2);
+    }
+    const uint32_t right = compare ? args.size : 0;
+    if (compare) draw_text(image, right + 8, 8, "DECODED", 2);
+    if (!label.empty()) draw_text(image, right + 8, compare ? 22 : 8, label, 2);
+    draw_text(image, 8, args.size - 18, "FRAME " + std::to_string(f), 2);
   };
   if (!gif) {
     draw(args.frame);
@@ -141,7 +172,7 @@ int run_render3d(const Render3dArgs& args) {
     writer.finish();
   }
   console::say("%s: %u × %u pixels%s", args.output.c_str(), width, args.size,
-               compare ? (", largest error " + std::to_string(max_error)).c_str() : "");
+               compare ? (", largest error " + std::to_string(max_error) + (args.max_error ? ", colours up to " + std::to_string(scale) : "")).c_str() : "");
   return 0;
 }
 

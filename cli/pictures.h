@@ -5,7 +5,10 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
+
+#include "render/shaded.h"
 
 namespace m4mesh {
 
@@ -16,6 +19,7 @@ struct RenderArgs {
   uint32_t plane = 0;   // the plane of a .png
   bool wireframe = false;
   double fps = 25;
+  uint32_t size = 0;    // the picture's longer side in pixels (0: one pixel per half pixel of the mesh)
 };
 int run_render(const RenderArgs& args);
 
@@ -27,6 +31,8 @@ struct Render3dArgs {
   uint32_t size = 512;  // pixels per view
   double azimuth = 30, elevation = 20;  // degrees
   double fps = 25;
+  View view = View::kFollow;          // what each frame's view frames
+  std::optional<double> max_error;    // the top of the colour scale (default: the largest error)
 };
 int run_render3d(const Render3dArgs& args);
 

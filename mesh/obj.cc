@@ -87,6 +87,8 @@ ObjFrame read_obj(const std::string& path) {
       for (size_t i = 1; i < tokens.size(); ++i)
         polygon.push_back(parse_face_index(tokens[i], frame.vertices.size(), path, line));
       for (size_t i = 1; i + 1 < polygon.size(); ++i) frame.faces.push_back(Triangle{{polygon[0], polygon[i], polygon[i + 1]}});
+    } else if (std::find(frame.dropped.begin(), frame.dropped.end(), tokens[0]) == frame.dropped.end()) {
+      frame.dropped.emplace_back(tokens[0]);
     }
   }
   if (in.bad()) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, path + ": cannot read");

@@ -14,6 +14,7 @@ struct ObjFrame {
   std::vector<std::array<double, 3>> vertices;
   std::vector<Triangle> faces;          // 0-based; polygons are fanned into triangles
   std::vector<uint64_t> vertex_lines;   // the line of each vertex, for errors
+  std::vector<std::string> dropped;     // the kinds of record read past (vt, vn, usemtl, …), each once
 };
 
 // Errors name the file and line: malformed records, non-finite numbers,

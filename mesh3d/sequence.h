@@ -57,6 +57,7 @@ std::string obj_frame_name(size_t frame_index);
 struct MeshFrame {
   std::vector<Vec3> vertices;
   std::vector<Triangle> faces;
+  std::vector<std::string> dropped;  // what the file held besides positions and faces (OBJ: vt, vn, usemtl, …)
 };
 MeshFrame read_off(const std::string& path);
 

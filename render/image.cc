@@ -1,5 +1,7 @@
 #include "render/image.h"
 
+#include <algorithm>
+
 #include <gif_lib.h>
 #include <png.h>
 
@@ -16,14 +18,30 @@ Error image_error(const std::string& path, const std::string& message) {
   return Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, path + ": " + message);
 }
 
-// The colour cube of the GIF palette: 6 reds, 7 greens, 6 blues.
-constexpr int kReds = 6, kGreens = 7, kBlues = 6;
-uint8_t level(uint8_t value, int levels) { return static_cast<uint8_t>((value * (levels - 1) + 127) / 255); }
-GifByteType cube_index(const Rgb& c) {
-  return static_cast<GifByteType>((level(c.r, kReds) * kGreens + level(c.g, kGreens)) * kBlues + level(c.b, kBlues));
-}
-
 }  // namespace
+
+Image resized(const Image& image, uint32_t width, uint32_t height) {
+  Image out(width, height);
+  for (uint32_t y = 0; y < height; ++y) {
+    const uint32_t y0 = static_cast<uint32_t>(uint64_t{y} * image.height / height);
+    const uint32_t y1 = std::max(y0 + 1, static_cast<uint32_t>((uint64_t{y} + 1) * image.height / height));
+    for (uint32_t x = 0; x < width; ++x) {
+      const uint32_t x0 = static_cast<uint32_t>(uint64_t{x} * image.width / width);
+      const uint32_t x1 = std::max(x0 + 1, static_cast<uint32_t>((uint64_t{x} + 1) * image.width / width));
+      uint64_t r = 0, g = 0, b = 0;
+      for (uint32_t v = y0; v < y1; ++v)
+        for (uint32_t u = x0; u < x1; ++u) {
+          const Rgb& c = image.at(u, v);
+          r += c.r;
+          g += c.g;
+          b += c.b;
+        }
+      const uint64_t n = uint64_t{x1 - x0} * (y1 - y0);
+      out.at(x, y) = {static_cast<uint8_t>((r + n / 2) / n), static_cast<uint8_t>((g + n / 2) / n), static_cast<uint8_t>((b + n / 2) / n)};
+    }
+  }
+  return out;
+}
 
 void write_png(const Image& image, const std::string& path) {
   png_image png;
@@ -63,7 +81,6 @@ struct GifWriter::State {
   GifFileType* gif = nullptr;
   uint32_t width, height, delay;
   std::string path;
-  std::vector<GifByteType> row;
 };
 
 namespace {
@@ -76,21 +93,14 @@ int write_to_file(GifFileType* gif, const GifByteType* data, int length) {
 }  // namespace
 
 GifWriter::GifWriter(const std::string& path, uint32_t width, uint32_t height, uint32_t delay_centiseconds)
-    : state_(new State{AtomicFile(path), nullptr, width, height, delay_centiseconds, path, std::vector<GifByteType>(width)}) {
+    : state_(new State{AtomicFile(path), nullptr, width, height, delay_centiseconds, path}) {
   if (width == 0 || height == 0 || width > 65535 || height > 65535) throw image_error(path, "a GIF goes to 65535 × 65535 pixels");
   int error = 0;
   state_->gif = EGifOpen(&state_->file, write_to_file, &error);
   if (!state_->gif) throw image_error(path, std::string("GIF: ") + GifErrorString(error));
-  ColorMapObject* palette = GifMakeMapObject(256, nullptr);
-  for (int r = 0; r < kReds; ++r)
-    for (int g = 0; g < kGreens; ++g)
-      for (int b = 0; b < kBlues; ++b)
-        palette->Colors[(r * kGreens + g) * kBlues + b] = {static_cast<GifByteType>(r * 255 / (kReds - 1)),
-                                                          static_cast<GifByteType>(g * 255 / (kGreens - 1)),
-                                                          static_cast<GifByteType>(b * 255 / (kBlues - 1))};
   EGifSetGifVersion(state_->gif, true);
-  const int status = EGifPutScreenDesc(state_->gif, static_cast<int>(width), static_cast<int>(height), 8, 0, palette);
-  GifFreeMapObject(palette);
+  // No global palette: every frame brings its own (add()).
+  const int status = EGifPutScreenDesc(state_->gif, static_cast<int>(width), static_cast<int>(height), 8, 0, nullptr);
   // Loop for ever: the NETSCAPE2.0 application extension.
   static const GifByteType kLoop[] = {1, 0, 0};
   if (status == GIF_ERROR || EGifPutExtensionLeader(state_->gif, APPLICATION_EXT_FUNC_CODE) == GIF_ERROR ||
@@ -106,17 +116,28 @@ GifWriter::~GifWriter() {
 void GifWriter::add(const Image& frame) {
   GifFileType* gif = state_->gif;
   if (frame.width != state_->width || frame.height != state_->height) throw image_error(state_->path, "a GIF frame of another size");
+  // The frame's own 256 colours (giflib's median cut), so that shading and colour maps keep their steps.
+  const size_t pixels = size_t{frame.width} * frame.height;
+  std::vector<GifByteType> red(pixels), green(pixels), blue(pixels), indices(pixels);
+  for (size_t i = 0; i < pixels; ++i) {
+    red[i] = frame.pixels[i].r;
+    green[i] = frame.pixels[i].g;
+    blue[i] = frame.pixels[i].b;
+  }
+  int colours = 256;
+  GifColorType palette[256];
+  if (GifQuantizeBuffer(frame.width, frame.height, &colours, red.data(), green.data(), blue.data(), indices.data(), palette) == GIF_ERROR)
+    throw image_error(state_->path, "GIF: cannot choose the frame's colours");
+  const std::unique_ptr<ColorMapObject, void (*)(ColorMapObject*)> map(GifMakeMapObject(256, palette), GifFreeMapObject);
   GraphicsControlBlock control{DISPOSAL_UNSPECIFIED, false, static_cast<int>(state_->delay), NO_TRANSPARENT_COLOR};
   GifByteType extension[4];
   EGifGCBToExtension(&control, extension);
-  if (EGifPutExtension(gif, GRAPHICS_EXT_FUNC_CODE, 4, extension) == GIF_ERROR ||
-      EGifPutImageDesc(gif, 0, 0, static_cast<int>(frame.width), static_cast<int>(frame.height), false, nullptr) == GIF_ERROR)
+  if (!map || EGifPutExtension(gif, GRAPHICS_EXT_FUNC_CODE, 4, extension) == GIF_ERROR ||
+      EGifPutImageDesc(gif, 0, 0, static_cast<int>(frame.width), static_cast<int>(frame.height), false, map.get()) == GIF_ERROR)
     throw image_error(state_->path, std::string("GIF: ") + GifErrorString(gif->Error));
-  for (uint32_t y = 0; y < frame.height; ++y) {
-    for (uint32_t x = 0; x < frame.width; ++x) state_->row[x] = cube_index(frame.at(x, y));
-    if (EGifPutLine(gif, state_->row.data(), static_cast<int>(frame.width)) == GIF_ERROR)
+  for (uint32_t y = 0; y < frame.height; ++y)
+    if (EGifPutLine(gif, indices.data() + size_t{y} * frame.width, static_cast<int>(frame.width)) == GIF_ERROR)
       throw image_error(state_->path, std::string("GIF: ") + GifErrorString(gif->Error));
-  }
 }
 
 void GifWriter::finish() {

@@ -1,5 +1,5 @@
 // RGB pictures and their files: PNG through libpng, animated GIF through
-// giflib (a fixed 6 × 7 × 6 colour cube, so frames need no palette search).
+// giflib (a palette of 256 colours per frame, by median cut).
 #pragma once
 
 #include <cstdint>
@@ -23,6 +23,10 @@ struct Image {
   Rgb& at(uint32_t x, uint32_t y) { return pixels[size_t{y} * width + x]; }
   const Rgb& at(uint32_t x, uint32_t y) const { return pixels[size_t{y} * width + x]; }
 };
+
+// The picture scaled to width × height: each pixel the mean of the pixels
+// it covers (the nearest one when enlarging).
+Image resized(const Image& image, uint32_t width, uint32_t height);
 
 // Errors are kIo errors that name the file.
 void write_png(const Image& image, const std::string& path);

@@ -22,17 +22,31 @@ Vec3 unit(const Vec3& a) {
 constexpr Rgb kBackground{250, 250, 250};
 constexpr Rgb kGrey{170, 180, 195};
 
-// 3 × 5 glyphs of the characters of a number, row by row from the top,
-// bit 14 first: '0'–'9', '.', '-', '+', 'e'.
+// 3 × 5 glyphs, row by row from the top: digits, capitals (lower case is
+// drawn as capitals) and a few signs; other characters are blank.
 uint16_t glyph(char c) {
-  static const uint16_t kDigits[10] = {0x7B6F, 0x2C97, 0x73E7, 0x73CF, 0x5BC9, 0x79CF, 0x79EF, 0x7249, 0x7BEF, 0x7BCF};
-  if (c >= '0' && c <= '9') return kDigits[c - '0'];
-  if (c == '.') return 0x0002;
-  if (c == '-') return 0x01C0;
-  if (c == '+') return 0x05D0;
-  if (c == 'e') return 0x2BE3;
-  return 0;
+  static const char* const kDigits[10] = {"####.##.##.####", ".#.##..#..#.###", "###..#####..###", "###..####..####", "#.##.####..#..#", "####..###..####", "####..####.####", "###..#..#..#..#", "####.#####.####", "####.####..####"};
+  static const char* const kLetters[26] = {".#.#.#####.##.#", "##.#.###.#.###.", ".###..#..#...##", "##.#.##.##.###.", "####..##.#..###", "####..##.#..#..", ".###..#.##.#.##", "#.##.#####.##.#", "###.#..#..#.###", "..#..#..##.#.#.", "#.##.###.#.##.#", "#..#..#..#..###", "#.########.##.#", "##.#.##.##.##.#", ".#.#.##.##.#.#.", "##.#.###.#..#..", ".#.#.##.###..##", "##.#.###.#.##.#", ".###...#...###.", "###.#..#..#..#.", "#.##.##.##.####", "#.##.##.##.#.#.", "#.##.########.#", "#.##.#.#.#.##.#", "#.##.#.#..#..#.", "###..#.#.#..###"};
+  const char* pattern = nullptr;
+  if (c >= '0' && c <= '9') pattern = kDigits[c - '0'];
+  if (c >= 'A' && c <= 'Z') pattern = kLetters[c - 'A'];
+  if (c >= 'a' && c <= 'z') pattern = kLetters[c - 'a'];
+  if (c == '.') pattern = ".............#.";
+  if (c == '-') pattern = "......###......";
+  if (c == '+') pattern = "....#.###.#....";
+  if (c == ':') pattern = "....#.....#....";
+  if (c == '/') pattern = "..#..#.#.#..#..";
+  if (c == '(') pattern = ".#.#..#..#...#.";
+  if (c == ')') pattern = ".#...#..#..#.#.";
+  if (c == '%') pattern = "#.#..#.#.#..#.#";
+  if (c == ',') pattern = "..........#.#..";
+  uint16_t bits = 0;
+  for (int i = 0; pattern && i < 15; ++i)
+    if (pattern[i] == '#') bits |= static_cast<uint16_t>(1 << (14 - i));
+  return bits;
 }
+
+}  // namespace
 
 void draw_text(Image& image, uint32_t x, uint32_t y, const std::string& text, int scale) {
   for (char c : text) {
@@ -49,7 +63,6 @@ void draw_text(Image& image, uint32_t x, uint32_t y, const std::string& text, in
   }
 }
 
-}  // namespace
 
 Camera::Camera(const Vec3& lo, const Vec3& hi, double azimuth, double elevation, uint32_t size) : size_(size) {
   const double a = azimuth * std::numbers::pi / 180, e = elevation * std::numbers::pi / 180;
@@ -72,14 +85,41 @@ std::array<double, 3> Camera::project(const Vec3& p) const {
   return {size_ / 2.0 + scale_ * dot(d, right_), size_ / 2.0 - scale_ * dot(d, up_), dot(d, view_)};
 }
 
+static std::pair<Vec3, Vec3> frame_box(std::span<const Vec3> frame) {
+  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  for (const Vec3& v : frame) {
+    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
+    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
+  }
+  return {lo, hi};
+}
+
 std::pair<Vec3, Vec3> sequence_box(const MeshSequence& s) {
   Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-  for (const std::vector<Vec3>& frame : s.frames)
-    for (const Vec3& v : frame) {
-      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
-      hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
-    }
+  for (const std::vector<Vec3>& frame : s.frames) {
+    const auto [flo, fhi] = frame_box(frame);
+    lo = {std::min(lo.x, flo.x), std::min(lo.y, flo.y), std::min(lo.z, flo.z)};
+    hi = {std::max(hi.x, fhi.x), std::max(hi.y, fhi.y), std::max(hi.z, fhi.z)};
+  }
   return {lo, hi};
+}
+
+std::vector<std::pair<Vec3, Vec3>> view_boxes(const MeshSequence& s, View view) {
+  std::vector<std::pair<Vec3, Vec3>> boxes;
+  if (view == View::kSequence) return std::vector<std::pair<Vec3, Vec3>>(s.frames.size(), sequence_box(s));
+  Vec3 extent{0, 0, 0};  // the largest frame's, per axis
+  for (const std::vector<Vec3>& frame : s.frames) {
+    boxes.push_back(frame_box(frame));
+    const auto& [lo, hi] = boxes.back();
+    extent = {std::max(extent.x, hi.x - lo.x), std::max(extent.y, hi.y - lo.y), std::max(extent.z, hi.z - lo.z)};
+  }
+  if (view == View::kFollow)
+    for (auto& [lo, hi] : boxes) {
+      const Vec3 centre{(lo.x + hi.x) / 2, (lo.y + hi.y) / 2, (lo.z + hi.z) / 2};
+      lo = {centre.x - extent.x / 2, centre.y - extent.y / 2, centre.z - extent.z / 2};
+      hi = {centre.x + extent.x / 2, centre.y + extent.y / 2, centre.z + extent.z / 2};
+    }
+  return boxes;
 }
 
 void draw_shaded(Image& image, uint32_t x0, const Camera& camera, std::span<const Vec3> positions, std::span<const Triangle> faces,
@@ -149,6 +189,7 @@ void draw_legend(Image& image, uint32_t x0, double max_value) {
   }
   char text[32];
   std::snprintf(text, sizeof text, "%.2e", max_value);
+  draw_text(image, x0 + 4, top - 28, "ERROR", 2);
   draw_text(image, x0 + 4, top - 14, text, 2);
   draw_text(image, x0 + 4, bottom + 4, "0", 2);
 }

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "mesh/topology.h"
 #include "mesh3d/sequence.h"
@@ -33,6 +34,12 @@ class Camera {
 // The box of every frame of a sequence.
 std::pair<Vec3, Vec3> sequence_box(const MeshSequence& sequence);
 
+// What each frame's view frames: the sequence's box (kSequence), the
+// frame's own (kFit), or the frame's centre with the largest frame's
+// extent, so that the subject stays in the middle at one scale (kFollow).
+enum class View { kFollow, kFit, kSequence };
+std::vector<std::pair<Vec3, Vec3>> view_boxes(const MeshSequence& sequence, View view);
+
 // One frame drawn into `image` at column `x0`: grey, or coloured per vertex
 // when `colours` is not empty.
 void draw_shaded(Image& image, uint32_t x0, const Camera& camera, std::span<const Vec3> positions, std::span<const Triangle> faces,
@@ -40,7 +47,11 @@ void draw_shaded(Image& image, uint32_t x0, const Camera& camera, std::span<cons
 
 // The colour map of errors: 0 → dark blue … 1 → yellow (viridis-like).
 Rgb error_colour(double t);
-// A vertical colour bar at column x0 with its range written at its ends.
+// A vertical colour bar at column x0, titled ERROR, with its range
+// written at its ends (the error in the sequence's units).
 void draw_legend(Image& image, uint32_t x0, double max_value);
+// Text in 3 × 5 glyphs scaled by `scale` (digits, letters as capitals,
+// . - + : / ( ) % ,), its top-left corner at x, y.
+void draw_text(Image& image, uint32_t x, uint32_t y, const std::string& text, int scale);
 
 }  // namespace m4mesh

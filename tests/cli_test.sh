@@ -169,7 +169,7 @@ grep -q "^warning: .*frames-in: 1 files not used (not .obj frames), .*notes.txt$
 # metrics --stream: the rate as the docs define it, then the whole stream; a stream of another sequence is refused.
 "$m4mesh" metrics tests/data/tetra-frames "$work/t.m4m" --stream "$work/t.m4m" > "$work/metrics" || fail "metrics --stream"
 grep -q "^rate .* bits/vertex/frame (frame units over vertices × (frames − 1))$" "$work/metrics" || fail "metrics rate: $(cat "$work/metrics")"
-grep -q "^stream .* bits/vertex/frame (the whole stream over vertices × frames)$" "$work/metrics" || fail "metrics stream: $(cat "$work/metrics")"
+grep -q "^stream .* bits/vertex/frame (the whole stream over vertices × frames, as rd.s bpvf)$" "$work/metrics" || fail "metrics stream: $(cat "$work/metrics")"
 status=0; "$m4mesh" metrics tests/data/tetra-frames "$work/t.m4m" --stream "$source/conformance/mesh3d/streams/cpca-01-wpt.m4m" > "$work/metrics" 2> "$work/err" || status=$?
 [ "$status" = 1 ] && [ ! -s "$work/metrics" ] && grep -q "not of the sequence compared" "$work/err" || fail "metrics of another stream: exit $status, $(cat "$work/err")"
 
@@ -285,6 +285,30 @@ status=0; "$m4mesh" metrics tests/data/tetra-frames "$work/reordered.m4seq" 2> "
 [ "$status" = 1 ] && grep -q "compared through the stream itself" "$work/err" || fail "metrics of frames decoded from a --reorder stream: exit $status"
 "$m4mesh" progressive "$work/reordered.m4m" tests/data/tetra-frames > /dev/null 2> "$work/err" && fail "progressive of a bfs3d stream"
 grep -q "progressive needs a progressive codec" "$work/err" || fail "progressive of a bfs3d stream: $(cat "$work/err")"
+
+# decode3d --md5 is the 3D conformance hash; metrics --csv has the same columns whatever the codec.
+for id in ao-01-me1-k16 cpca-01-wpt lcc-01-stream; do
+  expected="$(grep -A20 "\"id\": \"$id\"" conformance/mesh3d/manifest.json | grep -m1 decoded_md5 | cut -d'"' -f4)"
+  [ "$("$m4mesh" decode3d --md5 "conformance/mesh3d/streams/$id.m4m" 2> /dev/null)" = "$expected" ] || fail "decode3d --md5 of $id"
+done
+"$m4mesh" encode3d tests/data/tetra-frames --codec cpca-wpt -o "$work/pca.m4m" 2> /dev/null
+[ "$("$m4mesh" metrics tests/data/tetra-frames "$work/pca.m4m" --stream "$work/pca.m4m" --csv | head -1)" = \
+  "$("$m4mesh" metrics tests/data/tetra-frames "$work/plain.m4m" --stream "$work/plain.m4m" --csv | head -1)" ] || fail "metrics --csv columns differ by codec"
+
+# An unquoted pattern the shell expanded; OBJ records that are not coded.
+status=0; (cd tests/data/tetra-frames && "$m4mesh" encode3d *.obj -o "$work/unquoted.m4m") 2> "$work/err" || status=$?
+[ "$status" = 2 ] && grep -q "quote a pattern" "$work/err" || fail "an unquoted pattern: exit $status, $(cat "$work/err")"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\nusemtl skin\nf 1/1/1 2/1/1 3/1/1\n' > "$work/attributes.obj"
+"$m4mesh" encode3d "$work/attributes.obj" -o "$work/attributes.m4m" 2> "$work/err"
+grep -q "note: .*attributes.obj: only positions and faces are coded; its vt, vn, usemtl records are left out" "$work/err" || fail "no note of dropped OBJ records"
+
+# Pictures: one colour scale across pictures, the view, the 2D picture's size.
+status=0; "$m4mesh" render3d "$work/plain.m4m" --max-error 0 --compare tests/data/tetra-frames -o "$work/bad.png" 2> /dev/null || status=$?
+[ "$status" = 2 ] || fail "render3d --max-error 0: exit $status"
+"$m4mesh" render3d "$work/plain.m4m" --max-error 0.01 --view fit --compare tests/data/tetra-frames -o "$work/scaled.png" 2> "$work/err"
+grep -q "colours up to 0.010000" "$work/err" || fail "render3d --max-error: $(cat "$work/err")"
+"$m4mesh" render conformance/streams/p01-hand-3x3.m4m --size 300 -o "$work/sized.png" 2> "$work/err"
+grep -q "236 × 300 pixels" "$work/err" || fail "render --size: $(cat "$work/err")"
 
 # Quality targets that are not targets, and a trace that would share standard output with the stream.
 for bad in "--target-kg -1" "--target-kg 0" "--target-kg nan" "--target-psnr -5" "--codec auto --target-kg inf"; do

@@ -34,6 +34,7 @@ class ContainerSink final : public UnitSink {
     const size_t before = container_.size();
     container_.unit(writer.take_bytes());
     result_.unit_bytes[static_cast<uint32_t>(type)] += container_.size() - before;
+    ++result_.unit_count[static_cast<uint32_t>(type)];
     ++units_;
   }
 

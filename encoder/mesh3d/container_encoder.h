@@ -32,6 +32,7 @@ struct Encode3dOptions {
 struct Encode3dResult {
   std::vector<uint8_t> stream;
   uint64_t unit_bytes[kUnitTypes] = {};  // per unit_type, start codes included
+  uint64_t unit_count[kUnitTypes] = {};
   uint64_t other_bytes = 0;              // object payload and end code
   std::vector<CodecStatistic> statistics;  // the codec's own
   MeshSequence decoded;                    // with keep_decoded: every frame as the decoder outputs it
