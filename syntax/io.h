@@ -30,6 +30,8 @@ class IOBase {
   void set_plane(int64_t plane) { plane_ = plane; }
   int64_t plane() const { return plane_; }
   Trace* trace() const { return trace_; }
+  void set_trace(Trace* trace) { trace_ = trace; }
+  uint64_t element_start() const { return element_start_; }
 
   // An error is placed at the first bit of the element it names: of the
   // last field of that name read (also when a rule checks it later), else
@@ -262,6 +264,23 @@ class WriteIO : public IOBase {
  private:
   BitWriter& writer_;
 };
+
+// A binary32 field: read and written as its 32-bit pattern, traced with
+// its value too.
+template <class IO>
+void binary32(IO& io, const char* name, uint32_t& bits) {
+  Trace* const trace = io.trace();
+  {
+    struct Untraced {
+      IO& io;
+      Trace* trace;
+      ~Untraced() { io.set_trace(trace); }
+    } untraced{io, trace};
+    io.set_trace(nullptr);
+    io.field(name, 32, bits);
+  }
+  if (trace) trace->binary32(io.element_start(), name, bits);
+}
 
 // Counts the bits a structure takes, with the writer's checks.
 class CountIO : public IOBase {

@@ -1,5 +1,7 @@
 #include "syntax/trace.h"
 
+#include <bit>
+
 #include <cstdio>
 #include <sstream>
 #include <string>
@@ -22,6 +24,13 @@ void Trace::prefix(uint64_t offset, std::string_view name, int bits) {
 void Trace::element(uint64_t offset, std::string_view name, int bits, int64_t value) {
   prefix(offset, name, bits);
   out_ << value << '\n';
+}
+
+void Trace::binary32(uint64_t offset, std::string_view name, uint32_t bits) {
+  prefix(offset, name, 32);
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, " (%.9g)", static_cast<double>(std::bit_cast<float>(bits)));
+  out_ << bits << buffer << '\n';
 }
 
 void Trace::start_code(uint64_t offset, std::string_view name, uint32_t value) {

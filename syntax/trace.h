@@ -32,6 +32,8 @@ class Trace {
   std::ostream& stream() { return out_; }
 
   void element(uint64_t offset, std::string_view name, int bits, int64_t value);
+  // A binary32 field: its bit pattern, then its value in parentheses.
+  void binary32(uint64_t offset, std::string_view name, uint32_t bits);
   void start_code(uint64_t offset, std::string_view name, uint32_t value);
   void bit_string(uint64_t offset, std::string_view name, int bits, uint32_t value);
   // A byte section: its length, and its bytes in hex when it holds at most 16.

@@ -72,10 +72,10 @@ void describe(IO& io, AffineOctreeHeader& h) {
   io.field_in("quantization_bits", 8, h.bits, 4, 24);
   static const char* const kOrigin[3] = {"origin_x", "origin_y", "origin_z"};
   for (int axis = 0; axis < 3; ++axis) {
-    io.field(kOrigin[axis], 32, h.origin[axis]);
+    binary32(io, kOrigin[axis], h.origin[axis]);
     io.require(std::isfinite(h.origin_value(axis)), ErrorKind::kOutOfRange, kOrigin[axis], "not a finite binary32");
   }
-  io.field("step", 32, h.step);
+  binary32(io, "step", h.step);
   io.require(std::isfinite(h.step_value()) && h.step_value() > 0, ErrorKind::kOutOfRange, "step", "not a positive finite binary32");
   io.field_in("matrix_bits", 8, h.matrix_bits, 4, 24);
   io.field_in("matrix_range_log2", 8, h.matrix_range_log2, 1, 8);

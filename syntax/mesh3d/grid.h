@@ -17,9 +17,9 @@ void describe_grid(IO& io, std::array<uint32_t, 3>& origin, std::array<uint32_t,
   static const char* const kOrigin[3] = {"origin_x", "origin_y", "origin_z"};
   static const char* const kStep[3] = {"step_x", "step_y", "step_z"};
   for (int axis = 0; axis < 3; ++axis) {
-    io.field(kOrigin[axis], 32, origin[axis]);
+    binary32(io, kOrigin[axis], origin[axis]);
     io.require(std::isfinite(std::bit_cast<float>(origin[axis])), ErrorKind::kOutOfRange, kOrigin[axis], "not a finite binary32");
-    io.field(kStep[axis], 32, step[axis]);
+    binary32(io, kStep[axis], step[axis]);
     const float s = std::bit_cast<float>(step[axis]);
     io.require(std::isfinite(s) && s > 0, ErrorKind::kOutOfRange, kStep[axis], "not a positive finite binary32");
   }

@@ -68,7 +68,7 @@ void describe(IO& io, LccHeader& h) {
   io.field_in("coding_mode", 8, h.mode, kLccStreamMode, kLccDownloadMode);
   io.field_in("theta_bits", 8, h.theta_bits, 2, 15);
   io.field_in("rh_bits", 8, h.rh_bits, 1, 20);
-  io.field("rh_range", 32, h.rh_range);
+  binary32(io, "rh_range", h.rh_range);
   io.require(std::isfinite(h.rh_range_value()) && h.rh_range_value() > 0, ErrorKind::kOutOfRange, "rh_range",
              "not a positive finite binary32");
   io.field_in("temporal_gop", 8, h.gop, 0, kLccMaxGop);
