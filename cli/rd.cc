@@ -49,7 +49,15 @@ std::vector<RdPoint> rd_sweep(const MeshSequence& s, const std::vector<std::stri
       options.hashes = false;
       RdPoint p{codec->name, "--" + codec->quality.option + " " + value};
       auto start = std::chrono::steady_clock::now();
-      const std::vector<uint8_t> stream = encode_mesh3d(s, options).stream;
+      std::vector<uint8_t> stream;
+      try {
+        stream = encode_mesh3d(s, options).stream;
+      } catch (const Error& e) {
+        // A setting that cannot code this sequence is left out, and the sweep goes on.
+        if (e.kind() != ErrorKind::kInput && e.kind() != ErrorKind::kLimit) throw;
+        console::say("note: %s %s cannot code this sequence, left out: %s", codec->name.c_str(), p.parameter.c_str(), e.what());
+        continue;
+      }
       p.encode_s = seconds_since(start);
       start = std::chrono::steady_clock::now();
       const MeshSequence decoded = decode_mesh3d(stream);

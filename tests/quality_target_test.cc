@@ -3,6 +3,7 @@
 // --codec auto keeps the smallest of the codecs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "codecs3d/registry.h"
@@ -58,6 +59,32 @@ TEST(QualityTarget, PsnrTargetsAndTheSmallestCodec) {
   }
   EXPECT_EQ(decode_mesh3d(smallest.stream).frames.size(), s.frames.size());
   EXPECT_FALSE(chosen.empty());
+}
+
+// A subject that walks 12 times its own size per frame: at 24 bits no grid
+// over the first frame's box holds the last frames (±2^26 steps are 4
+// boxes), the grid over every frame's box does.
+MeshSequence walking_away() {
+  MeshSequence s = test::test_sequence(6, 23);
+  const auto [lo, hi] = std::minmax_element(s.frames[0].begin(), s.frames[0].end(), [](const Vec3& a, const Vec3& b) { return a.x < b.x; });
+  const double size = hi->x - lo->x;
+  for (size_t f = 0; f < s.frames.size(); ++f)
+    for (Vec3& v : s.frames[f]) v.x += 12 * size * static_cast<double>(f);
+  return s;
+}
+
+TEST(QualityTarget, ASubjectThatLeavesTheFirstFramesBoxEncodesAtEverySetting) {
+  const MeshSequence s = walking_away();
+  for (const char* codec : {"bfs3d", "affine-octree", "lcc"}) {
+    Encode3dOptions options;
+    options.codec = codec;
+    options.codec_options["bits"] = "24";
+    const MeshSequence decoded = decode_mesh3d(encode_mesh3d(s, options).stream);
+    EXPECT_LT(kg_error(s, decoded), 1.0) << codec;
+  }
+  std::string chosen;
+  const Encode3dResult best = encode_smallest(s, Encode3dOptions{}, {.kg = 1}, [](const TargetTrial&) {}, chosen);
+  EXPECT_LE(kg_error(s, decode_mesh3d(best.stream)), 1.0);
 }
 
 TEST(QualityTarget, UnreachableAndConflictingTargetsAreUsageErrors) {

@@ -10,7 +10,7 @@ void quantize_frame(const Grid& grid, std::span<const Vec3> frame, size_t frame_
     if (!grid.quantize(frame[i], positions[i]))
       throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
                   "frame " + std::to_string(frame_index) + ", vertex " + std::to_string(i) +
-                      " lies too far outside the first frame's box for the quantization grid");
+                      " lies beyond the quantization grid's ±2^26 steps");
 }
 
 void GridFrameEncoder::encode(const MeshSequence& s, UnitSink& sink) {

@@ -56,7 +56,7 @@ class LccLoop {
       if (!grid_of_frame.quantize(frame[v], q))
         throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
                     "frame " + std::to_string(frame_index) + ", vertex " + std::to_string(v) +
-                        " lies too far outside the first frame's box for the quantization grid");
+                        " lies beyond the quantization grid's ±2^26 steps");
       for (int axis = 0; axis < 3; ++axis) indices.direct[3 * i + static_cast<size_t>(axis)] = q[axis];
       positions[v] = lcc_grid_position(header_, q);
     }
@@ -103,7 +103,7 @@ std::vector<Float3> as_floats(std::span<const Vec3> positions) {
 class LccEncoder final : public CodecEncoder3d {
  public:
   LccEncoder(const MeshSequence& s, const CodecSettings& settings)
-      : grid_(Grid::over(s.frames[0], settings.integer("bits"))), target_kg_(settings.number("target-kg")) {
+      : grid_(Grid::covering(s, settings.integer("bits"))), target_kg_(settings.number("target-kg")) {
     header_.bits = static_cast<uint32_t>(settings.integer("bits"));
     for (int axis = 0; axis < 3; ++axis) {
       header_.origin[axis] = std::bit_cast<uint32_t>(grid_.origin[axis]);

@@ -61,21 +61,33 @@ Encode3dResult encode_to_target(const MeshSequence& s, const Encode3dOptions& op
   if (knob.coarse_to_fine.empty()) throw usage_error(codec.name + " has no quality parameter to search");
   if (options.codec_options.count(knob.option))
     throw usage_error("--" + knob.option + " and a quality target: the target chooses --" + knob.option + " (" + codec.name + ")");
-  // The smallest index that meets the target, by bisection; results kept by index.
+  // The smallest index that meets the target, by bisection; results kept
+  // by index. A setting that cannot code the sequence counts as missing it
+  // (reported, not fatal); the search starts at the finest that codes.
   std::map<size_t, Encode3dResult> results;
-  auto meets = [&](size_t index) {
+  auto meets = [&](size_t index) -> std::optional<bool> {
     Encode3dOptions tried = options;
+    const std::string parameter = "--" + knob.option + " " + knob.coarse_to_fine[index];
     tried.codec_options[knob.option] = knob.coarse_to_fine[index];
-    const TargetTrial t = trial(s, tried, target, "--" + knob.option + " " + knob.coarse_to_fine[index], results[index]);
-    report(t);
-    return t.meets;
+    try {
+      const TargetTrial t = trial(s, tried, target, parameter, results[index]);
+      report(t);
+      return t.meets;
+    } catch (const Error& e) {
+      if (e.kind() != ErrorKind::kInput && e.kind() != ErrorKind::kLimit) throw;
+      report(TargetTrial{codec.name, parameter + " cannot code the sequence: " + e.message(), 0, 0, 0, false});
+      return std::nullopt;
+    }
   };
   size_t lo = 0, hi = knob.coarse_to_fine.size() - 1;
-  if (!meets(hi))
+  std::optional<bool> finest = meets(hi);
+  while (!finest && hi > 0) finest = meets(--hi);
+  if (!finest) throw usage_error(codec.name + " cannot code the sequence at any --" + knob.option);
+  if (!*finest)
     throw usage_error("the target is out of reach for " + codec.name + " even at --" + knob.option + " " + knob.coarse_to_fine[hi]);
   while (lo < hi) {
     const size_t mid = lo + (hi - lo) / 2;
-    if (meets(mid))
+    if (meets(mid).value_or(false))
       hi = mid;
     else
       lo = mid + 1;
@@ -101,7 +113,8 @@ Encode3dResult encode_smallest(const MeshSequence& s, const Encode3dOptions& opt
         chosen = codec.name;
       }
     } catch (const Error& e) {
-      if (e.kind() != ErrorKind::kUsage) throw;
+      // A codec that misses the target or cannot code the sequence is left out.
+      if (e.kind() != ErrorKind::kUsage && e.kind() != ErrorKind::kInput && e.kind() != ErrorKind::kLimit) throw;
       last.codec = codec.name;
       last.parameter = e.message();
       last.meets = false;
