@@ -109,7 +109,8 @@ bool is_obj_frame_name(const std::string& name) {
 void install_obj_frames(const fs::path& staging, const fs::path& output) {
   fs::path folder = output.lexically_normal();
   if (folder.filename().empty()) folder = folder.parent_path();
-  if (!fs::exists(folder)) {
+  if (!fs::is_directory(folder)) {
+    fs::remove(folder);  // a file the user named as the output (-y)
     fs::rename(staging, folder);
     return;
   }

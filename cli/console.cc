@@ -46,12 +46,16 @@ void detail(const char* format, ...) {
   va_end(args);
 }
 
-Progress::Progress(std::string what, size_t total) : what_(std::move(what)), total_(total), start_(std::chrono::steady_clock::now()) {}
+Progress::Progress(std::string what, size_t total)
+    : Progress(std::move(what), total, stderr, isatty(fileno(stderr)) != 0, std::chrono::seconds(1)) {}
+
+Progress::Progress(std::string what, size_t total, std::FILE* out, bool interactive, std::chrono::milliseconds after)
+    : what_(std::move(what)), total_(total), out_(out), interactive_(interactive), after_(after), start_(std::chrono::steady_clock::now()) {}
 
 Progress::~Progress() { finish(); }
 
 void Progress::finish() {
-  if (shown_) std::fprintf(stderr, "\r%*s\r", static_cast<int>(what_.size() + 32), "");
+  if (shown_) std::fprintf(out_, "\r%*s\r", static_cast<int>(what_.size() + 32), "");
   shown_ = false;
 }
 
@@ -61,11 +65,11 @@ void Progress::update(size_t done, size_t total) {
 }
 
 void Progress::update(size_t done) {
-  if (g_level == Level::kQuiet || !isatty(fileno(stderr))) return;
-  if (!shown_ && std::chrono::steady_clock::now() - start_ < std::chrono::seconds(1)) return;
+  if (g_level == Level::kQuiet || !interactive_) return;
+  if (!shown_ && std::chrono::steady_clock::now() - start_ < after_) return;
   shown_ = true;
-  std::fprintf(stderr, "\r%s %zu/%zu", what_.c_str(), done, total_);
-  std::fflush(stderr);
+  std::fprintf(out_, "\r%s %zu/%zu", what_.c_str(), done, total_);
+  std::fflush(out_);
 }
 
 void check_output(const std::string& path) {

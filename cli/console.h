@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstddef>
+#include <cstdio>
 #include <string>
 
 namespace m4mesh::console {
@@ -25,6 +26,8 @@ bool quiet();
 class Progress {
  public:
   Progress(std::string what, size_t total);
+  // The same line on `out`, drawn only when `interactive`, once `after` has passed.
+  Progress(std::string what, size_t total, std::FILE* out, bool interactive, std::chrono::milliseconds after);
   ~Progress();
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
@@ -37,6 +40,9 @@ class Progress {
  private:
   std::string what_;
   size_t total_;
+  std::FILE* out_;
+  bool interactive_;
+  std::chrono::milliseconds after_;
   std::chrono::steady_clock::time_point start_;
   bool shown_ = false;
 };
