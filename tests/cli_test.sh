@@ -310,6 +310,16 @@ grep -q "colours up to 0.010000" "$work/err" || fail "render3d --max-error: $(ca
 "$m4mesh" render conformance/streams/p01-hand-3x3.m4m --size 300 -o "$work/sized.png" 2> "$work/err"
 grep -q "236 × 300 pixels" "$work/err" || fail "render --size: $(cat "$work/err")"
 
+# What the README and --help promise.
+mkdir "$work/suite" && touch "$work/suite/mine.txt"
+status=0; "$m4mesh" generate-suite "$work/suite" 2> /dev/null || status=$?
+[ "$status" = 2 ] && [ ! -e "$work/suite/manifest.json" ] || fail "generate-suite into a folder that is not empty, without -y: exit $status"
+"$m4mesh" encode3d --help > "$work/help" && grep -q "OBJ, OFF or PLY frames, .m4seq or .pc2" "$work/help" || fail "encode3d --help does not list its inputs"
+"$m4mesh" trace "$work/plain.m4m" > "$work/plain.trace"
+grep -Eq "step_x +32 +[0-9]+ \(0\.[0-9]+\)$" "$work/plain.trace" || fail "trace does not print a binary32 field's value"
+"$m4mesh" encode3d tests/data/tetra-frames --intra-period 2 -o "$work/intra-summary.m4m" 2> "$work/err"
+grep -q "base mesh [0-9]* bytes in 2 units ([0-9.]* bits/vertex each)" "$work/err" || fail "an --intra-period summary: $(cat "$work/err")"
+
 # Quality targets that are not targets, and a trace that would share standard output with the stream.
 for bad in "--target-kg -1" "--target-kg 0" "--target-kg nan" "--target-psnr -5" "--codec auto --target-kg inf"; do
   status=0; "$m4mesh" encode3d tests/data/tetra-frames $bad -o "$work/bad-target.m4m" 2> "$work/err" || status=$?
