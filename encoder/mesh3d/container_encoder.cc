@@ -91,7 +91,7 @@ class ContainerSink final : public UnitSink {
 
 }  // namespace
 
-Encode3dResult encode_mesh3d(const MeshSequence& input, const Encode3dOptions& options) {
+void check_sequence(const MeshSequence& input) {
   if (input.frames.empty() || input.vertex_count < 3 || input.faces.empty()) throw encode_error("a sequence needs frames, vertices and faces");
   if (input.vertex_count > kMaxVertices3d || input.faces.size() > kMaxFaces3d) throw encode_error("the mesh exceeds the container's limits");
   for (size_t f = 0; f < input.frames.size(); ++f) {
@@ -107,6 +107,10 @@ Encode3dResult encode_mesh3d(const MeshSequence& input, const Encode3dOptions& o
     for (NodeIndex v : input.faces[k].v)
       if (v >= input.vertex_count)
         throw encode_error("face " + std::to_string(k) + " names vertex " + std::to_string(v) + " of " + std::to_string(input.vertex_count));
+}
+
+Encode3dResult encode_mesh3d(const MeshSequence& input, const Encode3dOptions& options) {
+  check_sequence(input);
   if (options.reorder && options.codec_options.count("reference"))
     throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--reorder and --reference: the rest shape's vertices would keep the input's numbers");
   const BaseMeshPlan plan = plan_base_mesh(input.faces, input.vertex_count, options.reorder);

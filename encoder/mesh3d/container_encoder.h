@@ -42,6 +42,11 @@ struct Encode3dResult {
   uint64_t frame_bytes() const { return unit_bytes[static_cast<uint32_t>(UnitType::kFrame)]; }
 };
 
+// An input error unless the sequence can be coded: frames, at least 3
+// vertices and a face, within the container's limits, every frame of
+// vertex_count finite positions, every face naming vertices that exist.
+void check_sequence(const MeshSequence& sequence);
+
 Encode3dResult encode_mesh3d(const MeshSequence& sequence, const Encode3dOptions& options = {});
 
 }  // namespace m4mesh

@@ -47,6 +47,7 @@ void check_target(const QualityTarget& target) {
 Encode3dResult encode_to_target(const MeshSequence& s, const Encode3dOptions& options, const QualityTarget& target,
                                 const TrialReport& report) {
   check_target(target);
+  check_sequence(s);
   const Codec3d& codec = codec3d_by_name(options.codec);
   Encode3dResult result;
   if (target.kg && has_option(codec, "target-kg")) {
@@ -98,6 +99,7 @@ Encode3dResult encode_to_target(const MeshSequence& s, const Encode3dOptions& op
 Encode3dResult encode_smallest(const MeshSequence& s, const Encode3dOptions& options, const QualityTarget& target,
                                const TrialReport& report_codec, std::string& chosen) {
   check_target(target);
+  check_sequence(s);
   Encode3dResult best;
   for (const Codec3d& codec : codecs3d()) {
     Encode3dOptions tried = options;

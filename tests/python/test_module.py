@@ -113,9 +113,10 @@ def test_nan_frames_name_the_frame_and_vertex(tetra):
     frames, faces = tetra
     frames = frames.copy()
     frames[2, 1, 0] = float("nan")
-    with pytest.raises(m4mesh.Error) as caught:
-        m4mesh.encode(frames, faces)
-    assert caught.value.kind == "input" and "frame 2, vertex 1" in str(caught.value)
+    for target in ({}, {"target_kg": 1}, {"codec": "auto", "target_kg": 1}):
+        with pytest.raises(m4mesh.Error) as caught:
+            m4mesh.encode(frames, faces, **target)
+        assert caught.value.kind == "input" and "frame 2, vertex 1" in str(caught.value)
 
 
 @pytest.mark.parametrize("target", [{"target_kg": -1}, {"target_kg": 0}, {"target_kg": float("nan")}, {"target_psnr": -5}])
