@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string_view>
 
@@ -975,6 +976,47 @@ MeshSequence shuffled_grid(int frames) {
   return s;
 }
 
+// A chain of faces, each across an edge of the one before, whose third
+// vertex is new or, half of the time, an earlier vertex at random: far
+// vertices at every distance from the gate's (up to the vertex count),
+// after far vertices near and far.
+MeshSequence far_chain(int faces, uint64_t seed) {
+  MeshSequence s;
+  SplitMix64 random(seed);
+  std::set<std::pair<NodeIndex, NodeIndex>> edges;
+  auto free = [&](NodeIndex a, NodeIndex b, NodeIndex c) { return !edges.count({a, b}) && !edges.count({b, c}) && !edges.count({c, a}); };
+  auto add = [&](NodeIndex a, NodeIndex b, NodeIndex c) {
+    s.faces.push_back({{a, b, c}});
+    edges.insert({a, b});
+    edges.insert({b, c});
+    edges.insert({c, a});
+  };
+  NodeIndex count = 3;
+  add(0, 1, 2);
+  while (s.faces.size() < static_cast<size_t>(faces)) {
+    // Across an edge of the last face that no face has reversed yet.
+    const Triangle last = s.faces.back();
+    const int first = static_cast<int>(random.next() % 3);
+    int e = 0;
+    while (e < 3 && edges.count({last.v[(first + e + 1) % 3], last.v[(first + e) % 3]})) ++e;
+    if (e == 3) break;
+    const NodeIndex a = last.v[(first + e) % 3], b = last.v[(first + e + 1) % 3];
+    NodeIndex c = count;
+    if (random.next() % 2) c = static_cast<NodeIndex>(random.next() % count);
+    if (c == a || c == b || !free(b, a, c)) c = count;
+    if (c == count) ++count;
+    add(b, a, c);
+  }
+  s.vertex_count = count;
+  for (int f = 0; f < 2; ++f) {
+    std::vector<Vec3> frame;
+    for (NodeIndex v = 0; v < count; ++v)
+      frame.push_back({random.uniform(0, 1023) / 1024.0, random.uniform(0, 1023) / 1024.0, random.uniform(0, 1023) / 1024.0});
+    s.frames.push_back(std::move(frame));
+  }
+  return s;
+}
+
 // The base mesh: every kind of face and vertex, in the input order and in
 // coding order; a row-major sheet, whose input numbers parallelograms predict.
 std::vector<SuiteCase> base_mesh_cases(bool traced) {
@@ -999,6 +1041,8 @@ std::vector<SuiteCase> base_mesh_cases(bool traced) {
   {
     MeshSequence spiky = spiky_sheet(2, 32, 200, 46, 4);
     renumber_at_random(spiky, 1289);
+    suite.push_back(valid("base-08-far-chain", "a chain of faces whose third vertices are often earlier ones at random: far vertices at "
+                          "every distance, after near and far ones", {"base-mesh"}, far_chain(3000, 51), Encode3dOptions{}, traced));
     suite.push_back(valid("base-07-spikes", "1,291 vertices numbered at random, a quarter of them off their place by 2^−2 … 2^−23 of the box on a "
                           "24-bit grid: position and order residuals of every prefix length", {"base-mesh"}, spiky, bits24, traced));
   }
