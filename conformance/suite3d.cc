@@ -278,6 +278,53 @@ MeshSequence deep_clusters(int frames) {
   return s;
 }
 
+// Clusters of 6 vertices in cells of the octree: two in cells of `depth`
+// whose vertices jump at random in every frame (leaves of more than 4
+// vertices there, coded directly when depth is max_depth), and two pairs
+// of sibling cells one level up, one cluster moving rigidly (a matrix leaf
+// of more than 4 vertices above max_depth), the other at random.
+MeshSequence clustered_jumps(int frames, int depth) {
+  MeshSequence s;
+  SplitMix64 random(static_cast<uint64_t>(100 + depth));
+  std::vector<Vec3> base = {{0, 0, 0}, {1, 1, 1}, {1, 0, 0}};
+  s.faces.push_back({{0, 1, 2}});
+  struct Cluster {
+    NodeIndex start;
+    double cell;
+    bool rigid;
+  };
+  std::vector<Cluster> clusters;
+  auto cluster = [&](int level, int x, int y, int z, bool rigid) {
+    const double cell = std::ldexp(1.0, -level);
+    const NodeIndex start = static_cast<NodeIndex>(base.size());
+    for (int j = 0; j < 6; ++j)
+      base.push_back({(x + random.uniform(1, 7) / 8.0) * cell, (y + random.uniform(1, 7) / 8.0) * cell, (z + random.uniform(1, 7) / 8.0) * cell});
+    for (NodeIndex j = 1; j < 5; ++j) s.faces.push_back({{start, start + j, start + j + 1}});
+    clusters.push_back({start, cell, rigid});
+  };
+  auto place = [&](int level) { return random.uniform(0, (1 << level) - 1); };
+  for (int c = 0; c < 2; ++c) cluster(depth, place(depth), place(depth), place(depth), false);
+  for (int c = 0; c < 2; ++c) {
+    const int up = depth - 1, x = place(up) & ~1, y = place(up), z = place(up);
+    cluster(up, x, y, z, true);
+    cluster(up, x + 1, y, z, false);
+  }
+  s.vertex_count = static_cast<uint32_t>(base.size());
+  for (int f = 0; f < frames; ++f) {
+    std::vector<Vec3> frame = base;
+    for (const Cluster& c : clusters) {
+      if (f == 0) break;
+      const Vec3 shift{c.cell * random.uniform(-8, 8) / 64, c.cell * random.uniform(-8, 8) / 64, c.cell * random.uniform(-8, 8) / 64};
+      for (NodeIndex v = c.start; v < c.start + 6; ++v) {
+        const Vec3 d = c.rigid ? shift : Vec3{c.cell * random.uniform(-32, 32) / 64, c.cell * random.uniform(-32, 32) / 64, c.cell * random.uniform(-32, 32) / 64};
+        frame[v] = {base[v].x + d.x, base[v].y + d.y, base[v].z + d.z};
+      }
+    }
+    s.frames.push_back(std::move(frame));
+  }
+  return s;
+}
+
 // Affine-Octree at ME `me` percent and k bits per matrix element.
 Encode3dOptions affine(const std::string& me, int k = 16) {
   Encode3dOptions o;
@@ -392,6 +439,16 @@ std::vector<SuiteCase> affine_octree_cases(bool traced) {
     o.codec_options["max-depth"] = "20";
     suite.push_back(valid("ao-09-spikes", "vertices that jump by 2^−2 … 2^−23 of the box on a 24-bit grid: matrix and direct residuals of many "
                           "prefix lengths, leaves at every depth", {"ao-cell"}, spiky_sheet(8, 16, 100, 42, 30), o, traced));
+  }
+  for (int depth = 2; depth <= 15; ++depth) {
+    Encode3dOptions o = affine("0.001", 24);
+    o.codec_options["bits"] = "24";
+    o.codec_options["max-depth"] = std::to_string(depth);
+    char id[32];
+    std::snprintf(id, sizeof id, "ao-11-depth-%02d", depth);
+    suite.push_back(valid(id, "max_depth " + std::to_string(depth) + ": leaves of more than 4 vertices coded directly there, and matrix "
+                          "leaves of more than 4 one level up", {"ao-cell"},
+                          clustered_jumps(3, depth), o, traced));
   }
   {
     Encode3dOptions o = affine("0.1", 8);
