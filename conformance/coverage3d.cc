@@ -103,16 +103,21 @@ std::map<std::string, std::set<std::string>> coverage_catalog3d() {
   // The base mesh. deg(a), deg(b) ≥ 1 at every gate (a gate lies on a
   // decoded face), so no context with a degree 0 is reachable;
   // gate_candidate is read only with candidates ≥ 1, candidate_index's
-  // first bin only with 2 or more.
+  // first bin only with 2 or more. Each decoded face around b gives at most
+  // one open half-edge b → c, each around a one c → a, and the gate's own
+  // face gives the same c twice: at most deg(a) + deg(b) − 1 candidates, so
+  // with both degrees 1 at most one.
   std::set<std::string>& base = c["base-mesh"];
   for (int v = 0; v < 2; ++v) {
     for (int candidates = 0; candidates <= 3; ++candidates)
       for (int degree = 1; degree <= 7; ++degree) {
+        if (candidates > 2 * degree - 1) continue;
         base.insert(bin_item("base-mesh", "gate_new_vertex", candidates * 8 + degree, v));
         if (candidates > 0) base.insert(bin_item("base-mesh", "gate_candidate", candidates * 8 + degree, v));
       }
     for (int b = 1; b <= 7; ++b)
-      for (int a = 1; a <= 7; ++a) base.insert(bin_item("base-mesh", "candidate_index", b * 8 + a, v));
+      for (int a = 1; a <= 7; ++a)
+        if (a + b >= 3) base.insert(bin_item("base-mesh", "candidate_index", b * 8 + a, v));
     for (int later = 64; later <= 67; ++later) base.insert(bin_item("base-mesh", "candidate_index", later, v));
     for (int border = 0; border < 2; ++border) base.insert(bin_item("base-mesh", "gate_border", border, v));
     base.insert(bin_item("base-mesh", "seed_new_vertex", 0, v));

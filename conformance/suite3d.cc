@@ -1074,6 +1074,32 @@ MeshSequence far_chain(int faces, uint64_t seed) {
   return s;
 }
 
+// Faces on few vertices at random, no directed edge twice: vertices with
+// many open half-edges around them, so that gates meet 3 and more
+// candidates at every pair of degrees and take every index.
+MeshSequence dense_soup(uint32_t vertices, int faces, uint64_t seed) {
+  MeshSequence s;
+  SplitMix64 random(seed);
+  std::set<std::pair<NodeIndex, NodeIndex>> edges;
+  for (int attempt = 0; attempt < 100 * faces && s.faces.size() < static_cast<size_t>(faces); ++attempt) {
+    const NodeIndex a = static_cast<NodeIndex>(random.next() % vertices), b = static_cast<NodeIndex>(random.next() % vertices),
+                    c = static_cast<NodeIndex>(random.next() % vertices);
+    if (a == b || b == c || c == a || edges.count({a, b}) || edges.count({b, c}) || edges.count({c, a})) continue;
+    s.faces.push_back({{a, b, c}});
+    edges.insert({a, b});
+    edges.insert({b, c});
+    edges.insert({c, a});
+  }
+  s.vertex_count = vertices;
+  for (int f = 0; f < 2; ++f) {
+    std::vector<Vec3> frame;
+    for (NodeIndex v = 0; v < vertices; ++v)
+      frame.push_back({random.uniform(0, 1023) / 1024.0, random.uniform(0, 1023) / 1024.0, random.uniform(0, 1023) / 1024.0});
+    s.frames.push_back(std::move(frame));
+  }
+  return s;
+}
+
 // The base mesh: every kind of face and vertex, in the input order and in
 // coding order; a row-major sheet, whose input numbers parallelograms predict.
 std::vector<SuiteCase> base_mesh_cases(bool traced) {
@@ -1100,6 +1126,8 @@ std::vector<SuiteCase> base_mesh_cases(bool traced) {
     renumber_at_random(spiky, 1289);
     suite.push_back(valid("base-08-far-chain", "a chain of faces whose third vertices are often earlier ones at random: far vertices at "
                           "every distance, after near and far ones", {"base-mesh"}, far_chain(3000, 51), Encode3dOptions{}, traced));
+    suite.push_back(valid("base-09-dense-soup", "300 faces on 32 vertices at random: gates with 3 and more candidates at every pair of "
+                          "degrees, every candidate index", {"base-mesh"}, dense_soup(32, 300, 54), Encode3dOptions{}, traced));
     suite.push_back(valid("base-07-spikes", "1,291 vertices numbered at random, a quarter of them off their place by 2^−2 … 2^−23 of the box on a "
                           "24-bit grid: position and order residuals of every prefix length", {"base-mesh"}, spiky, bits24, traced));
   }
