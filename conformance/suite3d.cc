@@ -1033,6 +1033,16 @@ MeshSequence shuffled_grid(int frames) {
   return s;
 }
 
+// Frames of s.vertex_count positions at random on a 2^−10 grid of the unit box.
+void add_random_frames(MeshSequence& s, int frames, SplitMix64& random) {
+  for (int f = 0; f < frames; ++f) {
+    std::vector<Vec3> frame;
+    for (NodeIndex v = 0; v < s.vertex_count; ++v)
+      frame.push_back({random.uniform(0, 1023) / 1024.0, random.uniform(0, 1023) / 1024.0, random.uniform(0, 1023) / 1024.0});
+    s.frames.push_back(std::move(frame));
+  }
+}
+
 // A chain of faces, each across an edge of the one before, whose third
 // vertex is new or, half of the time, an earlier vertex at random: far
 // vertices at every distance from the gate's (up to the vertex count),
@@ -1065,12 +1075,7 @@ MeshSequence far_chain(int faces, uint64_t seed) {
     add(b, a, c);
   }
   s.vertex_count = count;
-  for (int f = 0; f < 2; ++f) {
-    std::vector<Vec3> frame;
-    for (NodeIndex v = 0; v < count; ++v)
-      frame.push_back({random.uniform(0, 1023) / 1024.0, random.uniform(0, 1023) / 1024.0, random.uniform(0, 1023) / 1024.0});
-    s.frames.push_back(std::move(frame));
-  }
+  add_random_frames(s, 2, random);
   return s;
 }
 
@@ -1091,12 +1096,7 @@ MeshSequence dense_soup(uint32_t vertices, int faces, uint64_t seed) {
     edges.insert({c, a});
   }
   s.vertex_count = vertices;
-  for (int f = 0; f < 2; ++f) {
-    std::vector<Vec3> frame;
-    for (NodeIndex v = 0; v < vertices; ++v)
-      frame.push_back({random.uniform(0, 1023) / 1024.0, random.uniform(0, 1023) / 1024.0, random.uniform(0, 1023) / 1024.0});
-    s.frames.push_back(std::move(frame));
-  }
+  add_random_frames(s, 2, random);
   return s;
 }
 
