@@ -71,10 +71,8 @@ int run_encode(const EncodeArgs& args) {
       progress.update(k + 1);
     }
     progress.finish();
-    if (std::string kinds; !frames.empty() && !frames.front().dropped.empty()) {
-      for (const std::string& kind : frames.front().dropped) kinds += (kinds.empty() ? "" : ", ") + kind;
-      console::say("note: %s: only x, y and faces are coded; its %s records are left out", files.front().c_str(), kinds.c_str());
-    }
+    if (const std::string note = dropped_records_note(files.front(), frames.front().dropped, "x, y and faces"); !note.empty())
+      console::say("note: %s", note.c_str());
     planes = planes_from_frames(frames, files, args.scale).planes;
   }
   Trace trace(std::cout);

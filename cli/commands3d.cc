@@ -130,13 +130,16 @@ fs::path staging_folder(const std::string& output) {
 
 }  // namespace
 
-MeshSequence load_sequence_or_stream(const std::string& path, bool* coding_order) {
+MeshSequence load_sequence_or_stream(const std::string& path, StreamFacts* facts) {
   console::set_input(path);
-  if (coding_order) *coding_order = false;
+  if (facts) *facts = StreamFacts{};
   if (path == "-" || fs::is_regular_file(path)) {
     const std::vector<uint8_t> bytes = read_file(path);
     if (is_mesh3d_stream(bytes)) {
-      if (coding_order) *coding_order = Mesh3dDecoder(bytes).vertex_order() == kVertexOrderCoding;
+      if (facts) {
+        const Mesh3dDecoder header(bytes);
+        *facts = {header.codec().name, bytes.size(), header.vertex_order() == kVertexOrderCoding};
+      }
       return decode_mesh3d(bytes);
     }
   }
@@ -383,10 +386,9 @@ int run_decode3d(const Decode3dArgs& args) {
     return 1;
   }
   if (written.empty()) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--frames " + args.frames + ": the stream has no frame there");
-  if (!writes) {
-  } else if (to_folder) {
+  if (to_folder) {
     install_obj_frames(temporary, fs::path(args.output));
-  } else if (form == SequenceOutput::kF32) {
+  } else if (writes && form == SequenceOutput::kF32) {
     std::string bytes;
     for (const std::vector<Vec3>& frame : sequence.frames) {
       std::vector<Float3> positions;
@@ -395,7 +397,7 @@ int run_decode3d(const Decode3dArgs& args) {
       bytes.append(b.begin(), b.end());
     }
     write_file_atomically(args.output, bytes);
-  } else {
+  } else if (writes) {
     sequence.faces = decoder.faces();
     write_sequence_file(form, sequence, args.output);
   }
@@ -530,9 +532,9 @@ int run_metrics(const MetricsArgs& args) {
     rates.push_back({"refinement_rate_bpvf", "(refinement units over vertices × frames)",
                      refinement_bytes > 0 ? 8.0 * static_cast<double>(refinement_bytes) / (v * f) : kNone});
   }
-  bool coding_order = false;
-  const MeshSequence decoded = load_sequence_or_stream(args.decoded, &coding_order);
-  const MeshSequence original = original_as_decoded(given_original, decoded, coding_order, args.decoded);
+  StreamFacts facts;
+  const MeshSequence decoded = load_sequence_or_stream(args.decoded, &facts);
+  const MeshSequence original = original_as_decoded(given_original, decoded, facts.coding_order, args.decoded);
   for (const std::string& warning : metrics_warnings(original)) say("warning: %s", warning.c_str());
   const SequenceMetrics m = compare_sequences(original, decoded);
   const std::vector<FrameMetrics> frames = args.per_frame ? per_frame_metrics(original, decoded) : std::vector<FrameMetrics>{};
@@ -612,23 +614,24 @@ int run_progressive(const ProgressiveArgs& args) {
   const MeshSequence given_original = load_sequence(args.original, !console::quiet());
   console::set_input(args.stream);
   const std::vector<uint8_t> stream = read_file(args.stream);
-  Mesh3dDecoder first_unit(stream);
-  if (!first_unit.progressive())
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
-                args.stream + ": " + first_unit.codec().name + " decodes frame by frame; progressive needs a progressive codec (cpca-wpt)");
-  first_unit.next_unit();  // the base mesh: the decoded faces
-  const MeshSequence faces_only{first_unit.header().vertex_count, first_unit.faces(), {}};
-  const MeshSequence original =
-      original_as_decoded(given_original, faces_only, first_unit.vertex_order() == kVertexOrderCoding, args.stream);
-  const MetricsReference reference(original);
+  const bool coding_order = Mesh3dDecoder(stream).vertex_order() == kVertexOrderCoding;
   const uint64_t step = args.step > 0 ? args.step : std::max<uint64_t>(1, stream.size() / 40);
-  // Units: the base mesh and refinements (hash units count in the bytes).
-  std::printf("%6s %10s %10s %10s %12s\n", "units", "bytes", "KG %", "PSNR dB", "STED");
+  // Set up at the first unit, whose faces the original is matched to
+  // (for_each_prefix refuses a stream that is not progressive before).
+  std::optional<MeshSequence> original;
+  std::optional<MetricsReference> reference;  // of *original
   uint64_t next_report = 0;
   for_each_prefix(stream, [&](size_t units, uint64_t bytes, const MeshSequence& decoded) {
+    const bool first = !reference;
+    if (first) {
+      original = original_as_decoded(given_original, decoded, coding_order, args.stream);
+      reference.emplace(*original);
+    }
     if (bytes < next_report && bytes < stream.size()) return;
     next_report = bytes + step;
-    const SequenceMetrics m = reference.compare(decoded);
+    const SequenceMetrics m = reference->compare(decoded);
+    // Units: the base mesh and refinements (hash units count in the bytes).
+    if (first) std::printf("%6s %10s %10s %10s %12s\n", "units", "bytes", "KG %", "PSNR dB", "STED");
     std::printf("%6zu %10llu %10.5f %10.3f %12.9f\n", units, static_cast<unsigned long long>(bytes), m.kg_error, m.psnr, m.sted);
   });
   return 0;

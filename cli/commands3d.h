@@ -13,10 +13,16 @@ class App;
 
 namespace m4mesh {
 
-// A sequence's frames, or a mesh3d stream's decoded frames (read once);
-// `coding_order` tells whether a stream numbers its vertices in coding
-// order (encode3d --reorder).
-MeshSequence load_sequence_or_stream(const std::string& path, bool* coding_order = nullptr);
+// What a stream tells besides its frames; an empty codec for a sequence.
+struct StreamFacts {
+  std::string codec;
+  uint64_t bytes = 0;
+  bool coding_order = false;  // its vertices numbered in coding order (encode3d --reorder)
+};
+
+// A sequence's frames, or a mesh3d stream's decoded frames (read once),
+// with the stream's facts in `facts`.
+MeshSequence load_sequence_or_stream(const std::string& path, StreamFacts* facts = nullptr);
 
 // The original numbered as `decoded` numbers its vertices: when a stream
 // of encode3d --reorder was decoded, in coding order (the encoder's plan of

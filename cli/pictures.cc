@@ -6,7 +6,6 @@
 
 #include "cli/commands3d.h"
 #include "cli/console.h"
-#include "codecs3d/registry.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "decoder/decoder.h"
@@ -32,14 +31,12 @@ uint32_t gif_delay(double fps) {
   return static_cast<uint32_t>(std::lround(100.0 / fps));
 }
 
-// A stream's codec and rate ("bfs3d 2.35 bpvf"), empty for a sequence.
-std::string stream_label(const std::string& path, const MeshSequence& decoded) {
-  if (path != "-" && !std::filesystem::is_regular_file(path)) return "";
-  const std::vector<uint8_t> bytes = read_file(path);
-  if (!is_mesh3d_stream(bytes)) return "";
+// A stream's codec and rate ("bfs3d 2.350 BPVF"), empty for a sequence.
+std::string stream_label(const StreamFacts& facts, const MeshSequence& decoded) {
+  if (facts.codec.empty()) return "";
   char text[96];
-  std::snprintf(text, sizeof text, "%s %.3f BPVF", Mesh3dDecoder(bytes).codec().name.c_str(),
-                8.0 * static_cast<double>(bytes.size()) / (static_cast<double>(decoded.vertex_count) * static_cast<double>(decoded.frames.size())));
+  std::snprintf(text, sizeof text, "%s %.3f BPVF", facts.codec.c_str(),
+                8.0 * static_cast<double>(facts.bytes) / (static_cast<double>(decoded.vertex_count) * static_cast<double>(decoded.frames.size())));
   return text;
 }
 
@@ -107,11 +104,11 @@ int run_render3d(const Render3dArgs& args) {
   if (args.max_error && args.compare.empty()) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--max-error colours the error: it needs --compare");
   refuse_overwriting(args.input, args.output);
   if (!args.compare.empty()) refuse_overwriting(args.compare, args.output);
-  bool coding_order = false;
-  const MeshSequence shown = load_sequence_or_stream(args.input, &coding_order);
+  StreamFacts facts;
+  const MeshSequence shown = load_sequence_or_stream(args.input, &facts);
   MeshSequence original;
   if (!args.compare.empty()) {
-    original = original_as_decoded(load_sequence_or_stream(args.compare), shown, coding_order, args.input);
+    original = original_as_decoded(load_sequence_or_stream(args.compare), shown, facts.coding_order, args.input);
     if (original.vertex_count != shown.vertex_count || original.frames.size() != shown.frames.size())
       throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
                   args.compare + ": " + std::to_string(original.vertex_count) + " vertices, " + std::to_string(original.frames.size()) +
@@ -138,7 +135,7 @@ int run_render3d(const Render3dArgs& args) {
     for (size_t f = 0; f < shown.frames.size(); ++f)
       for (uint32_t i = 0; i < shown.vertex_count; ++i) max_error = std::max(max_error, error_at(f, i));
   const double scale = args.max_error ? *args.max_error : max_error;
-  const std::string label = stream_label(args.input, shown);
+  const std::string label = stream_label(facts, shown);
   const uint32_t width = compare ? 2 * args.size + 80 : args.size;
   Image image(width, args.size);
   auto draw = [&](size_t f) {

@@ -96,6 +96,13 @@ ObjFrame read_obj(const std::string& path) {
   return frame;
 }
 
+std::string dropped_records_note(const std::string& file, const std::vector<std::string>& dropped, const std::string& coded) {
+  if (dropped.empty()) return "";
+  std::string kinds;
+  for (const std::string& kind : dropped) kinds += (kinds.empty() ? "" : ", ") + kind;
+  return file + ": only " + coded + " are coded; its " + kinds + " records are left out";
+}
+
 std::vector<std::string> frame_files(const std::string& folder_or_pattern, std::initializer_list<const char*> kinds, std::vector<std::string>* unused) {
   namespace fs = std::filesystem;
   auto lower = [](std::string text) {

@@ -17,6 +17,10 @@ struct ObjFrame {
   std::vector<std::string> dropped;     // the kinds of record read past (vt, vn, usemtl, …), each once
 };
 
+// "FILE: only CODED are coded; its vt, vn records are left out" for the
+// records a frame dropped, or "" when it dropped none.
+std::string dropped_records_note(const std::string& file, const std::vector<std::string>& dropped, const std::string& coded);
+
 // Errors name the file and line: malformed records, non-finite numbers,
 // face indices out of range.
 ObjFrame read_obj(const std::string& path);

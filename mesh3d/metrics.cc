@@ -64,12 +64,8 @@ namespace {
 double largest_box_diagonal(const MeshSequence& a) {
   double dmax = 0;
   for (const std::vector<Vec3>& frame : a.frames) {
-    Vec3 lo = frame[0], hi = lo;
-    for (const Vec3& v : frame) {
-      lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
-      hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
-    }
-    dmax = std::max(dmax, distance(lo, hi));
+    const Box3 box = box_of(frame);
+    dmax = std::max(dmax, distance(box.lo, box.hi));
   }
   return dmax;
 }
@@ -259,11 +255,7 @@ double diameter(std::span<const Vec3> points) {
   // A point is farther than |p − c| + R from none (c the box centre, R the
   // largest distance from c): only points whose bound exceeds the lower
   // bound can end a longer pair, and both ends of one must.
-  Vec3 lo = points[0], hi = points[0];
-  for (const Vec3& p : points) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
+  const auto [lo, hi] = box_of(points);
   const Vec3 centre{(lo.x + hi.x) / 2, (lo.y + hi.y) / 2, (lo.z + hi.z) / 2};
   double radius = 0;
   for (const Vec3& p : points) radius = std::max(radius, distance(p, centre));

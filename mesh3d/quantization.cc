@@ -10,14 +10,9 @@ namespace m4mesh {
 
 namespace {
 
-void extend(Vec3& lo, Vec3& hi, const std::vector<Vec3>& frame) {
-  for (const Vec3& v : frame) {
-    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
-    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
-  }
-}
-
-Grid over_box(const Vec3& lo, const Vec3& hi, int bits, bool equal_steps) {
+Grid over_box(const Box3& box, int bits, bool equal_steps) {
+  const Vec3& lo = box.lo;
+  const Vec3& hi = box.hi;
   const double extent[3] = {hi.x - lo.x, hi.y - lo.y, hi.z - lo.z};
   const double largest = std::max({extent[0], extent[1], extent[2], 1e-30});
   const double steps = std::ldexp(1.0, bits) - 1;
@@ -33,11 +28,7 @@ Grid over_box(const Vec3& lo, const Vec3& hi, int bits, bool equal_steps) {
 
 }  // namespace
 
-Grid Grid::over(const std::vector<Vec3>& frame, int bits, bool equal_steps) {
-  Vec3 lo = frame[0], hi = frame[0];
-  extend(lo, hi, frame);
-  return over_box(lo, hi, bits, equal_steps);
-}
+Grid Grid::over(const std::vector<Vec3>& frame, int bits, bool equal_steps) { return over_box(box_of(frame), bits, equal_steps); }
 
 Grid Grid::covering(const MeshSequence& s, int bits, bool equal_steps) {
   const Grid first = over(s.frames[0], bits, equal_steps);
@@ -46,9 +37,9 @@ Grid Grid::covering(const MeshSequence& s, int bits, bool equal_steps) {
   for (const std::vector<Vec3>& frame : s.frames)
     for (const Vec3& v : frame) fits = fits && first.quantize(v, q);
   if (fits) return first;
-  Vec3 lo = s.frames[0][0], hi = lo;
-  for (const std::vector<Vec3>& frame : s.frames) extend(lo, hi, frame);
-  return over_box(lo, hi, bits, equal_steps);
+  Box3 box;
+  for (const std::vector<Vec3>& frame : s.frames) box.add(frame);
+  return over_box(box, bits, equal_steps);
 }
 
 bool Grid::quantize(const Vec3& p, IntPoint3& q) const {

@@ -185,11 +185,8 @@ MeshSequence load_sequence(const std::string& path, bool progress) {
     MeshFrame frame = extension == ".off" ? read_off(files[k]) : extension == ".ply" ? read_ply(files[k]) : read_obj_frame(files[k]);
     if (k == 0) {
       if (frame.vertices.size() < 3 || frame.faces.empty()) throw input_error(files[k], 0, "a mesh needs vertices and faces");
-      if (progress && !frame.dropped.empty()) {
-        std::string kinds;
-        for (const std::string& kind : frame.dropped) kinds += (kinds.empty() ? "" : ", ") + kind;
-        std::fprintf(stderr, "note: %s: only positions and faces are coded; its %s records are left out\n", files[k].c_str(), kinds.c_str());
-      }
+      if (const std::string note = dropped_records_note(files[k], frame.dropped, "positions and faces"); progress && !note.empty())
+        std::fprintf(stderr, "note: %s\n", note.c_str());
       sequence.vertex_count = static_cast<uint32_t>(frame.vertices.size());
       sequence.faces = frame.faces;
     } else {

@@ -3,6 +3,8 @@
 // the project's compact binary format (.m4seq).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -16,6 +18,24 @@ struct Vec3 {
   double x = 0, y = 0, z = 0;
   friend bool operator==(const Vec3&, const Vec3&) = default;
 };
+
+// The axis-aligned bounding box of points; empty (lo > hi) before the first.
+struct Box3 {
+  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  void add(const Vec3& p) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  void add(std::span<const Vec3> points) {
+    for (const Vec3& p : points) add(p);
+  }
+};
+
+inline Box3 box_of(std::span<const Vec3> points) {
+  Box3 box;
+  box.add(points);
+  return box;
+}
 
 struct MeshSequence {
   uint32_t vertex_count = 0;

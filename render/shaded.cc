@@ -63,7 +63,6 @@ void draw_text(Image& image, uint32_t x, uint32_t y, const std::string& text, in
   }
 }
 
-
 Camera::Camera(const Vec3& lo, const Vec3& hi, double azimuth, double elevation, uint32_t size) : size_(size) {
   const double a = azimuth * std::numbers::pi / 180, e = elevation * std::numbers::pi / 180;
   // y is up; the viewer sits at azimuth a around it, e above the horizon.
@@ -85,23 +84,10 @@ std::array<double, 3> Camera::project(const Vec3& p) const {
   return {size_ / 2.0 + scale_ * dot(d, right_), size_ / 2.0 - scale_ * dot(d, up_), dot(d, view_)};
 }
 
-static std::pair<Vec3, Vec3> frame_box(std::span<const Vec3> frame) {
-  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-  for (const Vec3& v : frame) {
-    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)};
-    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};
-  }
-  return {lo, hi};
-}
-
 std::pair<Vec3, Vec3> sequence_box(const MeshSequence& s) {
-  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-  for (const std::vector<Vec3>& frame : s.frames) {
-    const auto [flo, fhi] = frame_box(frame);
-    lo = {std::min(lo.x, flo.x), std::min(lo.y, flo.y), std::min(lo.z, flo.z)};
-    hi = {std::max(hi.x, fhi.x), std::max(hi.y, fhi.y), std::max(hi.z, fhi.z)};
-  }
-  return {lo, hi};
+  Box3 box;
+  for (const std::vector<Vec3>& frame : s.frames) box.add(frame);
+  return {box.lo, box.hi};
 }
 
 std::vector<std::pair<Vec3, Vec3>> view_boxes(const MeshSequence& s, View view) {
@@ -109,9 +95,9 @@ std::vector<std::pair<Vec3, Vec3>> view_boxes(const MeshSequence& s, View view) 
   if (view == View::kSequence) return std::vector<std::pair<Vec3, Vec3>>(s.frames.size(), sequence_box(s));
   Vec3 extent{0, 0, 0};  // the largest frame's, per axis
   for (const std::vector<Vec3>& frame : s.frames) {
-    boxes.push_back(frame_box(frame));
-    const auto& [lo, hi] = boxes.back();
-    extent = {std::max(extent.x, hi.x - lo.x), std::max(extent.y, hi.y - lo.y), std::max(extent.z, hi.z - lo.z)};
+    const Box3 box = box_of(frame);
+    boxes.emplace_back(box.lo, box.hi);
+    extent = {std::max(extent.x, box.hi.x - box.lo.x), std::max(extent.y, box.hi.y - box.lo.y), std::max(extent.z, box.hi.z - box.lo.z)};
   }
   if (view == View::kFollow)
     for (auto& [lo, hi] : boxes) {
