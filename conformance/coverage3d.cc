@@ -100,24 +100,37 @@ std::set<std::string> coverage_items3d(std::span<const uint8_t> stream) {
 
 std::map<std::string, std::set<std::string>> coverage_catalog3d() {
   std::map<std::string, std::set<std::string>> c;
-  // The base mesh. deg(a), deg(b) ≥ 1 at every gate (a gate lies on a
-  // decoded face), so no context with a degree 0 is reachable;
+  // The base mesh. deg(a), deg(b) ≥ 1 at every gate a → b (a gate lies on
+  // a decoded face), so no context with a degree 0 is reachable;
   // gate_candidate is read only with candidates ≥ 1, candidate_index's
-  // first bin only with 2 or more. Each decoded face around b gives at most
-  // one open half-edge b → c, each around a one c → a, and the gate's own
-  // face gives the same c twice: at most deg(a) + deg(b) − 1 candidates, so
-  // with both degrees 1 at most one.
+  // first bin only with 2 or more. Gates are visited first in, first out,
+  // and a visited gate is closed (a border, or the face attached closes
+  // it), so a gate's candidates come from half-edges added after it: the
+  // next new half-edge of its own face, and one per face decoded since (a
+  // face holding both a half-edge out of b and one into a would repeat
+  // a → b). The face attached behind gate u → t is (t, u, c), whose new
+  // gates are u → c, then c → t, and u and t had a face before. So, with D
+  // the larger degree, gate u → c (deg(u) ≥ 2) sees at most
+  // 1 + (D − 2) + (D − 1) candidates, c → t at most (D − 2) + (D − 1), a
+  // seed's gates at most 2: at most 2D − 2 for D ≥ 2, and 1 for D = 1.
+  // With deg(a) = 1, a is the new vertex c of gate c → t (u → c was a
+  // border), whose candidates are the later faces' at t: at most
+  // deg(b) − 2. With deg(b) = 1, b is the new vertex c of gate u → c (or a
+  // seed's corner), whose first candidate t gives the face (c, u, t), which
+  // repeats the half-edge u → t: candidate index 0 is never valid.
   std::set<std::string>& base = c["base-mesh"];
   for (int v = 0; v < 2; ++v) {
     for (int candidates = 0; candidates <= 3; ++candidates)
       for (int degree = 1; degree <= 7; ++degree) {
-        if (candidates > 2 * degree - 1) continue;
+        if (candidates > (degree == 1 ? 1 : 2 * degree - 2)) continue;
         base.insert(bin_item("base-mesh", "gate_new_vertex", candidates * 8 + degree, v));
         if (candidates > 0) base.insert(bin_item("base-mesh", "gate_candidate", candidates * 8 + degree, v));
       }
     for (int b = 1; b <= 7; ++b)
-      for (int a = 1; a <= 7; ++a)
-        if (a + b >= 3) base.insert(bin_item("base-mesh", "candidate_index", b * 8 + a, v));
+      for (int a = 1; a <= 7; ++a) {
+        if ((a == 1 && b < 4) || (b == 1 && (a == 1 || v == 0))) continue;
+        base.insert(bin_item("base-mesh", "candidate_index", b * 8 + a, v));
+      }
     for (int later = 64; later <= 67; ++later) base.insert(bin_item("base-mesh", "candidate_index", later, v));
     for (int border = 0; border < 2; ++border) base.insert(bin_item("base-mesh", "gate_border", border, v));
     base.insert(bin_item("base-mesh", "seed_new_vertex", 0, v));

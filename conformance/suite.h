@@ -25,6 +25,7 @@ struct SuiteCase {
   std::string error_element;
   int64_t error_plane = kNoPlane;
   std::string encoder_trace;  // 3D, when built with traces: what the encoder printed while writing it
+  bool written = false;       // 3D: units written symbol by symbol, not by the encoder: no encoder trace
 };
 
 // A case to decode, and one to reject with the error a decoder must report.

@@ -6,17 +6,22 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
 #include <string_view>
+#include <tuple>
 
 #include "common/atomic_file.h"
 #include "common/md5.h"
 #include "common/random.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
+#include "mesh3d/affine_octree.h"
 #include "mesh3d/base_mesh.h"
+#include "mesh3d/cpca_wpt.h"
 #include "mesh3d/lcc.h"
 #include "mesh3d/quantization.h"
 #include "syntax/mesh3d/affine_octree.h"
@@ -29,7 +34,6 @@
 namespace m4mesh {
 
 namespace {
-
 
 // Inputs built with +, − and × of small rationals only, so that every
 // platform builds the same doubles: the surface of a box (closed, n × n
@@ -207,6 +211,166 @@ MeshSequence spiky_sheet(int frames, int n, int loose, uint64_t seed, int one_in
   return s;
 }
 
+// A residual of each class of syntax/mesh3d/residual.h (a zero, a
+// residual of prefix length 0, one of length 1, at order k = 0), each
+// followed by ±2^e for e from 0 to max_e: pattern(class residual, ±2^e)
+// for every pair, signs alternating.
+template <class Pattern>
+void for_each_prefix_pattern(int max_e, Pattern pattern) {
+  int32_t sign = 1;
+  for (int cls = 0; cls < syntax::ResidualCoder<1>::kClasses; ++cls)
+    for (int e = 0; e <= max_e; ++e) {
+      pattern(sign * cls, -sign * (int32_t{1} << e));
+      sign = -sign;
+    }
+}
+
+// Residuals that reach every prefix bin of a channel after each class: the
+// patterns of for_each_prefix_pattern(), each after a run of zeros long
+// enough for the channel's order k to return to 0 (the running sum decays
+// by 1/16 per symbol, to below 16).
+std::vector<int32_t> prefix_schedule() {
+  constexpr int kQuiet = 100;  // a sum of 2^13 + 2 decays below 16 in 100 symbols
+  std::vector<int32_t> schedule;
+  for_each_prefix_pattern(13, [&](int32_t first, int32_t second) {
+    schedule.insert(schedule.end(), kQuiet, 0);
+    schedule.push_back(first);
+    schedule.push_back(second);
+  });
+  return schedule;
+}
+
+// A sequence on the unit grid of 16 bits (the box 0 … 65,535 held by two
+// vertices in no face, so that a grid step is 1) whose `loose` vertices in
+// no face, coded directly one after the other, are offset from their place
+// in frame 0 by `offset(f, v)` steps on each axis; a 2 × 2 sheet beside
+// them stays put.
+MeshSequence designed_loose(int frames, int loose, const std::function<int32_t(int, int)>& offset) {
+  MeshSequence s;
+  s.faces = sheet_faces(2, 2);
+  const int sheet = 9;
+  s.vertex_count = static_cast<uint32_t>(sheet + loose + 2);
+  for (int f = 0; f < frames; ++f) {
+    std::vector<Vec3> frame;
+    for (int v = 0; v < sheet; ++v) frame.push_back({1000.0 * (v % 3), 1000.0 * (v / 3), 0});
+    for (int v = 0; v < loose; ++v) {
+      const double d = f == 0 ? 0 : offset(f, v);
+      frame.push_back({20000.0 + 16 * (v % 64) + d, 20000.0 + 16 * (v / 64) + d, 30000 + d});
+    }
+    frame.push_back({0, 0, 0});
+    frame.push_back({65535, 65535, 65535});
+    s.frames.push_back(std::move(frame));
+  }
+  return s;
+}
+
+// A 2 × 2 sheet and, in no face, a chain of vertices in the middle of the
+// unit grid of 16 bits (as designed_loose()), each one `schedule`'s next
+// value of steps on every axis off the one before: the residuals of the
+// base mesh's positions predicted by the previous vertex.
+MeshSequence loose_chain(const std::vector<int32_t>& schedule) {
+  MeshSequence s = designed_loose(1, 0, {});
+  s.vertex_count += static_cast<uint32_t>(schedule.size());
+  std::vector<Vec3>& frame = s.frames[0];
+  Vec3 at{32768, 32768, 32768};
+  for (int32_t step : schedule) {
+    at = {at.x + step, at.y + step, at.z + step};
+    frame.push_back(at);
+  }
+  s.frames.push_back(frame);
+  return s;
+}
+
+// Separate quads on the unit grid of 16 bits (as designed_loose()), each
+// two faces (a, b, c), (c, b, d) at the same place but for d, which is
+// `schedule`'s next value of steps on every axis off the parallelogram
+// b + c − a: the residuals of the base mesh's parallelogram prediction.
+MeshSequence parallelogram_quads(const std::vector<int32_t>& schedule) {
+  MeshSequence s = designed_loose(1, 0, {});
+  std::vector<Vec3>& frame = s.frames[0];
+  for (int32_t step : schedule) {
+    const NodeIndex a = static_cast<NodeIndex>(frame.size());
+    s.faces.push_back({{a, a + 1, a + 2}});
+    s.faces.push_back({{a + 2, a + 1, a + 3}});
+    frame.push_back({32768, 32768, 32768});
+    frame.push_back({32784, 32768, 32768});
+    frame.push_back({32768, 32784, 32768});
+    frame.push_back({32784.0 + step, 32784.0 + step, 32768.0 + step});
+  }
+  s.vertex_count = static_cast<uint32_t>(frame.size());
+  s.frames.push_back(frame);
+  return s;
+}
+
+// Three vertices on the unit grid of 16 bits, so few that the root cell
+// codes their motion directly, in index order, with contexts fresh per
+// frame. Per pattern of for_each_prefix_pattern(), a frame where the first
+// vertex moves by the class's residual and the second by ±2^e on every
+// axis, then a frame back; the third holds the box.
+MeshSequence direct_triples() {
+  const std::vector<Vec3> place = {{0, 0, 0}, {32768, 32768, 32768}, {65535, 65535, 65535}};
+  MeshSequence s;
+  s.faces = {{{0, 1, 2}}};
+  s.vertex_count = 3;
+  s.frames.push_back(place);
+  for_each_prefix_pattern(13, [&](int32_t first, int32_t second) {
+    std::vector<Vec3> moved = place;
+    moved[0] = {1.0 * first, 1.0 * first, 1.0 * first};
+    moved[1] = {32768.0 + second, 32768.0 + second, 32768.0 + second};
+    s.frames.push_back(moved);
+    s.frames.push_back(place);
+  });
+  return s;
+}
+
+// Two clusters of 5 vertices on the unit grid of 19 bits, in opposite
+// octants of the root cube, 2^17 apart within each, so that every
+// reconstruction term is exact. Per class and prefix length e (as
+// prefix_schedule()), a frame where the first cluster moves by the matrix
+// whose 12 residuals from identity are the class's residual and the second
+// by one whose residuals are ∓2^e, each its cell's exact fit (for k = 16,
+// f = 14), then a frame back to the clusters' places.
+MeshSequence matrix_pairs() {
+  constexpr int kFraction = 14;
+  constexpr int64_t kFar = (1 << 19) - 1, kApart = 1 << 17;
+  const std::array<int64_t, 3> shape[5] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}};
+  std::vector<IntPoint3> place;
+  for (int cluster = 0; cluster < 2; ++cluster)
+    for (const auto& corner : shape) {
+      IntPoint3 p;
+      for (int axis = 0; axis < 3; ++axis) p[axis] = static_cast<int32_t>(cluster ? kFar - kApart * corner[axis] : kApart * corner[axis]);
+      place.push_back(p);
+    }
+  const RootCube cube = root_cube(place);
+  auto frame_of = [](std::span<const IntPoint3> grid) {
+    std::vector<Vec3> frame;
+    for (const IntPoint3& p : grid) frame.push_back({1.0 * p[0], 1.0 * p[1], 1.0 * p[2]});
+    return frame;
+  };
+  MeshSequence s;
+  s.faces = {{{0, 1, 2}}, {{5, 6, 7}}};
+  s.vertex_count = 10;
+  s.frames.push_back(frame_of(place));
+  for_each_prefix_pattern(13, [&](int32_t first, int32_t second) {
+    const int32_t residual[2] = {first, second};
+    std::vector<IntPoint3> moved = place;
+    for (int cluster = 0; cluster < 2; ++cluster) {
+      AffineMatrix q;
+      q.fill(residual[cluster]);
+      for (int axis = 0; axis < 3; ++axis) q[static_cast<size_t>(5 * axis)] += 1 << kFraction;
+      const std::array<int64_t, 3> corner{cube.min[0] + cluster * (cube.side >> 1), cube.min[1] + cluster * (cube.side >> 1),
+                                          cube.min[2] + cluster * (cube.side >> 1)};
+      for (size_t v = 5 * static_cast<size_t>(cluster); v < 5 * static_cast<size_t>(cluster) + 5; ++v) {
+        const std::array<int64_t, 3> p = apply_affine(q, kFraction, corner, cube.side, place[v]);
+        moved[v] = {static_cast<int32_t>(p[0]), static_cast<int32_t>(p[1]), static_cast<int32_t>(p[2])};
+      }
+    }
+    s.frames.push_back(frame_of(moved));
+    s.frames.push_back(frame_of(place));
+  });
+  return s;
+}
+
 // The flag's rest shape in a file (the lcc codec's --reference takes one).
 std::string rest_shape_file(const MeshSequence& flag) {
   MeshSequence rest = flag;
@@ -347,6 +511,14 @@ SuiteCase valid(std::string id, std::string purpose, std::vector<std::string> cl
   return c;
 }
 
+// A stream to decode whose units (some or all) are written symbol by
+// symbol, for what m4mesh's encoder never writes.
+SuiteCase written_case(std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream) {
+  SuiteCase c = decode_case(std::move(id), std::move(purpose), std::move(clauses), std::move(stream));
+  c.written = true;
+  return c;
+}
+
 // A stream to reject with the error a decoder must report (the frame as its plane).
 SuiteCase invalid(std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream, ErrorKind kind,
                   std::string element, int64_t frame) {
@@ -393,6 +565,49 @@ const std::vector<uint8_t>& find(const std::vector<SuiteCase>& cases, const std:
   for (const SuiteCase& c : cases)
     if (c.id == id) return c.stream;
   throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no case " + id);
+}
+
+// An Affine-Octree frame unit with its header and the one cell `cell` of
+// `count` vertices, the root, written through `coder` (direct_shift 0).
+std::vector<uint8_t> ao_root_unit(const AffineOctreeHeader& coder, uint32_t count, AffineCell cell, std::vector<uint8_t> unit_header) {
+  AffineCellCoder cells(coder);
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+  cells.describe(symbols, 0, count, cell);
+  const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
+  AffineFrame data{0, static_cast<uint32_t>(bins.size()), bins, raw};
+  BitWriter writer;
+  syntax::WriteIO out(writer);
+  syntax::describe(out, data);
+  unit_header.insert(unit_header.end(), writer.bytes().begin(), writer.bytes().end());
+  return unit_header;
+}
+
+// An Affine-Octree frame unit of `stream` whose only cell, the root, is a
+// leaf with the identity matrix but element 0 one above what matrix_bits
+// allows (written with twice the range at the same fraction bits).
+std::vector<uint8_t> ao_matrix_beyond_unit(const std::vector<uint8_t>& stream, std::vector<uint8_t> unit_header) {
+  const auto [object, header] = read_headers<AffineOctreeHeader>(split_container(stream));
+  AffineOctreeHeader wider = header;
+  ++wider.matrix_bits;
+  ++wider.matrix_range_log2;
+  AffineCell cell;
+  for (int i = 0; i < 3; ++i) cell.matrix[static_cast<size_t>(5 * i)] = int32_t{1} << header.fraction_bits();
+  cell.matrix[0] = header.matrix_max() + 1;
+  return ao_root_unit(wider, object.vertex_count, cell, std::move(unit_header));
+}
+
+// An Affine-Octree frame unit of `stream` whose root, of more than 4
+// vertices, is a leaf coded directly (m4mesh's encoder splits it instead):
+// vertex v moves by v mod 3 − 1 steps on each axis.
+std::vector<uint8_t> ao_direct_root_unit(const std::vector<uint8_t>& stream, std::vector<uint8_t> unit_header) {
+  const auto [object, header] = read_headers<AffineOctreeHeader>(split_container(stream));
+  AffineCell cell;
+  cell.direct = true;
+  for (uint32_t v = 0; v < object.vertex_count; ++v) {
+    const int32_t d = static_cast<int32_t>(v % 3) - 1;
+    cell.motion.push_back({d, d, d});
+  }
+  return ao_root_unit(header, object.vertex_count, cell, std::move(unit_header));
 }
 
 // Affine-Octree streams: the paper's settings and the extremes of each header field.
@@ -457,6 +672,29 @@ std::vector<SuiteCase> affine_octree_cases(bool traced) {
     suite.push_back(valid("ao-10-shallow", "max_depth 1 on a 4-bit grid: leaves of many vertices at depth 1, matrix or direct", {"ao-header", "ao-cell"},
                           spiky_sheet(4, 4, 8, 48, 3), o, traced));
   }
+  {
+    Encode3dOptions o = affine("0.001");
+    o.codec_options["bits"] = "16";
+    suite.push_back(valid("ao-12-direct-prefixes", "three vertices whose direct motion takes every prefix length 0 … 13 after each class",
+                          {"ao-cell"}, direct_triples(), o, traced));
+  }
+  {
+    Encode3dOptions o = affine("0.001");
+    o.codec_options["bits"] = "19";
+    suite.push_back(valid("ao-13-matrix-prefixes", "two clusters whose matrices' residuals take every prefix length 0 … 13 after each class",
+                          {"ao-cell"}, matrix_pairs(), o, traced));
+  }
+  {
+    // ao-01's first two frames, with frame 1 a root leaf coded directly (no hash units: the frame is written, not encoded).
+    Encode3dOptions o = affine("1");
+    o.hashes = false;
+    const std::vector<uint8_t> base = encode_mesh3d(box_and_sheet(2, 4), o).stream;
+    suite.push_back(written_case("ao-14-direct-root", "a root of more than 4 vertices coded directly", {"ao-cell"},
+                                edited(base, [&](ContainerParts& p) {
+                                  ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
+                                  unit.payload = ao_direct_root_unit(base, {unit.payload.begin(), unit.payload.begin() + 5});
+                                })));
+  }
   return suite;
 }
 
@@ -494,7 +732,91 @@ std::vector<SuiteCase> bfs3d_cases(bool traced) {
     o.codec_options = {{"bits", "4"}};
     suite.push_back(valid("bfs3d-05-four-bits", "the coarsest grid, 4 bits", {"bfs3d"}, spiky_sheet(4, 4, 8, 49, 3), o, traced));
   }
+  {
+    // Vertices in no face, predicted from no motion: each frame's motion
+    // of the loose vertices follows prefix_schedule().
+    const std::vector<int32_t> schedule = prefix_schedule();
+    constexpr int kLoose = 429;  // 10 frames of the schedule
+    const int frames = static_cast<int>(schedule.size() + kLoose - 1) / kLoose + 1;
+    auto offset = [&](int f, int v) {
+      int32_t sum = 0;
+      for (size_t i = static_cast<size_t>(v); i < std::min(schedule.size(), static_cast<size_t>(f * kLoose)); i += kLoose) sum += schedule[i];
+      return sum;
+    };
+    Encode3dOptions o;
+    o.codec_options = {{"bits", "16"}};
+    suite.push_back(valid("bfs3d-06-motion-prefixes", "vertices in no face whose motion takes every prefix length 0 … 13 after each class",
+                          {"bfs3d"}, designed_loose(frames, kLoose, offset), o, traced));
+  }
   return suite;
+}
+
+// An lcc frame unit (stream mode) with its header and the symbols of
+// `residuals`, an anchor's or a predicted frame's, written with the
+// residual limit `rh_limit` (the header's, or more to write a value
+// beyond it).
+std::vector<uint8_t> lcc_unit(const LccHeader& header, bool predicted, LccIndices residuals, int32_t rh_limit,
+                              std::vector<uint8_t> unit_header) {
+  syntax::ResidualCoder<syntax::kLccChannels> coder;
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+  syntax::describe_symbols(symbols, coder, predicted, residuals.direct, residuals.steps, int32_t{1} << header.theta_bits, rh_limit);
+  const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
+  LccFrameData data{static_cast<uint32_t>(bins.size()), bins, raw};
+  BitWriter writer;
+  syntax::WriteIO out(writer);
+  syntax::describe(out, data);
+  unit_header.insert(unit_header.end(), writer.bytes().begin(), writer.bytes().end());
+  return unit_header;
+}
+
+// An lcc frame unit of `stream` (stream mode), an anchor or a frame
+// predicted between two, whose residuals are 0 but every rho's, `times`
+// 2^rh_bits + `extra` (written even beyond what the syntax allows).
+std::vector<uint8_t> lcc_rho_unit(const std::vector<uint8_t>& stream, std::vector<uint8_t> unit_header, bool predicted, int32_t times,
+                                  int32_t extra) {
+  const auto [object, header] = read_headers<LccHeader>(split_container(stream));
+  const LccOrder order = lcc_order(decode_mesh3d(stream).faces, object.vertex_count);
+  LccIndices residuals{std::vector<int32_t>(3 * order.direct.size()), std::vector<int32_t>(3 * order.steps.size())};
+  const int32_t rho = times * (int32_t{1} << header.rh_bits) + extra;
+  for (size_t i = 1; i < residuals.steps.size(); i += 3) residuals.steps[i] = rho;
+  // The writer's limit, raised to let rho through (a predicted frame's residuals may reach twice the limit).
+  const int32_t limit = std::max(int32_t{1} << header.rh_bits, predicted ? (rho + 1) / 2 : rho);
+  return lcc_unit(header, predicted, std::move(residuals), limit, std::move(unit_header));
+}
+
+// An lcc stream (stream mode, temporal prediction with gop 2, b_θ 15,
+// b_rh 20, no hash units) of a strip of two quads, written symbol by
+// symbol: per pattern p of for_each_prefix_pattern(), the anchor at frame
+// 2p + 1 and the frame predicted at 2p + 2 take the pattern's values as
+// the residuals of their first two steps' θ, ρ and ζ.
+std::vector<uint8_t> lcc_written_stream() {
+  std::vector<std::pair<int32_t, int32_t>> patterns;
+  for_each_prefix_pattern(13, [&](int32_t first, int32_t second) { patterns.emplace_back(first, second); });
+  MeshSequence strip;
+  strip.faces = sheet_faces(2, 1);
+  strip.vertex_count = 6;
+  for (size_t f = 0; f < 2 * patterns.size() + 2; ++f)
+    strip.frames.push_back({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 0, 1}, {1, 0.25, 1}, {2, 0, 1}});
+  Encode3dOptions o = lcc({{"theta-bits", "15"}, {"rh-bits", "20"}, {"temporal", "1"}, {"gop", "2"}});
+  o.hashes = false;
+  const std::vector<uint8_t> encoded = encode_mesh3d(strip, o).stream;
+  const auto [object, header] = read_headers<LccHeader>(split_container(encoded));
+  const LccOrder order = lcc_order(strip.faces, object.vertex_count);
+  return edited(encoded, [&](ContainerParts& p) {
+    for (ContainerUnit& unit : p.units) {
+      if (unit.payload[0] != static_cast<uint8_t>(UnitType::kFrame)) continue;
+      const uint32_t frame = unit.payload[4];
+      const bool predicted = frame % 2 == 0 && frame + 1 < strip.frames.size();
+      const size_t pattern = predicted ? frame / 2 - 1 : (frame - 1) / 2;
+      LccIndices residuals{std::vector<int32_t>(3 * order.direct.size()), std::vector<int32_t>(3 * order.steps.size())};
+      if (pattern < patterns.size())
+        for (size_t i = 0; i < 3; ++i) {
+          residuals.steps[i] = patterns[pattern].first;
+          residuals.steps[3 + i] = patterns[pattern].second;
+        }
+      unit.payload = lcc_unit(header, predicted, std::move(residuals), int32_t{1} << header.rh_bits, {unit.payload.begin(), unit.payload.begin() + 5});
+    }
+  });
 }
 
 // The cloth codec's streams: both modes, a rest-shape reference, the
@@ -539,6 +861,29 @@ std::vector<SuiteCase> lcc_cases(bool traced) {
     suite.push_back(valid("lcc-13-vertical-line", "a triangle on a line parallel to z: the degenerate frame's axis by the tie rule", {"lcc"}, line,
                           lcc({}), traced));
   }
+  {
+    // Directly coded vertices whose residuals follow prefix_schedule(), in
+    // stream mode (contexts reset per frame, residuals against the
+    // reference), then under temporal prediction: anchors at odd frames
+    // (frame 0 is the reference), midpoints at even frames whose residual
+    // is their offset less the mean of their anchors'.
+    const std::vector<int32_t> schedule = prefix_schedule();
+    constexpr int kLoose = 429;  // 10 frames of the schedule
+    const int per_frame = static_cast<int>(schedule.size() + kLoose - 1) / kLoose;
+    auto at = [&](int j, int v) { return static_cast<size_t>(j * kLoose + v) < schedule.size() ? schedule[static_cast<size_t>(j * kLoose + v)] : 0; };
+    suite.push_back(valid("lcc-14-direct-prefixes", "vertices in no face whose grid residuals take every prefix length 0 … 13 after each class",
+                          {"lcc"}, designed_loose(per_frame + 1, kLoose, [&](int f, int v) { return at(f - 1, v); }), lcc({{"bits", "16"}}),
+                          traced));
+    auto anchor = [&](int f, int v) { return at((f - 1) / 2, v); };
+    auto temporal = [&](int f, int v) {
+      return f % 2 ? anchor(f, v) : static_cast<int32_t>((int64_t{anchor(f - 1, v)} + anchor(f + 1, v)) >> 1) + at(f / 2 - 1, v);
+    };
+    suite.push_back(valid("lcc-15-direct-prefixes-temporal", "lcc-14's residuals at anchors and again at the midpoints between them, gop 2",
+                          {"lcc", "lcc-temporal"}, designed_loose(2 * per_frame + 2, kLoose, temporal),
+                          lcc({{"bits", "16"}, {"temporal", "1"}, {"gop", "2"}}), traced));
+  }
+  suite.push_back(written_case("lcc-16-written", "a stream written symbol by symbol: θ, ρ and ζ residuals of every prefix length 0 … 13 "
+                              "after each class, at anchors and at frames predicted between them", {"lcc", "lcc-temporal"}, lcc_written_stream()));
   suite.push_back(valid("lcc-09-long-chains", "a 200 × 3 strip at b_θ 12: chains of 600 steps, where a 1-ulp angle or axis changes the output",
                         {"lcc"}, waving_strip(6, 200, 3), lcc({{"theta-bits", "12"}}), traced));
   suite.push_back(valid("lcc-10-long-chains-coarse", "a 400 × 3 strip at b_θ 2: every angle a multiple of π/4, the table's octant ends",
@@ -607,14 +952,28 @@ struct BrokenBaseMesh {
   GateAnswer gate(HalfEdge, std::span<const uint32_t>) { return answer; }
 };
 
+// A base mesh unit for frame 0 from its unit header and its symbols.
+std::vector<uint8_t> base_mesh_unit(std::vector<uint8_t> unit_header, syntax::EntropyWriteIO<false>& symbols, uint32_t vertex_order) {
+  const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
+  BaseMeshData data;
+  data.vertex_order = vertex_order;
+  data.arithmetic_bytes = static_cast<uint32_t>(bins.size());
+  data.bins = bins;
+  data.raw = raw;
+  BitWriter writer;
+  syntax::WriteIO out(writer);
+  syntax::describe(out, data);
+  unit_header.insert(unit_header.end(), writer.bytes().begin(), writer.bytes().end());
+  return unit_header;
+}
+
 // A base mesh unit for frame 0 of an object of `vertex_count` vertices and
 // `face_count` faces whose traversal the oracle breaks; or, when the
 // traversal completes, with no loose face and the vertex order (order 1)
 // given by `order_differences`, which breaks it.
 std::vector<uint8_t> broken_base_mesh_unit(std::vector<uint8_t> unit_header, uint32_t vertex_count, uint32_t face_count, BrokenBaseMesh oracle,
                                            std::vector<int32_t> order_differences = {}) {
-  const syntax::SectionPlace place;
-  syntax::EntropyWriteIO<false> symbols(place);
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
   StopAtFailureIO io(symbols);
   syntax::BaseMeshContexts contexts;
   GateTraversal traversal(face_count);
@@ -624,17 +983,283 @@ std::vector<uint8_t> broken_base_mesh_unit(std::vector<uint8_t> unit_header, uin
     for (int32_t& d : order_differences) contexts.order.describe(io, 0, d, syntax::kOrderNames);
   } catch (const StopAtFailureIO::Stop&) {
   }
-  const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
-  BaseMeshData data;
-  data.vertex_order = order_differences.empty() ? kVertexOrderCoding : kVertexOrderFromGate;
-  data.arithmetic_bytes = static_cast<uint32_t>(bins.size());
-  data.bins = bins;
-  data.raw = raw;
-  BitWriter writer;
-  syntax::WriteIO out(writer);
-  syntax::describe(out, data);
-  unit_header.insert(unit_header.end(), writer.bytes().begin(), writer.bytes().end());
-  return unit_header;
+  return base_mesh_unit(std::move(unit_header), symbols, order_differences.empty() ? kVertexOrderCoding : kVertexOrderFromGate);
+}
+
+// A one-frame bfs3d stream (no hash unit) of `vertex_count` vertices and
+// `face_count` faces whose base mesh is written symbol by symbol: the
+// traversal the oracle answers, no loose face, the vertex order given by
+// `order_differences` (coding order without), every position at the
+// grid's origin.
+template <class Oracle>
+std::vector<uint8_t> written_base_mesh_stream(uint32_t vertex_count, uint32_t face_count, Oracle& oracle,
+                                              std::vector<int32_t> order_differences = {}) {
+  MeshSequence points;  // any object of this vertex count: its base mesh unit and face count are replaced
+  points.vertex_count = vertex_count;
+  points.faces = {{{0, 1, 2}}};
+  points.frames.emplace_back(vertex_count, Vec3{0, 0, 0});
+  points.frames[0][0] = {1, 1, 1};
+  Encode3dOptions o;
+  o.hashes = false;
+  const std::vector<uint8_t> encoded = encode_mesh3d(points, o).stream;
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+  syntax::BaseMeshContexts contexts;
+  GateTraversal traversal(face_count);
+  describe_traversal(symbols, contexts, traversal, vertex_count, face_count, &oracle);
+  describe_loose_faces(symbols, vertex_count, std::span<Triangle>());
+  for (int32_t& d : order_differences) contexts.order.describe(symbols, 0, d, syntax::kOrderNames);
+  std::vector<IntPoint3> positions(vertex_count);
+  describe_positions(symbols, contexts, traversal.faces(), positions);
+  const size_t faces_at = header_byte<Bfs3dHeader>(encoded, "face_count");
+  return edited(encoded, [&](ContainerParts& p) {
+    for (size_t i = 0; i < 4; ++i) p.object_payload[faces_at + i] = static_cast<uint8_t>(face_count >> (24 - 8 * i));
+    ContainerUnit& unit = unit_of(p, UnitType::kBaseMesh, 0);
+    unit.payload = base_mesh_unit({unit.payload.begin(), unit.payload.begin() + 5}, symbols,
+                                  order_differences.empty() ? kVertexOrderCoding : kVertexOrderFromGate);
+  });
+}
+
+// Answers for a strip of new vertices, then one far vertex: vertex 0 from
+// the first gate leaving vertex `from` or a later one, so that the unit's
+// first far residual is 0 − from; then the traversal ends (the face count
+// is reached).
+struct FirstFarOracle {
+  uint32_t from = 0;
+  uint32_t visited = 0;
+  bool seed_corner(int, uint32_t&) { return false; }
+  void numbered(uint32_t v) { visited = v + 1; }
+  GateAnswer gate(HalfEdge gate, std::span<const uint32_t>) {
+    if (gate.from >= from) return {GateSymbol::kFarVertex, 0, 0};
+    return {visited <= gate.to + 1 ? GateSymbol::kNewVertex : GateSymbol::kBorder, 0, 0};
+  }
+};
+
+// The faces a base mesh oracle has answered so far, to keep its answers
+// valid.
+class FaceTracker {
+ public:
+  // Whether the face (gate.to, gate.from, c) repeats no vertex and no directed edge.
+  bool can_attach(HalfEdge gate, uint32_t c) const {
+    return c != gate.from && c != gate.to && !edges_.count({gate.to, gate.from}) && !edges_.count({gate.from, c}) && !edges_.count({c, gate.to});
+  }
+  void add(const Triangle& face) {
+    for (int i = 0; i < 3; ++i) edges_.insert({face.v[static_cast<size_t>(i)], face.v[static_cast<size_t>((i + 1) % 3)]});
+  }
+  // The face behind the gate for an answer.
+  void add(HalfEdge gate, const GateAnswer& answer, std::span<const uint32_t> candidates, uint32_t new_vertex) {
+    if (answer.symbol == GateSymbol::kBorder) return;
+    const uint32_t c = answer.symbol == GateSymbol::kNewVertex ? new_vertex
+                       : answer.symbol == GateSymbol::kCandidate ? candidates[answer.candidate]
+                                                                 : answer.far_vertex;
+    add({{gate.to, gate.from, c}});
+  }
+
+ private:
+  std::set<std::pair<uint32_t, uint32_t>> edges_;
+};
+
+// Answers for components of a base mesh, each from its own random seed:
+// seed faces of new vertices, then at each gate a border, a new vertex, a
+// candidate or a far vertex of the component (each with the component's
+// own odds, among the answers that make a valid face) until the component
+// has `kFaces` faces, then borders. Past the last seed, std::out_of_range.
+class ComponentOracle {
+ public:
+  static constexpr uint32_t kFaces = 40;
+
+  explicit ComponentOracle(std::vector<uint64_t> seeds) : seeds_(std::move(seeds)), random_(0) {}
+
+  bool seed_corner(int corner, uint32_t&) {
+    if (corner == 0) {
+      random_ = SplitMix64(seeds_.at(component_++));
+      for (uint32_t& odds : odds_) odds = static_cast<uint32_t>(1 + random_.next() % 8);
+      first_ = visited_;
+      faces_ = 0;
+    }
+    corner_ = corner;
+    return false;
+  }
+  void numbered(uint32_t v) {
+    visited_ = v + 1;
+    if (corner_ < 0) return;
+    seed_.v[static_cast<size_t>(corner_)] = v;
+    if (corner_ == 2) {
+      tracker_.add(seed_);
+      ++faces_;
+    }
+  }
+
+  GateAnswer gate(HalfEdge gate, std::span<const uint32_t> candidates) {
+    corner_ = -1;
+    std::vector<GateAnswer> answers[4];  // border, new vertex, candidate, far vertex
+    answers[0].push_back({GateSymbol::kBorder, 0, 0});
+    if (faces_ < kFaces) {
+      if (tracker_.can_attach(gate, visited_)) answers[1].push_back({GateSymbol::kNewVertex, 0, 0});
+      for (uint32_t i = 0; i < candidates.size(); ++i)
+        if (tracker_.can_attach(gate, candidates[i])) answers[2].push_back({GateSymbol::kCandidate, i, 0});
+      const uint32_t far = first_ + static_cast<uint32_t>(random_.next() % (visited_ - first_));
+      if (tracker_.can_attach(gate, far)) answers[3].push_back({GateSymbol::kFarVertex, 0, far});
+    }
+    uint32_t total = 0;
+    for (int k = 0; k < 4; ++k) total += answers[k].empty() ? 0 : odds_[k];
+    uint32_t pick = static_cast<uint32_t>(random_.next() % total);
+    int kind = 0;
+    while (answers[kind].empty() || pick >= odds_[kind]) {
+      if (!answers[kind].empty()) pick -= odds_[kind];
+      ++kind;
+    }
+    const GateAnswer answer = answers[kind][random_.next() % answers[kind].size()];
+    tracker_.add(gate, answer, candidates, visited_);
+    faces_ += answer.symbol != GateSymbol::kBorder;
+    return answer;
+  }
+
+  uint32_t vertices() const { return visited_; }
+
+ private:
+  std::vector<uint64_t> seeds_;
+  size_t component_ = 0;
+  SplitMix64 random_;
+  uint32_t odds_[4] = {};
+  FaceTracker tracker_;
+  uint32_t visited_ = 0, first_ = 0, faces_ = 0;
+  int corner_ = -1;
+  Triangle seed_{};
+};
+// Writes nothing: records the (element, context, value) of every bin.
+class BinRecorder {
+ public:
+  static constexpr bool kReading = false;
+  void bin(const char* name, BinContext&, int context, bool& value) { bins.insert({name, context, value}); }
+  void raw(const char*, int, uint32_t&) {}
+  [[noreturn]] void fail(ErrorKind kind, const char* element, const std::string& message) const {
+    throw Error(kind, element, kNoPlane, kNoOffset, "suite: " + message);
+  }
+  std::set<std::tuple<std::string, int, bool>> bins;
+};
+
+// What an oracle's traversal makes, run until the oracle throws
+// std::out_of_range (it has no more to say): the faces and vertices, and
+// the bins it reaches.
+struct Traversed {
+  uint32_t faces = 0, vertices = 0;
+  std::set<std::tuple<std::string, int, bool>> bins;
+};
+template <class Oracle>
+Traversed traversed(Oracle oracle) {
+  BinRecorder recorder;
+  syntax::BaseMeshContexts contexts;
+  GateTraversal traversal(0);
+  try {
+    constexpr uint32_t kUnbounded = std::numeric_limits<uint32_t>::max();
+    describe_traversal(recorder, contexts, traversal, kUnbounded, kUnbounded, &oracle);
+  } catch (const std::out_of_range&) {
+  }
+  return {static_cast<uint32_t>(traversal.faces().size()), oracle.vertices(), std::move(recorder.bins)};
+}
+
+// Answers for a fan of `fan` vertices, then far vertices whose
+// differences from their gate's vertex follow the patterns of
+// for_each_prefix_pattern() after a zero class's (a far residual is never
+// 0), each after a run of ±1 long enough for the far channel's order k to
+// return to 0: a border where the difference fits neither way. Past the
+// last, std::out_of_range.
+class FarScheduleOracle {
+ public:
+  explicit FarScheduleOracle(uint32_t fan) : fan_(fan) {
+    for_each_prefix_pattern(13, [&](int32_t first, int32_t second) {
+      if (first == 0) return;
+      for (int i = 0; i < 100; ++i) schedule_.push_back(1);
+      schedule_.push_back(std::abs(first));
+      schedule_.push_back(std::abs(second));
+    });
+  }
+  bool seed_corner(int corner, uint32_t&) {
+    corner_ = corner;
+    return false;
+  }
+  void numbered(uint32_t v) {
+    visited_ = v + 1;
+    if (corner_ < 0) return;
+    seed_.v[static_cast<size_t>(corner_)] = v;
+    if (corner_ == 2) tracker_.add(seed_);
+  }
+  GateAnswer gate(HalfEdge gate, std::span<const uint32_t> candidates) {
+    corner_ = -1;
+    GateAnswer answer{GateSymbol::kBorder, 0, 0};
+    if (visited_ < fan_) {
+      if (visited_ == gate.to + 1) answer.symbol = GateSymbol::kNewVertex;
+    } else {
+      const int64_t d = schedule_.at(next_);
+      for (int64_t c : {int64_t{gate.from} + d, int64_t{gate.from} - d})
+        if (c >= 0 && c < visited_ && tracker_.can_attach(gate, static_cast<uint32_t>(c))) {
+          answer = {GateSymbol::kFarVertex, 0, static_cast<uint32_t>(c)};
+          ++next_;
+          break;
+        }
+    }
+    tracker_.add(gate, answer, candidates, visited_);
+    return answer;
+  }
+  uint32_t vertices() const { return visited_; }
+
+ private:
+  uint32_t fan_;
+  std::vector<int64_t> schedule_;
+  size_t next_ = 0;
+  FaceTracker tracker_;
+  uint32_t visited_ = 0;
+  int corner_ = -1;
+  Triangle seed_{};
+};
+
+// Seeds of components that reach the gate and candidate contexts: per
+// round, of 2,000 seeds tried, the component that reaches the most bins not
+// reached before, until a round adds none.
+std::vector<uint64_t> covering_component_seeds() {
+  std::vector<uint64_t> chosen;
+  std::set<std::tuple<std::string, int, bool>> reached;
+  SplitMix64 random(57);
+  for (;;) {
+    uint64_t best = 0;
+    size_t most = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+      const uint64_t seed = random.next();
+      size_t fresh = 0;
+      for (const auto& bin : traversed(ComponentOracle({seed})).bins) fresh += !reached.count(bin);
+      if (fresh > most) {
+        most = fresh;
+        best = seed;
+      }
+    }
+    if (most == 0) return chosen;
+    chosen.push_back(best);
+    const Traversed t = traversed(ComponentOracle({best}));
+    reached.insert(t.bins.begin(), t.bins.end());
+  }
+}
+
+// Vertex order differences that follow prefix_schedule() for `count`
+// vertices in no face (each predicted by the input number after the one
+// before), towards the side with more numbers not taken, then 0.
+std::vector<int32_t> order_schedule(uint32_t count) {
+  std::vector<uint32_t> unused(count);
+  for (uint32_t i = 0; i < count; ++i) unused[i] = i;
+  const std::vector<int32_t> schedule = prefix_schedule();
+  std::vector<int32_t> differences;
+  int64_t previous = -1;
+  for (uint32_t i = 0; i < count; ++i) {
+    const int64_t predicted = std::clamp<int64_t>(previous + 1, 0, count - 1);
+    const int64_t from = std::lower_bound(unused.begin(), unused.end(), static_cast<uint32_t>(predicted)) - unused.begin();
+    const int64_t room_above = static_cast<int64_t>(unused.size()) - from;
+    int32_t d = i < schedule.size() ? std::abs(schedule[i]) : 0;
+    if (room_above <= from) d = -d;
+    if (room_above == 0 && d == 0) d = -1;  // the prediction is past every number left
+    differences.push_back(d);
+    previous = unused[static_cast<size_t>(from + d)];
+    unused.erase(unused.begin() + from + d);
+  }
+  return differences;
 }
 
 // A bfs3d frame unit whose first x residual has a prefix of 31 ones, one
@@ -660,59 +1285,121 @@ std::vector<uint8_t> bfs3d_endless_prefix_unit(std::vector<uint8_t> unit_header)
   return unit_header;
 }
 
-// An Affine-Octree frame unit of `stream` whose only cell, the root, is a
-// leaf with the identity matrix but element 0 one above what matrix_bits
-// allows (written with twice the range at the same fraction bits).
-std::vector<uint8_t> ao_matrix_beyond_unit(const std::vector<uint8_t>& stream, std::vector<uint8_t> unit_header) {
-  const auto [object, header] = read_headers<AffineOctreeHeader>(split_container(stream));
-  AffineOctreeHeader wider = header;
-  ++wider.matrix_bits;
-  ++wider.matrix_range_log2;
-  AffineCell cell;
-  for (int i = 0; i < 3; ++i) cell.matrix[static_cast<size_t>(5 * i)] = int32_t{1} << header.fraction_bits();
-  cell.matrix[0] = header.matrix_max() + 1;
-  AffineCellCoder coder(wider);
-  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
-  coder.describe(symbols, 0, object.vertex_count, cell);
-  const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
-  AffineFrame data{0, static_cast<uint32_t>(bins.size()), bins, raw};
-  BitWriter writer;
-  syntax::WriteIO out(writer);
-  syntax::describe(out, data);
-  unit_header.insert(unit_header.end(), writer.bytes().begin(), writer.bytes().end());
-  return unit_header;
-}
-
-// An lcc frame unit of `stream` (stream mode), an anchor or a frame
-// predicted between two, whose residuals are 0 but every rho's, `times`
-// 2^rh_bits + `extra` (written even beyond what the syntax allows).
-std::vector<uint8_t> lcc_rho_unit(const std::vector<uint8_t>& stream, std::vector<uint8_t> unit_header, bool predicted, int32_t times,
-                                  int32_t extra) {
-  const auto [object, header] = read_headers<LccHeader>(split_container(stream));
-  const LccOrder order = lcc_order(decode_mesh3d(stream).faces, object.vertex_count);
-  LccIndices residuals{std::vector<int32_t>(3 * order.direct.size()), std::vector<int32_t>(3 * order.steps.size())};
-  const int32_t rho = times * (int32_t{1} << header.rh_bits) + extra;
-  for (size_t i = 1; i < residuals.steps.size(); i += 3) residuals.steps[i] = rho;
-  syntax::ResidualCoder<syntax::kLccChannels> coder;
-  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
-  // The writer's limit, raised to let rho through (a predicted frame's residuals may reach twice the limit).
-  const int32_t limit = std::max(int32_t{1} << header.rh_bits, predicted ? (rho + 1) / 2 : rho);
-  syntax::describe_symbols(symbols, coder, predicted, residuals.direct, residuals.steps, int32_t{1} << header.theta_bits, limit);
-  const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
-  LccFrameData data{static_cast<uint32_t>(bins.size()), bins, raw};
-  BitWriter writer;
-  syntax::WriteIO out(writer);
-  syntax::describe(out, data);
-  unit_header.insert(unit_header.end(), writer.bytes().begin(), writer.bytes().end());
-  return unit_header;
-}
-
 Encode3dOptions cpca(CodecOptionValues values) {
   Encode3dOptions o;
   o.hash_group = 1;  // the conformance streams hash every frame
   o.codec = "cpca-wpt";
   o.codec_options = std::move(values);
   return o;
+}
+
+// The position of the n-th refinement unit (n from 0) among a stream's units.
+size_t refinement_unit(const ContainerParts& parts, size_t n) {
+  for (size_t k = 0; k < parts.units.size(); ++k)
+    if (parts.units[k].payload[0] == static_cast<uint8_t>(UnitType::kRefinement) && n-- == 0) return k;
+  throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no such refinement unit");
+}
+
+// A refinement unit's cluster and kind (bytes 5 and 6 of its payload).
+constexpr size_t kClusterByte = 5, kKindByte = 6;
+
+// A refinement unit (frame 0) of cluster `cluster` with the bins and raw
+// bits of its symbols.
+std::vector<uint8_t> refinement_bytes(uint32_t cluster, uint32_t kind, uint32_t shift, syntax::EntropyWriteIO<false>& symbols) {
+  const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
+  BitWriter writer;
+  syntax::WriteIO io(writer);
+  UnitHeader header{static_cast<uint32_t>(UnitType::kRefinement), 0};
+  syntax::describe(io, header);
+  CpcaRefinement r{cluster, kind, shift, static_cast<uint32_t>(bins.size()), bins, raw};
+  syntax::describe(io, r);
+  return writer.take_bytes();
+}
+
+// A refinement unit (frame 0, shift 16) whose symbols are the residuals
+// given, channel and value, in order: values the encoder's description
+// refuses to write, for the decoder to reject.
+std::vector<uint8_t> crafted_refinement(uint32_t cluster, uint32_t kind, const std::vector<std::pair<int, int32_t>>& residuals) {
+  syntax::ResidualCoder<4> coder;
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+  for (auto [channel, value] : residuals) coder.describe(symbols, channel, value, syntax::kCpcaBasis);
+  return refinement_bytes(cluster, kind, kCpcaShiftBias, symbols);
+}
+
+// A clustered-PCA stream of 2 frames written symbol by symbol (no hash
+// units) over a base mesh the encoder wrote: 255 clusters, F = 16, and
+// - a cluster map of clusters 0 … 254 in turn, then per pattern of
+//   for_each_prefix_pattern() up to e = 7 (cluster differences reach 254)
+//   200 vertices of cluster 64 and steps up by the pattern's two values;
+// - per pattern p (e up to 13), cluster p's start (shift 17) whose
+//   translation on every axis is the pattern's first value in frame 0 and
+//   moves by its second in frame 1;
+// - cluster 64's component whose basis steps through prefix_schedule() on
+//   every axis;
+// - per pattern pair 2c, 2c + 1, two components of cluster c whose
+//   coefficients step by the pattern's values.
+std::vector<uint8_t> cpca_written_stream() {
+  constexpr uint32_t kClusters = kCpcaMaxClusters, kQuietCluster = 64;
+  std::vector<uint32_t> cluster_of;
+  for (uint32_t c = 0; c < kClusters; ++c) cluster_of.push_back(c);
+  for_each_prefix_pattern(7, [&](int32_t first, int32_t second) {
+    cluster_of.insert(cluster_of.end(), 200, kQuietCluster);
+    cluster_of.push_back(kQuietCluster + static_cast<uint32_t>(std::abs(first)));
+    cluster_of.push_back(cluster_of.back() + static_cast<uint32_t>(std::abs(second)));
+  });
+  const int loose = static_cast<int>(cluster_of.size()) - 11;  // designed_loose()'s sheet and box hold 11
+  Encode3dOptions o = cpca({{"clusters", "1"}});
+  o.hashes = false;
+  const std::vector<uint8_t> encoded = encode_mesh3d(designed_loose(2, loose, [](int, int) { return 0; }), o).stream;
+  ContainerParts parts = split_container(encoded);
+  auto [object, header] = read_headers<CpcaHeader>(parts);
+  syntax::EntropyWriteIO<false> map(syntax::SectionPlace{});
+  syntax::describe_cluster_map(map, cluster_of, kClusters);
+  const std::vector<uint8_t> map_bins = map.finish_bins(), map_raw = map.finish_raw();
+  header.cluster_count = kClusters;
+  header.fraction_bits = kCpcaMaxFractionBits;
+  header.map_bins_bytes = static_cast<uint32_t>(map_bins.size());
+  header.map_bins = map_bins;
+  header.map_raw_bytes = static_cast<uint32_t>(map_raw.size());
+  header.map_raw = map_raw;
+  BitWriter payload;
+  syntax::WriteIO out(payload);
+  syntax::describe(out, object);
+  syntax::describe(out, header);
+  ContainerWriter writer;
+  writer.object(payload.take_bytes());
+  writer.unit(unit_of(parts, UnitType::kBaseMesh, 0).payload);
+
+  const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, kClusters);
+  auto start = [&](uint32_t cluster, std::vector<int32_t> translation) {
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    syntax::describe_start(symbols, translation);
+    writer.unit(refinement_bytes(cluster, kCpcaStart, kCpcaShiftBias + 1, symbols));
+  };
+  auto component = [&](uint32_t cluster, std::vector<int32_t> basis, std::vector<int32_t> coefficients) {
+    basis.resize(3 * members[cluster].size());
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    syntax::describe_operator(symbols, basis, coefficients);
+    writer.unit(refinement_bytes(cluster, kCpcaComponent, kCpcaShiftBias, symbols));
+  };
+  std::vector<std::pair<int32_t, int32_t>> patterns;
+  for_each_prefix_pattern(13, [&](int32_t first, int32_t second) { patterns.emplace_back(first, second); });
+  for (uint32_t c = 0; c < patterns.size(); ++c) {
+    const auto [first, second] = patterns[c];
+    start(c, {first, first, first, first + second, first + second, first + second});
+  }
+  start(kQuietCluster, std::vector<int32_t>(6));
+  std::vector<int32_t> basis;
+  int32_t value = 0;
+  for (int32_t step : prefix_schedule()) {
+    value += step;
+    basis.insert(basis.end(), 3, value);
+  }
+  component(kQuietCluster, basis, {1, 1});
+  for (uint32_t c = 0; 2 * c < patterns.size(); ++c)
+    for (uint32_t k = 2 * c; k < std::min<size_t>(2 * c + 2, patterns.size()); ++k)
+      component(c, {1, 1, 1}, {patterns[k].first, patterns[k].first + patterns[k].second});
+  return writer.finish();
 }
 
 // The clustered-PCA codec's streams: both orders, a prefix cut at a unit
@@ -744,36 +1431,12 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
                         spiky_sheet(8, 16, 0, 43, 30), cpca({{"clusters", "3"}, {"bits", "24"}, {"noise", "-4"}, {"components", "4096"}}), traced));
   suite.push_back(valid("cpca-09-many-clusters", "200 clusters over 389 vertices: cluster numbers far apart", {"cpca"},
                         spiky_sheet(4, 16, 100, 47, 3), cpca({{"clusters", "200"}, {"bits", "24"}}), traced));
+  suite.push_back(written_case("cpca-10-written", "a stream written symbol by symbol: every prefix length 0 … 13 after each class in "
+                              "translations, basis values and coefficients, cluster differences up to 254, F = 16, start shifts above 16",
+                              {"cpca"}, cpca_written_stream()));
   suite.push_back(valid("cpca-07-no-fraction", "a 24-bit grid: fraction_bits 0", {"cpca"}, flag, cpca({{"clusters", "2"}, {"bits", "24"}}),
                         traced));
   return suite;
-}
-
-// The position of the n-th refinement unit (n from 0) among a stream's units.
-size_t refinement_unit(const ContainerParts& parts, size_t n) {
-  for (size_t k = 0; k < parts.units.size(); ++k)
-    if (parts.units[k].payload[0] == static_cast<uint8_t>(UnitType::kRefinement) && n-- == 0) return k;
-  throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no such refinement unit");
-}
-
-// A refinement unit's cluster and kind (bytes 5 and 6 of its payload).
-constexpr size_t kClusterByte = 5, kKindByte = 6;
-
-// A refinement unit (frame 0, shift 16) whose symbols are the residuals
-// given, channel and value, in order: values the encoder's description
-// refuses to write, for the decoder to reject.
-std::vector<uint8_t> crafted_refinement(uint32_t cluster, uint32_t kind, const std::vector<std::pair<int, int32_t>>& residuals) {
-  syntax::ResidualCoder<4> coder;
-  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
-  for (auto [channel, value] : residuals) coder.describe(symbols, channel, value, syntax::kCpcaBasis);
-  const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
-  BitWriter writer;
-  syntax::WriteIO io(writer);
-  UnitHeader header{static_cast<uint32_t>(UnitType::kRefinement), 0};
-  syntax::describe(io, header);
-  CpcaRefinement r{cluster, kind, kCpcaShiftBias, static_cast<uint32_t>(bins.size()), bins, raw};
-  syntax::describe(io, r);
-  return writer.take_bytes();
 }
 
 // The clustered-PCA codec's streams to reject: header ranges, and the unit
@@ -1124,12 +1787,48 @@ std::vector<SuiteCase> base_mesh_cases(bool traced) {
   {
     MeshSequence spiky = spiky_sheet(2, 32, 200, 46, 4);
     renumber_at_random(spiky, 1289);
-    suite.push_back(valid("base-08-far-chain", "a chain of faces whose third vertices are often earlier ones at random: far vertices at "
-                          "every distance, after near and far ones", {"base-mesh"}, far_chain(3000, 51), Encode3dOptions{}, traced));
-    suite.push_back(valid("base-09-dense-soup", "300 faces on 32 vertices at random: gates with 3 and more candidates at every pair of "
-                          "degrees, every candidate index", {"base-mesh"}, dense_soup(32, 300, 54), Encode3dOptions{}, traced));
     suite.push_back(valid("base-07-spikes", "1,291 vertices numbered at random, a quarter of them off their place by 2^−2 … 2^−23 of the box on a "
                           "24-bit grid: position and order residuals of every prefix length", {"base-mesh"}, spiky, bits24, traced));
+  }
+  Encode3dOptions bits16;
+  bits16.codec_options = {{"bits", "16"}};
+  suite.push_back(valid("base-08-far-chain", "a chain of faces whose third vertices are often earlier ones at random: far vertices at "
+                        "every distance, after near and far ones", {"base-mesh"}, far_chain(3000, 51), Encode3dOptions{}, traced));
+  suite.push_back(valid("base-09-dense-soup", "300 faces on 32 vertices at random: gates with 3 and more candidates at every pair of "
+                        "degrees, every candidate index", {"base-mesh"}, dense_soup(32, 300, 54), Encode3dOptions{}, traced));
+  suite.push_back(valid("base-10-loose-chain", "vertices in no face, each off the one before by a residual of every prefix length 0 … 13 "
+                        "after each class", {"base-mesh"}, loose_chain(prefix_schedule()), bits16, traced));
+  suite.push_back(valid("base-11-parallelograms", "separate quads whose fourth vertex is off the parallelogram by a residual of every "
+                        "prefix length 0 … 13 after each class", {"base-mesh"}, parallelogram_quads(prefix_schedule()), bits16, traced));
+  suite.push_back(written_case("base-12-order-prefixes", "a face and 23,997 vertices in no face whose vertex order differences take every "
+                              "prefix length 0 … 13 after each class (written symbol by symbol)", {"base-mesh"},
+                              [] {
+                                constexpr uint32_t kVertices = 24000;
+                                FirstFarOracle seed;  // the one face: a seed of new vertices
+                                return written_base_mesh_stream(kVertices, 1, seed, order_schedule(kVertices));
+                              }()));
+  {
+    const std::vector<uint64_t> seeds = covering_component_seeds();
+    const Traversed size = traversed(ComponentOracle(seeds));
+    ComponentOracle oracle(seeds);
+    suite.push_back(written_case("base-13-gate-contexts", "components of random answers, chosen among many for the gate and candidate "
+                                "contexts they reach (written symbol by symbol)", {"base-mesh"},
+                                written_base_mesh_stream(size.vertices, size.faces, oracle)));
+  }
+  // The first far residual of a unit is the only one after a zero class: one prefix length per unit.
+  for (int e = 4; e <= 12; ++e) {
+    FirstFarOracle oracle{static_cast<uint32_t>(3 << (e - 1))};
+    char id[40];
+    std::snprintf(id, sizeof id, "base-14-first-far-%02d", e);
+    suite.push_back(written_case(id, "a fan whose first far vertex takes a residual of prefix length " + std::to_string(e) + " (written symbol by symbol)",
+                                {"base-mesh"}, written_base_mesh_stream(oracle.from + 2, oracle.from + 1, oracle)));
+  }
+  {
+    FarScheduleOracle oracle(20000);
+    const Traversed size = traversed(oracle);
+    suite.push_back(written_case("base-15-far-prefixes", "a fan of 20,000 vertices, then faces on far vertices whose residuals take every "
+                                "prefix length 0 … 13 after a residual of length 0 and of length 1 (written symbol by symbol)", {"base-mesh"},
+                                written_base_mesh_stream(size.vertices, size.faces, oracle)));
   }
   return suite;
 }

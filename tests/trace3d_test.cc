@@ -35,7 +35,7 @@ std::string first_difference(const std::string& a, const std::string& b) {
 TEST(Trace3d, EveryConformanceStreamTracesAlikeInBothDirections) {
   size_t traced = 0;
   for (const SuiteCase& c : build_suite3d(true)) {
-    if (!c.valid) continue;
+    if (!c.valid || c.written) continue;
     ASSERT_FALSE(c.encoder_trace.empty()) << c.id;
     const std::string decoded = decoder_trace(c.stream);
     EXPECT_EQ(c.encoder_trace, decoded) << c.id << ": first difference at " << first_difference(c.encoder_trace, decoded);

@@ -74,7 +74,7 @@ class EntropyReadIO {
  private:
   ArithmeticDecoder bins_;
   BitReader raw_;
-  const SectionPlace& place_;
+  const SectionPlace place_;
   Trace* trace_;
   uint64_t bin_index_ = 0;
   uint64_t raw_start_ = 0;
@@ -113,7 +113,7 @@ class EntropyWriteIO {
  private:
   ArithmeticEncoder bins_;
   BitWriter raw_;
-  const SectionPlace& place_;
+  const SectionPlace place_;
   std::ostringstream buffer_;
   Trace trace_;
   uint64_t bin_index_ = 0;
