@@ -800,8 +800,8 @@ std::vector<uint8_t> lcc_written_stream() {
   Encode3dOptions o = lcc({{"theta-bits", "15"}, {"rh-bits", "20"}, {"temporal", "1"}, {"gop", "2"}});
   o.hashes = false;
   const std::vector<uint8_t> encoded = encode_mesh3d(strip, o).stream;
-  const auto [object, header] = read_headers<LccHeader>(split_container(encoded));
-  const LccOrder order = lcc_order(strip.faces, object.vertex_count);
+  const LccHeader header = read_headers<LccHeader>(split_container(encoded)).second;
+  const LccOrder order = lcc_order(strip.faces, strip.vertex_count);
   return edited(encoded, [&](ContainerParts& p) {
     for (ContainerUnit& unit : p.units) {
       if (unit.payload[0] != static_cast<uint8_t>(UnitType::kFrame)) continue;
