@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -545,6 +546,18 @@ ContainerUnit& unit_of(ContainerParts& parts, UnitType type, uint32_t frame) {
   throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no such unit");
 }
 
+// The byte of the object payload where a header field starts, found by
+// name in the description of the stream's own headers.
+template <class Header>
+size_t header_byte(const std::vector<uint8_t>& stream, const char* name) {
+  const ContainerParts parts = split_container(stream);
+  auto [object, header] = read_headers<Header>(parts);
+  syntax::CountIO count(name);
+  syntax::describe(count, object);
+  syntax::describe(count, header);
+  return static_cast<size_t>(count.offset_of_watched() / 8);
+}
+
 // A bfs3d frame unit's payload with a zero byte after its section k (0 bins
 // x, 1 raw x, …, 5 raw z), whose length field grows by one.
 std::vector<uint8_t> with_extra_byte(std::vector<uint8_t> payload, int k) {
@@ -819,6 +832,75 @@ std::vector<uint8_t> lcc_written_stream() {
   });
 }
 
+// An lcc stream (b_θ 12, b_rh 20, σ 2^14, a 24-bit grid of unit steps, no
+// hash units) whose frame 1 is written symbol by symbol: per angle entry
+// from 7/8 to 9/8 of the first octant (where a sine or cosine series cut
+// short errs first), a quad whose directly coded triangle, axis-aligned,
+// moves so that the vertex placed from it at that angle lands within
+// 2^−29 of its distance from the triangle of the planes x = 0 and z = 0:
+// its binary32 x and z then follow the last bit of the entry's cosine and
+// sine.
+std::vector<uint8_t> lcc_rounding_edges_stream() {
+  constexpr int kThetaBits = 12, kRhBits = 20;
+  constexpr uint32_t kFirstEntry = 896, kLastEntry = 1152;  // the first octant ends at entry 1024
+  constexpr double kMiddle = 1 << 23, kEdge = 1 << 10;
+  MeshSequence quads;
+  std::vector<Vec3> frame;
+  for (uint32_t m = kFirstEntry; m <= kLastEntry; ++m) {
+    const NodeIndex a = static_cast<NodeIndex>(frame.size());
+    quads.faces.push_back({{a, a + 1, a + 2}});
+    quads.faces.push_back({{a + 2, a + 1, a + 3}});
+    frame.push_back({kMiddle - kEdge, kMiddle, kMiddle});
+    frame.push_back({kMiddle, kMiddle, kMiddle});
+    frame.push_back({kMiddle, kMiddle + kEdge, kMiddle});
+    frame.push_back({kMiddle + kEdge, kMiddle + kEdge / 2, kMiddle});  // in the plane, across the edge: height 0
+  }
+  frame.push_back({0, 0, 0});  // the box of a grid step 1
+  frame.push_back({(1 << 24) - 1, (1 << 24) - 1, (1 << 24) - 1});
+  quads.vertex_count = static_cast<uint32_t>(frame.size());
+  quads.frames = {frame, frame};
+  Encode3dOptions o = lcc({{"theta-bits", std::to_string(kThetaBits)}, {"rh-bits", std::to_string(kRhBits)}, {"bits", "24"}});
+  o.hashes = false;
+  std::vector<uint8_t> stream = encode_mesh3d(quads, o).stream;
+  const size_t rh_range_at = header_byte<LccHeader>(stream, "rh_range");
+  stream = edited(stream, [&](ContainerParts& p) {
+    const uint32_t sigma = std::bit_cast<uint32_t>(16384.0f);  // radii up to 2^14 edge lengths
+    for (size_t i = 0; i < 4; ++i) p.object_payload[rh_range_at + i] = static_cast<uint8_t>(sigma >> (24 - 8 * i));
+  });
+  const LccHeader header = read_headers<LccHeader>(split_container(stream)).second;
+  const std::vector<Triangle> faces = decode_mesh3d(stream).faces;
+  const LccModel model(faces, frame, kThetaBits, kRhBits, header.rh_range_value());
+  const LccOrder& order = model.order();
+  LccIndices residuals{std::vector<int32_t>(3 * order.direct.size()), std::vector<int32_t>(3 * order.steps.size())};
+  std::vector<size_t> direct_slot(frame.size());
+  for (size_t i = 0; i < order.direct.size(); ++i) direct_slot[order.direct[i]] = i;
+  for (size_t k = 0; k < order.steps.size(); ++k) {
+    const LccStep& step = order.steps[k];
+    const int32_t theta = static_cast<int32_t>(kFirstEntry + step.d / 4) - (int32_t{1} << kThetaBits);
+    std::vector<Vec3> moved = frame;
+    for (int32_t rho = int32_t{1} << kRhBits;; --rho) {
+      const Vec3 far = model.place(k, frame, theta, rho, 0);
+      const Vec3 shift{-std::nearbyint(far.x), 0, -std::nearbyint(far.z)};
+      for (NodeIndex v : {step.a, step.b, step.c}) moved[v] = {frame[v].x + shift.x, frame[v].y, frame[v].z + shift.z};
+      const Vec3 near = model.place(k, moved, theta, rho, 0);
+      const double origin_x = frame[step.b].x, origin_z = frame[step.b].z;  // the edge's middle, before the move
+      if (std::fabs(near.x) > std::ldexp(std::fabs(far.x - origin_x), -29) || std::fabs(near.z) > std::ldexp(std::fabs(far.z - origin_z), -29))
+        continue;
+      for (NodeIndex v : {step.a, step.b, step.c}) {
+        residuals.direct[3 * direct_slot[v]] = static_cast<int32_t>(shift.x);
+        residuals.direct[3 * direct_slot[v] + 2] = static_cast<int32_t>(shift.z);
+      }
+      residuals.steps[3 * k] = theta;
+      residuals.steps[3 * k + 1] = rho;
+      break;
+    }
+  }
+  return edited(stream, [&](ContainerParts& p) {
+    ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
+    unit.payload = lcc_unit(header, false, std::move(residuals), int32_t{1} << kRhBits, {unit.payload.begin(), unit.payload.begin() + 5});
+  });
+}
+
 // The cloth codec's streams: both modes, a rest-shape reference, the
 // smallest and largest bit counts, a degenerate triangle on the path,
 // temporal prediction in both modes.
@@ -884,24 +966,15 @@ std::vector<SuiteCase> lcc_cases(bool traced) {
   }
   suite.push_back(written_case("lcc-16-written", "a stream written symbol by symbol: θ, ρ and ζ residuals of every prefix length 0 … 13 "
                               "after each class, at anchors and at frames predicted between them", {"lcc", "lcc-temporal"}, lcc_written_stream()));
+  suite.push_back(written_case("lcc-17-rounding-edges", "vertices whose binary32 x and z follow the last bit of the cosine and sine of "
+                               "the angle entries around the first octant's end (written symbol by symbol)", {"lcc"},
+                               lcc_rounding_edges_stream()));
   suite.push_back(valid("lcc-09-long-chains", "a 200 × 3 strip at b_θ 12: chains of 600 steps, where a 1-ulp angle or axis changes the output",
                         {"lcc"}, waving_strip(6, 200, 3), lcc({{"theta-bits", "12"}}), traced));
   suite.push_back(valid("lcc-10-long-chains-coarse", "a 400 × 3 strip at b_θ 2: every angle a multiple of π/4, the table's octant ends",
                         {"lcc"}, waving_strip(6, 400, 3), lcc({{"theta-bits", "2"}}), traced));
   std::filesystem::remove(rest);
   return suite;
-}
-
-// The byte of the object payload where a header field starts, found by
-// name in the description of the stream's own headers.
-template <class Header>
-size_t header_byte(const std::vector<uint8_t>& stream, const char* name) {
-  const ContainerParts parts = split_container(stream);
-  auto [object, header] = read_headers<Header>(parts);
-  syntax::CountIO count(name);
-  syntax::describe(count, object);
-  syntax::describe(count, header);
-  return static_cast<size_t>(count.offset_of_watched() / 8);
 }
 
 // Writes bins as EntropyWriteIO does, but every prefix bin as 1, so that a
