@@ -187,6 +187,7 @@ void add_codec_options(CLI::App& command, Encode3dArgs& args) {
   command.add_option("--target-kg", args.target_kg,
                      "the smallest stream whose decoded KG error is at most this (percent), searching the codec's quality parameter");
   command.add_option("--target-psnr", args.target_psnr, "the smallest stream whose decoded PSNR is at least this (dB)");
+  command.add_option("--threads", args.threads, "with --codec auto: codecs searched at once (default 0: every core; the stream kept does not depend on it)");
   // One flag per option name; codecs that share a name share the flag.
   std::set<std::string> added;
   for (const Codec3d& c : codecs3d())
@@ -225,6 +226,7 @@ int run_encode3d(const Encode3dArgs& args) {
   options.reorder = args.reorder;
   options.frame_rate_num = static_cast<uint32_t>(args.fps);
   options.trace = args.trace ? &trace : nullptr;
+  options.threads = args.threads;
   // Codecs count their own steps: frames, or cpca-wpt's units.
   console::Progress progress("encoding", sequence.frames.size());
   options.progress = [&](size_t done, size_t total) { progress.update(done, total); };

@@ -46,6 +46,7 @@ struct Encode3dArgs {
   uint32_t hash_group = 16;  // frames per group hash unit; 1: a frame hash unit per frame
   int fps = 25;
   bool trace = false;
+  unsigned threads = 0;  // --codec auto: codecs searched at once; 0: every core
 };
 // Adds --codec, the quality targets and every registered codec's own
 // options to `command`.

@@ -12,6 +12,7 @@
 #include "codecs3d/registry.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/parallel.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/metrics.h"
@@ -36,42 +37,58 @@ std::vector<const Codec3d*> codec_rows(const std::vector<std::string>& names) {
 
 }  // namespace
 
-std::vector<RdPoint> rd_sweep(const MeshSequence& s, const std::vector<std::string>& codecs, const std::function<void(const RdPoint&)>& each) {
-  const std::vector<const Codec3d*> rows = codec_rows(codecs);
+std::vector<RdPoint> rd_sweep(const MeshSequence& s, const std::vector<std::string>& codecs, unsigned threads,
+                              const std::function<void(const RdPoint&)>& each) {
   const MetricsReference reference(s);
   const double vertex_frames = static_cast<double>(s.vertex_count) * static_cast<double>(s.frames.size());
-  std::vector<RdPoint> points;
-  for (const Codec3d* codec : rows)
+  std::vector<RdPoint> tried;
+  std::vector<std::pair<const Codec3d*, std::string>> settings;  // per point: the codec and its knob's value
+  for (const Codec3d* codec : codec_rows(codecs))
     for (const std::string& value : codec->quality.coarse_to_fine) {
-      Encode3dOptions options;
-      options.codec = codec->name;
-      options.codec_options[codec->quality.option] = value;
-      options.hashes = false;
-      RdPoint p{codec->name, "--" + codec->quality.option + " " + value};
-      auto start = std::chrono::steady_clock::now();
-      std::vector<uint8_t> stream;
-      try {
-        stream = encode_mesh3d(s, options).stream;
-      } catch (const Error& e) {
-        // A setting that cannot code this sequence is left out, and the sweep goes on.
-        if (e.kind() != ErrorKind::kInput && e.kind() != ErrorKind::kLimit) throw;
-        console::say("note: %s %s cannot code this sequence, left out: %s", codec->name.c_str(), p.parameter.c_str(), e.what());
-        continue;
-      }
-      p.encode_s = seconds_since(start);
-      start = std::chrono::steady_clock::now();
-      const MeshSequence decoded = decode_mesh3d(stream);
-      p.decode_s = seconds_since(start);
-      const SequenceMetrics m = reference.compare(decoded);
-      p.bytes = stream.size();
-      p.bpvf = 8.0 * static_cast<double>(stream.size()) / vertex_frames;
-      p.kg = m.kg_error;
-      p.psnr = m.psnr;
-      p.rmse = m.rmse;
-      p.sted = m.sted;
-      each(p);
-      points.push_back(p);
+      tried.push_back({codec->name, "--" + codec->quality.option + " " + value});
+      settings.emplace_back(codec, value);
     }
+  std::vector<std::string> left_out(tried.size());  // why a setting cannot code this sequence
+  parallel_for(
+      tried.size(), threads,
+      [&](size_t k) {
+        RdPoint& p = tried[k];
+        const auto& [codec, value] = settings[k];
+        Encode3dOptions options;
+        options.codec = codec->name;
+        options.codec_options[codec->quality.option] = value;
+        options.hashes = false;
+        auto start = std::chrono::steady_clock::now();
+        std::vector<uint8_t> stream;
+        try {
+          stream = encode_mesh3d(s, options).stream;
+        } catch (const Error& e) {
+          if (e.kind() != ErrorKind::kInput && e.kind() != ErrorKind::kLimit) throw;
+          left_out[k] = e.what();
+          return;
+        }
+        p.encode_s = seconds_since(start);
+        start = std::chrono::steady_clock::now();
+        const MeshSequence decoded = decode_mesh3d(stream);
+        p.decode_s = seconds_since(start);
+        const SequenceMetrics m = reference.compare(decoded);
+        p.bytes = stream.size();
+        p.bpvf = 8.0 * static_cast<double>(stream.size()) / vertex_frames;
+        p.kg = m.kg_error;
+        p.psnr = m.psnr;
+        p.rmse = m.rmse;
+        p.sted = m.sted;
+      },
+      [&](size_t k) {
+        // A setting that cannot code this sequence is left out, and the sweep goes on.
+        if (!left_out[k].empty())
+          console::say("note: %s %s cannot code this sequence, left out: %s", tried[k].codec.c_str(), tried[k].parameter.c_str(), left_out[k].c_str());
+        else
+          each(tried[k]);
+      });
+  std::vector<RdPoint> points;
+  for (size_t k = 0; k < tried.size(); ++k)
+    if (left_out[k].empty()) points.push_back(tried[k]);
   return points;
 }
 
@@ -109,7 +126,7 @@ int run_rd(const RdArgs& args) {
   console::Progress progress("rate-distortion point", total);
   size_t done = 0;
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<RdPoint> points = rd_sweep(sequence, args.codecs, [&](const RdPoint& p) {
+  const std::vector<RdPoint> points = rd_sweep(sequence, args.codecs, args.threads, [&](const RdPoint& p) {
     progress.update(++done);
     console::detail("%s %s: %llu bytes, %.4f bpvf, KG %.5f", p.codec.c_str(), p.parameter.c_str(), static_cast<unsigned long long>(p.bytes),
                     p.bpvf, p.kg);

@@ -20,8 +20,10 @@ struct RdPoint {
 };
 
 // Every point of every codec named (all registered ones when empty), in
-// order; `each` hears each point as it is measured.
-std::vector<RdPoint> rd_sweep(const MeshSequence& sequence, const std::vector<std::string>& codecs,
+// order, `threads` points at once (0: every core; the points do not
+// depend on it, their times do); `each` hears each point in order once
+// measured.
+std::vector<RdPoint> rd_sweep(const MeshSequence& sequence, const std::vector<std::string>& codecs, unsigned threads,
                               const std::function<void(const RdPoint&)>& each);
 
 // The points as CSV (a header, then a row per point) or as a JSON array.
@@ -33,6 +35,7 @@ struct RdArgs {
   std::string output;  // .csv or .json; "-": CSV on standard output
   std::vector<std::string> codecs;  // empty: every codec
   bool json = false;
+  unsigned threads = 0;  // points at once; 0: every core
 };
 int run_rd(const RdArgs& args);
 

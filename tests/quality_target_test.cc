@@ -61,6 +61,28 @@ TEST(QualityTarget, PsnrTargetsAndTheSmallestCodec) {
   EXPECT_FALSE(chosen.empty());
 }
 
+TEST(QualityTarget, CodecAutoKeepsTheSameStreamOnOneThreadAndOnSeveral) {
+  const MeshSequence s = test::test_sequence(6, 24);
+  std::string one_chosen, many_chosen;
+  std::vector<TargetTrial> one_trials, many_trials;
+  Encode3dOptions one, many;
+  one.threads = 1;
+  many.threads = 4;
+  const Encode3dResult a = encode_smallest(s, one, {.kg = 1.0}, [&](const TargetTrial& t) { one_trials.push_back(t); }, one_chosen);
+  const Encode3dResult b = encode_smallest(s, many, {.kg = 1.0}, [&](const TargetTrial& t) { many_trials.push_back(t); }, many_chosen);
+  EXPECT_EQ(a.stream, b.stream);
+  EXPECT_EQ(one_chosen, many_chosen);
+  ASSERT_EQ(one_trials.size(), std::size(kCodecs));
+  ASSERT_EQ(many_trials.size(), one_trials.size());
+  for (size_t k = 0; k < one_trials.size(); ++k) {
+    EXPECT_EQ(many_trials[k].codec, kCodecs[k]);  // reported in registry order
+    EXPECT_EQ(many_trials[k].codec, one_trials[k].codec);
+    EXPECT_EQ(many_trials[k].parameter, one_trials[k].parameter);
+    EXPECT_EQ(many_trials[k].bytes, one_trials[k].bytes);
+    EXPECT_EQ(many_trials[k].kg, one_trials[k].kg);
+  }
+}
+
 // A subject that walks 12 times its own size per frame: at 24 bits no grid
 // over the first frame's box holds the last frames (±2^26 steps are 4
 // boxes), the grid over every frame's box does.

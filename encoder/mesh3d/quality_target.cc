@@ -7,6 +7,7 @@
 
 #include "codecs3d/registry.h"
 #include "common/error.h"
+#include "common/parallel.h"
 #include "encoder/mesh3d/base_mesh.h"
 #include "mesh3d/metrics.h"
 
@@ -100,31 +101,44 @@ Encode3dResult encode_smallest(const MeshSequence& s, const Encode3dOptions& opt
                                const TrialReport& report_codec, std::string& chosen) {
   check_target(target);
   check_sequence(s);
-  Encode3dResult best;
-  for (const Codec3d& codec : codecs3d()) {
-    Encode3dOptions tried = options;
-    tried.codec = codec.name;
+  // Each codec's search on a thread of its own; reported in registry order.
+  const std::span<const Codec3d> codecs = codecs3d();
+  struct Search {
+    Encode3dResult result;
     TargetTrial last;
-    try {
-      Encode3dResult result = encode_to_target(s, tried, target, [&](const TargetTrial& t) {
-        if (t.meets || last.codec.empty()) last = t;
-      });
-      report_codec(last);
-      if (best.stream.empty() || result.stream.size() < best.stream.size()) {
-        best = std::move(result);
-        chosen = codec.name;
-      }
-    } catch (const Error& e) {
-      // A codec that misses the target or cannot code the sequence is left out.
-      if (e.kind() != ErrorKind::kUsage && e.kind() != ErrorKind::kInput && e.kind() != ErrorKind::kLimit) throw;
-      last.codec = codec.name;
-      last.parameter = e.message();
-      last.meets = false;
-      report_codec(last);
+    bool met = false;
+  };
+  std::vector<Search> searches(codecs.size());
+  const bool alone = worker_count(options.threads) == 1;
+  parallel_for(
+      codecs.size(), options.threads,
+      [&](size_t k) {
+        Encode3dOptions tried = options;
+        tried.codec = codecs[k].name;
+        if (!alone) tried.progress = nullptr;  // trials on other threads would mix their progress
+        Search& search = searches[k];
+        try {
+          search.result = encode_to_target(s, tried, target, [&](const TargetTrial& t) {
+            if (t.meets || search.last.codec.empty()) search.last = t;
+          });
+          search.met = true;
+        } catch (const Error& e) {
+          // A codec that misses the target or cannot code the sequence is left out.
+          if (e.kind() != ErrorKind::kUsage && e.kind() != ErrorKind::kInput && e.kind() != ErrorKind::kLimit) throw;
+          search.last.codec = codecs[k].name;
+          search.last.parameter = e.message();
+          search.last.meets = false;
+        }
+      },
+      [&](size_t k) { report_codec(searches[k].last); });
+  Encode3dResult* best = nullptr;
+  for (size_t k = 0; k < codecs.size(); ++k)
+    if (searches[k].met && (!best || searches[k].result.stream.size() < best->stream.size())) {
+      best = &searches[k].result;
+      chosen = codecs[k].name;
     }
-  }
-  if (best.stream.empty()) throw usage_error("no codec reaches the target");
-  return best;
+  if (!best) throw usage_error("no codec reaches the target");
+  return std::move(*best);
 }
 
 }  // namespace m4mesh

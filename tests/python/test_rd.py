@@ -50,6 +50,16 @@ def test_json_holds_the_same_points(sweep, tmp_path):
     assert set(points[0].keys()) == set(COLUMNS)
 
 
+def test_the_points_do_not_depend_on_the_threads(sweep, tmp_path):
+    # The fixture ran on every core; one thread measures the same points in the same order (times aside).
+    out = tmp_path / "one.csv"
+    subprocess.run([M4MESH, "rd", FRAMES, "--threads", "1", "-o", str(out)], check=True, capture_output=True)
+    def points(path):
+        with open(path, newline="") as f:
+            return [{c: row[c] for c in COLUMNS if not c.endswith("_s")} for row in csv.DictReader(f)]
+    assert points(out) == points(sweep)
+
+
 def test_an_unknown_extension_is_a_usage_error(tmp_path):
     result = subprocess.run([M4MESH, "rd", FRAMES, "-o", str(tmp_path / "rd.txt")], capture_output=True, text=True)
     assert result.returncode == 2 and result.stderr.startswith("error: ")

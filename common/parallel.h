@@ -1,0 +1,56 @@
+// Independent tasks run on several threads, their results taken in task
+// order: a search or a sweep gives the same output whatever the number of
+// threads.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <exception>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace m4mesh {
+
+// The threads to run on: `threads`, or every core for 0.
+inline unsigned worker_count(unsigned threads) { return threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency()); }
+
+// Runs task(i) for every i below `count` on up to worker_count(threads)
+// threads, and finished(i) for each i in increasing order as soon as
+// tasks 0 … i are done (one at a time). The first exception by task
+// order is rethrown once every running task has ended; no task starts
+// after one failed.
+inline void parallel_for(size_t count, unsigned threads, const std::function<void(size_t)>& task,
+                         const std::function<void(size_t)>& finished = nullptr) {
+  std::vector<std::exception_ptr> errors(count);
+  std::vector<char> done(count, 0);
+  std::atomic<size_t> next{0};
+  std::atomic<bool> failed{false};
+  std::mutex order;
+  size_t reported = 0;
+  auto work = [&] {
+    for (size_t i; !failed && (i = next++) < count;) {
+      try {
+        task(i);
+      } catch (...) {
+        errors[i] = std::current_exception();
+        failed = true;
+      }
+      const std::lock_guard<std::mutex> lock(order);
+      done[i] = 1;
+      for (; reported < count && done[reported] && !errors[reported]; ++reported)
+        if (finished && !failed) finished(reported);
+    }
+  };
+  const size_t workers = std::min<size_t>(worker_count(threads), count);
+  std::vector<std::thread> pool;
+  for (size_t w = 1; w < workers; ++w) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
+}  // namespace m4mesh
