@@ -104,6 +104,24 @@ TEST(CpcaWpt, BudgetAndTargetAreMet) {
   EXPECT_THROW(encode_mesh3d(s, cpca({{"noise", "13"}})), Error);
 }
 
+// With a KG target, clusters and components left to auto: of 5, 10, 20 and
+// 40 clusters the one whose plan is smallest, with every component; the
+// same stream as that count given.
+TEST(CpcaWpt, ATargetChoosesTheClusterCount) {
+  const MeshSequence s = test::test_sequence(12, 6);
+  const Encode3dResult chosen = encode_mesh3d(s, cpca({{"target-kg", "1"}}));
+  const auto clusters = std::find_if(chosen.statistics.begin(), chosen.statistics.end(), [](const CodecStatistic& c) { return c.first == "clusters"; });
+  ASSERT_NE(clusters, chosen.statistics.end());
+  const std::string count = std::to_string(static_cast<int>(clusters->second));
+  EXPECT_EQ(encode_mesh3d(s, cpca({{"target-kg", "1"}, {"clusters", count}, {"components", "4096"}})).stream, chosen.stream);
+  for (const char* other : {"5", "10", "20", "40"}) {
+    const uint64_t bytes = encode_mesh3d(s, cpca({{"target-kg", "1"}, {"clusters", other}, {"components", "4096"}})).stream.size();
+    EXPECT_LE(chosen.stream.size(), bytes + bytes / 50) << other << " clusters";  // the choice is on planned sizes
+  }
+  EXPECT_THROW(encode_mesh3d(s, cpca({{"clusters", "0"}})), Error);
+  EXPECT_THROW(encode_mesh3d(s, cpca({{"components", "many"}})), Error);
+}
+
 TEST(CpcaWpt, CorruptAndTruncatedStreamsFailCleanly) {
   EXPECT_GT(test::decode_damaged_mesh3d(encode_mesh3d(test::test_sequence(6, 2), cpca({{"clusters", "3"}})).stream, 41, 5), 0);
 }

@@ -26,7 +26,25 @@ namespace {
 // The noise step's log2: the default, and the range --noise and the search take.
 constexpr int kDefaultNoise = 4, kMinNoise = -4, kMaxNoise = 12;
 
+// Principal components per cluster: the paper's, and the most --components takes.
+constexpr size_t kPaperComponents = 40, kMaxComponents = 4096;
+// Clusters: the paper's.
+constexpr int kPaperClusters = 10;
+
 Error usage_error(const std::string& message) { return Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, message); }
+
+// A whole number 1 … most written in `text`, else a usage error naming the option.
+size_t parse_count(const std::string& text, const char* option, size_t most) {
+  size_t used = 0;
+  unsigned long value = 0;
+  try {
+    value = std::stoul(text, &used);
+  } catch (const std::exception&) {
+  }
+  if (used == 0 || used != text.size() || text[0] == '-' || value < 1 || value > most)
+    throw usage_error(std::string(option) + " is auto or an integer in 1 … " + std::to_string(most) + " (cpca-wpt)");
+  return value;
+}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -274,12 +292,13 @@ struct Plan {
 
 class CpcaEncoder final : public CodecEncoder3d {
  public:
-  CpcaEncoder(const MeshSequence& s, const CodecSettings& settings)
-      : components_(static_cast<size_t>(settings.integer("components"))),
-        max_bytes_(static_cast<uint64_t>(settings.number("max-bytes"))),
+  CpcaEncoder(const MeshSequence& s, const CodecSettings& settings, int clusters)
+      : max_bytes_(static_cast<uint64_t>(settings.number("max-bytes"))),
         target_kg_(settings.number("target-kg")),
         round_robin_(settings.text("order") == "rpt") {
     if (settings.text("order") != "wpt" && settings.text("order") != "rpt") throw usage_error("--order is wpt or rpt (cpca-wpt)");
+    components_ = settings.text("components") == "auto" ? (max_bytes_ > 0 || target_kg_ > 0 ? kMaxComponents : kPaperComponents)
+                                                         : parse_count(settings.text("components"), "--components", kMaxComponents);
     if (settings.text("noise") != "auto") {
       size_t used = 0;
       try {
@@ -308,7 +327,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     for (size_t v = 0; v < s.vertex_count; ++v)
       if (!grid_.quantize(mean[v], mean_[v]))
         throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "the mean of vertex " + std::to_string(v) + " lies outside the grid");
-    prepare(s, settings.integer("clusters"));
+    prepare(s, clusters);
   }
 
   void write_header(syntax::WriteIO& io) override {
@@ -340,6 +359,10 @@ class CpcaEncoder final : public CodecEncoder3d {
       throw usage_error("--target-kg " + std::to_string(target_kg_) + " is out of reach within --max-bytes (cpca-wpt)");
     for (uint32_t f = 0; f < s.frames.size(); ++f) sink.decoded(f, animation.frame(f));
   }
+
+  // The bytes of the stream planned (estimated: every unit's size, and the
+  // fixed part).
+  uint64_t planned_bytes() const { return plan_.bytes; }
 
   std::vector<CodecStatistic> statistics() const override {
     return {{"clusters", header_.cluster_count},
@@ -645,7 +668,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     return kg_error(s, decoded);
   }
 
-  size_t components_;
+  size_t components_ = 0;
   uint64_t max_bytes_;
   double target_kg_;
   bool round_robin_;
@@ -669,8 +692,12 @@ class CpcaEncoder final : public CodecEncoder3d {
 
 std::vector<CodecOption> cpca_wpt_options() {
   return {bits_option("quantization bits of the mean shape (the base mesh)"),
-          {"clusters", "cpca-wpt: k, the clusters of k-means on the vertices' trajectories", OptionKind::kInteger, "10", 1, kCpcaMaxClusters},
-          {"components", "cpca-wpt: at most this many principal components per cluster", OptionKind::kInteger, "40", 1, 4096},
+          {"clusters", "cpca-wpt: k, the clusters of k-means on the vertices' trajectories, 1 … 255, or auto (10, the paper's; with "
+                       "--target-kg the one of 5, 10, 20 and 40 whose planned stream is smallest)",
+           OptionKind::kText, "auto", 0, 0},
+          {"components", "cpca-wpt: at most this many principal components per cluster, 1 … 4096, or auto (40, the paper's, or every "
+                         "one for --max-bytes or --target-kg)",
+           OptionKind::kText, "auto", 0, 0},
           {"noise", "cpca-wpt: log2 of the quantization step of the coded values in grid units, −4 … 12, or auto (4, or the best for "
                     "--max-bytes or --target-kg)",
            OptionKind::kText, "auto", 0, 0},
@@ -681,7 +708,23 @@ std::vector<CodecOption> cpca_wpt_options() {
 }
 
 std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequence, const CodecSettings& settings) {
-  return std::make_unique<CpcaEncoder>(sequence, settings);
+  if (settings.text("clusters") != "auto")
+    return std::make_unique<CpcaEncoder>(sequence, settings, static_cast<int>(parse_count(settings.text("clusters"), "--clusters", kCpcaMaxClusters)));
+  if (!(settings.number("target-kg") > 0)) return std::make_unique<CpcaEncoder>(sequence, settings, kPaperClusters);
+  // The cluster count whose plan reaches the target in the fewest bytes.
+  std::unique_ptr<CpcaEncoder> best;
+  std::optional<Error> missed;
+  for (const int clusters : {5, 10, 20, 40}) {
+    try {
+      auto encoder = std::make_unique<CpcaEncoder>(sequence, settings, clusters);
+      if (!best || encoder->planned_bytes() < best->planned_bytes()) best = std::move(encoder);
+    } catch (const Error& e) {
+      if (e.kind() != ErrorKind::kUsage) throw;
+      missed = e;
+    }
+  }
+  if (!best) throw *missed;
+  return best;
 }
 
 }  // namespace m4mesh
