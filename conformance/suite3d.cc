@@ -580,6 +580,17 @@ const std::vector<uint8_t>& find(const std::vector<SuiteCase>& cases, const std:
   throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no case " + id);
 }
 
+// A unit: its header (the first bytes of the unit it replaces), then its
+// data described.
+template <class Data>
+std::vector<uint8_t> unit_with(std::vector<uint8_t> unit_header, Data data) {
+  BitWriter writer;
+  syntax::WriteIO out(writer);
+  syntax::describe(out, data);
+  unit_header.insert(unit_header.end(), writer.bytes().begin(), writer.bytes().end());
+  return unit_header;
+}
+
 // An Affine-Octree frame unit with its header and the one cell `cell` of
 // `count` vertices, the root, written through `coder` (direct_shift 0).
 std::vector<uint8_t> ao_root_unit(const AffineOctreeHeader& coder, uint32_t count, AffineCell cell, std::vector<uint8_t> unit_header) {
@@ -588,11 +599,7 @@ std::vector<uint8_t> ao_root_unit(const AffineOctreeHeader& coder, uint32_t coun
   cells.describe(symbols, 0, count, cell);
   const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
   AffineFrame data{0, static_cast<uint32_t>(bins.size()), bins, raw};
-  BitWriter writer;
-  syntax::WriteIO out(writer);
-  syntax::describe(out, data);
-  unit_header.insert(unit_header.end(), writer.bytes().begin(), writer.bytes().end());
-  return unit_header;
+  return unit_with(std::move(unit_header), data);
 }
 
 // An Affine-Octree frame unit of `stream` whose only cell, the root, is a
@@ -775,11 +782,7 @@ std::vector<uint8_t> lcc_unit(const LccHeader& header, bool predicted, LccIndice
   syntax::describe_symbols(symbols, coder, predicted, residuals.direct, residuals.steps, int32_t{1} << header.theta_bits, rh_limit);
   const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
   LccFrameData data{static_cast<uint32_t>(bins.size()), bins, raw};
-  BitWriter writer;
-  syntax::WriteIO out(writer);
-  syntax::describe(out, data);
-  unit_header.insert(unit_header.end(), writer.bytes().begin(), writer.bytes().end());
-  return unit_header;
+  return unit_with(std::move(unit_header), data);
 }
 
 // An lcc frame unit of `stream` (stream mode), an anchor or a frame
@@ -1033,11 +1036,7 @@ std::vector<uint8_t> base_mesh_unit(std::vector<uint8_t> unit_header, syntax::En
   data.arithmetic_bytes = static_cast<uint32_t>(bins.size());
   data.bins = bins;
   data.raw = raw;
-  BitWriter writer;
-  syntax::WriteIO out(writer);
-  syntax::describe(out, data);
-  unit_header.insert(unit_header.end(), writer.bytes().begin(), writer.bytes().end());
-  return unit_header;
+  return unit_with(std::move(unit_header), data);
 }
 
 // A base mesh unit for frame 0 of an object of `vertex_count` vertices and
@@ -1111,11 +1110,23 @@ struct FirstFarOracle {
 // valid.
 class FaceTracker {
  public:
+  // A seed's corner is asked for; numbered() hears the vertex.
+  void seed_corner(int corner) { corner_ = corner; }
+  // A vertex just numbered: a seed's corner, the seed face complete at its third.
+  void numbered(uint32_t v) {
+    if (corner_ < 0) return;
+    seed_.v[static_cast<size_t>(corner_)] = v;
+    if (corner_ == 2) {
+      add(seed_);
+      corner_ = -1;
+    }
+  }
   // Whether the face (gate.to, gate.from, c) repeats no vertex and no directed edge.
   bool can_attach(HalfEdge gate, uint32_t c) const {
     return c != gate.from && c != gate.to && !edges_.count({gate.to, gate.from}) && !edges_.count({gate.from, c}) && !edges_.count({c, gate.to});
   }
   void add(const Triangle& face) {
+    ++faces_;
     for (int i = 0; i < 3; ++i) edges_.insert({face.v[static_cast<size_t>(i)], face.v[static_cast<size_t>((i + 1) % 3)]});
   }
   // The face behind the gate for an answer.
@@ -1126,9 +1137,13 @@ class FaceTracker {
                                                                  : answer.far_vertex;
     add({{gate.to, gate.from, c}});
   }
+  uint32_t faces() const { return faces_; }
 
  private:
   std::set<std::pair<uint32_t, uint32_t>> edges_;
+  uint32_t faces_ = 0;
+  int corner_ = -1;
+  Triangle seed_{};
 };
 
 // Answers for components of a base mesh, each from its own random seed:
@@ -1147,26 +1162,20 @@ class ComponentOracle {
       random_ = SplitMix64(seeds_.at(component_++));
       for (uint32_t& odds : odds_) odds = static_cast<uint32_t>(1 + random_.next() % 8);
       first_ = visited_;
-      faces_ = 0;
+      first_face_ = tracker_.faces();
     }
-    corner_ = corner;
+    tracker_.seed_corner(corner);
     return false;
   }
   void numbered(uint32_t v) {
     visited_ = v + 1;
-    if (corner_ < 0) return;
-    seed_.v[static_cast<size_t>(corner_)] = v;
-    if (corner_ == 2) {
-      tracker_.add(seed_);
-      ++faces_;
-    }
+    tracker_.numbered(v);
   }
 
   GateAnswer gate(HalfEdge gate, std::span<const uint32_t> candidates) {
-    corner_ = -1;
     std::vector<GateAnswer> answers[4];  // border, new vertex, candidate, far vertex
     answers[0].push_back({GateSymbol::kBorder, 0, 0});
-    if (faces_ < kFaces) {
+    if (tracker_.faces() - first_face_ < kFaces) {
       if (tracker_.can_attach(gate, visited_)) answers[1].push_back({GateSymbol::kNewVertex, 0, 0});
       for (uint32_t i = 0; i < candidates.size(); ++i)
         if (tracker_.can_attach(gate, candidates[i])) answers[2].push_back({GateSymbol::kCandidate, i, 0});
@@ -1183,7 +1192,6 @@ class ComponentOracle {
     }
     const GateAnswer answer = answers[kind][random_.next() % answers[kind].size()];
     tracker_.add(gate, answer, candidates, visited_);
-    faces_ += answer.symbol != GateSymbol::kBorder;
     return answer;
   }
 
@@ -1195,9 +1203,7 @@ class ComponentOracle {
   SplitMix64 random_;
   uint32_t odds_[4] = {};
   FaceTracker tracker_;
-  uint32_t visited_ = 0, first_ = 0, faces_ = 0;
-  int corner_ = -1;
-  Triangle seed_{};
+  uint32_t visited_ = 0, first_ = 0, first_face_ = 0;  // the component's first vertex and face
 };
 // Writes nothing: records the (element, context, value) of every bin.
 class BinRecorder {
@@ -1248,17 +1254,14 @@ class FarScheduleOracle {
     });
   }
   bool seed_corner(int corner, uint32_t&) {
-    corner_ = corner;
+    tracker_.seed_corner(corner);
     return false;
   }
   void numbered(uint32_t v) {
     visited_ = v + 1;
-    if (corner_ < 0) return;
-    seed_.v[static_cast<size_t>(corner_)] = v;
-    if (corner_ == 2) tracker_.add(seed_);
+    tracker_.numbered(v);
   }
   GateAnswer gate(HalfEdge gate, std::span<const uint32_t> candidates) {
-    corner_ = -1;
     GateAnswer answer{GateSymbol::kBorder, 0, 0};
     if (visited_ < fan_) {
       if (visited_ == gate.to + 1) answer.symbol = GateSymbol::kNewVertex;
@@ -1282,8 +1285,6 @@ class FarScheduleOracle {
   size_t next_ = 0;
   FaceTracker tracker_;
   uint32_t visited_ = 0;
-  int corner_ = -1;
-  Triangle seed_{};
 };
 
 // Seeds of components that reach the gate and candidate contexts: per
@@ -1351,11 +1352,7 @@ std::vector<uint8_t> bfs3d_endless_prefix_unit(std::vector<uint8_t> unit_header)
   Bfs3dFrame frame;
   frame.arithmetic_bytes[0] = static_cast<uint32_t>(bins.size());
   frame.bins[0] = bins;
-  BitWriter writer;
-  syntax::WriteIO out(writer);
-  syntax::describe(out, frame);
-  unit_header.insert(unit_header.end(), writer.bytes().begin(), writer.bytes().end());
-  return unit_header;
+  return unit_with(std::move(unit_header), frame);
 }
 
 Encode3dOptions cpca(CodecOptionValues values) {
