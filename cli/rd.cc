@@ -45,7 +45,9 @@ std::vector<RdPoint> rd_sweep(const MeshSequence& s, const std::vector<std::stri
   std::vector<std::pair<const Codec3d*, std::string>> settings;  // per point: the codec and its knob's value
   for (const Codec3d* codec : codec_rows(codecs))
     for (const std::string& value : codec->quality.coarse_to_fine) {
-      tried.push_back({codec->name, "--" + codec->quality.option + " " + value});
+      std::string parameter = "--" + codec->quality.option + " " + value;
+      for (const auto& [name, beside] : codec->quality.beside) parameter += " --" + name + " " + beside;
+      tried.push_back({codec->name, parameter});
       settings.emplace_back(codec, value);
     }
   std::vector<std::string> left_out(tried.size());  // why a setting cannot code this sequence
@@ -56,6 +58,7 @@ std::vector<RdPoint> rd_sweep(const MeshSequence& s, const std::vector<std::stri
         const auto& [codec, value] = settings[k];
         Encode3dOptions options;
         options.codec = codec->name;
+        options.codec_options = codec->quality.beside;
         options.codec_options[codec->quality.option] = value;
         options.hashes = false;
         auto start = std::chrono::steady_clock::now();

@@ -34,16 +34,16 @@ std::vector<std::string> values(int first, int last) {
 std::vector<Codec3d>& table() {
   static std::vector<Codec3d> rows = {
       {1, "bfs3d", "Method II in 3D: breadth-first motion prediction, lossless on the grid", "docs/codec_bfs3d.md",
-       {UnitType::kBaseMesh, UnitType::kFrame}, bfs3d_options(), {"bits", values(4, 24)}, make_bfs3d_decoder, make_bfs3d_encoder},
+       {UnitType::kBaseMesh, UnitType::kFrame}, bfs3d_options(), {"bits", values(4, 24), {}}, make_bfs3d_decoder, make_bfs3d_encoder},
       {2, "affine-octree", "an octree of affine motion cells, closed loop", "docs/codec_affine_octree.md",
        {UnitType::kBaseMesh, UnitType::kFrame}, affine_octree_options(),
-       {"me", {"50", "30", "20", "12", "8", "5", "3", "2", "1.2", "0.8", "0.5", "0.3", "0.2", "0.1"}}, make_affine_octree_decoder,
+       {"me", {"50", "30", "20", "12", "8", "5", "3", "2", "1.2", "0.8", "0.5", "0.3", "0.2", "0.1"}, {}}, make_affine_octree_decoder,
        make_affine_octree_encoder},
       {3, "lcc", "cloth in local cylindrical coordinates: dihedral angle, radius and height against a reference mesh", "docs/codec_lcc.md",
-       {UnitType::kBaseMesh, UnitType::kFrame}, lcc_options(), {"theta-bits", values(2, 15)}, make_lcc_decoder, make_lcc_encoder},
+       {UnitType::kBaseMesh, UnitType::kFrame}, lcc_options(), {"theta-bits", values(2, 15), {}}, make_lcc_decoder, make_lcc_encoder},
       {4, "cpca-wpt", "clustered PCA, progressive: every refinement unit adds one principal component of one cluster to every frame",
-       "docs/codec_cpca_wpt.md", {UnitType::kBaseMesh, UnitType::kRefinement}, cpca_wpt_options(), {"noise", values(12, -4)},
-       make_cpca_wpt_decoder, make_cpca_wpt_encoder},
+       "docs/codec_cpca_wpt.md", {UnitType::kBaseMesh, UnitType::kRefinement}, cpca_wpt_options(),
+       {"noise", values(12, -4), {{"components", "4096"}}}, make_cpca_wpt_decoder, make_cpca_wpt_encoder},
   };
   return rows;
 }

@@ -23,6 +23,7 @@ namespace m4mesh {
 struct QualityKnob {
   std::string option;
   std::vector<std::string> coarse_to_fine;
+  CodecOptionValues beside;  // set with the knob in sweeps and searches, unless given
 };
 
 struct Codec3d {

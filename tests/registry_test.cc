@@ -172,7 +172,7 @@ void register_toy() {
     register_codec3d({kToyId, "toy-progressive", "a test's progressive codec: 16-bit positions in two refinement units", "tests/registry_test.cc",
                       {UnitType::kBaseMesh, UnitType::kRefinement},
                       {{"levels", "toy-progressive: refinement units to send", OptionKind::kInteger, "2", 1, 2}},
-                      {"levels", {"1", "2"}},
+                      {"levels", {"1", "2"}, {}},
                       [](const ObjectHeader& h, syntax::ReadIO&) { return std::make_unique<ToyDecoder>(h); },
                       [](const MeshSequence&, const CodecSettings& s) { return std::make_unique<ToyEncoder>(s.integer("levels")); }});
     register_codec3d({kToyId + 1, "toy-reordered", "a test's codec that decodes frames out of display order", "tests/registry_test.cc",

@@ -71,6 +71,7 @@ Encode3dResult encode_to_target(const MeshSequence& s, const Encode3dOptions& op
     Encode3dOptions tried = options;
     const std::string parameter = "--" + knob.option + " " + knob.coarse_to_fine[index];
     tried.codec_options[knob.option] = knob.coarse_to_fine[index];
+    for (const auto& [name, value] : knob.beside) tried.codec_options.try_emplace(name, value);
     try {
       const TargetTrial t = trial(s, tried, target, parameter, results[index]);
       report(t);

@@ -32,6 +32,13 @@ def test_rows_are_complete(sweep):
         assert int(row["bytes"]) > 0 and float(row["bpvf"]) > 0 and float(row["kg_percent"]) >= 0
 
 
+def test_cpca_wpt_sweeps_with_every_component(sweep):
+    # Its noise step alone would stop at 40 components per cluster.
+    with open(sweep, newline="") as f:
+        rows = [row for row in csv.DictReader(f) if row["codec"] == "cpca-wpt"]
+    assert rows and all(row["parameter"].endswith(" --components 4096") for row in rows)
+
+
 def test_bfs3d_error_falls_with_every_bit(sweep):
     # bfs3d's grid step halves with each bit: its error never grows.
     with open(sweep, newline="") as f:
