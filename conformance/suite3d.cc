@@ -385,13 +385,17 @@ std::string rest_shape_file(const MeshSequence& flag) {
   return path;
 }
 
-Encode3dOptions lcc(CodecOptionValues values) {
+// A codec with its options, a frame hash unit per frame (the conformance
+// streams hash every frame).
+Encode3dOptions codec_with(std::string codec, CodecOptionValues values) {
   Encode3dOptions o;
-  o.hash_group = 1;  // the conformance streams hash every frame
-  o.codec = "lcc";
+  o.hash_group = 1;
+  o.codec = std::move(codec);
   o.codec_options = std::move(values);
   return o;
 }
+
+Encode3dOptions lcc(CodecOptionValues values) { return codec_with("lcc", std::move(values)); }
 
 MeshSequence moving_tetrahedron(int frames) {
   MeshSequence s;
@@ -492,11 +496,7 @@ MeshSequence clustered_jumps(int frames, int depth) {
 
 // Affine-Octree at ME `me` percent and k bits per matrix element.
 Encode3dOptions affine(const std::string& me, int k = 16) {
-  Encode3dOptions o;
-  o.hash_group = 1;  // the conformance streams hash every frame
-  o.codec = "affine-octree";
-  o.codec_options = {{"me", me}, {"matrix-bits", std::to_string(k)}};
-  return o;
+  return codec_with("affine-octree", {{"me", me}, {"matrix-bits", std::to_string(k)}});
 }
 
 // A stream to decode, with a frame hash unit per frame unless a group is
@@ -1106,14 +1106,18 @@ struct FirstFarOracle {
   }
 };
 
-// The faces a base mesh oracle has answered so far, to keep its answers
-// valid.
+// The base of the oracles below: the vertices numbered and the faces
+// answered so far, to keep the answers valid. Seeds take new vertices.
 class FaceTracker {
  public:
   // A seed's corner is asked for; numbered() hears the vertex.
-  void seed_corner(int corner) { corner_ = corner; }
-  // A vertex just numbered: a seed's corner, the seed face complete at its third.
+  bool seed_corner(int corner, uint32_t&) {
+    corner_ = corner;
+    return false;
+  }
+  // A vertex just numbered: a gate's new vertex or a seed's corner, the seed face complete at its third.
   void numbered(uint32_t v) {
+    visited_ = v + 1;
     if (corner_ < 0) return;
     seed_.v[static_cast<size_t>(corner_)] = v;
     if (corner_ == 2) {
@@ -1138,6 +1142,10 @@ class FaceTracker {
     add({{gate.to, gate.from, c}});
   }
   uint32_t faces() const { return faces_; }
+  uint32_t vertices() const { return visited_; }
+
+ protected:
+  uint32_t visited_ = 0;
 
  private:
   std::set<std::pair<uint32_t, uint32_t>> edges_;
@@ -1151,36 +1159,31 @@ class FaceTracker {
 // candidate or a far vertex of the component (each with the component's
 // own odds, among the answers that make a valid face) until the component
 // has `kFaces` faces, then borders. Past the last seed, std::out_of_range.
-class ComponentOracle {
+class ComponentOracle : public FaceTracker {
  public:
   static constexpr uint32_t kFaces = 40;
 
   explicit ComponentOracle(std::vector<uint64_t> seeds) : seeds_(std::move(seeds)), random_(0) {}
 
-  bool seed_corner(int corner, uint32_t&) {
+  bool seed_corner(int corner, uint32_t& vertex) {
     if (corner == 0) {
       random_ = SplitMix64(seeds_.at(component_++));
       for (uint32_t& odds : odds_) odds = static_cast<uint32_t>(1 + random_.next() % 8);
       first_ = visited_;
-      first_face_ = tracker_.faces();
+      first_face_ = faces();
     }
-    tracker_.seed_corner(corner);
-    return false;
-  }
-  void numbered(uint32_t v) {
-    visited_ = v + 1;
-    tracker_.numbered(v);
+    return FaceTracker::seed_corner(corner, vertex);
   }
 
   GateAnswer gate(HalfEdge gate, std::span<const uint32_t> candidates) {
     std::vector<GateAnswer> answers[4];  // border, new vertex, candidate, far vertex
     answers[0].push_back({GateSymbol::kBorder, 0, 0});
-    if (tracker_.faces() - first_face_ < kFaces) {
-      if (tracker_.can_attach(gate, visited_)) answers[1].push_back({GateSymbol::kNewVertex, 0, 0});
+    if (faces() - first_face_ < kFaces) {
+      if (can_attach(gate, visited_)) answers[1].push_back({GateSymbol::kNewVertex, 0, 0});
       for (uint32_t i = 0; i < candidates.size(); ++i)
-        if (tracker_.can_attach(gate, candidates[i])) answers[2].push_back({GateSymbol::kCandidate, i, 0});
+        if (can_attach(gate, candidates[i])) answers[2].push_back({GateSymbol::kCandidate, i, 0});
       const uint32_t far = first_ + static_cast<uint32_t>(random_.next() % (visited_ - first_));
-      if (tracker_.can_attach(gate, far)) answers[3].push_back({GateSymbol::kFarVertex, 0, far});
+      if (can_attach(gate, far)) answers[3].push_back({GateSymbol::kFarVertex, 0, far});
     }
     uint32_t total = 0;
     for (int k = 0; k < 4; ++k) total += answers[k].empty() ? 0 : odds_[k];
@@ -1191,19 +1194,16 @@ class ComponentOracle {
       ++kind;
     }
     const GateAnswer answer = answers[kind][random_.next() % answers[kind].size()];
-    tracker_.add(gate, answer, candidates, visited_);
+    add(gate, answer, candidates, visited_);
     return answer;
   }
-
-  uint32_t vertices() const { return visited_; }
 
  private:
   std::vector<uint64_t> seeds_;
   size_t component_ = 0;
   SplitMix64 random_;
   uint32_t odds_[4] = {};
-  FaceTracker tracker_;
-  uint32_t visited_ = 0, first_ = 0, first_face_ = 0;  // the component's first vertex and face
+  uint32_t first_ = 0, first_face_ = 0;  // the component's first vertex and face
 };
 // Writes nothing: records the (element, context, value) of every bin.
 class BinRecorder {
@@ -1243,7 +1243,7 @@ Traversed traversed(Oracle oracle) {
 // 0), each after a run of ±1 long enough for the far channel's order k to
 // return to 0: a border where the difference fits neither way. Past the
 // last, std::out_of_range.
-class FarScheduleOracle {
+class FarScheduleOracle : public FaceTracker {
  public:
   explicit FarScheduleOracle(uint32_t fan) : fan_(fan) {
     for_each_prefix_pattern(13, [&](int32_t first, int32_t second) {
@@ -1253,14 +1253,6 @@ class FarScheduleOracle {
       schedule_.push_back(std::abs(second));
     });
   }
-  bool seed_corner(int corner, uint32_t&) {
-    tracker_.seed_corner(corner);
-    return false;
-  }
-  void numbered(uint32_t v) {
-    visited_ = v + 1;
-    tracker_.numbered(v);
-  }
   GateAnswer gate(HalfEdge gate, std::span<const uint32_t> candidates) {
     GateAnswer answer{GateSymbol::kBorder, 0, 0};
     if (visited_ < fan_) {
@@ -1268,23 +1260,19 @@ class FarScheduleOracle {
     } else {
       const int64_t d = schedule_.at(next_);
       for (int64_t c : {int64_t{gate.from} + d, int64_t{gate.from} - d})
-        if (c >= 0 && c < visited_ && tracker_.can_attach(gate, static_cast<uint32_t>(c))) {
+        if (c >= 0 && c < visited_ && can_attach(gate, static_cast<uint32_t>(c))) {
           answer = {GateSymbol::kFarVertex, 0, static_cast<uint32_t>(c)};
           ++next_;
           break;
         }
     }
-    tracker_.add(gate, answer, candidates, visited_);
+    add(gate, answer, candidates, visited_);
     return answer;
   }
-  uint32_t vertices() const { return visited_; }
-
  private:
   uint32_t fan_;
   std::vector<int64_t> schedule_;
   size_t next_ = 0;
-  FaceTracker tracker_;
-  uint32_t visited_ = 0;
 };
 
 // Seeds of components that reach the gate and candidate contexts: per
@@ -1355,13 +1343,7 @@ std::vector<uint8_t> bfs3d_endless_prefix_unit(std::vector<uint8_t> unit_header)
   return unit_with(std::move(unit_header), frame);
 }
 
-Encode3dOptions cpca(CodecOptionValues values) {
-  Encode3dOptions o;
-  o.hash_group = 1;  // the conformance streams hash every frame
-  o.codec = "cpca-wpt";
-  o.codec_options = std::move(values);
-  return o;
-}
+Encode3dOptions cpca(CodecOptionValues values) { return codec_with("cpca-wpt", std::move(values)); }
 
 // The position of the n-th refinement unit (n from 0) among a stream's units.
 size_t refinement_unit(const ContainerParts& parts, size_t n) {
