@@ -89,7 +89,10 @@ std::set<std::string> coverage_items3d(std::span<const uint8_t> stream) {
       items.insert(item(area, n + " = " + std::to_string(value)));
     if (n == "direct_shift") items.insert(item(area, value == 0 ? "direct_shift = 0" : "direct_shift > 0"));
     if (n == "cluster_count") items.insert(item(area, value == 1 ? "cluster_count = 1" : "cluster_count > 1"));
-    if (n == "unit_kind") kind = static_cast<uint32_t>(value);
+    if (n == "unit_kind") {
+      kind = static_cast<uint32_t>(value);
+      items.insert(item(area, "unit_kind = " + line->value));
+    }
     if (n == "shift") {
       const char* relation = value < 16 ? "< 16" : value == 16 ? "= 16" : "> 16";
       items.insert(item(area, std::string(kind == 0 ? "start" : "component") + " shift " + relation));
@@ -178,10 +181,13 @@ std::map<std::string, std::set<std::string>> coverage_catalog3d() {
   residual_family(cpca, "cpca-wpt", "cluster", {0}, 7);
   residual_family(cpca, "cpca-wpt", "translation", {0, 1, 2});
   residual_family(cpca, "cpca-wpt", "basis", {0, 1, 2});
-  residual_family(cpca, "cpca-wpt", "coefficient", {3});
+  residual_family(cpca, "cpca-wpt", "coefficient", {3, 6});
+  residual_family(cpca, "cpca-wpt", "mesh_basis", {0, 1, 2, 3, 4, 5});
+  residual_family(cpca, "cpca-wpt", "trajectory_basis", {0, 1});
+  residual_family(cpca, "cpca-wpt", "trajectory_coefficient", {2, 3, 4});
   for (const char* s : {"start shift < 16", "start shift = 16", "start shift > 16", "component shift < 16", "component shift = 16",
                         "component shift > 16", "cluster_count = 1", "cluster_count > 1", "fraction_bits = 0", "fraction_bits = 16",
-                        "quantization_bits = 4", "quantization_bits = 24"})
+                        "quantization_bits = 4", "quantization_bits = 24", "unit_kind = 0", "unit_kind = 1", "unit_kind = 2", "unit_kind = 3"})
     cpca.insert(item("cpca-wpt", s));
   return c;
 }

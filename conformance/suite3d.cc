@@ -19,6 +19,7 @@
 #include "common/md5.h"
 #include "common/random.h"
 #include "decoder/mesh3d/container_decoder.h"
+#include "encoder/mesh3d/base_mesh.h"
 #include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/affine_octree.h"
 #include "mesh3d/base_mesh.h"
@@ -1343,7 +1344,13 @@ std::vector<uint8_t> bfs3d_endless_prefix_unit(std::vector<uint8_t> unit_header)
   return unit_with(std::move(unit_header), frame);
 }
 
-Encode3dOptions cpca(CodecOptionValues values) { return codec_with("cpca-wpt", std::move(values)); }
+// cpca-wpt with the paper's tools (shape components, basis predicted in
+// index order) unless `values` name others.
+Encode3dOptions cpca(CodecOptionValues values) {
+  for (const auto& [option, value] : CodecOptionValues{{"model", "shape"}, {"basis", "index"}})
+    if (!values.contains(option)) values[option] = value;
+  return codec_with("cpca-wpt", std::move(values));
+}
 
 // The position of the n-th refinement unit (n from 0) among a stream's units.
 size_t refinement_unit(const ContainerParts& parts, size_t n) {
@@ -1454,6 +1461,90 @@ std::vector<uint8_t> cpca_written_stream() {
   return writer.finish();
 }
 
+// A clustered-PCA stream of 2 frames written symbol by symbol (no hash
+// units) whose components are all of `kind` (2: shapes over the mesh, 3:
+// trajectories), over the separate quads of parallelogram_quads() at one
+// place and as many vertices in no face:
+// - cluster 0, the quads: a component whose basis is 0 at a quad's first
+//   three vertices and prefix_schedule()'s next value at its fourth, so
+//   that the parallelogram channels carry the schedule;
+// - cluster 1, the vertices in no face (each predicted by the one before):
+//   a component whose basis steps through prefix_schedule();
+// - clusters 2 … 43, one vertex each: per pattern of
+//   for_each_prefix_pattern(), a component whose coefficients step by the
+//   pattern's values on every lane.
+std::vector<uint8_t> cpca_mesh_written_stream(uint32_t kind) {
+  const std::vector<int32_t> schedule = prefix_schedule();
+  std::vector<std::pair<int32_t, int32_t>> patterns;
+  for_each_prefix_pattern(13, [&](int32_t first, int32_t second) { patterns.emplace_back(first, second); });
+  MeshSequence s = parallelogram_quads(std::vector<int32_t>(schedule.size(), 0));
+  const uint32_t quads_end = s.vertex_count;
+  for (size_t i = 0; i < schedule.size() + patterns.size(); ++i) s.frames[0].push_back({40000.0 + static_cast<double>(i % 64), 40000, 40000});
+  s.vertex_count = static_cast<uint32_t>(s.frames[0].size());
+  s.frames = {s.frames[0], s.frames[0]};
+  std::vector<uint32_t> cluster_of(s.vertex_count, 0);
+  for (uint32_t v = quads_end; v < quads_end + schedule.size(); ++v) cluster_of[v] = 1;
+  for (uint32_t p = 0; p < patterns.size(); ++p) cluster_of[quads_end + schedule.size() + p] = 2 + p;
+  const uint32_t clusters = 2 + static_cast<uint32_t>(patterns.size());
+
+  Encode3dOptions o = cpca({{"clusters", "1"}});
+  o.hashes = false;
+  const std::vector<uint8_t> encoded = encode_mesh3d(s, o).stream;
+  ContainerParts parts = split_container(encoded);
+  auto [object, header] = read_headers<CpcaHeader>(parts);
+  syntax::EntropyWriteIO<false> map(syntax::SectionPlace{});
+  syntax::describe_cluster_map(map, cluster_of, clusters);
+  const std::vector<uint8_t> map_bins = map.finish_bins(), map_raw = map.finish_raw();
+  header.cluster_count = clusters;
+  header.map_bins_bytes = static_cast<uint32_t>(map_bins.size());
+  header.map_bins = map_bins;
+  header.map_raw_bytes = static_cast<uint32_t>(map_raw.size());
+  header.map_raw = map_raw;
+  BitWriter payload;
+  syntax::WriteIO out(payload);
+  syntax::describe(out, object);
+  syntax::describe(out, header);
+  ContainerWriter writer;
+  writer.object(payload.take_bytes());
+  writer.unit(unit_of(parts, UnitType::kBaseMesh, 0).payload);
+
+  const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false);
+  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, clusters);
+  const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, clusters);
+  const size_t per_member = kind == kCpcaTrajectory ? 1 : 3;
+  // One value per member (every axis alike), one per frame (every lane alike).
+  auto component = [&](uint32_t cluster, const std::vector<int32_t>& values, std::pair<int32_t, int32_t> frames) {
+    std::vector<int32_t> basis, coefficients;
+    for (int32_t v : values) basis.insert(basis.end(), per_member, v);
+    coefficients.insert(coefficients.end(), 3 / per_member, frames.first);
+    coefficients.insert(coefficients.end(), 3 / per_member, frames.second);
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    if (kind == kCpcaTrajectory)
+      mesh.describe_operator<1>(symbols, cluster, basis, coefficients);
+    else
+      mesh.describe_operator<3>(symbols, cluster, basis, coefficients);
+    writer.unit(refinement_bytes(cluster, kind, kCpcaShiftBias, symbols));
+  };
+  for (uint32_t c = 0; c < clusters; ++c) {
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    std::vector<int32_t> translation(6);
+    syntax::describe_start(symbols, translation);
+    writer.unit(refinement_bytes(c, kCpcaStart, kCpcaShiftBias, symbols));
+  }
+  std::vector<int32_t> quads(members[0].size(), 0);
+  size_t next = 0;
+  for (size_t i = 0; i < members[0].size(); ++i)
+    if (members[0][i] >= 11 && (members[0][i] - 11) % 4 == 3) quads[i] = schedule[next++];  // a quad's fourth vertex
+  component(0, quads, {1, 1});
+  std::vector<int32_t> chain;
+  int32_t value = 0;
+  for (int32_t step : schedule) chain.push_back(value += step);
+  component(1, chain, {1, 1});
+  for (uint32_t p = 0; p < patterns.size(); ++p)
+    component(2 + p, {1}, {patterns[p].first, patterns[p].first + patterns[p].second});
+  return writer.finish();
+}
+
 // The clustered-PCA codec's streams: both orders, a prefix cut at a unit
 // boundary, the finest and coarsest quantization, one cluster, F = 0.
 std::vector<SuiteCase> cpca_cases(bool traced) {
@@ -1486,6 +1577,17 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
   suite.push_back(written_case("cpca-10-written", "a stream written symbol by symbol: every prefix length 0 … 13 after each class in "
                               "translations, basis values and coefficients, cluster differences up to 254, F = 16, start shifts above 16",
                               {"cpca"}, cpca_written_stream()));
+  suite.push_back(valid("cpca-11-mesh-basis", "shape components whose basis is predicted over the base mesh (unit_kind 2)", {"cpca"}, flag,
+                        cpca({{"clusters", "4"}, {"basis", "mesh"}}), traced));
+  suite.push_back(valid("cpca-12-trajectories", "trajectory components (unit_kind 3)", {"cpca"}, flag,
+                        cpca({{"clusters", "4"}, {"model", "trajectory"}}), traced));
+  suite.push_back(valid("cpca-13-trajectories-scattered", "trajectory components of 200 clusters over a sheet: members without neighbours",
+                        {"cpca"}, spiky_sheet(4, 16, 100, 47, 3), cpca({{"clusters", "200"}, {"bits", "24"}, {"model", "trajectory"}}), traced));
+  suite.push_back(written_case("cpca-14-mesh-written", "unit_kind 2 written symbol by symbol: every prefix length 0 … 13 after each class on "
+                              "the parallelogram, neighbour and coefficient channels", {"cpca"}, cpca_mesh_written_stream(kCpcaMeshComponent)));
+  suite.push_back(written_case("cpca-15-trajectory-written", "unit_kind 3 written symbol by symbol: every prefix length 0 … 13 after each "
+                              "class on the parallelogram, neighbour and coefficient channels", {"cpca"},
+                              cpca_mesh_written_stream(kCpcaTrajectory)));
   suite.push_back(valid("cpca-07-no-fraction", "a 24-bit grid: fraction_bits 0", {"cpca"}, flag, cpca({{"clusters", "2"}, {"bits", "24"}}),
                         traced));
   return suite;
@@ -1523,8 +1625,8 @@ std::vector<SuiteCase> cpca_rejected_cases(const std::vector<SuiteCase>& valid) 
   suite.push_back(invalid("x-31-cpca-cluster-beyond", "a refinement unit for cluster 4 of 4", {"cpca"},
                           edited(base, [](ContainerParts& p) { p.units[refinement_unit(p, 0)].payload[kClusterByte] = 4; }),
                           ErrorKind::kOutOfRange, "cluster", 0));
-  suite.push_back(invalid("x-32-cpca-unit-kind", "unit_kind 2", {"cpca"},
-                          edited(base, [](ContainerParts& p) { p.units[refinement_unit(p, 0)].payload[kKindByte] = 2; }),
+  suite.push_back(invalid("x-32-cpca-unit-kind", "unit_kind 4", {"cpca"},
+                          edited(base, [](ContainerParts& p) { p.units[refinement_unit(p, 0)].payload[kKindByte] = 4; }),
                           ErrorKind::kOutOfRange, "unit_kind", 0));
   suite.push_back(invalid("x-33-cpca-not-started", "a component of a cluster before the cluster's start", {"cpca"},
                           edited(base,
@@ -1572,6 +1674,11 @@ std::vector<SuiteCase> cpca_rejected_cases(const std::vector<SuiteCase>& valid) 
         {"x-39-cpca-translation-range", "a start whose first translation is 2^29 + 1", kCpcaStart, {{0, (1 << 29) + 1}}, "translation"},
         {"x-40-cpca-basis-range", "a component whose first basis value is 2^15 + 1", kCpcaComponent, {{0, (1 << 15) + 1}}, "basis"},
         {"x-41-cpca-coefficient-range", "a component whose first coefficient is 2^23 + 1", kCpcaComponent, coefficient_beyond, "coefficient"},
+        // The first member in coding order has no member before it: channel D, from 0.
+        {"x-63-cpca-mesh-basis-range", "a unit_kind 2 component whose first basis value is 2^15 + 1", kCpcaMeshComponent,
+         {{3, (1 << 15) + 1}}, "mesh_basis"},
+        {"x-64-cpca-trajectory-basis-range", "a trajectory component whose first basis value is 2^15 + 1", kCpcaTrajectory,
+         {{1, (1 << 15) + 1}}, "trajectory_basis"},
     };
     for (const auto& c : ranges)
       suite.push_back(invalid(c.id, c.purpose, {"cpca"},
@@ -1600,6 +1707,27 @@ std::vector<SuiteCase> cpca_rejected_cases(const std::vector<SuiteCase>& valid) 
                                        }
                                      const ContainerUnit copy = p.units[last];
                                      for (size_t extra = components; extra < 4; ++extra)
+                                       p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(last) + 1, copy);
+                                   }),
+                            ErrorKind::kStructure, "cluster", 0));
+  }
+  {
+    // One cluster of 4 vertices has at most 4 trajectory components: a fifth is one too many.
+    const std::vector<uint8_t> short_stream =
+        encode_mesh3d(moving_tetrahedron(3), cpca({{"clusters", "1"}, {"noise", "-4"}, {"model", "trajectory"}})).stream;
+    suite.push_back(invalid("x-62-cpca-beyond-trajectories", "a fifth trajectory component of a cluster of 4 vertices", {"cpca"},
+                            edited(short_stream,
+                                   [](ContainerParts& p) {
+                                     size_t last = 0, components = 0;
+                                     for (size_t k = 0; k < p.units.size(); ++k)
+                                       if (p.units[k].payload[0] == static_cast<uint8_t>(UnitType::kRefinement) &&
+                                           p.units[k].payload[kKindByte] == kCpcaTrajectory) {
+                                         last = k;
+                                         ++components;
+                                       }
+                                     if (components == 0) throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no trajectory unit");
+                                     const ContainerUnit copy = p.units[last];
+                                     for (size_t extra = components; extra < 5; ++extra)
                                        p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(last) + 1, copy);
                                    }),
                             ErrorKind::kStructure, "cluster", 0));

@@ -145,6 +145,21 @@ bool GateTraversal::seed(const Triangle& face) { return add_face(face); }
 
 void GateTraversal::border(HalfEdge gate) { close(index_.find(gate.from, gate.to)); }
 
+MeshPredictor::MeshPredictor(std::span<const Triangle> faces, uint32_t vertex_count) : faces_(faces), first_(vertex_count + 1, 0) {
+  for (const Triangle& t : faces)
+    for (NodeIndex v : t.v) ++first_[v + 1];
+  for (uint32_t v = 0; v < vertex_count; ++v) first_[v + 1] += first_[v];
+  around_.resize(first_.back());
+  std::vector<uint32_t> fill(first_.begin(), first_.end() - 1);
+  edges_.reserve(3 * faces.size());
+  for (uint32_t f = 0; f < faces.size(); ++f)
+    for (int i = 0; i < 3; ++i) {
+      const NodeIndex from = faces[f].v[i], to = faces[f].v[(i + 1) % 3];
+      around_[fill[from]++] = f;
+      if (edges_.find(from, to) == DirectedEdgeIndex::kNone) edges_.insert(from, to, f);
+    }
+}
+
 namespace {
 
 // Fenwick tree over the input numbers not yet taken, for ranks.
@@ -181,75 +196,6 @@ class UnusedSet {
   std::vector<uint32_t> tree_;
 };
 
-// Floor division, for predictions of either sign.
-int64_t floor_div(int64_t sum, int64_t n) {
-  const int64_t q = sum / n;
-  return (sum % n != 0 && sum < 0) ? q - 1 : q;
-}
-
-// The faces around each vertex and each directed edge's first face.
-class PositionPredictor {
- public:
-  PositionPredictor(std::span<const Triangle> faces, uint32_t vertex_count) : faces_(faces), first_(vertex_count + 1, 0) {
-    for (const Triangle& t : faces)
-      for (NodeIndex v : t.v) ++first_[v + 1];
-    for (uint32_t v = 0; v < vertex_count; ++v) first_[v + 1] += first_[v];
-    around_.resize(first_.back());
-    std::vector<uint32_t> fill(first_.begin(), first_.end() - 1);
-    edges_.reserve(3 * faces.size());
-    for (uint32_t f = 0; f < faces.size(); ++f)
-      for (int i = 0; i < 3; ++i) {
-        const NodeIndex from = faces[f].v[i], to = faces[f].v[(i + 1) % 3];
-        around_[fill[from]++] = f;
-        if (edges_.find(from, to) == DirectedEdgeIndex::kNone) edges_.insert(from, to, f);
-      }
-  }
-
-  // The prediction of vertex v from the positions of vertices 0 … v − 1,
-  // and the residual channel its kind takes.
-  int predict(uint32_t v, std::span<const IntPoint3> positions, std::array<int64_t, 3>& p) const {
-    std::array<int64_t, 3> sum{};
-    int64_t n = 0;
-    for (uint32_t i = first_[v]; i < first_[v + 1]; ++i) {
-      const Triangle& t = faces_[around_[i]];
-      const int corner = t.corner_of(v);
-      const uint32_t x = t.v[(corner + 1) % 3], y = t.v[(corner + 2) % 3];
-      if (x >= v || y >= v || t.v[corner] != v) continue;
-      const uint32_t z = opposite(y, x);
-      if (z >= v) continue;
-      for (int a = 0; a < 3; ++a) sum[a] += int64_t{positions[x][a]} + positions[y][a] - positions[z][a];
-      ++n;
-    }
-    if (n > 0) {
-      for (int a = 0; a < 3; ++a) p[a] = floor_div(sum[a], n);
-      return syntax::kParallelogramChannel;
-    }
-    for (uint32_t i = first_[v]; i < first_[v + 1]; ++i)
-      for (NodeIndex u : faces_[around_[i]].v)
-        if (u < v) {
-          for (int a = 0; a < 3; ++a) sum[a] += positions[u][a];
-          ++n;
-        }
-    if (n > 0) {
-      for (int a = 0; a < 3; ++a) p[a] = floor_div(sum[a], n);
-    } else {
-      for (int a = 0; a < 3; ++a) p[a] = v > 0 ? positions[v - 1][a] : 0;
-    }
-    return syntax::kNeighbourChannel;
-  }
-
- private:
-  // The third vertex of the first face with the directed edge from→to; kNoNode without one.
-  uint32_t opposite(uint32_t from, uint32_t to) const {
-    const uint32_t face = edges_.find(from, to);
-    return face == DirectedEdgeIndex::kNone ? kNoNode : faces_[face].third(from, to);
-  }
-
-  std::span<const Triangle> faces_;
-  std::vector<uint32_t> first_, around_;
-  DirectedEdgeIndex edges_;  // the first face of each directed edge
-};
-
 }  // namespace
 
 template <class IO>
@@ -281,10 +227,14 @@ void describe_vertex_order(IO& io, syntax::BaseMeshContexts& contexts, uint32_t 
 template <class IO>
 void describe_positions(IO& io, syntax::BaseMeshContexts& contexts, std::span<const Triangle> faces, std::vector<IntPoint3>& positions) {
   const uint32_t count = static_cast<uint32_t>(positions.size());
-  const PositionPredictor predictor(faces, count);
+  const MeshPredictor predictor(faces, count);
   std::array<int64_t, 3> p{};
   for (uint32_t v = 0; v < count; ++v) {
-    const int channel = predictor.predict(v, positions, p);
+    int channel = predictor.predict(v, [v](uint32_t u) { return u < v; }, [&](uint32_t u) { return positions[u]; }, p);
+    if (channel < 0) {
+      for (int a = 0; a < 3; ++a) p[a] = v > 0 ? positions[v - 1][a] : 0;
+      channel = syntax::kNeighbourChannel;
+    }
     for (int a = 0; a < 3; ++a) {
       int32_t residual = 0;
       if constexpr (!IO::kReading) residual = static_cast<int32_t>(positions[v][a] - p[a]);

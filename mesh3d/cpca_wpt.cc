@@ -8,6 +8,21 @@ std::vector<std::vector<NodeIndex>> cpca_members(std::span<const uint32_t> clust
   return members;
 }
 
+CpcaMeshPrediction::CpcaMeshPrediction(std::span<const Triangle> faces, std::span<const uint32_t> coding_order,
+                                       std::span<const uint32_t> cluster_of, uint32_t cluster_count)
+    : predictor_(faces, static_cast<uint32_t>(cluster_of.size())),
+      rank_(cluster_of.size()),
+      slot_(cluster_of.size()),
+      cluster_of_(cluster_of.begin(), cluster_of.end()),
+      in_coding_order_(cluster_count) {
+  std::vector<uint32_t> members(cluster_count, 0);
+  for (NodeIndex v = 0; v < cluster_of.size(); ++v) slot_[v] = members[cluster_of[v]]++;
+  for (uint32_t i = 0; i < coding_order.size(); ++i) {
+    rank_[coding_order[i]] = i;
+    in_coding_order_[cluster_of[coding_order[i]]].push_back(coding_order[i]);
+  }
+}
+
 CpcaAnimation::CpcaAnimation(const CpcaHeader& header, std::span<const IntPoint3> mean_shape, uint32_t frames)
     : vertex_count_(mean_shape.size()), frames_(frames) {
   const double scale = 1.0 / static_cast<double>(uint64_t{1} << header.fraction_bits);
@@ -54,16 +69,17 @@ void CpcaAnimation::translate(std::span<const NodeIndex> members, std::span<cons
 }
 
 void CpcaAnimation::refine(std::span<const NodeIndex> members, std::span<const int32_t> basis, std::span<const int32_t> coefficients,
-                           uint32_t shift) {
+                           uint32_t shift, bool trajectory) {
   const int t = static_cast<int>(shift) - static_cast<int>(kCpcaShiftBias);
-  for (uint32_t f = 0; f < frames_; ++f) {
-    const int64_t c = coefficients[f];
+  for (uint32_t f = 0; f < frames_; ++f)
     for (size_t i = 0; i < members.size(); ++i) {
       const size_t at = size_t{f} * vertex_count_ + members[i];
-      for (size_t axis = 0; axis < 3; ++axis) fixed_[3 * at + axis] += static_cast<uint64_t>(scaled(basis[3 * i + axis] * c, t));
+      for (size_t axis = 0; axis < 3; ++axis) {
+        const int64_t product = trajectory ? int64_t{basis[i]} * coefficients[3 * size_t{f} + axis] : int64_t{basis[3 * i + axis]} * coefficients[f];
+        fixed_[3 * at + axis] += static_cast<uint64_t>(scaled(product, t));
+      }
       positions_[at] = position_of(3 * at);
     }
-  }
 }
 
 }  // namespace m4mesh

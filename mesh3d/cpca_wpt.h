@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/point3.h"
+#include "mesh3d/base_mesh.h"
 #include "mesh/topology.h"
 #include "syntax/mesh3d/cpca_wpt.h"
 
@@ -21,8 +22,70 @@ namespace m4mesh {
 std::vector<std::vector<NodeIndex>> cpca_members(std::span<const uint32_t> cluster_of, uint32_t cluster_count);
 
 // The number of components of a cluster of `members` vertices over
-// `frames` frames: the rank bound min(3 · members, frames).
-inline uint64_t cpca_component_limit(size_t members, uint32_t frames) { return std::min<uint64_t>(3 * uint64_t{members}, frames); }
+// `frames` frames, the rank bound of its motion matrix: min(3 · members,
+// frames) of unit_kind 1 and 2 together, min(members, 3 · frames) of
+// unit_kind 3 (trajectories).
+inline uint64_t cpca_component_limit(uint32_t kind, size_t members, uint32_t frames) {
+  return kind == kCpcaTrajectory ? std::min<uint64_t>(members, 3 * uint64_t{frames}) : std::min<uint64_t>(3 * uint64_t{members}, frames);
+}
+
+// The prediction of a component's basis over the base mesh (unit_kind 2):
+// a cluster's members in the base mesh's coding order, each predicted by
+// the base mesh's parallelograms (MeshPredictor) from the members before it.
+class CpcaMeshPrediction {
+ public:
+  // faces: the base mesh's, coding_order: its vertices in coding order.
+  CpcaMeshPrediction(std::span<const Triangle> faces, std::span<const uint32_t> coding_order, std::span<const uint32_t> cluster_of,
+                     uint32_t cluster_count);
+
+  // A component over the mesh: D basis values per member (unit_kind 2:
+  // D = 3, x, y, z; unit_kind 3: D = 1) at basis[D·i + a], i the member's
+  // slot in the cluster's index order, for the members in coding order:
+  // the residual from the prediction, on channel a after a parallelogram,
+  // D + a after a mean of neighbours, else (no neighbour known) D + a from
+  // the member before in coding order (0 for the first); |basis| ≤ 2^15.
+  // Then the coefficients (3/D per frame) as the differences to the same
+  // lane the frame before, on channels 2D + lane; |coefficient| ≤ 2^23.
+  template <size_t D, class IO>
+  void describe_operator(IO& io, uint32_t cluster, std::span<int32_t> basis, std::span<int32_t> coefficients) const {
+    static_assert(D == 1 || D == 3);
+    const syntax::ResidualNames& basis_names = D == 3 ? syntax::kCpcaMeshBasis : syntax::kCpcaTrajectoryBasis;
+    const syntax::ResidualNames& coefficient_names = D == 3 ? syntax::kCpcaCoefficient : syntax::kCpcaTrajectoryCoefficient;
+    syntax::ResidualCoder<2 * D + 3 / D> coder;
+    std::array<int64_t, D> p{}, previous{};
+    for (const uint32_t v : in_coding_order_[cluster]) {
+      const uint32_t rank = rank_[v];
+      const auto known = [&](uint32_t u) { return rank_[u] < rank && cluster_of_[u] == cluster; };
+      const auto value = [&](uint32_t u) {
+        std::array<int32_t, D> values;
+        for (size_t a = 0; a < D; ++a) values[a] = basis[D * slot_[u] + a];
+        return values;
+      };
+      int channel = predictor_.predict(v, known, value, p);
+      if (channel < 0) p = previous;
+      channel = channel == syntax::kParallelogramChannel ? 0 : static_cast<int>(D);
+      for (size_t a = 0; a < D; ++a) {
+        int32_t& b = basis[D * size_t{slot_[v]} + a];
+        int32_t residual = 0;
+        if constexpr (!IO::kReading) residual = static_cast<int32_t>(b - p[a]);
+        coder.describe(io, channel + static_cast<int>(a), residual, basis_names);
+        const int64_t decoded = p[a] + residual;
+        if (decoded < -kCpcaMaxBasis || decoded > kCpcaMaxBasis) io.fail(ErrorKind::kOutOfRange, basis_names.element, "a basis value beyond ±2^15");
+        b = static_cast<int32_t>(decoded);
+        previous[a] = decoded;
+      }
+    }
+    syntax::describe_differences(io, coder, coefficients, 2 * D, 3 / D, -kCpcaMaxCoefficient, kCpcaMaxCoefficient, coefficient_names,
+                                 "a coefficient beyond ±2^23");
+  }
+
+ private:
+  MeshPredictor predictor_;
+  std::vector<uint32_t> rank_;                         // per vertex: its place in coding order
+  std::vector<uint32_t> slot_;                         // per vertex: its index among its cluster's members
+  std::vector<uint32_t> cluster_of_;
+  std::vector<std::vector<uint32_t>> in_coding_order_;  // per cluster: its members in coding order
+};
 
 // The animation as decoded so far: per frame, vertex and axis a 64-bit
 // integer in steps of 2^−F grid units, starting at the mean shape's grid
@@ -39,7 +102,9 @@ class CpcaAnimation {
   void translate(std::span<const NodeIndex> members, std::span<const int32_t> translation, uint32_t shift);
   // Adds round(basis[3i + a] × coefficients[n] × 2^−(shift − 16)) to
   // frame n, vertex members[i], axis a, and updates those positions.
-  void refine(std::span<const NodeIndex> members, std::span<const int32_t> basis, std::span<const int32_t> coefficients, uint32_t shift);
+  // With `trajectory`, basis[i] × coefficients[3n + a] instead.
+  void refine(std::span<const NodeIndex> members, std::span<const int32_t> basis, std::span<const int32_t> coefficients, uint32_t shift,
+              bool trajectory = false);
 
   std::span<const Float3> frame(uint32_t f) const { return {positions_.data() + size_t{f} * vertex_count_, vertex_count_}; }
 

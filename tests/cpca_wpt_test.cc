@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <set>
 
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
@@ -120,6 +122,118 @@ TEST(CpcaWpt, ATargetChoosesTheClusterCount) {
   }
   EXPECT_THROW(encode_mesh3d(s, cpca({{"clusters", "0"}})), Error);
   EXPECT_THROW(encode_mesh3d(s, cpca({{"components", "many"}})), Error);
+}
+
+// The unit_kind of every refinement unit but starts, counted.
+std::map<uint32_t, size_t> component_kinds(const std::vector<uint8_t>& stream) {
+  std::map<uint32_t, size_t> kinds;
+  for (const ContainerUnit& unit : split_container(stream).units)
+    if (unit.payload[0] == static_cast<uint8_t>(UnitType::kRefinement) && unit.payload[6] != kCpcaStart) ++kinds[unit.payload[6]];
+  return kinds;
+}
+
+// Every component kind decodes to what the encoder reconstructed (a hash
+// unit per frame checks it), each option sending the kinds it names.
+TEST(CpcaWpt, EveryComponentKindDecodesAsTheEncoderReconstructs) {
+  const MeshSequence s = test::test_sequence(12, 8);
+  const struct {
+    CodecOptionValues values;
+    std::set<uint32_t> kinds;
+  } cases[] = {
+      {{{"model", "shape"}, {"basis", "index"}}, {kCpcaComponent}},
+      {{{"model", "shape"}, {"basis", "mesh"}}, {kCpcaMeshComponent}},
+      {{{"model", "trajectory"}}, {kCpcaTrajectory}},
+  };
+  for (const auto& c : cases) {
+    Encode3dOptions options = cpca(c.values);
+    options.codec_options["clusters"] = "3";
+    options.hash_group = 1;
+    const std::vector<uint8_t> stream = encode_mesh3d(s, options).stream;
+    std::set<uint32_t> kinds;
+    for (const auto& [kind, count] : component_kinds(stream)) kinds.insert(kind);
+    EXPECT_EQ(kinds, c.kinds) << c.values.at("model");
+    const MeshSequence decoded = decode_mesh3d(stream);  // throws on a hash mismatch
+    EXPECT_LT(kg_error(s, decoded), 5.0);
+  }
+}
+
+// A 24 × 24 sheet, its vertices numbered in a scrambled order, waving in
+// two travelling waves: smooth over the surface, not along the numbers.
+MeshSequence scrambled_waving_sheet(int frames) {
+  constexpr int n = 24;
+  std::vector<NodeIndex> number((n + 1) * (n + 1));
+  for (size_t i = 0; i < number.size(); ++i) number[i] = static_cast<NodeIndex>((i * 331) % number.size());
+  MeshSequence s;
+  s.vertex_count = static_cast<uint32_t>(number.size());
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const NodeIndex a = number[y * (n + 1) + x], b = number[y * (n + 1) + x + 1], c = number[(y + 1) * (n + 1) + x],
+                      d = number[(y + 1) * (n + 1) + x + 1];
+      s.faces.push_back({{a, b, d}});
+      s.faces.push_back({{a, d, c}});
+    }
+  for (int f = 0; f < frames; ++f) {
+    std::vector<Vec3> frame(number.size());
+    for (int y = 0; y <= n; ++y)
+      for (int x = 0; x <= n; ++x)
+        frame[number[y * (n + 1) + x]] = {x / double{n}, y / double{n}, 0.2 * std::sin(0.3 * x + 0.4 * f) + 0.1 * std::cos(0.25 * y - 0.3 * f)};
+    s.frames.push_back(std::move(frame));
+  }
+  return s;
+}
+
+// Per shape component, --basis auto sends the smaller of unit_kind 1 and 2:
+// never more bytes than either alone; on a smooth surface numbered out of
+// order the mesh prediction wins.
+TEST(CpcaWpt, TheBasisPredictionChosenPerComponentIsNeverLarger) {
+  const MeshSequence s = scrambled_waving_sheet(16);
+  auto bytes = [&](const char* basis) {
+    return encode_mesh3d(s, cpca({{"model", "shape"}, {"basis", basis}, {"clusters", "2"}, {"noise", "-2"}})).stream.size();
+  };
+  const size_t index = bytes("index"), mesh = bytes("mesh"), either = bytes("auto");
+  EXPECT_LE(either, index);
+  EXPECT_LE(either, mesh);
+  EXPECT_LT(either, index);
+}
+
+// A tumbling rigid body: each vertex's trajectory is R(t) p, a combination
+// of its 3 rest coordinates (rank 3 over the trajectories), while the
+// shapes over time mix the 9 functions of R(t) (rank up to 9): the
+// trajectory components take fewer units and fewer bytes.
+TEST(CpcaWpt, TrajectoriesCodeATumblingBodyInFewerComponents) {
+  MeshSequence s = test::test_sequence(1, 1);
+  const std::vector<Vec3> rest = s.frames[0];
+  s.frames.clear();
+  for (int f = 0; f < 40; ++f) {
+    const double a = 0.11 * f, b = 0.07 * f + 0.3 * std::sin(0.2 * f);
+    std::vector<Vec3> frame;
+    for (const Vec3& p : rest) {
+      const double x = std::cos(a) * p.x - std::sin(a) * p.y, y = std::sin(a) * p.x + std::cos(a) * p.y;  // about z
+      frame.push_back({x, std::cos(b) * y - std::sin(b) * p.z, std::sin(b) * y + std::cos(b) * p.z});    // then about x
+    }
+    s.frames.push_back(std::move(frame));
+  }
+  auto encoded = [&](const char* model) {
+    return encode_mesh3d(s, cpca({{"model", model}, {"basis", "index"}, {"clusters", "1"}, {"noise", "2"}})).stream;
+  };
+  const std::vector<uint8_t> trajectories = encoded("trajectory"), shapes = encoded("shape");
+  EXPECT_LE(component_kinds(trajectories)[kCpcaTrajectory], 3u);
+  EXPECT_GE(component_kinds(shapes)[kCpcaComponent], 5u);
+  EXPECT_LT(trajectories.size(), shapes.size());
+  EXPECT_LT(kg_error(s, decode_mesh3d(trajectories)), kg_error(s, decode_mesh3d(shapes)) + 0.05);
+}
+
+TEST(CpcaWpt, UnknownModelOrBasisIsAUsageError) {
+  const MeshSequence s = test::test_sequence(4, 1);
+  for (const CodecOptionValues& values : {CodecOptionValues{{"model", "trajectories"}}, CodecOptionValues{{"basis", "parallelogram"}}}) {
+    try {
+      encode_mesh3d(s, cpca(values));
+      ADD_FAILURE() << values.begin()->first;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::kUsage);
+      EXPECT_NE(e.message().find("--" + values.begin()->first), std::string::npos) << e.message();
+    }
+  }
 }
 
 TEST(CpcaWpt, CorruptAndTruncatedStreamsFailCleanly) {

@@ -1,5 +1,6 @@
 // The base mesh unit's data (docs/base_mesh.md), for every codec that sends one.
 #include <bit>
+#include <numeric>
 
 #include "codecs3d/codec_decoder.h"
 #include "syntax/mesh3d/entropy_io.h"
@@ -29,7 +30,11 @@ BaseMesh read_symbols(IO& symbols, const BaseMeshData& data, const ObjectHeader&
   base.positions.resize(header.vertex_count);
   describe_positions(symbols, contexts, base.faces, base.positions);
   symbols.finish("base_mesh");
-  if (data.vertex_order != kVertexOrderCoding) {
+  if (data.vertex_order == kVertexOrderCoding) {
+    base.coding_order.resize(header.vertex_count);
+    std::iota(base.coding_order.begin(), base.coding_order.end(), 0u);
+  } else {
+    base.coding_order = input_of;
     for (Triangle& t : base.faces)
       for (NodeIndex& v : t.v) v = input_of[v];
     std::vector<IntPoint3> coded = std::move(base.positions);

@@ -18,14 +18,17 @@ class CpcaDecoder final : public CodecDecoder3d {
   CpcaDecoder(const ObjectHeader& object, const CpcaHeader& header, const std::vector<uint32_t>& cluster_of)
       : object_(object),
         header_(header),
+        cluster_of_(cluster_of),
         members_(cpca_members(cluster_of, header.cluster_count)),
         started_(header.cluster_count, 0),
-        components_(header.cluster_count, 0) {}
+        components_(header.cluster_count, 0),
+        trajectories_(header.cluster_count, 0) {}
 
   void decode_unit(const UnitHeader& unit, syntax::ReadIO& io, std::vector<uint32_t>& decoded) override {
     if (unit.type() == UnitType::kBaseMesh) {
       if (animation_) io.fail(ErrorKind::kStructure, "unit_type", "a second base mesh unit: the mean shape is sent once");
       BaseMesh base = read_base_mesh(io, object_, trace_);
+      mesh_.emplace(base.faces, base.coding_order, cluster_of_, header_.cluster_count);
       faces_ = std::move(base.faces);
       animation_.emplace(header_, base.positions, object_.frame_count);
       for (uint32_t f = 0; f < object_.frame_count; ++f) decoded.push_back(f);
@@ -40,28 +43,31 @@ class CpcaDecoder final : public CodecDecoder3d {
     const std::vector<NodeIndex>& members = members_[r.cluster];
     if (r.kind == kCpcaStart && started_[r.cluster])
       io.fail(ErrorKind::kStructure, "unit_kind", "a second start of cluster " + std::to_string(r.cluster));
-    if (r.kind == kCpcaComponent && !started_[r.cluster])
+    if (r.kind != kCpcaStart && !started_[r.cluster])
       io.fail(ErrorKind::kStructure, "unit_kind", "a component of cluster " + std::to_string(r.cluster) + ", whose basis has not started");
-    if (r.kind == kCpcaComponent && components_[r.cluster] >= cpca_component_limit(members.size(), object_.frame_count))
+    const bool trajectory = r.kind == kCpcaTrajectory;
+    uint64_t& count = trajectory ? trajectories_[r.cluster] : components_[r.cluster];
+    if (r.kind != kCpcaStart && count >= cpca_component_limit(r.kind, members.size(), object_.frame_count))
       io.fail(ErrorKind::kStructure, "cluster",
               "a refinement beyond cluster " + std::to_string(r.cluster) + "'s " +
-                  std::to_string(cpca_component_limit(members.size(), object_.frame_count)) + " components");
+                  std::to_string(cpca_component_limit(r.kind, members.size(), object_.frame_count)) +
+                  (trajectory ? " trajectory components" : " components"));
     const uint8_t* payload = io.reader().data();
     const syntax::SectionPlace place{"bins", "raw", 8 * static_cast<uint64_t>(r.bins.data() - payload),
                                      8 * static_cast<uint64_t>(r.raw.data() - payload), io.plane()};
     if (trace_) {
       syntax::EntropyReadIO<true> symbols(r.bins, r.raw, place, trace_);
-      read_symbols(symbols, r.kind, members.size());
+      read_symbols(symbols, r.kind, r.cluster);
     } else {
       syntax::EntropyReadIO<false> symbols(r.bins, r.raw, place);
-      read_symbols(symbols, r.kind, members.size());
+      read_symbols(symbols, r.kind, r.cluster);
     }
     if (r.kind == kCpcaStart) {
       animation_->translate(members, translation_, r.shift);
       started_[r.cluster] = 1;
     } else {
-      animation_->refine(members, basis_, coefficients_, r.shift);
-      ++components_[r.cluster];
+      animation_->refine(members, basis_, coefficients_, r.shift, trajectory);
+      ++count;
     }
     for (uint32_t f = 0; f < object_.frame_count; ++f) decoded.push_back(f);
   }
@@ -75,26 +81,35 @@ class CpcaDecoder final : public CodecDecoder3d {
 
  private:
   template <class IO>
-  void read_symbols(IO& io, uint32_t kind, size_t members) {
+  void read_symbols(IO& io, uint32_t kind, uint32_t cluster) {
     if (kind == kCpcaStart) {
       translation_.resize(3 * size_t{object_.frame_count});
       syntax::describe_start(io, translation_);
       io.finish("translation");
-    } else {
-      basis_.resize(3 * members);
-      coefficients_.resize(object_.frame_count);
-      syntax::describe_operator(io, basis_, coefficients_);
-      io.finish("coefficient");
+      return;
     }
+    const size_t per_member = kind == kCpcaTrajectory ? 1 : 3;
+    basis_.resize(per_member * members_[cluster].size());
+    coefficients_.resize(3 / per_member * object_.frame_count);
+    if (kind == kCpcaMeshComponent)
+      mesh_->describe_operator<3>(io, cluster, basis_, coefficients_);
+    else if (kind == kCpcaTrajectory)
+      mesh_->describe_operator<1>(io, cluster, basis_, coefficients_);
+    else
+      syntax::describe_operator(io, basis_, coefficients_);
+    io.finish(kind == kCpcaTrajectory ? "trajectory_coefficient" : "coefficient");
   }
 
   ObjectHeader object_;
   CpcaHeader header_;
+  std::vector<uint32_t> cluster_of_;
   std::vector<std::vector<NodeIndex>> members_;
   std::vector<uint8_t> started_;      // per cluster: its start decoded
-  std::vector<uint64_t> components_;  // per cluster: its components decoded
+  std::vector<uint64_t> components_;    // per cluster: its components of unit_kind 1 and 2 decoded
+  std::vector<uint64_t> trajectories_;  // per cluster: its components of unit_kind 3 decoded
   std::vector<Triangle> faces_;
   std::optional<CpcaAnimation> animation_;
+  std::optional<CpcaMeshPrediction> mesh_;
   std::vector<int32_t> translation_, basis_, coefficients_;
 };
 

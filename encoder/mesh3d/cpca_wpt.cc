@@ -13,6 +13,7 @@
 #include "codecs3d/codec_encoder.h"
 #include "codecs3d/options.h"
 #include "common/error.h"
+#include "encoder/mesh3d/base_mesh.h"
 #include "mesh3d/cpca_wpt.h"
 #include "mesh3d/metrics.h"
 #include "mesh3d/quantization.h"
@@ -171,7 +172,16 @@ void apply(CpcaAnimation& animation, std::span<const NodeIndex> members, const O
   if (op.kind == kCpcaStart)
     animation.translate(members, op.translation, op.shift);
   else
-    animation.refine(members, op.basis, op.coefficients, op.shift);
+    animation.refine(members, op.basis, op.coefficients, op.shift, op.kind == kCpcaTrajectory);
+}
+
+// A motion matrix (3M × N) as the members' trajectories (M × 3N): row i,
+// column 3n + a holds axis a of member i in frame n.
+Eigen::MatrixXd as_trajectories(const Eigen::MatrixXd& d) {
+  Eigen::MatrixXd t(d.rows() / 3, 3 * d.cols());
+  for (Eigen::Index row = 0; row < d.rows(); ++row)
+    for (Eigen::Index n = 0; n < d.cols(); ++n) t(row / 3, 3 * n + row % 3) = d(row, n);
+  return t;
 }
 
 // Exponent e such that |largest| · 2^e < 2^bits.
@@ -258,9 +268,13 @@ double estimated_gain(const Component& c, const Operator& op) {
 
 // A refinement unit's data.
 template <class SymbolIO>
-void write_refinement(syntax::WriteIO& io, SymbolIO& symbols, Operator& op) {
+void write_refinement(syntax::WriteIO& io, SymbolIO& symbols, Operator& op, const CpcaMeshPrediction& mesh) {
   if (op.kind == kCpcaStart)
     syntax::describe_start(symbols, op.translation);
+  else if (op.kind == kCpcaMeshComponent)
+    mesh.describe_operator<3>(symbols, op.cluster, op.basis, op.coefficients);
+  else if (op.kind == kCpcaTrajectory)
+    mesh.describe_operator<1>(symbols, op.cluster, op.basis, op.coefficients);
   else
     syntax::describe_operator(symbols, op.basis, op.coefficients);
   const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
@@ -269,14 +283,14 @@ void write_refinement(syntax::WriteIO& io, SymbolIO& symbols, Operator& op) {
   if (io.trace()) io.trace()->stream() << symbols.trace_text();
 }
 
-void write_refinement(syntax::WriteIO& io, Operator& op) {
+void write_refinement(syntax::WriteIO& io, Operator& op, const CpcaMeshPrediction& mesh) {
   const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane()};
   if (io.trace()) {
     syntax::EntropyWriteIO<true> symbols(place, io.trace());
-    write_refinement(io, symbols, op);
+    write_refinement(io, symbols, op, mesh);
   } else {
     syntax::EntropyWriteIO<false> symbols(place);
-    write_refinement(io, symbols, op);
+    write_refinement(io, symbols, op, mesh);
   }
 }
 
@@ -292,11 +306,15 @@ struct Plan {
 
 class CpcaEncoder final : public CodecEncoder3d {
  public:
-  CpcaEncoder(const MeshSequence& s, const CodecSettings& settings, int clusters)
+  CpcaEncoder(const MeshSequence& s, const CodecSettings& settings, int clusters, bool trajectories)
       : max_bytes_(static_cast<uint64_t>(settings.number("max-bytes"))),
         target_kg_(settings.number("target-kg")),
-        round_robin_(settings.text("order") == "rpt") {
+        round_robin_(settings.text("order") == "rpt"),
+        basis_prediction_(settings.text("basis")),
+        trajectories_(trajectories) {
     if (settings.text("order") != "wpt" && settings.text("order") != "rpt") throw usage_error("--order is wpt or rpt (cpca-wpt)");
+    if (basis_prediction_ != "index" && basis_prediction_ != "mesh" && basis_prediction_ != "auto")
+      throw usage_error("--basis is index, mesh or auto (cpca-wpt)");
     components_ = settings.text("components") == "auto" ? (max_bytes_ > 0 || target_kg_ > 0 ? kMaxComponents : kPaperComponents)
                                                          : parse_count(settings.text("components"), "--components", kMaxComponents);
     if (settings.text("noise") != "auto") {
@@ -349,7 +367,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     for (; sent < plan_.sent; ++sent) {
       Operator& op = plan_.operators[plan_.order[sent]];
       if (max_bytes_ > 0 && sink.stream_bytes() + op.bytes > max_bytes_) break;
-      sink.unit(UnitType::kRefinement, 0, [&](syntax::WriteIO& io) { write_refinement(io, op); });
+      sink.unit(UnitType::kRefinement, 0, [&](syntax::WriteIO& io) { write_refinement(io, op, *mesh_); });
       apply(animation, members_[op.cluster], op);
       sink.progress(sent + 1, plan_.sent);
     }
@@ -366,6 +384,7 @@ class CpcaEncoder final : public CodecEncoder3d {
 
   std::vector<CodecStatistic> statistics() const override {
     return {{"clusters", header_.cluster_count},
+            {"trajectory model", trajectories_ ? 1.0 : 0.0},
             {"noise step log2", plan_.delta_log2},
             {"operators sent", static_cast<double>(plan_.sent)},
             {"operators computed", static_cast<double>(plan_.operators.size())},
@@ -384,6 +403,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     cluster_of_ = cluster_trajectories(trajectories(s), std::min<int>(clusters, static_cast<int>(s.vertex_count)));
     header_.cluster_count = *std::max_element(cluster_of_.begin(), cluster_of_.end()) + 1;
     members_ = cpca_members(cluster_of_, header_.cluster_count);
+    mesh_.emplace(s.faces, plan_base_mesh(s.faces, s.vertex_count, false).input_of, cluster_of_, header_.cluster_count);
     write_cluster_map();
     kmeans_seconds_ = seconds_since(start);
     start = std::chrono::steady_clock::now();
@@ -391,7 +411,7 @@ class CpcaEncoder final : public CodecEncoder3d {
       Eigen::MatrixXd d = motion(s, c);
       translations_.push_back(translation_of(d));
       for (Eigen::Index row = 0; row < d.rows(); ++row) d.row(row) -= translations_[c](Eigen::seqN(row % 3, d.cols(), 3)).transpose();
-      components_of_.push_back(principal_components(d, components_));
+      components_of_.push_back(principal_components(trajectories_ ? as_trajectories(d) : d, components_));
     }
     svd_seconds_ = seconds_since(start);
     start = std::chrono::steady_clock::now();
@@ -460,13 +480,17 @@ class CpcaEncoder final : public CodecEncoder3d {
       sequence.push_back(std::move(start));
       for (const Component& component : components_of_[c]) {
         Operator op = quantize(component, c, q, static_cast<int>(header_.fraction_bits));
+        if (trajectories_) op.kind = kCpcaTrajectory;
         measure(op, estimated_gain(component, op));
         if (!(op.gain > 0)) break;  // quantization ate the component: the later ones are smaller still
         sequence.push_back(std::move(op));
       }
       if (sequence.size() == 1 && !(sequence[0].gain > 0)) continue;
       for (Operator& op : sequence) {
-        op.bytes = unit_bytes(op);
+        if (op.kind != kCpcaComponent)
+          op.bytes = unit_bytes(op);
+        else
+          choose_kind(op);
         per_cluster[c].push_back(plan.operators.size());
         plan.operators.push_back(std::move(op));
       }
@@ -589,13 +613,24 @@ class CpcaEncoder final : public CodecEncoder3d {
   }
 
   // The bytes of an operator's unit in the stream.
-  static uint64_t unit_bytes(Operator& op) {
+  uint64_t unit_bytes(Operator& op) const {
     BitWriter writer;
     syntax::WriteIO io(writer);
     UnitHeader header{static_cast<uint32_t>(UnitType::kRefinement), 0};
     syntax::describe(io, header);
-    write_refinement(io, op);
+    write_refinement(io, op, *mesh_);
     return ContainerWriter::unit_size(writer.bytes());
+  }
+
+  // A component's unit in the kind --basis asks for, or the smaller.
+  void choose_kind(Operator& op) const {
+    op.kind = basis_prediction_ == "index" ? kCpcaComponent : kCpcaMeshComponent;
+    op.bytes = unit_bytes(op);
+    if (basis_prediction_ != "auto") return;
+    Operator by_index = op;
+    by_index.kind = kCpcaComponent;
+    by_index.bytes = unit_bytes(by_index);
+    if (by_index.bytes < op.bytes) op = std::move(by_index);
   }
 
   // The bytes before the first refinement unit: the object (its frame rate
@@ -672,12 +707,15 @@ class CpcaEncoder final : public CodecEncoder3d {
   uint64_t max_bytes_;
   double target_kg_;
   bool round_robin_;
+  std::string basis_prediction_;  // --basis: index, mesh or auto
+  bool trajectories_;  // components of the members' trajectories (unit_kind 3), else of their shapes
   std::optional<int> noise_;  // log2 of the noise step; none: auto
   Grid grid_;
   CpcaHeader header_;
   std::vector<IntPoint3> mean_;
   std::vector<uint32_t> cluster_of_;
   std::vector<std::vector<NodeIndex>> members_;
+  std::optional<CpcaMeshPrediction> mesh_;
   std::vector<uint8_t> map_bins_, map_raw_;
   std::vector<Translation> translations_;
   std::vector<std::vector<Component>> components_of_;
@@ -701,6 +739,13 @@ std::vector<CodecOption> cpca_wpt_options() {
           {"noise", "cpca-wpt: log2 of the quantization step of the coded values in grid units, −4 … 12, or auto (4, or the best for "
                     "--max-bytes or --target-kg)",
            OptionKind::kText, "auto", 0, 0},
+          {"basis", "cpca-wpt: how a component's basis values are predicted: index (from the member before in index order, the "
+                    "paper's), mesh (by the base mesh's parallelograms, along its traversal) or auto (per component the smaller unit)",
+           OptionKind::kText, "auto", 0, 0},
+          {"model", "cpca-wpt: the components' space: shape (3 basis values per vertex, 1 coefficient per frame: the paper's), "
+                    "trajectory (1 value per vertex, 3 per frame, predicted over the base mesh) or auto (trajectory; with --target-kg the "
+                    "one whose planned stream is smallest)",
+           OptionKind::kText, "auto", 0, 0},
           {"order", "cpca-wpt: wpt (by squared error removed per bit) or rpt (round robin over the clusters)", OptionKind::kText, "wpt", 0, 0},
           {"max-bytes", "cpca-wpt: the stream's size at most (0: every operator)", OptionKind::kNumber, "0", 0, 1e15},
           {"target-kg", "cpca-wpt: stop at the first operator whose decoded KG error is at most this (0: off)", OptionKind::kNumber, "0", 0,
@@ -708,21 +753,31 @@ std::vector<CodecOption> cpca_wpt_options() {
 }
 
 std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequence, const CodecSettings& settings) {
-  if (settings.text("clusters") != "auto")
-    return std::make_unique<CpcaEncoder>(sequence, settings, static_cast<int>(parse_count(settings.text("clusters"), "--clusters", kCpcaMaxClusters)));
-  if (!(settings.number("target-kg") > 0)) return std::make_unique<CpcaEncoder>(sequence, settings, kPaperClusters);
-  // The cluster count whose plan reaches the target in the fewest bytes.
+  const std::string& model = settings.text("model");
+  if (model != "shape" && model != "trajectory" && model != "auto") throw usage_error("--model is shape, trajectory or auto (cpca-wpt)");
+  const bool target = settings.number("target-kg") > 0;
+  const std::vector<int> cluster_counts =
+      settings.text("clusters") != "auto" ? std::vector<int>{static_cast<int>(parse_count(settings.text("clusters"), "--clusters", kCpcaMaxClusters))}
+      : target                            ? std::vector<int>{5, 10, 20, 40}
+                                          : std::vector<int>{kPaperClusters};
+  const std::vector<bool> trajectory_models = model == "shape" ? std::vector<bool>{false}
+                                              : model == "trajectory" || !target ? std::vector<bool>{true}
+                                                                                  : std::vector<bool>{true, false};
+  if (cluster_counts.size() == 1 && trajectory_models.size() == 1)
+    return std::make_unique<CpcaEncoder>(sequence, settings, cluster_counts[0], trajectory_models[0]);
+  // The cluster count and model whose plan reaches the target in the fewest bytes.
   std::unique_ptr<CpcaEncoder> best;
   std::optional<Error> missed;
-  for (const int clusters : {5, 10, 20, 40}) {
-    try {
-      auto encoder = std::make_unique<CpcaEncoder>(sequence, settings, clusters);
-      if (!best || encoder->planned_bytes() < best->planned_bytes()) best = std::move(encoder);
-    } catch (const Error& e) {
-      if (e.kind() != ErrorKind::kUsage) throw;
-      missed = e;
+  for (const int clusters : cluster_counts)
+    for (const bool trajectories : trajectory_models) {
+      try {
+        auto encoder = std::make_unique<CpcaEncoder>(sequence, settings, clusters, trajectories);
+        if (!best || encoder->planned_bytes() < best->planned_bytes()) best = std::move(encoder);
+      } catch (const Error& e) {
+        if (e.kind() != ErrorKind::kUsage) throw;
+        missed = e;
+      }
     }
-  }
   if (!best) throw *missed;
   return best;
 }

@@ -29,6 +29,8 @@ inline constexpr int32_t kCpcaMaxCoefficient = int32_t{1} << 23;  // |coefficien
 inline constexpr int32_t kCpcaMaxTranslation = int32_t{1} << 29;  // |translation| ≤ 2^29
 inline constexpr uint32_t kCpcaStart = 0;      // unit_kind: the cluster's mean trajectory
 inline constexpr uint32_t kCpcaComponent = 1;  // unit_kind: one principal component
+inline constexpr uint32_t kCpcaMeshComponent = 2;  // unit_kind: one, its basis predicted over the base mesh
+inline constexpr uint32_t kCpcaTrajectory = 3;     // unit_kind: one of the members' trajectories, predicted over the base mesh
 // The decoder holds 36 bytes per vertex and frame: at most 2^22 of them.
 inline constexpr uint64_t kCpcaMaxVertexFrames = uint64_t{1} << 22;
 
@@ -63,8 +65,15 @@ namespace syntax {
 inline constexpr ResidualNames kCpcaCluster{"cluster_nonzero", "cluster_prefix", "cluster_sign_suffix", "cluster_of_vertex"};
 inline constexpr ResidualNames kCpcaBasis{"basis_nonzero", "basis_prefix", "basis_sign_suffix", "basis"};
 inline constexpr ResidualNames kCpcaCoefficient{"coefficient_nonzero", "coefficient_prefix", "coefficient_sign_suffix", "coefficient"};
+inline constexpr ResidualNames kCpcaMeshBasis{"mesh_basis_nonzero", "mesh_basis_prefix", "mesh_basis_sign_suffix", "mesh_basis"};
+inline constexpr ResidualNames kCpcaTrajectoryBasis{"trajectory_basis_nonzero", "trajectory_basis_prefix", "trajectory_basis_sign_suffix",
+                                                    "trajectory_basis"};
+inline constexpr ResidualNames kCpcaTrajectoryCoefficient{"trajectory_coefficient_nonzero", "trajectory_coefficient_prefix",
+                                                          "trajectory_coefficient_sign_suffix", "trajectory_coefficient"};
 inline constexpr ResidualNames kCpcaTranslation{"translation_nonzero", "translation_prefix", "translation_sign_suffix", "translation"};
 inline constexpr int kCpcaCoefficientChannel = 3;  // the basis uses 0 … 2 (x, y, z)
+// unit_kind 2: the basis uses 0 … 2 after a parallelogram, 3 … 5 after a neighbour mean.
+inline constexpr int kCpcaMeshCoefficientChannel = 6;
 
 template <class IO>
 void describe(IO& io, CpcaHeader& h) {
@@ -83,7 +92,7 @@ void describe(IO& io, CpcaHeader& h) {
 template <class IO>
 void describe(IO& io, CpcaRefinement& r) {
   io.field_in("cluster", 8, r.cluster, 0, kCpcaMaxClusters - 1);
-  io.field_in("unit_kind", 8, r.kind, kCpcaStart, kCpcaComponent);
+  io.field_in("unit_kind", 8, r.kind, kCpcaStart, kCpcaTrajectory);
   io.field_in("shift", 8, r.shift, 0, kCpcaMaxShift);
   io.field("arithmetic_bytes", 32, r.arithmetic_bytes);
   io.require_length("arithmetic_bytes", r.arithmetic_bytes);
