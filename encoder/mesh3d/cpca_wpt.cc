@@ -8,6 +8,7 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <optional>
 
 #include "codecs3d/codec_encoder.h"
@@ -24,26 +25,29 @@ namespace m4mesh {
 
 namespace {
 
-// The noise step's log2: the default, and the range --noise and the search take.
-constexpr int kDefaultNoise = 4, kMinNoise = -4, kMaxNoise = 12;
+// The noise step's log2 in half steps (2 log2 Δ): the default, and the
+// range --noise and the search take.
+constexpr int kDefaultNoise = 8, kMinNoise = -8, kMaxNoise = 24;
 
 // Principal components per cluster: the paper's, and the most --components takes.
 constexpr size_t kPaperComponents = 40, kMaxComponents = 4096;
 // Clusters: the paper's.
 constexpr int kPaperClusters = 10;
+// The mean shape's quantization bits: the default, and the range --bits takes.
+constexpr int kDefaultBits = 12, kMinBits = 4, kMaxBits = 24;
 
 Error usage_error(const std::string& message) { return Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, message); }
 
-// A whole number 1 … most written in `text`, else a usage error naming the option.
-size_t parse_count(const std::string& text, const char* option, size_t most) {
+// A whole number least … most written in `text`, else a usage error naming the option.
+size_t parse_count(const std::string& text, const char* option, size_t most, size_t least = 1) {
   size_t used = 0;
   unsigned long value = 0;
   try {
     value = std::stoul(text, &used);
   } catch (const std::exception&) {
   }
-  if (used == 0 || used != text.size() || text[0] == '-' || value < 1 || value > most)
-    throw usage_error(std::string(option) + " is auto or an integer in 1 … " + std::to_string(most) + " (cpca-wpt)");
+  if (used == 0 || used != text.size() || text[0] == '-' || value < least || value > most)
+    throw usage_error(std::string(option) + " is auto or an integer in " + std::to_string(least) + " … " + std::to_string(most) + " (cpca-wpt)");
   return value;
 }
 
@@ -162,7 +166,7 @@ struct Operator {
   uint32_t cluster = 0;
   uint32_t kind = kCpcaComponent;
   uint32_t shift = kCpcaShiftBias;
-  int basis_exponent = 0, coefficient_exponent = 0;  // the values are the real ones × 2^exponent
+  int basis_exponent = 0, coefficient_exponent = 0;  // the values are the real ones × 2^(exponent / 2)
   std::vector<int32_t> basis, coefficients, translation;
   double gain = 0;    // the squared error it removes (grid units², the decoder's reconstruction)
   uint64_t bytes = 0;  // its unit, start code and header included
@@ -187,24 +191,32 @@ Eigen::MatrixXd as_trajectories(const Eigen::MatrixXd& d) {
 // Exponent e such that |largest| · 2^e < 2^bits.
 int exponent_for(double largest, int bits) { return largest > 0 ? bits - 1 - std::ilogb(largest) : bits; }
 
-std::vector<int32_t> scaled(const Eigen::VectorXd& values, int exponent) {
+// 2^(half / 2), the same on every platform (√2 is a constant).
+double power_of_two(int half) { return half % 2 == 0 ? std::ldexp(1.0, half / 2) : std::ldexp(std::numbers::sqrt2, (half - 1) / 2); }
+
+// Floor division by 2.
+int half_of(int value) { return value >= 0 ? value / 2 : -((1 - value) / 2); }
+
+std::vector<int32_t> scaled(const Eigen::VectorXd& values, int half_exponent) {
+  const double scale = power_of_two(half_exponent);
   std::vector<int32_t> out(static_cast<size_t>(values.size()));
-  for (Eigen::Index i = 0; i < values.size(); ++i) out[static_cast<size_t>(i)] = static_cast<int32_t>(std::nearbyint(std::ldexp(values(i), exponent)));
+  for (Eigen::Index i = 0; i < values.size(); ++i) out[static_cast<size_t>(i)] = static_cast<int32_t>(std::nearbyint(values(i) * scale));
   return out;
 }
 
-// The operator of a component at the noise step Δ = 2^delta_log2 grid
+// The operator of a component at the noise step Δ = 2^(noise / 2) grid
 // units: the coefficients sigma · w in steps of Δ and the basis in steps of
 // about Δ / sigma, so that both add noise of Δ's order to the animation
-// (each as fine as their ranges, 2^15 and 2^23, allow); their product ×
+// (each as fine as their ranges, 2^15 and 2^23, allow). The two steps are
+// powers of √2 whose product is a power of 2: their product ×
 // 2^−(shift − 16) is in steps of 2^−F grid units.
-Operator quantize(const Component& c, uint32_t cluster, int delta_log2, int fraction_bits) {
+Operator quantize(const Component& c, uint32_t cluster, int noise, int fraction_bits) {
   const Eigen::VectorXd weighted = c.sigma * c.coefficients;
-  const int basis_exponent = std::min(std::ilogb(c.sigma) - delta_log2, exponent_for(c.basis.cwiseAbs().maxCoeff(), 15));
-  int coefficient_exponent = std::min(-delta_log2, exponent_for(weighted.cwiseAbs().maxCoeff(), 23));
-  const int shift = std::clamp(basis_exponent + coefficient_exponent - fraction_bits, -static_cast<int>(kCpcaShiftBias),
+  const int basis_exponent = std::min(2 * std::ilogb(c.sigma) - noise, 2 * exponent_for(c.basis.cwiseAbs().maxCoeff(), 15));
+  const int wanted = std::min(-noise, 2 * exponent_for(weighted.cwiseAbs().maxCoeff(), 23));
+  const int shift = std::clamp(half_of(basis_exponent + wanted) - fraction_bits, -static_cast<int>(kCpcaShiftBias),
                                static_cast<int>(kCpcaMaxShift - kCpcaShiftBias));
-  coefficient_exponent = shift + fraction_bits - basis_exponent;
+  const int coefficient_exponent = 2 * (shift + fraction_bits) - basis_exponent;
   Operator op;
   op.cluster = cluster;
   op.shift = static_cast<uint32_t>(shift + static_cast<int>(kCpcaShiftBias));
@@ -222,14 +234,14 @@ Operator quantize(const Component& c, uint32_t cluster, int delta_log2, int frac
 // coefficient of the basis (1, …, 1) of norm √M, so it takes steps of about
 // Δ / √M (as fine as its range, 2^29, allows, and no finer than 2^−F grid
 // units: the shift never rounds, so that a start can be undone exactly).
-Operator quantize_start(const Translation& t, uint32_t cluster, size_t members, int delta_log2, int fraction_bits) {
-  const int wanted = std::min(std::ilogb(std::sqrt(static_cast<double>(members))) - delta_log2, exponent_for(t.cwiseAbs().maxCoeff(), 29));
+Operator quantize_start(const Translation& t, uint32_t cluster, size_t members, int noise, int fraction_bits) {
+  const int wanted = std::min(half_of(2 * std::ilogb(std::sqrt(static_cast<double>(members))) - noise), exponent_for(t.cwiseAbs().maxCoeff(), 29));
   const int shift = std::clamp(wanted - fraction_bits, -static_cast<int>(kCpcaShiftBias), 0);
   Operator op;
   op.cluster = cluster;
   op.kind = kCpcaStart;
   op.shift = static_cast<uint32_t>(shift + static_cast<int>(kCpcaShiftBias));
-  op.coefficient_exponent = shift + fraction_bits;
+  op.coefficient_exponent = 2 * (shift + fraction_bits);
   op.translation = scaled(t, op.coefficient_exponent);
   for (int32_t v : op.translation)
     if (v > kCpcaMaxTranslation || v < -kCpcaMaxTranslation)
@@ -241,7 +253,7 @@ Operator quantize_start(const Translation& t, uint32_t cluster, size_t members, 
 double estimated_gain(const Translation& t, size_t members, const Operator& op) {
   double removed = 0;
   for (Eigen::Index j = 0; j < t.size(); ++j) {
-    const double q = std::ldexp(op.translation[static_cast<size_t>(j)], -op.coefficient_exponent);
+    const double q = op.translation[static_cast<size_t>(j)] / power_of_two(op.coefficient_exponent);
     removed += t(j) * t(j) - (q - t(j)) * (q - t(j));
   }
   return static_cast<double>(members) * removed;
@@ -253,12 +265,12 @@ double estimated_gain(const Translation& t, size_t members, const Operator& op) 
 double estimated_gain(const Component& c, const Operator& op) {
   double bb = 0, bq = 0, ww = 0, wq = 0;
   for (Eigen::Index j = 0; j < c.basis.size(); ++j) {
-    const double b = std::ldexp(op.basis[static_cast<size_t>(j)], -op.basis_exponent);
+    const double b = op.basis[static_cast<size_t>(j)] / power_of_two(op.basis_exponent);
     bb += b * b;
     bq += b * c.basis(j);
   }
   for (Eigen::Index n = 0; n < c.coefficients.size(); ++n) {
-    const double w = std::ldexp(op.coefficients[static_cast<size_t>(n)], -op.coefficient_exponent);
+    const double w = op.coefficients[static_cast<size_t>(n)] / power_of_two(op.coefficient_exponent);
     ww += w * w;
     wq += w * c.sigma * c.coefficients(n);
   }
@@ -296,7 +308,7 @@ void write_refinement(syntax::WriteIO& io, Operator& op, const CpcaMeshPredictio
 
 // The operators of one noise step, their order and how many are sent.
 struct Plan {
-  int delta_log2 = 0;
+  int noise = 0;  // log2 Δ in half steps
   std::vector<Operator> operators;
   std::vector<size_t> order;  // indices into operators, in stream order
   size_t sent = 0;
@@ -306,7 +318,7 @@ struct Plan {
 
 class CpcaEncoder final : public CodecEncoder3d {
  public:
-  CpcaEncoder(const MeshSequence& s, const CodecSettings& settings, int clusters, bool trajectories)
+  CpcaEncoder(const MeshSequence& s, const CodecSettings& settings, int bits, int clusters, bool trajectories)
       : max_bytes_(static_cast<uint64_t>(settings.number("max-bytes"))),
         target_kg_(settings.number("target-kg")),
         round_robin_(settings.text("order") == "rpt"),
@@ -319,16 +331,18 @@ class CpcaEncoder final : public CodecEncoder3d {
                                                          : parse_count(settings.text("components"), "--components", kMaxComponents);
     if (settings.text("noise") != "auto") {
       size_t used = 0;
+      double value = NAN;
       try {
-        noise_ = std::stoi(settings.text("noise"), &used);
+        value = std::stod(settings.text("noise"), &used);
       } catch (const std::exception&) {
       }
-      if (!noise_ || used != settings.text("noise").size() || *noise_ < kMinNoise || *noise_ > kMaxNoise)
-        throw usage_error("--noise is auto or an integer in " + std::to_string(kMinNoise) + " … " + std::to_string(kMaxNoise) + " (cpca-wpt)");
+      if (used != settings.text("noise").size() || !(2 * value >= kMinNoise && 2 * value <= kMaxNoise) || 2 * value != std::floor(2 * value))
+        throw usage_error("--noise is auto or a multiple of 0.5 in " + std::to_string(kMinNoise / 2) + " … " + std::to_string(kMaxNoise / 2) +
+                          " (cpca-wpt)");
+      noise_ = static_cast<int>(2 * value);
     }
     if (uint64_t{s.vertex_count} * s.frames.size() > kCpcaMaxVertexFrames)
       throw usage_error("cpca-wpt takes at most 2^22 vertex-frames (vertices × frames)");
-    const int bits = settings.integer("bits");
     std::vector<Vec3> mean(s.vertex_count);
     for (const std::vector<Vec3>& frame : s.frames)
       for (size_t v = 0; v < s.vertex_count; ++v) mean[v] = {mean[v].x + frame[v].x, mean[v].y + frame[v].y, mean[v].z + frame[v].z};
@@ -345,6 +359,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     for (size_t v = 0; v < s.vertex_count; ++v)
       if (!grid_.quantize(mean[v], mean_[v]))
         throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "the mean of vertex " + std::to_string(v) + " lies outside the grid");
+    requested_clusters_ = clusters;
     prepare(s, clusters);
   }
 
@@ -381,11 +396,13 @@ class CpcaEncoder final : public CodecEncoder3d {
   // The bytes of the stream planned (estimated: every unit's size, and the
   // fixed part).
   uint64_t planned_bytes() const { return plan_.bytes; }
+  int clusters() const { return requested_clusters_; }
+  bool trajectory_model() const { return trajectories_; }
 
   std::vector<CodecStatistic> statistics() const override {
     return {{"clusters", header_.cluster_count},
             {"trajectory model", trajectories_ ? 1.0 : 0.0},
-            {"noise step log2", plan_.delta_log2},
+            {"noise step log2", plan_.noise / 2.0},
             {"operators sent", static_cast<double>(plan_.sent)},
             {"operators computed", static_cast<double>(plan_.operators.size())},
             {"KG error", kg_},
@@ -422,29 +439,36 @@ class CpcaEncoder final : public CodecEncoder3d {
     int q = noise_.value_or(kDefaultNoise);
     if (!noise_ && (max_bytes_ > 0 || target_kg_ > 0)) {
       // From the default, towards the better neighbour while it improves
-      // (plans from estimated gains).
+      // (plans from estimated gains), in whole steps, then a half step
+      // either side.
       Plan best = plan_for(s, q, false);
-      for (const int direction : {1, -1}) {
+      for (const int direction : {2, -2}) {
         for (int next = q + direction; next >= kMinNoise && next <= kMaxNoise; next += direction) {
           Plan plan = plan_for(s, next, false);
           if (!better(plan, best)) break;
           best = std::move(plan);
         }
-        if (best.delta_log2 != q) break;
+        if (best.noise != q) break;
       }
-      q = best.delta_log2;
+      q = best.noise;
+      for (const int next : {q - 1, q + 1}) {
+        if (next < kMinNoise || next > kMaxNoise) continue;
+        Plan plan = plan_for(s, next, false);
+        if (better(plan, best)) best = std::move(plan);
+      }
+      q = best.noise;
     }
     plan_ = plan_for(s, q, true);
     if (target_kg_ > 0) reach_target(s);
     order_seconds_ = seconds_since(start);
   }
 
-  // Every cluster's operators at noise step 2^q, each kept while it removes
+  // Every cluster's operators at noise step 2^(q / 2), each kept while it removes
   // error from the decoder's output (exactly, or estimated); their order;
   // the prefix sent.
   Plan plan_for(const MeshSequence& s, int q, bool exact) const {
     Plan plan;
-    plan.delta_log2 = q;
+    plan.noise = q;
     std::optional<CpcaAnimation> animation;
     if (exact) animation.emplace(header_, mean_, static_cast<uint32_t>(s.frames.size()));
     std::vector<std::vector<size_t>> per_cluster(header_.cluster_count);
@@ -704,12 +728,13 @@ class CpcaEncoder final : public CodecEncoder3d {
   }
 
   size_t components_ = 0;
+  int requested_clusters_ = 0;
   uint64_t max_bytes_;
   double target_kg_;
   bool round_robin_;
   std::string basis_prediction_;  // --basis: index, mesh or auto
   bool trajectories_;  // components of the members' trajectories (unit_kind 3), else of their shapes
-  std::optional<int> noise_;  // log2 of the noise step; none: auto
+  std::optional<int> noise_;  // log2 of the noise step in half steps; none: auto
   Grid grid_;
   CpcaHeader header_;
   std::vector<IntPoint3> mean_;
@@ -729,15 +754,17 @@ class CpcaEncoder final : public CodecEncoder3d {
 }  // namespace
 
 std::vector<CodecOption> cpca_wpt_options() {
-  return {bits_option("quantization bits of the mean shape (the base mesh)"),
+  return {{"bits", "cpca-wpt: quantization bits of the mean shape (the base mesh), 4 … 24, or auto (12; with --target-kg, from 12 "
+                   "towards the neighbour whose planned stream is smaller while it shrinks)",
+           OptionKind::kText, "auto", 0, 0},
           {"clusters", "cpca-wpt: k, the clusters of k-means on the vertices' trajectories, 1 … 255, or auto (10, the paper's; with "
                        "--target-kg the one of 5, 10, 20 and 40 whose planned stream is smallest)",
            OptionKind::kText, "auto", 0, 0},
           {"components", "cpca-wpt: at most this many principal components per cluster, 1 … 4096, or auto (40, the paper's, or every "
                          "one for --max-bytes or --target-kg)",
            OptionKind::kText, "auto", 0, 0},
-          {"noise", "cpca-wpt: log2 of the quantization step of the coded values in grid units, −4 … 12, or auto (4, or the best for "
-                    "--max-bytes or --target-kg)",
+          {"noise", "cpca-wpt: log2 of the quantization step of the coded values in grid units, −4 … 12 in steps of 0.5, or auto (4, "
+                    "or the best for --max-bytes or --target-kg)",
            OptionKind::kText, "auto", 0, 0},
           {"basis", "cpca-wpt: how a component's basis values are predicted: index (from the member before in index order, the "
                     "paper's), mesh (by the base mesh's parallelograms, along its traversal) or auto (per component the smaller unit)",
@@ -756,6 +783,8 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequen
   const std::string& model = settings.text("model");
   if (model != "shape" && model != "trajectory" && model != "auto") throw usage_error("--model is shape, trajectory or auto (cpca-wpt)");
   const bool target = settings.number("target-kg") > 0;
+  const bool bits_auto = settings.text("bits") == "auto";
+  const int bits = bits_auto ? kDefaultBits : static_cast<int>(parse_count(settings.text("bits"), "--bits", kMaxBits, kMinBits));
   const std::vector<int> cluster_counts =
       settings.text("clusters") != "auto" ? std::vector<int>{static_cast<int>(parse_count(settings.text("clusters"), "--clusters", kCpcaMaxClusters))}
       : target                            ? std::vector<int>{5, 10, 20, 40}
@@ -763,22 +792,40 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequen
   const std::vector<bool> trajectory_models = model == "shape" ? std::vector<bool>{false}
                                               : model == "trajectory" || !target ? std::vector<bool>{true}
                                                                                   : std::vector<bool>{true, false};
-  if (cluster_counts.size() == 1 && trajectory_models.size() == 1)
-    return std::make_unique<CpcaEncoder>(sequence, settings, cluster_counts[0], trajectory_models[0]);
-  // The cluster count and model whose plan reaches the target in the fewest bytes.
+  if (cluster_counts.size() == 1 && trajectory_models.size() == 1 && !(bits_auto && target))
+    return std::make_unique<CpcaEncoder>(sequence, settings, bits, cluster_counts[0], trajectory_models[0]);
+  // The cluster count and model whose plan reaches the target in the fewest
+  // bytes, then the counts √2 either side of it, then the mean shape's bits
+  // from 12 towards the smaller plan.
   std::unique_ptr<CpcaEncoder> best;
   std::optional<Error> missed;
-  for (const int clusters : cluster_counts)
-    for (const bool trajectories : trajectory_models) {
-      try {
-        auto encoder = std::make_unique<CpcaEncoder>(sequence, settings, clusters, trajectories);
-        if (!best || encoder->planned_bytes() < best->planned_bytes()) best = std::move(encoder);
-      } catch (const Error& e) {
-        if (e.kind() != ErrorKind::kUsage) throw;
-        missed = e;
-      }
+  auto consider = [&](int b, int clusters, bool trajectories) {
+    try {
+      auto encoder = std::make_unique<CpcaEncoder>(sequence, settings, b, clusters, trajectories);
+      if (best && encoder->planned_bytes() >= best->planned_bytes()) return false;
+      best = std::move(encoder);
+      return true;
+    } catch (const Error& e) {
+      if (e.kind() != ErrorKind::kUsage) throw;
+      missed = e;
+      return false;
     }
+  };
+  for (const int clusters : cluster_counts)
+    for (const bool trajectories : trajectory_models) consider(bits, clusters, trajectories);
   if (!best) throw *missed;
+  const int chosen = best->clusters();
+  const bool trajectories = best->trajectory_model();
+  if (cluster_counts.size() > 1)  // the counts between the chosen one and its neighbours, a factor √2 away
+    for (const int clusters : {chosen * 7 / 10, chosen * 14 / 10}) consider(bits, clusters, trajectories);
+  if (bits_auto) {
+    const int clusters = best->clusters();
+    for (const int direction : {-1, 1}) {
+      int b = bits + direction;
+      while (b >= kMinBits && b <= kMaxBits && consider(b, clusters, trajectories)) b += direction;
+      if (b != bits + direction) break;  // moved: the other way is not tried
+    }
+  }
   return best;
 }
 
