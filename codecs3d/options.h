@@ -27,16 +27,19 @@ using CodecOptionValues = std::map<std::string, std::string>;
 // its declaration (a usage error names the option), defaults for the rest.
 class CodecSettings {
  public:
-  CodecSettings(const std::string& codec, const std::vector<CodecOption>& options, const CodecOptionValues& values);
+  // threads: how many an encoder's own search may run at once (0: every core).
+  CodecSettings(const std::string& codec, const std::vector<CodecOption>& options, const CodecOptionValues& values, unsigned threads = 0);
 
   int integer(const std::string& name) const;
   double number(const std::string& name) const;
   bool flag(const std::string& name) const;
   const std::string& text(const std::string& name) const;
+  unsigned threads() const { return threads_; }
 
  private:
   const std::string& value(const std::string& name) const;
   std::map<std::string, std::string> values_;
+  unsigned threads_;
 };
 
 // The options every frame-by-frame grid codec declares.

@@ -1545,6 +1545,26 @@ std::vector<uint8_t> cpca_mesh_written_stream(uint32_t kind) {
   return writer.finish();
 }
 
+// One cluster with more components of both kinds than either limit: the
+// units of a moving tetrahedron's shape components (3 over 3 frames, the
+// limit), then those of its trajectory components (3: its 4 vertices less
+// their mean), no hash units.
+std::vector<uint8_t> cpca_mixed_kinds_stream() {
+  auto units = [](const char* model) {
+    Encode3dOptions o = cpca({{"clusters", "1"}, {"noise", "-4"}, {"model", model}});
+    o.hashes = false;
+    return split_container(encode_mesh3d(moving_tetrahedron(3), o).stream);
+  };
+  ContainerParts shapes = units("shape");
+  const ContainerParts trajectories = units("trajectory");
+  for (const ContainerUnit& unit : trajectories.units)
+    if (unit.payload[0] == static_cast<uint8_t>(UnitType::kRefinement) && unit.payload[kKindByte] == kCpcaTrajectory) shapes.units.push_back(unit);
+  ContainerWriter writer;
+  writer.object(shapes.object_payload);
+  for (const ContainerUnit& unit : shapes.units) writer.unit(unit.payload);
+  return writer.finish();
+}
+
 // The clustered-PCA codec's streams: both orders, a prefix cut at a unit
 // boundary, the finest and coarsest quantization, one cluster, F = 0.
 std::vector<SuiteCase> cpca_cases(bool traced) {
@@ -1588,6 +1608,8 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
   suite.push_back(written_case("cpca-15-trajectory-written", "unit_kind 3 written symbol by symbol: every prefix length 0 … 13 after each "
                               "class on the parallelogram, neighbour and coefficient channels", {"cpca"},
                               cpca_mesh_written_stream(kCpcaTrajectory)));
+  suite.push_back(written_case("cpca-16-mixed-kinds", "one cluster of 4 vertices over 3 frames: 3 shape components (its limit, "
+                              "min(3M, N) = 3) and 3 trajectory components (of min(M, 3N) = 4), counted apart", {"cpca"}, cpca_mixed_kinds_stream()));
   suite.push_back(valid("cpca-07-no-fraction", "a 24-bit grid: fraction_bits 0", {"cpca"}, flag, cpca({{"clusters", "2"}, {"bits", "24"}}),
                         traced));
   return suite;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include <draco/compression/decode.h>
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
 
@@ -49,6 +50,28 @@ size_t draco_frame_size(std::span<const Triangle> faces, std::span<const std::ar
   const draco::Status status = encoder.EncodeMeshToBuffer(*mesh, &buffer);
   if (!status.ok()) throw reference_error(std::string("Draco cannot encode a frame: ") + status.error_msg());
   return buffer.size();
+}
+
+std::vector<std::array<float, 3>> draco_frame_decoded(std::span<const Triangle> faces, std::span<const std::array<float, 3>> positions,
+                                                      int bits) {
+  const std::unique_ptr<draco::Mesh> mesh = draco_mesh(faces, positions, draco::DT_FLOAT32);
+  draco::Encoder encoder;
+  encoder.SetEncodingMethod(draco::MESH_SEQUENTIAL_ENCODING);
+  encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, bits);
+  draco::EncoderBuffer buffer;
+  draco::Status status = encoder.EncodeMeshToBuffer(*mesh, &buffer);
+  if (!status.ok()) throw reference_error(std::string("Draco cannot encode a frame: ") + status.error_msg());
+  draco::DecoderBuffer input;
+  input.Init(buffer.data(), buffer.size());
+  draco::Decoder decoder;
+  auto decoded = decoder.DecodeMeshFromBuffer(&input);
+  if (!decoded.ok()) throw reference_error(std::string("Draco cannot decode its frame: ") + decoded.status().error_msg());
+  const std::unique_ptr<draco::Mesh> out = std::move(decoded).value();
+  const draco::PointAttribute* attribute = out->GetNamedAttribute(draco::GeometryAttribute::POSITION);
+  if (!attribute || out->num_points() != positions.size()) throw reference_error("Draco's decoded frame has other points");
+  std::vector<std::array<float, 3>> result(positions.size());
+  for (uint32_t i = 0; i < positions.size(); ++i) attribute->GetMappedValue(draco::PointIndex(i), result[i].data());
+  return result;
 }
 
 }  // namespace m4mesh

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <span>
+#include <vector>
 
 #include "common/point3.h"
 #include "mesh/topology.h"
@@ -14,6 +15,10 @@ namespace m4mesh {
 // Draco coding one frame at `bits` quantization with edgebreaker, as the
 // reference rate of "Draco coding every frame".
 size_t draco_frame_size(std::span<const Triangle> faces, std::span<const std::array<float, 3>> positions, int bits);
+// The positions Draco's decoder gives back for that frame, in the input's
+// vertex order (coded sequentially, which keeps the order and quantizes
+// as edgebreaker does).
+std::vector<std::array<float, 3>> draco_frame_decoded(std::span<const Triangle> faces, std::span<const std::array<float, 3>> positions, int bits);
 
 // Draco coding grid positions losslessly with edgebreaker (which reorders
 // vertices) or with sequential coding (which keeps their order).

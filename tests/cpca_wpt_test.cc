@@ -236,6 +236,17 @@ TEST(CpcaWpt, UnknownModelOrBasisIsAUsageError) {
   }
 }
 
+// A target's search (models, cluster counts, the mean shape's bits) runs
+// its candidates side by side and keeps the same stream on any number of
+// threads.
+TEST(CpcaWpt, TheSearchKeepsTheSameStreamOnOneThreadAndOnSeveral) {
+  const MeshSequence s = test::test_sequence(12, 4);
+  Encode3dOptions one = cpca({{"target-kg", "1"}, {"model", "auto"}, {"basis", "auto"}}), several = one;
+  one.threads = 1;
+  several.threads = 4;
+  EXPECT_EQ(encode_mesh3d(s, one).stream, encode_mesh3d(s, several).stream);
+}
+
 TEST(CpcaWpt, CorruptAndTruncatedStreamsFailCleanly) {
   EXPECT_GT(test::decode_damaged_mesh3d(encode_mesh3d(test::test_sequence(6, 2), cpca({{"clusters", "3"}})).stream, 41, 5), 0);
 }

@@ -116,7 +116,7 @@ Encode3dResult encode_mesh3d(const MeshSequence& input, const Encode3dOptions& o
   const BaseMeshPlan plan = plan_base_mesh(input.faces, input.vertex_count, options.reorder);
   const MeshSequence s = in_coding_order(input, plan, options.reorder);
   const Codec3d& codec = codec3d_by_name(options.codec);
-  const CodecSettings settings(codec.name, codec.options, options.codec_options);
+  const CodecSettings settings(codec.name, codec.options, options.codec_options, options.threads);
   std::unique_ptr<CodecEncoder3d> encoder = codec.make_encoder(s, settings);
 
   ContainerWriter container;

@@ -27,7 +27,7 @@ struct Encode3dOptions {
   bool keep_decoded = false;     // the decoder's output in the result
   bool reorder = false;          // vertices renumbered in coding order (docs/base_mesh.md)
   std::function<void(size_t done, size_t total)> progress;
-  unsigned threads = 0;  // a search's trials at once (--codec auto); 0: every core
+  unsigned threads = 0;  // a search's trials at once (--codec auto, a codec's own search); 0: every core
 };
 
 struct Encode3dResult {

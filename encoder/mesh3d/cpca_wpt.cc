@@ -14,6 +14,7 @@
 #include "codecs3d/codec_encoder.h"
 #include "codecs3d/options.h"
 #include "common/error.h"
+#include "common/parallel.h"
 #include "encoder/mesh3d/base_mesh.h"
 #include "mesh3d/cpca_wpt.h"
 #include "mesh3d/metrics.h"
@@ -397,6 +398,7 @@ class CpcaEncoder final : public CodecEncoder3d {
   // fixed part).
   uint64_t planned_bytes() const { return plan_.bytes; }
   int clusters() const { return requested_clusters_; }
+  int bits() const { return static_cast<int>(header_.bits); }
   bool trajectory_model() const { return trajectories_; }
 
   std::vector<CodecStatistic> statistics() const override {
@@ -796,34 +798,56 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequen
     return std::make_unique<CpcaEncoder>(sequence, settings, bits, cluster_counts[0], trajectory_models[0]);
   // The cluster count and model whose plan reaches the target in the fewest
   // bytes, then the counts √2 either side of it, then the mean shape's bits
-  // from 12 towards the smaller plan.
+  // from 12 towards the smaller plan. Candidates run side by side; the
+  // first of the smallest is kept, whatever the threads.
+  struct Candidate {
+    int bits, clusters;
+    bool trajectories;
+  };
   std::unique_ptr<CpcaEncoder> best;
   std::optional<Error> missed;
-  auto consider = [&](int b, int clusters, bool trajectories) {
-    try {
-      auto encoder = std::make_unique<CpcaEncoder>(sequence, settings, b, clusters, trajectories);
-      if (best && encoder->planned_bytes() >= best->planned_bytes()) return false;
-      best = std::move(encoder);
-      return true;
-    } catch (const Error& e) {
-      if (e.kind() != ErrorKind::kUsage) throw;
-      missed = e;
-      return false;
-    }
+  // Whether one of `candidates` beat the best so far (that one is kept).
+  auto try_all = [&](const std::vector<Candidate>& candidates) {
+    std::vector<std::unique_ptr<CpcaEncoder>> built(candidates.size());
+    std::vector<std::optional<Error>> failed(candidates.size());
+    bool improved = false;
+    parallel_for(
+        candidates.size(), settings.threads(),
+        [&](size_t i) {
+          try {
+            built[i] = std::make_unique<CpcaEncoder>(sequence, settings, candidates[i].bits, candidates[i].clusters, candidates[i].trajectories);
+          } catch (const Error& e) {
+            if (e.kind() != ErrorKind::kUsage) throw;
+            failed[i] = e;
+          }
+        },
+        [&](size_t i) {
+          if (failed[i]) missed = failed[i];
+          if (built[i] && (!best || built[i]->planned_bytes() < best->planned_bytes())) {
+            best = std::move(built[i]);
+            improved = true;
+          }
+          built[i].reset();
+        });
+    return improved;
   };
+  std::vector<Candidate> first;
   for (const int clusters : cluster_counts)
-    for (const bool trajectories : trajectory_models) consider(bits, clusters, trajectories);
+    for (const bool trajectories : trajectory_models) first.push_back({bits, clusters, trajectories});
+  try_all(first);
   if (!best) throw *missed;
   const int chosen = best->clusters();
   const bool trajectories = best->trajectory_model();
-  if (cluster_counts.size() > 1)  // the counts between the chosen one and its neighbours, a factor √2 away
-    for (const int clusters : {chosen * 7 / 10, chosen * 14 / 10}) consider(bits, clusters, trajectories);
+  if (cluster_counts.size() > 1)
+    try_all({{bits, chosen * 7 / 10, trajectories}, {bits, chosen * 14 / 10, trajectories}});
   if (bits_auto) {
     const int clusters = best->clusters();
-    for (const int direction : {-1, 1}) {
-      int b = bits + direction;
-      while (b >= kMinBits && b <= kMaxBits && consider(b, clusters, trajectories)) b += direction;
-      if (b != bits + direction) break;  // moved: the other way is not tried
+    const uint64_t before = best->planned_bytes();
+    try_all({{bits - 1, clusters, trajectories}, {bits + 1, clusters, trajectories}});
+    if (best->planned_bytes() < before) {
+      const int direction = best->bits() < bits ? -1 : 1;
+      for (int b = bits + 2 * direction; b >= kMinBits && b <= kMaxBits && try_all({{b, clusters, trajectories}}); b += direction) {
+      }
     }
   }
   return best;

@@ -1,9 +1,12 @@
 """Rate–distortion plots of an `m4mesh rd` sweep.
 
-    python3 -m m4mesh.plot rd.csv -o rd.png [--title TITLE]
+    python3 -m m4mesh.plot rd.csv [more.csv ...] -o rd.png [--title TITLE] [--sequence NAME]
 
 Two panels against bits per vertex per frame, one line per codec: the KG
 error (percent) and STED, both on log axes (every codec spans decades).
+Several CSVs draw together (the reference coders of
+`m4mesh_baselines_bench` beside a sweep); with --sequence, rows with a
+`sequence` column are drawn only for that sequence.
 """
 
 import argparse
@@ -16,9 +19,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 
 
-def read_points(path):
-    """The rows of an `m4mesh rd` CSV, grouped by codec in file order."""
-    codecs = {}
+def read_points(path, sequence=None, codecs=None):
+    """The rows of an `m4mesh rd` CSV, grouped by codec in file order (added to `codecs`)."""
+    codecs = {} if codecs is None else codecs
     needed = ("codec", "bpvf", "kg_percent", "sted")
     with open(path, newline="") as f:
         reader = csv.DictReader(f)
@@ -28,6 +31,8 @@ def read_points(path):
                 f"{path}: not a CSV of `m4mesh rd`: no column {', '.join(missing)} (it has {', '.join(reader.fieldnames or []) or 'none'})"
             )
         for line, row in enumerate(reader, start=2):
+            if sequence is not None and row.get("sequence", sequence) != sequence:
+                continue
             try:
                 codecs.setdefault(row["codec"], []).append({key: float(row[key]) for key in needed[1:]})
             except (TypeError, ValueError):
@@ -63,12 +68,16 @@ def plot(codecs, output, title=None, width=10.0, height=4.2):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python3 -m m4mesh.plot", description=__doc__.splitlines()[0])
-    parser.add_argument("csv", help="an `m4mesh rd` CSV")
+    parser.add_argument("csv", nargs="+", help="`m4mesh rd` CSVs (or any with codec, bpvf, kg_percent and sted columns)")
     parser.add_argument("-o", "--output", required=True, help="the picture (.png, .svg or .pdf)")
     parser.add_argument("--title", help="a title above both panels")
+    parser.add_argument("--sequence", help="draw only the rows of this sequence where a CSV names it")
     args = parser.parse_args(argv)
     try:
-        plot(read_points(args.csv), args.output, args.title)
+        codecs = {}
+        for path in args.csv:
+            read_points(path, args.sequence, codecs)
+        plot(codecs, args.output, args.title)
     except (OSError, ValueError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 1
