@@ -8,16 +8,17 @@
 //   and no vertex order;
 // - Draco coding every frame with edgebreaker at 8 … 16 bits (its sizes;
 //   its errors from its own decoder).
-// Each prints its lower convex hull of (bpvf, KG) with STED to stderr as
-// CSV rows (`2> baselines.csv`; `python3 -m m4mesh.plot rd.csv
-// baselines.csv --sequence NAME` draws them beside a sweep) and reports
-// the bits per vertex and frame at KG 0.5 % and 0.1 %, read on the hull
-// (linear between its points).
+// Each reports the bits per vertex and frame at KG 0.5 % and 0.1 %, read
+// on its lower convex hull of (bpvf, KG) (linear between its points), and
+// writes that hull with STED as CSV rows to the file named by
+// M4MESH_BASELINES_CSV, if set (`python3 -m m4mesh.plot rd.csv that.csv
+// --sequence NAME` draws them beside a sweep).
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Dense>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 
 #include "bench/sequences.h"
@@ -29,8 +30,8 @@
 namespace m4mesh {
 namespace {
 
-const char* const kSequences[] = {"pcow", "horse-gallop", "openfamc_testdata/dance_mesh", "openfamc_testdata/dog_mesh",
-                                  "openfamc_testdata/handstand_mesh", "cloth/flag/flag.pc2"};
+const char *const kSequences[] = {
+    "pcow", "horse-gallop", "openfamc_testdata/dance_mesh", "openfamc_testdata/dog_mesh", "openfamc_testdata/handstand_mesh", "cloth/flag/flag.pc2"};
 
 struct RatePoint {
   double bpvf = 0, kg = 0, sted = 0;
@@ -39,16 +40,16 @@ struct RatePoint {
 };
 
 // Order-0 entropy of a list of integers, in bits per symbol.
-double entropy(const std::vector<int64_t>& values) {
+double entropy(const std::vector<int64_t> &values) {
   std::map<int64_t, double> counts;
   for (int64_t v : values) counts[v] += 1;
   double bits = 0;
   const double n = static_cast<double>(values.size());
-  for (const auto& [value, count] : counts) bits -= count * std::log2(count / n);
+  for (const auto &[value, count] : counts) bits -= count * std::log2(count / n);
   return n > 0 ? bits / n : 0;
 }
 
-MeshSequence from_trajectories(const MeshSequence& s, const Eigen::MatrixXd& t) {
+MeshSequence from_trajectories(const MeshSequence &s, const Eigen::MatrixXd &t) {
   MeshSequence out{s.vertex_count, s.faces, std::vector<std::vector<Vec3>>(s.frames.size())};
   for (size_t f = 0; f < s.frames.size(); ++f)
     for (Eigen::Index v = 0; v < t.rows(); ++v) {
@@ -58,13 +59,14 @@ MeshSequence from_trajectories(const MeshSequence& s, const Eigen::MatrixXd& t) 
   return out;
 }
 
-// The Coddyac-style coder at every count of components and coefficient step tried.
-std::vector<RatePoint> coddyac_points(const MeshSequence& s) {
+// The Coddyac-style coder at every count of components and coefficient step
+// tried.
+std::vector<RatePoint> coddyac_points(const MeshSequence &s) {
   const auto vertices = static_cast<Eigen::Index>(s.vertex_count), columns = static_cast<Eigen::Index>(3 * s.frames.size());
   Eigen::MatrixXd t(vertices, columns);
   for (size_t f = 0; f < s.frames.size(); ++f)
     for (Eigen::Index v = 0; v < vertices; ++v) {
-      const Vec3& p = s.frames[f][static_cast<size_t>(v)];
+      const Vec3 &p = s.frames[f][static_cast<size_t>(v)];
       t(v, static_cast<Eigen::Index>(3 * f)) = p.x;
       t(v, static_cast<Eigen::Index>(3 * f + 1)) = p.y;
       t(v, static_cast<Eigen::Index>(3 * f + 2)) = p.z;
@@ -75,11 +77,6 @@ std::vector<RatePoint> coddyac_points(const MeshSequence& s) {
   const Eigen::Index most = std::min<Eigen::Index>({256, columns, vertices});
   Eigen::MatrixXd basis(columns, most);
   for (Eigen::Index k = 0; k < most; ++k) basis.col(k) = eigen.eigenvectors().col(columns - 1 - k);
-  // The basis in steps of 2^−12 (its vectors are of norm 1), the coefficients projected on it.
-  constexpr double kBasisStep = 1.0 / 4096;
-  const Eigen::MatrixXd quantized_basis = (basis / kBasisStep).array().round() * kBasisStep;
-  const Eigen::MatrixXd coefficients = x * quantized_basis;
-
   const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false);
   const MeshPredictor predictor(plan.faces, s.vertex_count);
   std::vector<uint32_t> rank(s.vertex_count);
@@ -89,54 +86,63 @@ std::vector<RatePoint> coddyac_points(const MeshSequence& s) {
 
   std::vector<RatePoint> points;
   const double vertex_frames = static_cast<double>(s.vertex_count) * static_cast<double>(s.frames.size());
-  for (const Eigen::Index components : {4, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256}) {
-    if (components > most) break;
-    std::vector<int64_t> basis_values;
-    for (Eigen::Index k = 0; k < components; ++k)
-      for (Eigen::Index j = 0; j < columns; ++j) basis_values.push_back(std::llround(quantized_basis(j, k) / kBasisStep));
-    const double basis_bits = static_cast<double>(basis_values.size()) * entropy(basis_values) + 32.0 * static_cast<double>(columns);
-    for (int step_log2 = 5; step_log2 <= 13; ++step_log2) {
-      const double step = extent * std::ldexp(1.0, -step_log2);
-      std::vector<int32_t> q(s.vertex_count);
-      double coefficient_bits = 0;
-      Eigen::MatrixXd decoded_coefficients(vertices, components);
-      for (Eigen::Index k = 0; k < components; ++k) {
-        for (Eigen::Index v = 0; v < vertices; ++v) q[static_cast<size_t>(v)] = static_cast<int32_t>(std::lround(coefficients(v, k) / step));
-        std::vector<int64_t> residuals;
-        int64_t previous = 0;
-        for (const uint32_t v : plan.input_of) {
-          std::array<int64_t, 1> p{previous};
-          predictor.predict(v, [&](uint32_t u) { return rank[u] < rank[v]; }, [&](uint32_t u) { return std::array<int32_t, 1>{q[u]}; }, p);
-          residuals.push_back(q[v] - p[0]);
-          previous = q[v];
+  // The basis (vectors of norm 1) in steps of 2^−basis_bits; the coefficients
+  // projected on it.
+  for (const int basis_bits_log2 : {12, 16}) {
+    const double basis_step = std::ldexp(1.0, -basis_bits_log2);
+    const Eigen::MatrixXd quantized_basis = (basis / basis_step).array().round() * basis_step;
+    const Eigen::MatrixXd coefficients = x * quantized_basis;
+    for (const Eigen::Index components : {4, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256}) {
+      if (components > most) break;
+      std::vector<int64_t> basis_values;
+      for (Eigen::Index k = 0; k < components; ++k)
+        for (Eigen::Index j = 0; j < columns; ++j) basis_values.push_back(std::llround(quantized_basis(j, k) / basis_step));
+      const double basis_bits = static_cast<double>(basis_values.size()) * entropy(basis_values) + 32.0 * static_cast<double>(columns);
+      for (int step_log2 = 5; step_log2 <= 13; ++step_log2) {
+        const double step = extent * std::ldexp(1.0, -step_log2);
+        std::vector<int32_t> q(s.vertex_count);
+        double coefficient_bits = 0;
+        Eigen::MatrixXd decoded_coefficients(vertices, components);
+        for (Eigen::Index k = 0; k < components; ++k) {
+          for (Eigen::Index v = 0; v < vertices; ++v) q[static_cast<size_t>(v)] = static_cast<int32_t>(std::lround(coefficients(v, k) / step));
+          std::vector<int64_t> residuals;
+          int64_t previous = 0;
+          for (const uint32_t v : plan.input_of) {
+            std::array<int64_t, 1> p{previous};
+            predictor.predict(
+                v, [&](uint32_t u) { return rank[u] < rank[v]; }, [&](uint32_t u) { return std::array<int32_t, 1>{q[u]}; }, p);
+            residuals.push_back(q[v] - p[0]);
+            previous = q[v];
+          }
+          coefficient_bits += static_cast<double>(residuals.size()) * entropy(residuals);
+          for (Eigen::Index v = 0; v < vertices; ++v) decoded_coefficients(v, k) = step * q[static_cast<size_t>(v)];
         }
-        coefficient_bits += static_cast<double>(residuals.size()) * entropy(residuals);
-        for (Eigen::Index v = 0; v < vertices; ++v) decoded_coefficients(v, k) = step * q[static_cast<size_t>(v)];
+        const Eigen::MatrixXd decoded = (decoded_coefficients * quantized_basis.leftCols(components).transpose()).rowwise() + mean;
+        RatePoint point;
+        point.decoded = from_trajectories(s, decoded);
+        point.kg = kg_error(s, point.decoded);
+        point.bpvf = (basis_bits + coefficient_bits) / vertex_frames;
+        point.setting = std::to_string(components) + " components step 2^-" + std::to_string(step_log2) + " of the extent basis 2^-" +
+                        std::to_string(basis_bits_log2);
+        points.push_back(std::move(point));
       }
-      const Eigen::MatrixXd decoded = (decoded_coefficients * quantized_basis.leftCols(components).transpose()).rowwise() + mean;
-      RatePoint point;
-      point.decoded = from_trajectories(s, decoded);
-      point.kg = kg_error(s, point.decoded);
-      point.bpvf = (basis_bits + coefficient_bits) / vertex_frames;
-      point.setting = std::to_string(components) + " components step 2^-" + std::to_string(step_log2) + " of the extent";
-      points.push_back(std::move(point));
     }
   }
   return points;
 }
 
-std::vector<RatePoint> draco_points(const MeshSequence& s) {
+std::vector<RatePoint> draco_points(const MeshSequence &s) {
   std::vector<RatePoint> points;
   const double vertex_frames = static_cast<double>(s.vertex_count) * static_cast<double>(s.frames.size());
   for (int bits = 8; bits <= 16; ++bits) {
     RatePoint point{0, 0, 0, std::to_string(bits) + " bits", MeshSequence{s.vertex_count, s.faces, {}}};
     double total = 0;
-    for (const std::vector<Vec3>& frame : s.frames) {
+    for (const std::vector<Vec3> &frame : s.frames) {
       std::vector<std::array<float, 3>> p;
-      for (const Vec3& v : frame) p.push_back({static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)});
+      for (const Vec3 &v : frame) p.push_back({static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)});
       total += 8.0 * static_cast<double>(draco_frame_size(s.faces, p, bits));
       std::vector<Vec3> decoded;
-      for (const std::array<float, 3>& d : draco_frame_decoded(s.faces, p, bits)) decoded.push_back({d[0], d[1], d[2]});
+      for (const std::array<float, 3> &d : draco_frame_decoded(s.faces, p, bits)) decoded.push_back({d[0], d[1], d[2]});
       point.decoded.frames.push_back(std::move(decoded));
     }
     point.kg = kg_error(s, point.decoded);
@@ -148,9 +154,9 @@ std::vector<RatePoint> draco_points(const MeshSequence& s) {
 
 // The lower convex hull of the points, by increasing rate.
 std::vector<RatePoint> lower_hull(std::vector<RatePoint> points) {
-  std::sort(points.begin(), points.end(), [](const RatePoint& a, const RatePoint& b) { return a.bpvf < b.bpvf; });
+  std::sort(points.begin(), points.end(), [](const RatePoint &a, const RatePoint &b) { return a.bpvf < b.bpvf; });
   std::vector<RatePoint> hull;
-  for (RatePoint& p : points) {
+  for (RatePoint &p : points) {
     if (!hull.empty() && p.kg >= hull.back().kg) continue;  // no better than a cheaper point
     while (hull.size() >= 2) {
       const RatePoint &a = hull[hull.size() - 2], &b = hull.back();
@@ -164,7 +170,7 @@ std::vector<RatePoint> lower_hull(std::vector<RatePoint> points) {
 }
 
 // The rate at which the hull reaches a KG error (NAN: never).
-double rate_at(const std::vector<RatePoint>& hull, double kg) {
+double rate_at(const std::vector<RatePoint> &hull, double kg) {
   for (size_t k = 0; k < hull.size(); ++k) {
     if (hull[k].kg > kg) continue;
     if (k == 0) return hull[0].bpvf;
@@ -174,20 +180,32 @@ double rate_at(const std::vector<RatePoint>& hull, double kg) {
   return NAN;
 }
 
+// The CSV file M4MESH_BASELINES_CSV names, opened once with its header; null when unset.
+std::FILE* csv_output() {
+  static std::FILE* file = [] {
+    const char* path = std::getenv("M4MESH_BASELINES_CSV");
+    std::FILE* f = path ? std::fopen(path, "w") : nullptr;
+    if (path && !f) std::fprintf(stderr, "cannot write %s\n", path);
+    if (f) std::fprintf(f, "sequence,codec,parameter,bpvf,kg_percent,sted\n");
+    return f;
+  }();
+  return file;
+}
+
 void report(benchmark::State& state, const std::string& name, const char* coder, std::vector<RatePoint> points) {
   std::vector<RatePoint> hull = lower_hull(std::move(points));
-  static bool header = false;
-  if (!header) std::fprintf(stderr, "sequence,codec,parameter,bpvf,kg_percent,sted\n");
-  header = true;
   for (RatePoint& p : hull) {
     p.sted = compare_sequences(bench::sequence(name), p.decoded).sted;
-    std::fprintf(stderr, "%s,%s,%s,%.4f,%.5f,%.6f\n", bench::label(name).c_str(), coder, p.setting.c_str(), p.bpvf, p.kg, p.sted);
+    if (std::FILE* csv = csv_output()) {
+      std::fprintf(csv, "%s,%s,%s,%.4f,%.5f,%.6f\n", bench::label(name).c_str(), coder, p.setting.c_str(), p.bpvf, p.kg, p.sted);
+      std::fflush(csv);
+    }
   }
   state.counters[std::string(coder) + "_bpvf_kg0.5"] = rate_at(hull, 0.5);
   state.counters[std::string(coder) + "_bpvf_kg0.1"] = rate_at(hull, 0.1);
 }
 
-void BM_Coddyac(benchmark::State& state) {
+void BM_Coddyac(benchmark::State &state) {
   const std::string name = kSequences[state.range(0)];
   std::vector<RatePoint> points;
   for (auto _ : state) points = coddyac_points(bench::sequence(name));
@@ -196,7 +214,7 @@ void BM_Coddyac(benchmark::State& state) {
 }
 BENCHMARK(BM_Coddyac)->DenseRange(0, 5)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
-void BM_DracoEveryFrame(benchmark::State& state) {
+void BM_DracoEveryFrame(benchmark::State &state) {
   const std::string name = kSequences[state.range(0)];
   std::vector<RatePoint> points;
   for (auto _ : state) points = draco_points(bench::sequence(name));

@@ -1650,17 +1650,23 @@ std::vector<SuiteCase> cpca_rejected_cases(const std::vector<SuiteCase>& valid) 
   suite.push_back(invalid("x-32-cpca-unit-kind", "unit_kind 4", {"cpca"},
                           edited(base, [](ContainerParts& p) { p.units[refinement_unit(p, 0)].payload[kKindByte] = 4; }),
                           ErrorKind::kOutOfRange, "unit_kind", 0));
+  // The first component unit of a kind moves before every refinement unit (they follow the base mesh).
+  auto component_first = [](uint32_t kind) {
+    return [kind](ContainerParts& p) {
+      size_t k = refinement_unit(p, 0);
+      while (p.units[k].payload[kKindByte] != kind) ++k;
+      ContainerUnit component = p.units[k];
+      p.units.erase(p.units.begin() + static_cast<std::ptrdiff_t>(k));
+      p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(refinement_unit(p, 0)), component);
+    };
+  };
   suite.push_back(invalid("x-33-cpca-not-started", "a component of a cluster before the cluster's start", {"cpca"},
-                          edited(base,
-                                 [](ContainerParts& p) {
-                                   // The first component unit moves before every refinement unit (they follow the base mesh).
-                                   size_t k = refinement_unit(p, 0);
-                                   while (p.units[k].payload[kKindByte] != kCpcaComponent) ++k;
-                                   ContainerUnit component = p.units[k];
-                                   p.units.erase(p.units.begin() + static_cast<std::ptrdiff_t>(k));
-                                   p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(refinement_unit(p, 0)), component);
-                                 }),
-                          ErrorKind::kStructure, "unit_kind", 0));
+                          edited(base, component_first(kCpcaComponent)), ErrorKind::kStructure, "unit_kind", 0));
+  suite.push_back(invalid("x-65-cpca-mesh-not-started", "a unit_kind 2 component of a cluster before the cluster's start", {"cpca"},
+                          edited(find(valid, "cpca-11-mesh-basis"), component_first(kCpcaMeshComponent)), ErrorKind::kStructure, "unit_kind", 0));
+  suite.push_back(invalid("x-66-cpca-trajectory-not-started", "a trajectory component of a cluster before the cluster's start", {"cpca"},
+                          edited(find(valid, "cpca-12-trajectories"), component_first(kCpcaTrajectory)), ErrorKind::kStructure, "unit_kind",
+                          0));
   suite.push_back(invalid("x-34-cpca-second-start", "a cluster's start sent twice", {"cpca"},
                           edited(base,
                                  [](ContainerParts& p) {

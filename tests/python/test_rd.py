@@ -7,6 +7,7 @@ import subprocess
 import sys
 
 import matplotlib.image
+from m4mesh import plot
 import pytest
 
 M4MESH = os.environ["M4MESH_BINARY"]
@@ -94,3 +95,22 @@ def test_plot_of_a_csv_not_from_rd_names_the_missing_columns(tmp_path):
     other.write_text("kg_error_percent,rmse\n0.1,0.2\n")
     result = subprocess.run([sys.executable, "-m", "m4mesh.plot", str(other), "-o", str(tmp_path / "x.png")], capture_output=True, text=True)
     assert result.returncode == 1 and "not a CSV of `m4mesh rd`: no column codec, bpvf, kg_percent, sted" in result.stderr
+
+
+def test_plot_draws_reference_coders_of_one_sequence_beside_a_sweep(sweep, tmp_path):
+    # Rows of the baselines benchmark name their sequence: only the asked one's are drawn.
+    reference = tmp_path / "baselines.csv"
+    reference.write_text(
+        "sequence,codec,parameter,bpvf,kg_percent,sted\n"
+        "pcow,coddyac-style,8 components,0.2,6.5,0.09\n"
+        "pcow,coddyac-style,16 components,0.4,2.3,0.09\n"
+        "horse-gallop,coddyac-style,8 components,0.3,2.7,0.30\n"
+    )
+    codecs = {}
+    plot.read_points(str(sweep), "pcow", codecs)
+    plot.read_points(str(reference), "pcow", codecs)
+    assert [p["bpvf"] for p in codecs["coddyac-style"]] == [0.2, 0.4]
+    assert "cpca-wpt" in codecs  # the sweep's rows have no sequence column: all drawn
+    out = tmp_path / "both.png"
+    subprocess.run([sys.executable, "-m", "m4mesh.plot", str(sweep), str(reference), "--sequence", "pcow", "-o", str(out)], check=True)
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
