@@ -112,9 +112,10 @@ inline int64_t floor_div(int64_t sum, int64_t n) {
   return (sum % n != 0 && sum < 0) ? q - 1 : q;
 }
 
-// The parallelogram prediction of docs/base_mesh.md over faces in coding
-// numbers, for any values that live on the vertices (positions, a
-// component's basis) and any set of vertices already known.
+// The parallelogram prediction of docs/base_mesh.md ("Positions") for any
+// values that live on the vertices (positions, a component's basis) and
+// any set of vertices already known; the faces in any numbering, in their
+// decoded order (which sets each directed edge's first face).
 class MeshPredictor {
  public:
   MeshPredictor(std::span<const Triangle> faces, uint32_t vertex_count);

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "common/point3.h"
-#include "mesh3d/base_mesh.h"
 #include "mesh/topology.h"
+#include "mesh3d/base_mesh.h"
 #include "syntax/mesh3d/cpca_wpt.h"
 
 namespace m4mesh {
