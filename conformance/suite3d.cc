@@ -10,6 +10,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string_view>
@@ -1385,6 +1386,36 @@ std::vector<uint8_t> crafted_refinement(uint32_t cluster, uint32_t kind, const s
   return refinement_bytes(cluster, kind, kCpcaShiftBias, symbols);
 }
 
+// The start of a clustered-PCA stream written symbol by symbol: the
+// encoder's object header and base mesh for `s` (one cluster, no hash
+// units), the header's cluster map replaced by `cluster_of` (and F by
+// `fraction_bits` when given); refinement units follow.
+ContainerWriter cpca_written_start(const MeshSequence& s, const std::vector<uint32_t>& cluster_of, uint32_t clusters,
+                                   std::optional<uint32_t> fraction_bits) {
+  Encode3dOptions o = cpca({{"clusters", "1"}});
+  o.hashes = false;
+  ContainerParts parts = split_container(encode_mesh3d(s, o).stream);
+  auto [object, header] = read_headers<CpcaHeader>(parts);
+  syntax::EntropyWriteIO<false> map(syntax::SectionPlace{});
+  std::vector<uint32_t> clusters_of = cluster_of;
+  syntax::describe_cluster_map(map, clusters_of, clusters);
+  const std::vector<uint8_t> map_bins = map.finish_bins(), map_raw = map.finish_raw();
+  header.cluster_count = clusters;
+  if (fraction_bits) header.fraction_bits = *fraction_bits;
+  header.map_bins_bytes = static_cast<uint32_t>(map_bins.size());
+  header.map_bins = map_bins;
+  header.map_raw_bytes = static_cast<uint32_t>(map_raw.size());
+  header.map_raw = map_raw;
+  BitWriter payload;
+  syntax::WriteIO out(payload);
+  syntax::describe(out, object);
+  syntax::describe(out, header);
+  ContainerWriter writer;
+  writer.object(payload.take_bytes());
+  writer.unit(unit_of(parts, UnitType::kBaseMesh, 0).payload);
+  return writer;
+}
+
 // A clustered-PCA stream of 2 frames written symbol by symbol (no hash
 // units) over a base mesh the encoder wrote: 255 clusters, F = 16, and
 // - a cluster map of clusters 0 … 254 in turn, then per pattern of
@@ -1407,27 +1438,8 @@ std::vector<uint8_t> cpca_written_stream() {
     cluster_of.push_back(cluster_of.back() + static_cast<uint32_t>(std::abs(second)));
   });
   const int loose = static_cast<int>(cluster_of.size()) - 11;  // designed_loose()'s sheet and box hold 11
-  Encode3dOptions o = cpca({{"clusters", "1"}});
-  o.hashes = false;
-  const std::vector<uint8_t> encoded = encode_mesh3d(designed_loose(2, loose, [](int, int) { return 0; }), o).stream;
-  ContainerParts parts = split_container(encoded);
-  auto [object, header] = read_headers<CpcaHeader>(parts);
-  syntax::EntropyWriteIO<false> map(syntax::SectionPlace{});
-  syntax::describe_cluster_map(map, cluster_of, kClusters);
-  const std::vector<uint8_t> map_bins = map.finish_bins(), map_raw = map.finish_raw();
-  header.cluster_count = kClusters;
-  header.fraction_bits = kCpcaMaxFractionBits;
-  header.map_bins_bytes = static_cast<uint32_t>(map_bins.size());
-  header.map_bins = map_bins;
-  header.map_raw_bytes = static_cast<uint32_t>(map_raw.size());
-  header.map_raw = map_raw;
-  BitWriter payload;
-  syntax::WriteIO out(payload);
-  syntax::describe(out, object);
-  syntax::describe(out, header);
-  ContainerWriter writer;
-  writer.object(payload.take_bytes());
-  writer.unit(unit_of(parts, UnitType::kBaseMesh, 0).payload);
+  ContainerWriter writer =
+      cpca_written_start(designed_loose(2, loose, [](int, int) { return 0; }), cluster_of, kClusters, kCpcaMaxFractionBits);
 
   const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, kClusters);
   auto start = [&](uint32_t cluster, std::vector<int32_t> translation) {
@@ -1487,26 +1499,7 @@ std::vector<uint8_t> cpca_mesh_written_stream(uint32_t kind) {
   for (uint32_t p = 0; p < patterns.size(); ++p) cluster_of[quads_end + schedule.size() + p] = 2 + p;
   const uint32_t clusters = 2 + static_cast<uint32_t>(patterns.size());
 
-  Encode3dOptions o = cpca({{"clusters", "1"}});
-  o.hashes = false;
-  const std::vector<uint8_t> encoded = encode_mesh3d(s, o).stream;
-  ContainerParts parts = split_container(encoded);
-  auto [object, header] = read_headers<CpcaHeader>(parts);
-  syntax::EntropyWriteIO<false> map(syntax::SectionPlace{});
-  syntax::describe_cluster_map(map, cluster_of, clusters);
-  const std::vector<uint8_t> map_bins = map.finish_bins(), map_raw = map.finish_raw();
-  header.cluster_count = clusters;
-  header.map_bins_bytes = static_cast<uint32_t>(map_bins.size());
-  header.map_bins = map_bins;
-  header.map_raw_bytes = static_cast<uint32_t>(map_raw.size());
-  header.map_raw = map_raw;
-  BitWriter payload;
-  syntax::WriteIO out(payload);
-  syntax::describe(out, object);
-  syntax::describe(out, header);
-  ContainerWriter writer;
-  writer.object(payload.take_bytes());
-  writer.unit(unit_of(parts, UnitType::kBaseMesh, 0).payload);
+  ContainerWriter writer = cpca_written_start(s, cluster_of, clusters, std::nullopt);
 
   const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false);
   const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, clusters);
