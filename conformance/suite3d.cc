@@ -1474,9 +1474,10 @@ std::vector<uint8_t> cpca_written_stream() {
 }
 
 // A clustered-PCA stream of 2 frames written symbol by symbol (no hash
-// units) whose components are all of `kind` (2: shapes over the mesh, 3:
-// trajectories), over the separate quads of parallelogram_quads() at one
-// place and as many vertices in no face:
+// units) with a component of unit_kind 2 (shapes over the mesh) and one of
+// unit_kind 3 (trajectories) per cluster below, each carrying the same
+// values, over the separate quads of parallelogram_quads() at one place
+// and as many vertices in no face:
 // - cluster 0, the quads: a component whose basis is 0 at a quad's first
 //   three vertices and prefix_schedule()'s next value at its fourth, so
 //   that the parallelogram channels carry the schedule;
@@ -1485,7 +1486,7 @@ std::vector<uint8_t> cpca_written_stream() {
 // - clusters 2 … 43, one vertex each: per pattern of
 //   for_each_prefix_pattern(), a component whose coefficients step by the
 //   pattern's values on every lane.
-std::vector<uint8_t> cpca_mesh_written_stream(uint32_t kind) {
+std::vector<uint8_t> cpca_mesh_written_stream() {
   const std::vector<int32_t> schedule = prefix_schedule();
   std::vector<std::pair<int32_t, int32_t>> patterns;
   for_each_prefix_pattern(13, [&](int32_t first, int32_t second) { patterns.emplace_back(first, second); });
@@ -1504,9 +1505,9 @@ std::vector<uint8_t> cpca_mesh_written_stream(uint32_t kind) {
   const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false);
   const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, clusters);
   const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, clusters);
-  const size_t per_member = kind == kCpcaTrajectory ? 1 : 3;
   // One value per member (every axis alike), one per frame (every lane alike).
-  auto component = [&](uint32_t cluster, const std::vector<int32_t>& values, std::pair<int32_t, int32_t> frames) {
+  auto component = [&](uint32_t kind, uint32_t cluster, const std::vector<int32_t>& values, std::pair<int32_t, int32_t> frames) {
+    const size_t per_member = kind == kCpcaTrajectory ? 1 : 3;
     std::vector<int32_t> basis, coefficients;
     for (int32_t v : values) basis.insert(basis.end(), per_member, v);
     coefficients.insert(coefficients.end(), 3 / per_member, frames.first);
@@ -1528,13 +1529,15 @@ std::vector<uint8_t> cpca_mesh_written_stream(uint32_t kind) {
   size_t next = 0;
   for (size_t i = 0; i < members[0].size(); ++i)
     if (members[0][i] >= 11 && (members[0][i] - 11) % 4 == 3) quads[i] = schedule[next++];  // a quad's fourth vertex
-  component(0, quads, {1, 1});
   std::vector<int32_t> chain;
   int32_t value = 0;
   for (int32_t step : schedule) chain.push_back(value += step);
-  component(1, chain, {1, 1});
-  for (uint32_t p = 0; p < patterns.size(); ++p)
-    component(2 + p, {1}, {patterns[p].first, patterns[p].first + patterns[p].second});
+  for (const uint32_t kind : {kCpcaMeshComponent, kCpcaTrajectory}) {
+    component(kind, 0, quads, {1, 1});
+    component(kind, 1, chain, {1, 1});
+    for (uint32_t p = 0; p < patterns.size(); ++p)
+      component(kind, 2 + p, {1}, {patterns[p].first, patterns[p].first + patterns[p].second});
+  }
   return writer.finish();
 }
 
@@ -1596,11 +1599,8 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
                         cpca({{"clusters", "4"}, {"model", "trajectory"}}), traced));
   suite.push_back(valid("cpca-13-trajectories-scattered", "trajectory components of 200 clusters over a sheet: members without neighbours",
                         {"cpca"}, spiky_sheet(4, 16, 100, 47, 3), cpca({{"clusters", "200"}, {"bits", "24"}, {"model", "trajectory"}}), traced));
-  suite.push_back(written_case("cpca-14-mesh-written", "unit_kind 2 written symbol by symbol: every prefix length 0 … 13 after each class on "
-                              "the parallelogram, neighbour and coefficient channels", {"cpca"}, cpca_mesh_written_stream(kCpcaMeshComponent)));
-  suite.push_back(written_case("cpca-15-trajectory-written", "unit_kind 3 written symbol by symbol: every prefix length 0 … 13 after each "
-                              "class on the parallelogram, neighbour and coefficient channels", {"cpca"},
-                              cpca_mesh_written_stream(kCpcaTrajectory)));
+  suite.push_back(written_case("cpca-14-mesh-written", "unit_kind 2 and 3 written symbol by symbol: every prefix length 0 … 13 after "
+                              "each class on the parallelogram, neighbour and coefficient channels", {"cpca"}, cpca_mesh_written_stream()));
   suite.push_back(written_case("cpca-16-mixed-kinds", "one cluster of 4 vertices over 3 frames: 3 shape components (its limit, "
                               "min(3M, N) = 3) and 3 trajectory components (of min(M, 3N) = 4), counted apart", {"cpca"}, cpca_mixed_kinds_stream()));
   suite.push_back(valid("cpca-07-no-fraction", "a 24-bit grid: fraction_bits 0", {"cpca"}, flag, cpca({{"clusters", "2"}, {"bits", "24"}}),

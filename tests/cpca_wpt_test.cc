@@ -260,8 +260,9 @@ TEST(CpcaWptRealData, WptNeverNeedsMoreBytesThanRpt) {
   for (const char* name : {"pcow", "horse-gallop"}) {
     if (!fs::exists(kData / name)) GTEST_SKIP() << "../shared/data/" << name << " is absent";
     const MeshSequence s = load_sequence((kData / name).string());
-    const auto wpt = curve(encode_mesh3d(s, cpca()).stream, s);
-    const auto rpt = curve(encode_mesh3d(s, cpca({{"order", "rpt"}})).stream, s);
+    // The report's operators (shape components, basis in index order).
+    const auto wpt = curve(encode_mesh3d(s, cpca({{"model", "shape"}, {"basis", "index"}})).stream, s);
+    const auto rpt = curve(encode_mesh3d(s, cpca({{"model", "shape"}, {"basis", "index"}, {"order", "rpt"}})).stream, s);
     for (size_t k = 1; k < wpt.size(); ++k) EXPECT_LE(wpt[k].second, wpt[k - 1].second) << name << " unit " << k;
     for (int checkpoint = 1; checkpoint <= 10; ++checkpoint) {
       const double kg = rpt[(rpt.size() - 1) * static_cast<size_t>(checkpoint) / 10].second;

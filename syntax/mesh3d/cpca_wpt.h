@@ -72,8 +72,6 @@ inline constexpr ResidualNames kCpcaTrajectoryCoefficient{"trajectory_coefficien
                                                           "trajectory_coefficient_sign_suffix", "trajectory_coefficient"};
 inline constexpr ResidualNames kCpcaTranslation{"translation_nonzero", "translation_prefix", "translation_sign_suffix", "translation"};
 inline constexpr int kCpcaCoefficientChannel = 3;  // the basis uses 0 … 2 (x, y, z)
-// unit_kind 2: the basis uses 0 … 2 after a parallelogram, 3 … 5 after a neighbour mean.
-inline constexpr int kCpcaMeshCoefficientChannel = 6;
 
 template <class IO>
 void describe(IO& io, CpcaHeader& h) {
