@@ -1,5 +1,7 @@
 #include "mesh3d/cpca_wpt.h"
 
+#include <type_traits>
+
 namespace m4mesh {
 
 std::vector<std::vector<NodeIndex>> cpca_members(std::span<const uint32_t> cluster_of, uint32_t cluster_count) {
@@ -71,15 +73,28 @@ void CpcaAnimation::translate(std::span<const NodeIndex> members, std::span<cons
 void CpcaAnimation::refine(std::span<const NodeIndex> members, std::span<const int32_t> basis, std::span<const int32_t> coefficients,
                            uint32_t shift, bool trajectory) {
   const int t = static_cast<int>(shift) - static_cast<int>(kCpcaShiftBias);
-  for (uint32_t f = 0; f < frames_; ++f)
-    for (size_t i = 0; i < members.size(); ++i) {
-      const size_t at = size_t{f} * vertex_count_ + members[i];
-      for (size_t axis = 0; axis < 3; ++axis) {
-        const int64_t product = trajectory ? int64_t{basis[i]} * coefficients[3 * size_t{f} + axis] : int64_t{basis[3 * i + axis]} * coefficients[f];
-        fixed_[3 * at + axis] += static_cast<uint64_t>(scaled(product, t));
+  // One pass per kind, its indexing known at compile time (the decoder's hot loop).
+  const auto pass = [&](auto kind) {
+    constexpr bool kTrajectory = decltype(kind)::value;
+    // Member i's basis value on an axis is basis[i · per_member + axis · per_axis].
+    constexpr size_t per_member = kTrajectory ? 1 : 3, per_axis = kTrajectory ? 0 : 1;
+    for (uint32_t f = 0; f < frames_; ++f) {
+      int64_t c[3];
+      for (size_t axis = 0; axis < 3; ++axis) c[axis] = kTrajectory ? coefficients[3 * size_t{f} + axis] : coefficients[f];
+      for (size_t i = 0; i < members.size(); ++i) {
+        const size_t at = size_t{f} * vertex_count_ + members[i];
+        for (size_t axis = 0; axis < 3; ++axis) {
+          const int64_t product = basis[i * per_member + axis * per_axis] * c[axis];
+          fixed_[3 * at + axis] += static_cast<uint64_t>(scaled(product, t));
+        }
+        positions_[at] = position_of(3 * at);
       }
-      positions_[at] = position_of(3 * at);
     }
+  };
+  if (trajectory)
+    pass(std::true_type{});
+  else
+    pass(std::false_type{});
 }
 
 }  // namespace m4mesh

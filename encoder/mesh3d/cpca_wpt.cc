@@ -341,7 +341,9 @@ struct Plan {
 
 class CpcaEncoder final : public CodecEncoder3d {
  public:
-  CpcaEncoder(const MeshSequence& s, const CodecSettings& settings, int bits, const Clustering& clustering, bool trajectories)
+  // coding_order: the base mesh's vertices in coding order.
+  CpcaEncoder(const MeshSequence& s, const CodecSettings& settings, int bits, const Clustering& clustering, bool trajectories,
+              std::span<const uint32_t> coding_order)
       : max_bytes_(static_cast<uint64_t>(settings.number("max-bytes"))),
         target_kg_(settings.number("target-kg")),
         round_robin_(settings.text("order") == "rpt"),
@@ -384,7 +386,7 @@ class CpcaEncoder final : public CodecEncoder3d {
         throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "the mean of vertex " + std::to_string(v) + " lies outside the grid");
     requested_clusters_ = clustering.requested;
     kmeans_seconds_ = clustering.seconds;
-    prepare(s, clustering.cluster_of);
+    prepare(s, clustering.cluster_of, coding_order);
   }
 
   void write_header(syntax::WriteIO& io) override {
@@ -440,11 +442,11 @@ class CpcaEncoder final : public CodecEncoder3d {
   // Clusters, components, then the plan of the noise step given, or of the
   // best one for --max-bytes (the smallest KG error within it) or
   // --target-kg (the fewest bytes that reach it), else of the default.
-  void prepare(const MeshSequence& s, const std::vector<uint32_t>& cluster_of) {
+  void prepare(const MeshSequence& s, const std::vector<uint32_t>& cluster_of, std::span<const uint32_t> coding_order) {
     cluster_of_ = cluster_of;
     header_.cluster_count = *std::max_element(cluster_of_.begin(), cluster_of_.end()) + 1;
     members_ = cpca_members(cluster_of_, header_.cluster_count);
-    mesh_.emplace(s.faces, plan_base_mesh(s.faces, s.vertex_count, false).input_of, cluster_of_, header_.cluster_count);
+    mesh_.emplace(s.faces, coding_order, cluster_of_, header_.cluster_count);
     write_cluster_map();
     auto start = std::chrono::steady_clock::now();
     for (uint32_t c = 0; c < header_.cluster_count; ++c) {
@@ -815,8 +817,10 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequen
   const std::vector<bool> trajectory_models = model == "shape" ? std::vector<bool>{false}
                                               : model == "trajectory" || !target ? std::vector<bool>{true}
                                                                                   : std::vector<bool>{true, false};
+  // The vertices in the base mesh's coding order, once for every candidate.
+  const std::vector<uint32_t> coding_order = plan_base_mesh(sequence.faces, sequence.vertex_count, false).input_of;
   if (cluster_counts.size() == 1 && trajectory_models.size() == 1 && !(bits_auto && target))
-    return std::make_unique<CpcaEncoder>(sequence, settings, bits, clustering(sequence, cluster_counts[0]), trajectory_models[0]);
+    return std::make_unique<CpcaEncoder>(sequence, settings, bits, clustering(sequence, cluster_counts[0]), trajectory_models[0], coding_order);
   // The cluster count and model whose plan reaches the target in the fewest
   // bytes, then the counts √2 either side of it, then the mean shape's bits
   // from 12 towards the smaller plan. Candidates run side by side; the
@@ -847,7 +851,7 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequen
         [&](size_t i) {
           try {
             built[i] = std::make_unique<CpcaEncoder>(sequence, settings, candidates[i].bits, clusterings.at(candidates[i].clusters),
-                                                     candidates[i].trajectories);
+                                                     candidates[i].trajectories, coding_order);
           } catch (const Error& e) {
             if (e.kind() != ErrorKind::kUsage) throw;
             failed[i] = e;
