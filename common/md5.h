@@ -1,4 +1,5 @@
-// Incremental MD5 (OpenSSL EVP) for the conformance hashes of §9.
+// Incremental MD5 for the conformance hashes of §9: OpenSSL's EVP, or
+// RFC 1321 by hand where there is no OpenSSL (the web build).
 #pragma once
 
 #include <array>
@@ -6,8 +7,6 @@
 #include <memory>
 #include <string>
 #include <string_view>
-
-struct evp_md_ctx_st;
 
 namespace m4mesh {
 
@@ -26,7 +25,8 @@ class Md5 {
   std::string hex_digest();
 
  private:
-  evp_md_ctx_st* ctx_;
+  struct State;
+  std::unique_ptr<State> state_;
 };
 
 std::string md5_hex(std::string_view data);

@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -17,6 +16,7 @@
 #include <tuple>
 
 #include "common/atomic_file.h"
+#include "common/bit_cast.h"
 #include "common/md5.h"
 #include "common/random.h"
 #include "decoder/mesh3d/container_decoder.h"
@@ -869,7 +869,7 @@ std::vector<uint8_t> lcc_rounding_edges_stream() {
   std::vector<uint8_t> stream = encode_mesh3d(quads, o).stream;
   const size_t rh_range_at = header_byte<LccHeader>(stream, "rh_range");
   stream = edited(stream, [&](ContainerParts& p) {
-    const uint32_t sigma = std::bit_cast<uint32_t>(16384.0f);  // radii up to 2^14 edge lengths
+    const uint32_t sigma = bit_cast<uint32_t>(16384.0f);  // radii up to 2^14 edge lengths
     for (size_t i = 0; i < 4; ++i) p.object_payload[rh_range_at + i] = static_cast<uint8_t>(sigma >> (24 - 8 * i));
   });
   const LccHeader header = read_headers<LccHeader>(split_container(stream)).second;

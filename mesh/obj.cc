@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/parse_number.h"
 
 namespace m4mesh {
 
@@ -17,8 +18,7 @@ namespace {
 
 double parse_number(std::string_view token, const std::string& path, int64_t line) {
   double value = 0;
-  auto result = std::from_chars(token.data(), token.data() + token.size(), value);
-  if (token.empty() || result.ec != std::errc() || result.ptr != token.data() + token.size())
+  if (token.empty() || parse_double(token.data(), token.data() + token.size(), value) != token.data() + token.size())
     throw input_error(path, line, "expected a number, found '" + std::string(token) + "'");
   if (!std::isfinite(value)) throw input_error(path, line, "non-finite number '" + std::string(token) + "'");
   return value;

@@ -24,7 +24,8 @@ struct Triangle {
   }
 
   friend bool operator==(const Triangle&, const Triangle&) = default;
-  friend auto operator<=>(const Triangle&, const Triangle&) = default;
+  // Lexicographic, for sorting (the web build's libc++ has no <=> on std::array).
+  friend bool operator<(const Triangle& a, const Triangle& b) { return a.v < b.v; }
 };
 
 // §9 canonical form: each triangle clockwise (orient > 0) and rotated to

@@ -1,14 +1,14 @@
 #include "mesh3d/ply.h"
 
 #include <algorithm>
-#include <bit>
-#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <sstream>
 
 #include "common/atomic_file.h"
+#include "common/bit_cast.h"
 #include "common/error.h"
+#include "common/parse_number.h"
 #include "mesh3d/little_endian.h"
 
 namespace m4mesh {
@@ -78,8 +78,8 @@ class Body {
       case Scalar::kUint16: return static_cast<uint16_t>(raw);
       case Scalar::kInt32: return static_cast<int32_t>(raw);
       case Scalar::kUint32: return static_cast<uint32_t>(raw);
-      case Scalar::kFloat32: return std::bit_cast<float>(static_cast<uint32_t>(raw));
-      case Scalar::kFloat64: return std::bit_cast<double>(raw);
+      case Scalar::kFloat32: return bit_cast<float>(static_cast<uint32_t>(raw));
+      case Scalar::kFloat64: return bit_cast<double>(raw);
     }
     return 0;
   }
@@ -101,8 +101,8 @@ class Body {
     const char* begin = reinterpret_cast<const char*>(bytes_.data()) + position_;
     const char* end = reinterpret_cast<const char*>(bytes_.data()) + bytes_.size();
     double v = 0;
-    const auto [next, error] = std::from_chars(begin, end, v);
-    if (error != std::errc() || next == begin) throw ply_error(path_, "a value that is not a number, or the data ends early");
+    const char* next = parse_double(begin, end, v);
+    if (next == begin) throw ply_error(path_, "a value that is not a number, or the data ends early");
     position_ += static_cast<size_t>(next - begin);
     return v;
   }

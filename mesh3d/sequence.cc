@@ -13,6 +13,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/parse_number.h"
 #include "mesh/obj.h"
 #include "mesh3d/little_endian.h"
 #include "mesh3d/ply.h"
@@ -141,8 +142,7 @@ MeshFrame read_off(const std::string& path) {
   auto number = [&](const char* what) {
     const auto [token, at] = next(what);
     double v = 0;
-    auto r = std::from_chars(token.data(), token.data() + token.size(), v);
-    if (r.ec != std::errc() || r.ptr != token.data() + token.size())
+    if (parse_double(token.data(), token.data() + token.size(), v) != token.data() + token.size())
       throw input_error(path, at, std::string("expected ") + what + ", found '" + std::string(token) + "'");
     if (!std::isfinite(v)) throw input_error(path, at, "non-finite number '" + std::string(token) + "'");
     return v;

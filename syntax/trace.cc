@@ -1,11 +1,12 @@
 #include "syntax/trace.h"
 
-#include <bit>
 
 #include <cstdio>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "common/bit_cast.h"
 
 namespace m4mesh {
 
@@ -29,7 +30,7 @@ void Trace::element(uint64_t offset, std::string_view name, int bits, int64_t va
 void Trace::binary32(uint64_t offset, std::string_view name, uint32_t bits) {
   prefix(offset, name, 32);
   char buffer[48];
-  std::snprintf(buffer, sizeof buffer, " (%.9g)", static_cast<double>(std::bit_cast<float>(bits)));
+  std::snprintf(buffer, sizeof buffer, " (%.9g)", static_cast<double>(bit_cast<float>(bits)));
   out_ << bits << buffer << '\n';
 }
 

@@ -2,11 +2,11 @@
 // cylindrical frames and the angle table.
 #include <gtest/gtest.h>
 
-#include <bit>
 #include <cmath>
 #include <numbers>
 #include <set>
 
+#include "common/bit_cast.h"
 #include "common/md5.h"
 #include "mesh3d/lcc.h"
 #include "tests/test_util.h"
@@ -93,7 +93,7 @@ TEST(Lcc, AngleTableIsTheSameEverywhere) {
   std::string bytes;
   for (size_t i = 0; i < (size_t{1} << 12); ++i)
     for (double v : {table.cos(i), table.sin(i)}) {
-      const uint64_t bits = std::bit_cast<uint64_t>(v);
+      const uint64_t bits = bit_cast<uint64_t>(v);
       for (int b = 0; b < 8; ++b) bytes += static_cast<char>((bits >> (8 * b)) & 0xFF);
     }
   EXPECT_EQ(md5_hex(bytes), "6f214439f4232a094e50ecc12474e22a");

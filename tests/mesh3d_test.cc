@@ -1,7 +1,6 @@
 // The 3D half: container, arithmetic coding, traversal, bfs3d, metrics, sequence files.
 #include <gtest/gtest.h>
 
-#include <bit>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +9,7 @@
 
 #include "bitstream/arithmetic.h"
 #include "bitstream/emulation.h"
+#include "common/bit_cast.h"
 #include "common/error.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
@@ -412,7 +412,7 @@ std::string pc2_bytes(uint32_t points, uint32_t samples, const char* signature =
   auto put = [&](uint32_t v) {
     for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xFF);
   };
-  auto put_float = [&](float f) { put(std::bit_cast<uint32_t>(f)); };
+  auto put_float = [&](float f) { put(bit_cast<uint32_t>(f)); };
   put(1);
   put(points);
   put_float(0);

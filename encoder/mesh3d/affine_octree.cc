@@ -3,9 +3,9 @@
 // the current one, quantized; a cell splits while a vertex misses by more
 // than ME, and a cell of at most 4 vertices codes their motion directly.
 #include <Eigen/Dense>
-#include <bit>
 #include <cmath>
 
+#include "common/bit_cast.h"
 #include "encoder/mesh3d/grid_frame_encoder.h"
 #include "codecs3d/options.h"
 #include "mesh3d/affine_octree.h"
@@ -27,8 +27,8 @@ class AffineOctreeEncoder final : public GridFrameEncoder {
       : GridFrameEncoder(Grid::covering(s, settings.integer("bits"), true), settings.integer("intra-period")),
         max_error_(settings.number("me") / 100) {
     header_.bits = static_cast<uint32_t>(settings.integer("bits"));
-    for (int axis = 0; axis < 3; ++axis) header_.origin[axis] = std::bit_cast<uint32_t>(grid_.origin[axis]);
-    header_.step = std::bit_cast<uint32_t>(grid_.step[0]);
+    for (int axis = 0; axis < 3; ++axis) header_.origin[axis] = bit_cast<uint32_t>(grid_.origin[axis]);
+    header_.step = bit_cast<uint32_t>(grid_.step[0]);
     header_.matrix_bits = static_cast<uint32_t>(settings.integer("matrix-bits"));
     header_.matrix_range_log2 = static_cast<uint32_t>(settings.integer("matrix-range-log2"));
     header_.max_depth = static_cast<uint32_t>(settings.integer("max-depth"));

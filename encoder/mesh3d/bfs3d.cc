@@ -1,7 +1,7 @@
 // bfs3d (codec_id 1) encoding: every frame on the grid, its motion predicted
 // breadth first and coded losslessly (docs/codec_bfs3d.md).
-#include <bit>
 
+#include "common/bit_cast.h"
 #include "encoder/mesh3d/grid_frame_encoder.h"
 #include "codecs3d/options.h"
 #include "mesh3d/bfs3d.h"
@@ -33,8 +33,8 @@ class Bfs3dEncoder final : public GridFrameEncoder {
     header_.bits = static_cast<uint32_t>(settings.integer("bits"));
     header_.prediction = settings.flag("parallelogram") ? kPredictParallelogram : kPredictAverage;
     for (int axis = 0; axis < 3; ++axis) {
-      header_.origin[axis] = std::bit_cast<uint32_t>(grid_.origin[axis]);
-      header_.step[axis] = std::bit_cast<uint32_t>(grid_.step[axis]);
+      header_.origin[axis] = bit_cast<uint32_t>(grid_.origin[axis]);
+      header_.step[axis] = bit_cast<uint32_t>(grid_.step[axis]);
       residuals_[axis].resize(s.vertex_count);
     }
   }

@@ -5,7 +5,6 @@
 // squared error removed per bit) or round robin over the clusters (RPT).
 #include <Eigen/Dense>
 #include <algorithm>
-#include <bit>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -14,6 +13,7 @@
 
 #include "codecs3d/codec_encoder.h"
 #include "codecs3d/options.h"
+#include "common/bit_cast.h"
 #include "common/error.h"
 #include "common/parallel.h"
 #include "encoder/mesh3d/base_mesh.h"
@@ -376,8 +376,8 @@ class CpcaEncoder final : public CodecEncoder3d {
     grid_ = Grid::over(mean, bits, true);
     header_.bits = static_cast<uint32_t>(bits);
     for (int axis = 0; axis < 3; ++axis) {
-      header_.origin[axis] = std::bit_cast<uint32_t>(grid_.origin[axis]);
-      header_.step[axis] = std::bit_cast<uint32_t>(grid_.step[axis]);
+      header_.origin[axis] = bit_cast<uint32_t>(grid_.origin[axis]);
+      header_.step[axis] = bit_cast<uint32_t>(grid_.step[axis]);
     }
     header_.fraction_bits = static_cast<uint32_t>(std::clamp(24 - bits, 0, 8));
     mean_.resize(s.vertex_count);

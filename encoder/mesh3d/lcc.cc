@@ -4,13 +4,13 @@
 // in the frame of the already reconstructed triangle it is reached from,
 // and reconstructed exactly as the decoder does.
 #include <algorithm>
-#include <bit>
 #include <climits>
 #include <cmath>
 #include <numbers>
 
 #include "codecs3d/codec_encoder.h"
 #include "codecs3d/options.h"
+#include "common/bit_cast.h"
 #include "common/error.h"
 #include "mesh3d/lcc.h"
 #include "mesh3d/metrics.h"
@@ -106,8 +106,8 @@ class LccEncoder final : public CodecEncoder3d {
       : grid_(Grid::covering(s, settings.integer("bits"))), target_kg_(settings.number("target-kg")) {
     header_.bits = static_cast<uint32_t>(settings.integer("bits"));
     for (int axis = 0; axis < 3; ++axis) {
-      header_.origin[axis] = std::bit_cast<uint32_t>(grid_.origin[axis]);
-      header_.step[axis] = std::bit_cast<uint32_t>(grid_.step[axis]);
+      header_.origin[axis] = bit_cast<uint32_t>(grid_.origin[axis]);
+      header_.step[axis] = bit_cast<uint32_t>(grid_.step[axis]);
     }
     header_.mode = settings.text("mode") == "download" ? kLccDownloadMode : kLccStreamMode;
     if (settings.text("mode") != "stream" && settings.text("mode") != "download") throw usage_error("--mode is stream or download (lcc)");
@@ -126,7 +126,7 @@ class LccEncoder final : public CodecEncoder3d {
         throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "reference vertex " + std::to_string(i) + " lies too far outside the grid");
     reference_.resize(reference.size());
     for (size_t i = 0; i < reference.size(); ++i) reference_[i] = lcc_grid_position(header_, reference_grid_[i]);
-    header_.rh_range = std::bit_cast<uint32_t>(measured_range(s));
+    header_.rh_range = bit_cast<uint32_t>(measured_range(s));
     const int theta_bits = settings.integer("theta-bits");
     header_.theta_bits = static_cast<uint32_t>(theta_bits);
     header_.rh_bits = static_cast<uint32_t>(settings.integer("rh-bits") ? settings.integer("rh-bits") : recommended_rh_bits(theta_bits));

@@ -6,12 +6,12 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "common/bit_cast.h"
 #include "syntax/io.h"
 #include "syntax/mesh3d/residual.h"
 
@@ -28,8 +28,8 @@ struct AffineOctreeHeader {
   uint32_t matrix_range_log2 = 2;    // elements lie in [−2^(r−1), 2^(r−1))
   uint32_t max_depth = 16;
 
-  float origin_value(int axis) const { return std::bit_cast<float>(origin[axis]); }
-  float step_value() const { return std::bit_cast<float>(step); }
+  float origin_value(int axis) const { return bit_cast<float>(origin[axis]); }
+  float step_value() const { return bit_cast<float>(step); }
   // A matrix element q stands for q / 2^fraction_bits.
   int fraction_bits() const { return static_cast<int>(matrix_bits - matrix_range_log2); }
   int32_t matrix_min() const { return -(int32_t{1} << (matrix_bits - 1)); }

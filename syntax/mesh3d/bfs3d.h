@@ -5,11 +5,11 @@
 #pragma once
 
 #include <array>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <span>
 
+#include "common/bit_cast.h"
 #include "syntax/io.h"
 #include "syntax/mesh3d/grid.h"
 #include "syntax/mesh3d/residual.h"
@@ -25,8 +25,8 @@ struct Bfs3dHeader {
   std::array<uint32_t, 3> origin{};  // binary32 bit patterns
   std::array<uint32_t, 3> step{};
 
-  float origin_value(int axis) const { return std::bit_cast<float>(origin[axis]); }
-  float step_value(int axis) const { return std::bit_cast<float>(step[axis]); }
+  float origin_value(int axis) const { return bit_cast<float>(origin[axis]); }
+  float step_value(int axis) const { return bit_cast<float>(step[axis]); }
 };
 
 // A frame unit's data: the lengths, then bins x, raw x, bins y, raw y,

@@ -6,11 +6,11 @@
 #pragma once
 
 #include <array>
-#include <bit>
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "common/bit_cast.h"
 #include "syntax/io.h"
 #include "syntax/mesh3d/entropy_io.h"
 #include "syntax/mesh3d/grid.h"
@@ -45,8 +45,8 @@ struct CpcaHeader {
   uint32_t map_raw_bytes = 0;
   std::span<const uint8_t> map_raw;
 
-  float origin_value(int axis) const { return std::bit_cast<float>(origin[axis]); }
-  float step_value(int axis) const { return std::bit_cast<float>(step[axis]); }
+  float origin_value(int axis) const { return bit_cast<float>(origin[axis]); }
+  float step_value(int axis) const { return bit_cast<float>(step[axis]); }
 };
 
 // A refinement unit's data: the cluster it refines, what it carries, the

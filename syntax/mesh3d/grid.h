@@ -3,10 +3,10 @@
 #pragma once
 
 #include <array>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 
+#include "common/bit_cast.h"
 #include "syntax/io.h"
 
 namespace m4mesh::syntax {
@@ -18,9 +18,9 @@ void describe_grid(IO& io, std::array<uint32_t, 3>& origin, std::array<uint32_t,
   static const char* const kStep[3] = {"step_x", "step_y", "step_z"};
   for (int axis = 0; axis < 3; ++axis) {
     binary32(io, kOrigin[axis], origin[axis]);
-    io.require(std::isfinite(std::bit_cast<float>(origin[axis])), ErrorKind::kOutOfRange, kOrigin[axis], "not a finite binary32");
+    io.require(std::isfinite(bit_cast<float>(origin[axis])), ErrorKind::kOutOfRange, kOrigin[axis], "not a finite binary32");
     binary32(io, kStep[axis], step[axis]);
-    const float s = std::bit_cast<float>(step[axis]);
+    const float s = bit_cast<float>(step[axis]);
     io.require(std::isfinite(s) && s > 0, ErrorKind::kOutOfRange, kStep[axis], "not a positive finite binary32");
   }
 }

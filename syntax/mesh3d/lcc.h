@@ -5,11 +5,11 @@
 #pragma once
 
 #include <array>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <span>
 
+#include "common/bit_cast.h"
 #include "syntax/io.h"
 #include "syntax/mesh3d/grid.h"
 #include "syntax/mesh3d/residual.h"
@@ -33,9 +33,9 @@ struct LccHeader {
   uint32_t rh_range = 0;    // σ, binary32: |ρ|, |ζ| ≤ σ
   uint32_t gop = 0;         // temporal prediction: anchors every gop frames (0: none)
 
-  float origin_value(int axis) const { return std::bit_cast<float>(origin[axis]); }
-  float step_value(int axis) const { return std::bit_cast<float>(step[axis]); }
-  float rh_range_value() const { return std::bit_cast<float>(rh_range); }
+  float origin_value(int axis) const { return bit_cast<float>(origin[axis]); }
+  float step_value(int axis) const { return bit_cast<float>(step[axis]); }
+  float rh_range_value() const { return bit_cast<float>(rh_range); }
 };
 
 // A frame unit's data: the bin section's length, the bins, the raw bits.
