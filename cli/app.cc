@@ -15,6 +15,7 @@
 #include "cli/demo.h"
 #include "cli/pictures.h"
 #include "cli/rd.h"
+#include "cli/serve.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "conformance/checker.h"
@@ -375,6 +376,13 @@ int run_m4mesh(int argc, const char* const* argv) {
   demo_cmd->add_option("--frames", demo_options.frames, "planes")->check(CLI::Range(1, 100000));
   demo_cmd->add_option("--gif", demo_options.gif, "also draw the decoded planes warping a checkerboard into this animated GIF");
 
+  ServeOptions serve_options;
+  CLI::App* serve_cmd = app.add_subcommand("serve", "Serve the web player and analyzer (or any folder) over HTTP, on loopback unless --host says otherwise");
+  serve_cmd->add_option("folder", serve_options.folder, "folder to serve (default: the site the build made beside the tool)");
+  serve_cmd->add_option("--port", serve_options.port, "TCP port (0: any free port; the address is printed)")->check(CLI::Range(0, 65535));
+  serve_cmd->add_option("--host", serve_options.host, "address to listen on (default 127.0.0.1; 0.0.0.0 opens it to the network)");
+  serve_cmd->add_option("--rate", serve_options.rate, "bytes per second per response, to watch a progressive stream arrive (default: unthrottled)");
+
   app.set_version_flag("--version", "m4mesh " M4MESH_VERSION);
   // Usage errors: one line, exit status 2 (help and --version: 0).
   if (argc >= 2 && argv[1][0] != '-' && app.get_subcommands([&](CLI::App* c) { return c->get_name() == argv[1]; }).empty()) {
@@ -413,6 +421,7 @@ int run_m4mesh(int argc, const char* const* argv) {
     if (*info_cmd) return console::set_input(info_input), run_info(info_input);
     if (*check_cmd) return console::set_input(check_input), run_check(check_input);
     if (*conform_cmd) return run_conform(conform_options);
+    if (*serve_cmd) return run_serve(serve_options);
     if (*generate_cmd) return run_generate_suite(suite_folder);
     if (*encode3d_cmd) return console::set_input(encode3d_args.input), run_encode3d(encode3d_args);
     if (*decode3d_cmd) return console::set_input(decode3d_args.input), run_decode3d(decode3d_args);

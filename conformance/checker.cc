@@ -150,7 +150,7 @@ std::vector<uint64_t> start_code_emulations(std::span<const uint8_t> stream, uin
   uint64_t zeros = 0;
   to = std::min<uint64_t>(to, uint64_t{stream.size()} * 8);
   for (uint64_t bit = from; bit < to; ++bit) {
-    if ((stream[bit / 8] >> (7 - bit % 8)) & 1) {
+    if ((stream[static_cast<size_t>(bit / 8)] >> (7 - bit % 8)) & 1) {
       if (zeros >= 23) found.push_back(bit - 23);
       zeros = 0;
     } else {

@@ -2320,18 +2320,4 @@ std::vector<SuiteCase> build_suite3d(bool traced) {
   return suite;
 }
 
-std::vector<uint8_t> decoded_frames3d(const std::vector<uint8_t>& stream) {
-  Decode3dOptions options;
-  options.verify = true;
-  Mesh3dDecoder decoder(stream, options);
-  std::vector<uint8_t> out;
-  while (decoder.next_frame()) {
-    const std::vector<uint8_t> bytes = frame_bytes(decoder.positions());
-    out.insert(out.end(), bytes.begin(), bytes.end());
-  }
-  if (const std::optional<uint32_t> f = decoder.first_mismatch())
-    throw Error(ErrorKind::kStructure, "frame_md5", *f, kNoOffset, "the decoded frame does not match its hash").in_mesh3d(kNoUnit);
-  return out;
-}
-
 }  // namespace m4mesh

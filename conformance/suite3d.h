@@ -15,8 +15,4 @@ namespace m4mesh {
 // stream to decode keeps the trace its encoder printed.
 std::vector<SuiteCase> build_suite3d(bool traced = false);
 
-// The decoded output whose MD5 the manifest holds: every frame's canonical
-// bytes (binary32 x, y, z per vertex, little-endian), frame after frame.
-std::vector<uint8_t> decoded_frames3d(const std::vector<uint8_t>& stream);
-
 }  // namespace m4mesh

@@ -168,7 +168,7 @@ MeshFrame read_ply(const std::string& path) {
     const bool vertices = e.name == "vertex", faces = e.name == "face";
     if (vertices) {
       if (e.count > (uint64_t{1} << 26)) throw ply_error(path, "too many vertices");
-      frame.vertices.resize(e.count);
+      frame.vertices.resize(static_cast<size_t>(e.count));
     }
     for (uint64_t i = 0; i < e.count; ++i)
       for (const Property& p : e.properties) {
@@ -176,7 +176,8 @@ MeshFrame read_ply(const std::string& path) {
           const double v = body.value(p.type);
           if (vertices && (p.name == "x" || p.name == "y" || p.name == "z")) {
             if (!std::isfinite(v)) throw ply_error(path, "vertex " + std::to_string(i) + ": a coordinate that is not finite");
-            (p.name == "x" ? frame.vertices[i].x : p.name == "y" ? frame.vertices[i].y : frame.vertices[i].z) = v;
+            Vec3& vertex = frame.vertices[static_cast<size_t>(i)];  // i < count ≤ 2^26
+            (p.name == "x" ? vertex.x : p.name == "y" ? vertex.y : vertex.z) = v;
           }
           continue;
         }

@@ -200,7 +200,7 @@ void Mesh3dDecoder::check_group_hash(size_t index, const UnitHeader& header) {
     const uint64_t end = uint64_t{first} + hash.group_frames;
     if (header_.frame_count != 0 && end > header_.frame_count) io.fail(ErrorKind::kStructure, "group_frames", "a group beyond frame_count");
     for (uint64_t f = first; f < end; ++f)
-      if (f >= decoded_.size() || !decoded_[f])
+      if (f >= decoded_.size() || !decoded_[static_cast<size_t>(f)])
         io.fail(ErrorKind::kStructure, "group_frames", "a group hash covering frame " + std::to_string(f) + ", which is not decoded yet");
   });
   if (!options_.verify) return;
@@ -257,6 +257,15 @@ bool Mesh3dDecoder::next_unit() {
   }
   while (next_unit_ < parts_.units.size() && is_hash_unit(next_unit_)) check_hash(next_unit_++);
   return true;
+}
+
+void Mesh3dDecoder::extend(std::span<const uint8_t> received) {
+  ContainerParts parts = split_container(received);
+  if (parts.units.size() < parts_.units.size() || parts.object_payload != parts_.object_payload)
+    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "the bytes received do not continue those decoded so far");
+  parts_ = std::move(parts);
+  if (next_unit_ > 0)
+    while (next_unit_ < parts_.units.size() && is_hash_unit(next_unit_)) check_hash(next_unit_++);
 }
 
 void Mesh3dDecoder::resume() {
@@ -318,6 +327,20 @@ void for_each_prefix(std::span<const uint8_t> stream,
     const size_t taken = decoder.units_taken();
     visit(units, taken < parts.units.size() ? parts.units[taken].byte_offset : stream.size(), decoded);
   }
+}
+
+std::vector<uint8_t> decoded_frames3d(std::span<const uint8_t> stream) {
+  Decode3dOptions options;
+  options.verify = true;
+  Mesh3dDecoder decoder(stream, options);
+  std::vector<uint8_t> out;
+  while (decoder.next_frame()) {
+    const std::vector<uint8_t> bytes = frame_bytes(decoder.positions());
+    out.insert(out.end(), bytes.begin(), bytes.end());
+  }
+  if (const std::optional<uint32_t> f = decoder.first_mismatch())
+    throw Error(ErrorKind::kStructure, "frame_md5", *f, kNoOffset, "the decoded frame does not match its hash").in_mesh3d(kNoUnit);
+  return out;
 }
 
 MeshSequence decode_mesh3d(std::span<const uint8_t> stream) {

@@ -73,6 +73,13 @@ class Mesh3dDecoder {
   // unit for as consumed and skips its hash units, so that next_unit() carries on with the next
   // unit from the state the failed one left (`m4mesh check`).
   void resume();
+  // A stream still arriving: `received` is every byte so far, cut where a
+  // unit starts (whole_payloads_size), beginning with the bytes the decoder
+  // was made with. Its new units join the decoder's; the hash units right
+  // after the last unit taken are checked now, as next_unit() would have.
+  void extend(std::span<const uint8_t> received);
+  // Units the decoder holds, taken or not, hash units included.
+  size_t units_received() const { return parts_.units.size(); }
   // Units taken so far, hash units included (after an error in a unit, the
   // failed one is the last taken).
   size_t units_taken() const { return next_unit_; }
@@ -137,6 +144,11 @@ class Mesh3dDecoder {
 // frame (a usage error otherwise).
 void for_each_prefix(std::span<const uint8_t> stream,
                      const std::function<void(size_t units, uint64_t bytes, const MeshSequence& decoded)>& visit);
+
+// The decoded output whose MD5 the 3D suite's manifest holds: every frame's
+// canonical bytes (binary32 x, y, z per vertex, little-endian), frame after
+// frame; fails on a hash mismatch.
+std::vector<uint8_t> decoded_frames3d(std::span<const uint8_t> stream);
 
 // The whole sequence (tests, tools); fails on a hash mismatch.
 MeshSequence decode_mesh3d(std::span<const uint8_t> stream);

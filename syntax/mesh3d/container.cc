@@ -83,6 +83,12 @@ ContainerPrefix container_prefix(const ContainerParts& parts, uint64_t stream_si
   return prefix;
 }
 
+size_t whole_payloads_size(std::span<const uint8_t> received) {
+  for (size_t at = received.size() < 3 ? 0 : received.size() - 3; at > 0; --at)
+    if (received[at] == 0 && received[at + 1] == 0 && received[at + 2] == 1) return at;
+  return 0;
+}
+
 uint64_t ContainerWriter::unit_size(std::span<const uint8_t> payload) { return 4 + escape_payload(payload).size(); }
 
 void ContainerWriter::unit(std::span<const uint8_t> payload) {

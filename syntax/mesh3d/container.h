@@ -132,6 +132,10 @@ struct ContainerPrefix {
 };
 ContainerPrefix container_prefix(const ContainerParts& parts, uint64_t stream_size, uint64_t max_bytes);
 
+// Of a container still arriving, the bytes that hold only whole payloads:
+// up to the last start code received (0 before the second start code).
+size_t whole_payloads_size(std::span<const uint8_t> received);
+
 // Assembles a container from payloads (escaped here).
 class ContainerWriter {
  public:

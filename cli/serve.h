@@ -1,0 +1,20 @@
+// `m4mesh serve`: the web site (the player and the analyzer, docs/web.md)
+// or any folder of static files, over HTTP on loopback by default.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace m4mesh {
+
+struct ServeOptions {
+  std::string folder;            // empty: the site built beside the tool
+  std::string host = "127.0.0.1";
+  int port = 8080;               // 0: any free port (printed)
+  uint64_t rate = 0;             // bytes per second per response (0: as fast as it goes), to watch progressive streams arrive
+};
+
+// Serves until the process is stopped; returns the exit status.
+int run_serve(const ServeOptions& options);
+
+}  // namespace m4mesh

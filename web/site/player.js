@@ -1,0 +1,310 @@
+// The player: a 3D stream shaded under an orbit camera, decoded as it
+// downloads (a progressive stream plays from its base mesh on and refines
+// at every unit); a 2D stream as the texture warped by every plane.
+// What it shows is recorded in state.player for the tests.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/OrbitControls.js';
+
+const MESH3D_START = 0xc4;  // 0x000001c4: mesh3d_object_start_code
+const MESH2D_START = 0xbc;  // 0x000001bc: mesh_object_start_code
+
+// A checkerboard texture for 2D streams opened without one (as `m4mesh render`).
+function checkerboard(size = 256, square = 16) {
+  const canvas = document.createElement('canvas');
+  canvas.width = canvas.height = size;
+  const context = canvas.getContext('2d');
+  for (let y = 0; y < size; y += square)
+    for (let x = 0; x < size; x += square) {
+      const shade = Math.round((255 * x) / size);
+      context.fillStyle = ((x + y) / square) % 2 ? '#ffffff' : `rgb(${shade},90,${200 - shade / 2})`;
+      context.fillRect(x, y, square, square);
+    }
+  const texture = new THREE.CanvasTexture(canvas);
+  texture.colorSpace = THREE.SRGBColorSpace;
+  return texture;
+}
+
+export class Player {
+  constructor(module, container, state) {
+    this.module = module;
+    this.container = container;
+    this.state = state;
+    this.renderer = new THREE.WebGLRenderer({ antialias: true });
+    this.renderer.setPixelRatio(window.devicePixelRatio);
+    container.append(this.renderer.domElement);
+    this.scene = new THREE.Scene();
+    this.scene.background = new THREE.Color(0x20242c);
+    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x445066, 1.4));
+    const light = new THREE.DirectionalLight(0xffffff, 2.2);
+    light.position.set(2, 3, 4);
+    this.scene.add(light);
+    this.perspective = new THREE.PerspectiveCamera(40, 1, 0.001, 1000);
+    this.orthographic = new THREE.OrthographicCamera(-1, 1, 1, -1, -10, 10);
+    this.camera = this.perspective;
+    this.controls = new OrbitControls(this.perspective, this.renderer.domElement);
+    this.texture = checkerboard();
+    this.playing = true;
+    this.frame = 0;
+    this.lastTick = 0;
+    this.bindControls();
+    window.addEventListener('resize', () => this.resize());
+    this.resize();
+    this.renderer.setAnimationLoop((time) => this.tick(time));
+  }
+
+  bindControls() {
+    this.playButton = document.getElementById('play');
+    this.slider = document.getElementById('frame');
+    this.label = document.getElementById('frame-label');
+    this.fps = document.getElementById('fps');
+    this.status = document.getElementById('status');
+    this.playButton.addEventListener('click', () => {
+      this.playing = !this.playing;
+      this.playButton.textContent = this.playing ? 'Pause' : 'Play';
+    });
+    this.slider.addEventListener('input', () => this.show(Number(this.slider.value)));
+    document.getElementById('wireframe').addEventListener('change', (event) => {
+      if (this.mesh) this.mesh.material.wireframe = event.target.checked;
+    });
+    document.getElementById('texture').addEventListener('change', (event) => {
+      if (event.target.files[0]) this.setTexture(event.target.files[0]);
+    });
+  }
+
+  resize() {
+    const width = this.container.clientWidth, height = this.container.clientHeight;
+    if (!width || !height) return;
+    this.renderer.setSize(width, height);
+    this.perspective.aspect = width / height;
+    this.perspective.updateProjectionMatrix();
+    if (this.bounds2d) this.fitOrthographic();
+  }
+
+  async setTexture(source) {
+    const url = source instanceof File ? URL.createObjectURL(source) : source;
+    const texture = await new THREE.TextureLoader().loadAsync(url);
+    texture.colorSpace = THREE.SRGBColorSpace;
+    this.texture = texture;
+    if (this.mesh && this.kind === '2d') this.mesh.material.map = texture, this.mesh.material.needsUpdate = true;
+  }
+
+  reset(name, size) {
+    this.session = (this.session || 0) + 1;
+    if (this.mesh) {
+      this.scene.remove(this.mesh);
+      this.mesh.geometry.dispose();
+    }
+    this.mesh = null;
+    this.stream?.delete();
+    this.stream = null;
+    this.planes = null;
+    this.bounds2d = null;
+    this.frame = 0;
+    this.shown = null;
+    this.status.classList.remove('error');
+    this.state.player = {
+      name, kind: null, codec: null, frames: 0, vertices: 0, progressive: false, bytesTotal: size, bytesReceived: 0,
+      bytesDecoded: 0, unitsApplied: 0, downloadDone: false, done: false, error: null, frameShown: -1, framesDrawn: 0,
+      framesDrawnDuringDownload: 0, unitsAppliedWhenDrawn: [],
+    };
+    return this.session;
+  }
+
+  // Plays `body` (a ReadableStream) while it arrives.
+  async play(body, size, name) {
+    const session = this.reset(name, size);
+    const player = this.state.player;
+    const reader = body.getReader();
+    const chunks = [];
+    for (;;) {
+      const { value, done } = await reader.read();
+      if (session !== this.session) return reader.cancel();
+      if (done) break;
+      player.bytesReceived += value.length;
+      if (!player.kind) player.kind = value[3] === MESH3D_START ? '3d' : '2d';
+      if (player.kind === '3d') this.take(this.stream ??= new this.module.Stream3d(), (s) => s.push(value));
+      else chunks.push(value);
+      this.describe();
+    }
+    player.downloadDone = true;
+    if (player.kind === '3d') this.take(this.stream, (s) => s.end());
+    else this.open2d(chunks);
+    this.describe();
+  }
+
+  // Runs one Stream3d call and takes its status; builds the mesh once faces are known.
+  take(stream, call) {
+    const status = JSON.parse(call(stream));
+    const player = this.state.player;
+    Object.assign(player, {
+      bytesDecoded: status.bytesDecoded, unitsApplied: status.unitsApplied, done: status.done, error: status.error ?? null,
+    });
+    if (status.header) {
+      Object.assign(player, {
+        codec: status.header.codec, frames: status.header.frames, vertices: status.header.vertices,
+        progressive: status.header.progressive, framesDecoded: status.framesDecoded,
+      });
+      if (!this.mesh && status.framesDecoded > 0) this.build3d(stream, status.header);
+      if (this.fpsSession !== this.session) this.fps.value = Math.round(status.header.frameRate), (this.fpsSession = this.session);
+    }
+    this.changed = true;
+  }
+
+  build3d(stream, header) {
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(header.vertices * 3), 3));
+    geometry.setIndex(new THREE.BufferAttribute(stream.faces(), 1));
+    const material = new THREE.MeshStandardMaterial({
+      color: 0xc8b8a0, roughness: 0.65, metalness: 0.05, side: THREE.DoubleSide,
+      wireframe: document.getElementById('wireframe').checked,
+    });
+    this.mesh = new THREE.Mesh(geometry, material);
+    this.scene.add(this.mesh);
+    this.kind = '3d';
+    this.camera = this.perspective;
+    this.controls.enabled = true;
+    this.load3d(0);
+    geometry.computeBoundingSphere();
+    const { center, radius } = geometry.boundingSphere;
+    this.controls.target.copy(center);
+    this.perspective.position.set(center.x, center.y + radius * 0.4, center.z + radius * 2.6);
+    this.perspective.near = radius / 100;
+    this.perspective.far = radius * 100;
+    this.perspective.updateProjectionMatrix();
+    this.controls.update();
+  }
+
+  load3d(index) {
+    const positions = this.stream.frame(index);
+    if (positions.length === 0) return false;
+    const attribute = this.mesh.geometry.getAttribute('position');
+    attribute.array.set(positions);
+    attribute.needsUpdate = true;
+    this.mesh.geometry.computeVertexNormals();
+    return true;
+  }
+
+  open2d(chunks) {
+    const bytes = new Uint8Array(chunks.reduce((n, c) => n + c.length, 0));
+    let at = 0;
+    for (const chunk of chunks) bytes.set(chunk, at), (at += chunk.length);
+    const result = JSON.parse(this.module.decode2d(bytes, 2));
+    const player = this.state.player;
+    player.error = result.error ?? null;
+    player.done = !result.error;
+    if (!result.planes) return;
+    this.planes = result.planes;
+    player.frames = this.planes.length;
+    player.framesDecoded = this.planes.length;
+    player.vertices = this.planes[0]?.nodes.length / 2 || 0;
+    player.codec = '2D mesh object';
+    if (this.planes.length === 0) return;
+    this.kind = '2d';
+    this.camera = this.orthographic;
+    this.controls.enabled = false;
+    // The view holds every plane's nodes (half pixels; y down as in the picture).
+    let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+    for (const plane of this.planes)
+      for (let k = 0; k < plane.nodes.length; k += 2) {
+        x0 = Math.min(x0, plane.nodes[k] / 2), x1 = Math.max(x1, plane.nodes[k] / 2);
+        y0 = Math.min(y0, plane.nodes[k + 1] / 2), y1 = Math.max(y1, plane.nodes[k + 1] / 2);
+      }
+    this.bounds2d = { x0, y0, x1, y1 };
+    this.fitOrthographic();
+    this.changed = true;
+  }
+
+  fitOrthographic() {
+    const { x0, y0, x1, y1 } = this.bounds2d;
+    const aspect = this.container.clientWidth / this.container.clientHeight;
+    const cx = (x0 + x1) / 2, cy = -(y0 + y1) / 2;
+    let half = Math.max((y1 - y0) / 2, (x1 - x0) / 2 / aspect) * 1.08;
+    Object.assign(this.orthographic, { left: cx - half * aspect, right: cx + half * aspect, top: cy + half, bottom: cy - half });
+    this.orthographic.updateProjectionMatrix();
+  }
+
+  // The mesh of plane `index`: the texture lies on its I-plane's nodes, stretched over their pixels.
+  load2d(index) {
+    let intra = index;
+    while (!this.planes[intra].intra) --intra;
+    if (!this.mesh || this.meshIntra !== intra) {
+      if (this.mesh) this.scene.remove(this.mesh), this.mesh.geometry.dispose();
+      const nodes = this.planes[intra].nodes;
+      let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+      for (let k = 0; k < nodes.length; k += 2) {
+        x0 = Math.min(x0, Math.floor(nodes[k] / 2)), x1 = Math.max(x1, Math.floor(nodes[k] / 2) + 1);
+        y0 = Math.min(y0, Math.floor(nodes[k + 1] / 2)), y1 = Math.max(y1, Math.floor(nodes[k + 1] / 2) + 1);
+      }
+      const uv = new Float32Array(nodes.length);
+      for (let k = 0; k < nodes.length; k += 2) {
+        uv[k] = (nodes[k] / 2 - x0) / (x1 - x0);
+        uv[k + 1] = 1 - (nodes[k + 1] / 2 - y0) / (y1 - y0);
+      }
+      const geometry = new THREE.BufferGeometry();
+      geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array((nodes.length / 2) * 3), 3));
+      geometry.setAttribute('uv', new THREE.BufferAttribute(uv, 2));
+      geometry.setIndex(this.planes[intra].triangles);
+      const material = new THREE.MeshBasicMaterial({
+        map: this.texture, side: THREE.DoubleSide, wireframe: document.getElementById('wireframe').checked,
+      });
+      this.mesh = new THREE.Mesh(geometry, material);
+      this.scene.add(this.mesh);
+      this.meshIntra = intra;
+    }
+    const nodes = this.planes[index].nodes, attribute = this.mesh.geometry.getAttribute('position');
+    for (let k = 0, v = 0; k < nodes.length; k += 2, v += 3)
+      attribute.array[v] = nodes[k] / 2, attribute.array[v + 1] = -nodes[k + 1] / 2, attribute.array[v + 2] = 0;
+    attribute.needsUpdate = true;
+    return true;
+  }
+
+  // Frames that can be shown now: every frame of a progressive stream once
+  // its base mesh is in, else the frames decoded so far.
+  available() {
+    const player = this.state.player;
+    if (!player) return 0;
+    return player.kind === '2d' ? this.planes?.length ?? 0 : player.framesDecoded ?? 0;
+  }
+
+  show(index) {
+    this.frame = index;
+    this.changed = true;
+  }
+
+  tick(time) {
+    const available = this.available();
+    if (this.playing && available > 0 && time - this.lastTick >= 1000 / Math.max(1, Number(this.fps.value))) {
+      this.lastTick = time;
+      this.frame = (this.frame + 1) % available;
+      this.changed = true;
+    }
+    const player = this.state.player;
+    if (this.changed && available > 0 && (this.mesh || this.kind === '2d')) {
+      this.changed = false;
+      this.frame = Math.min(this.frame, available - 1);
+      if (this.kind === '2d' ? this.load2d(this.frame) : this.load3d(this.frame)) {
+        player.frameShown = this.frame;
+        player.framesDrawn += 1;
+        if (!player.downloadDone) player.framesDrawnDuringDownload += 1;
+        const units = player.unitsAppliedWhenDrawn;
+        if (units[units.length - 1] !== player.unitsApplied) units.push(player.unitsApplied);
+      }
+      this.slider.max = String(Math.max(0, (player.frames || available) - 1));
+      this.slider.value = String(this.frame);
+      this.label.textContent = `frame ${this.frame + 1} / ${player.frames || available}`;
+    }
+    this.controls.update();
+    this.renderer.render(this.scene, this.camera);
+  }
+
+  describe() {
+    const p = this.state.player;
+    const parts = [p.name];
+    if (p.codec) parts.push(`${p.codec}${p.progressive ? ' (progressive)' : ''}`, `${p.vertices} vertices`, `${p.frames} frames`);
+    parts.push(`${p.bytesReceived.toLocaleString()}${p.bytesTotal ? ' / ' + p.bytesTotal.toLocaleString() : ''} bytes received`);
+    if (p.kind === '3d') parts.push(`${p.unitsApplied} units applied`);
+    parts.push(p.error ? 'stopped at an error' : p.done ? 'complete' : p.downloadDone ? 'downloaded' : 'downloading…');
+    this.status.textContent = parts.join(' · ') + (p.error ? `\nerror: ${p.error.text}` : '');
+    this.status.classList.toggle('error', Boolean(p.error));
+  }
+}
