@@ -381,7 +381,7 @@ int run_m4mesh(int argc, const char* const* argv) {
   serve_cmd->add_option("folder", serve_options.folder, "folder to serve (default: the site the build made beside the tool)");
   serve_cmd->add_option("--port", serve_options.port, "TCP port (0: any free port; the address is printed)")->check(CLI::Range(0, 65535));
   serve_cmd->add_option("--host", serve_options.host, "address to listen on (default 127.0.0.1; 0.0.0.0 opens it to the network)");
-  serve_cmd->add_option("--rate", serve_options.rate, "bytes per second per response, to watch a progressive stream arrive (default: unthrottled)");
+  serve_cmd->add_option("--rate", serve_options.rate, "bytes per second of each stream (.m4m) sent, to watch a progressive stream arrive (default: unthrottled)");
 
   app.set_version_flag("--version", "m4mesh " M4MESH_VERSION);
   // Usage errors: one line, exit status 2 (help and --version: 0).

@@ -70,11 +70,11 @@ int run_serve(const ServeOptions& options) {
     auto body = std::make_shared<std::string>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
     response.set_header("Cache-Control", "no-store");
     console::detail("GET %s 200 %zu bytes", request.path.c_str(), body->size());
-    if (options.rate == 0) {
+    if (options.rate == 0 || file.extension() != ".m4m") {
       response.set_content(*body, content_type(file));
       return;
     }
-    // Throttled: a tenth of a second's bytes every tenth of a second.
+    // A stream, throttled: a tenth of a second's bytes every tenth of a second.
     const size_t slice = std::max<size_t>(1, options.rate / 10);
     response.set_content_provider(body->size(), content_type(file), [body, slice](size_t offset, size_t, httplib::DataSink& sink) {
       std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -86,8 +86,8 @@ int run_serve(const ServeOptions& options) {
     throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset,
                 "cannot listen on " + options.host + ":" + std::to_string(options.port) + " (in use? --port N, or --port 0 for any free port)");
   // The address on standard output, first line, flushed: scripts read it.
-  std::printf("serving %s at http://%s:%d/%s\n", root.c_str(), options.host.c_str(), port,
-              options.rate ? (" at " + std::to_string(options.rate) + " bytes/s per response").c_str() : "");
+  const std::string rate = options.rate ? " (streams, .m4m, at " + std::to_string(options.rate) + " bytes/s)" : "";
+  std::printf("serving %s at http://%s:%d/%s\n", root.c_str(), options.host.c_str(), port, rate.c_str());
   std::fflush(stdout);
   if (!server.listen_after_bind()) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, "the server stopped");
   return 0;

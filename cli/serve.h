@@ -11,7 +11,7 @@ struct ServeOptions {
   std::string folder;            // empty: the site built beside the tool
   std::string host = "127.0.0.1";
   int port = 8080;               // 0: any free port (printed)
-  uint64_t rate = 0;             // bytes per second per response (0: as fast as it goes), to watch progressive streams arrive
+  uint64_t rate = 0;             // bytes per second of each .m4m response (0: unthrottled), to watch progressive streams arrive
 };
 
 // Serves until the process is stopped; returns the exit status.

@@ -54,6 +54,7 @@ async function main() {
   const module = await createM4mesh();
   state.playerView = new Player(module, document.getElementById('viewport'), state);
   state.analyzerView = new Analyzer(module, state);
+  state.module = module;
   state.ready = true;
 
   const samples = document.getElementById('samples');

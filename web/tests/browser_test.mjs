@@ -1,0 +1,147 @@
+// The web site in a real browser (ctest "browser"; docs/web.md): headless
+// Chromium loads the pages `m4mesh serve` serves and checks
+//   1. both conformance suites through the WebAssembly decoder: every
+//      stream passes as `m4mesh conform` judges it;
+//   2. `check` in the page lists what the native `m4mesh check` lists, on
+//      every stream to reject of both suites;
+//   3. the player shows a 3D stream shaded and a 2D stream as a warped
+//      texture (screenshots that are not blank);
+//   4. a progressive stream served slowly (`m4mesh serve --rate`) plays
+//      before its download ends, and the units applied grow while it plays;
+//   5. the analyzer lists a stream's units, their elements and its chart.
+// Usage: node browser_test.mjs M4MESH SITE [SCREENSHOT_FOLDER]
+import { execFileSync } from 'node:child_process';
+import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
+import http from 'node:http';
+import { join } from 'node:path';
+import { launch, pictureStatistics, serve } from './harness.mjs';
+
+const [m4mesh, site, shots] = process.argv.slice(2);
+if (!m4mesh || !site) throw new Error('usage: node browser_test.mjs M4MESH SITE [SCREENSHOT_FOLDER]');
+if (shots) mkdirSync(shots, { recursive: true });
+
+let failures = 0;
+function expect(condition, what) {
+  console.log(`${condition ? 'ok  ' : 'FAIL'} ${what}`);
+  if (!condition) failures++;
+}
+
+// Waits until `predicate(window.m4mesh)` holds; fails on a page error.
+async function until(page, predicate, timeout = 60000) {
+  await page.waitForFunction(`(() => { const s = window.m4mesh; if (s?.failure) throw new Error(s.failure); return (${predicate})(s); })()`,
+    null, { timeout, polling: 100 });
+  return page.evaluate(() => JSON.parse(JSON.stringify(window.m4mesh, (k, v) => (k.endsWith('View') || k === 'module' ? undefined : v))));
+}
+
+async function openPage(browser, url) {
+  const page = await browser.newPage({ viewport: { width: 1100, height: 760 } });
+  page.on('pageerror', (error) => expect(false, `no error in the page (${error.message})`));
+  await page.goto(url);
+  return page;
+}
+
+// The viewport's screenshot, kept in SCREENSHOT_FOLDER, checked not to be blank.
+async function picture(page, name, selector = '#viewport') {
+  const png = await page.locator(selector).screenshot();
+  if (shots) writeFileSync(join(shots, `${name}.png`), png);
+  const { colours, spread } = await pictureStatistics(page, png);
+  expect(colours >= 16 && spread >= 4, `${name}: the picture is not blank (${colours} colours, brightness spread ${spread.toFixed(1)})`);
+}
+
+const manifests = ['conformance', 'conformance/mesh3d'].map((suite) => ({
+  suite, streams: JSON.parse(readFileSync(join(site, suite, 'manifest.json'))).streams,
+}));
+const server = await serve(m4mesh, site);
+const slow = await serve(m4mesh, site, 4000);
+const browser = await launch();
+try {
+  // 0. The server: the types modules and WebAssembly need, nothing outside its folder.
+  const types = await Promise.all(['m4mesh.mjs', 'm4mesh.wasm'].map(async (f) => (await fetch(server.url + f)).headers.get('content-type')));
+  expect(types[0] === 'text/javascript' && types[1] === 'application/wasm', `serve: ${types.join(', ')}`);
+  const outside = await Promise.all(['/../../../../etc/passwd', '/%2e%2e/%2e%2e/etc/passwd', '/conformance/../../web'].map((path) =>
+    new Promise((resolve) => http.get({ host: '127.0.0.1', port: new URL(server.url).port, path }, (r) => resolve(r.statusCode)))));
+  expect(outside.every((code) => code === 404), `serve: paths out of its folder are not found (${outside.join(', ')})`);
+
+  // 1. Both suites, decoded in the browser.
+  let page = await openPage(browser, `${server.url}#conformance?run`);
+  const run = (await until(page, (s) => s.conformance?.done, 180000)).conformance;
+  const total = manifests.reduce((n, m) => n + m.streams.length, 0);
+  expect(run.passed === total && run.failed === 0, `conformance in the browser: ${run.passed} of ${total} streams pass (${run.decoded} decoded with the manifest's MD5, ${run.rejected} rejected with its error)`);
+  for (const r of run.results.filter((r) => !r.pass)) console.log(`     ${r.suite} ${r.id}: ${r.detail}`);
+
+  // 2. The checker in the page against the native one, on every stream to reject.
+  const rejected = manifests.flatMap(({ suite, streams }) => streams.filter((s) => s.expect !== 'decode').map((s) => join(suite, s.file)));
+  const web = await page.evaluate(async (files) => {
+    const out = {};
+    for (const file of files) {
+      const bytes = new Uint8Array(await (await fetch(file)).arrayBuffer());
+      const report = JSON.parse(window.m4mesh.module.check(bytes));
+      out[file] = report.error ? [`error: ${report.error.text}`] : report.findings.map((f) => `${f.error ? 'error' : 'warning'}: ${f.text.replace(/^(error|warning): /, '')}`);
+    }
+    return out;
+  }, rejected);
+  let same = 0;
+  for (const file of rejected) {
+    let native = '';
+    try {
+      native = execFileSync(m4mesh, ['check', join(site, file)], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] });
+    } catch (e) {
+      native = `${e.stdout}${e.stderr}`;
+    }
+    const lines = native.split('\n').filter((l) => /^(error|warning): /.test(l)).map((l) => l.replace(`${join(site, file)}: `, ''));
+    if (JSON.stringify(lines) === JSON.stringify(web[file])) same++;
+    else console.log(`     ${file}\n       native: ${JSON.stringify(lines)}\n       web:    ${JSON.stringify(web[file])}`);
+  }
+  expect(same === rejected.length, `check in the browser lists what m4mesh check lists: ${same} of ${rejected.length} streams to reject`);
+  await page.close();
+
+  // 3. A 3D stream shaded, a 2D stream as the texture it warps.
+  page = await openPage(browser, `${server.url}#player?stream=conformance/mesh3d/streams/bfs3d-01-average.m4m`);
+  let state = await until(page, (s) => s.player?.done && s.player.framesDrawn >= 3);
+  expect(state.player.codec === 'bfs3d' && state.player.error === null, `3D player: ${state.player.codec}, ${state.player.frames} frames, ${state.player.framesDrawn} drawn`);
+  await picture(page, 'player-3d');
+  await page.close();
+  page = await openPage(browser, `${server.url}#player?stream=conformance/streams/p35-long-sequence.m4m`);
+  state = await until(page, (s) => s.player?.done && s.player.framesDrawn >= 3);
+  expect(state.player.kind === '2d' && state.player.frames > 2, `2D player: ${state.player.frames} planes, ${state.player.framesDrawn} drawn`);
+  await picture(page, 'player-2d');
+  await page.close();
+
+  // 4. A progressive stream arriving at 4,000 bytes/s: frames before the end, refined as units arrive.
+  page = await openPage(browser, `${slow.url}#player?stream=conformance/mesh3d/streams/cpca-09-many-clusters.m4m`);
+  state = await until(page, (s) => s.player?.framesDrawn > 0);
+  expect(!state.player.downloadDone && state.player.bytesReceived < state.player.bytesTotal,
+    `progressive: first frame drawn at ${state.player.bytesReceived} of ${state.player.bytesTotal} bytes, ${state.player.unitsApplied} units applied`);
+  await picture(page, 'progressive-1');
+  state = await until(page, (s) => s.player.bytesReceived > s.player.bytesTotal / 2);
+  await picture(page, 'progressive-2');
+  state = await until(page, (s) => s.player.done && s.player.unitsAppliedWhenDrawn.length >= 3);
+  await picture(page, 'progressive-3');
+  const applied = state.player.unitsAppliedWhenDrawn;
+  expect(applied.every((units, k) => k === 0 || units > applied[k - 1]) && applied.length >= 3,
+    `progressive: units applied when frames were drawn grow (${applied.length} steps, ${applied[0]} … ${applied[applied.length - 1]})`);
+  expect(state.player.framesDrawnDuringDownload > 0, `progressive: ${state.player.framesDrawnDuringDownload} frames drawn during the download`);
+  await page.close();
+
+  // 5. The analyzer: the units, the elements of one, the chart; a stream with an error located in the list.
+  page = await openPage(browser, `${server.url}#analyzer?stream=conformance/mesh3d/streams/cpca-01-wpt.m4m`);
+  state = await until(page, (s) => s.analyzer?.elementsShown > 0);
+  const info = execFileSync(m4mesh, ['info', join(site, 'conformance/mesh3d/streams/cpca-01-wpt.m4m')], { encoding: 'utf8' });
+  const units = [...info.matchAll(/units: (\d+)/g)].reduce((n, m) => n + Number(m[1]), 0);
+  expect(state.analyzer.parts.length === units + 1 && state.analyzer.errors === 0 && state.analyzer.chartKinds.length > 0,
+    `analyzer: ${state.analyzer.parts.length - 1} units listed (m4mesh info: ${units}), ${state.analyzer.elementsShown} elements of ${state.analyzer.selected}, ${state.analyzer.chartKinds.length} kinds in the chart`);
+  await picture(page, 'analyzer', 'main');
+  await page.close();
+  page = await openPage(browser, `${server.url}#analyzer?stream=conformance/mesh3d/streams/x-62-cpca-beyond-trajectories.m4m`);
+  state = await until(page, (s) => s.analyzer?.elementsShown > 0);
+  expect(state.analyzer.errors === 1 && /unit 6/.test(state.analyzer.selected) && /cluster at bit 2952/.test(state.analyzer.findings[0]),
+    `analyzer: the error is listed and its unit selected (${state.analyzer.findings[0]}; ${state.analyzer.selected})`);
+  await picture(page, 'analyzer-error', 'main');
+  await page.close();
+} finally {
+  await browser.close();
+  server.stop();
+  slow.stop();
+}
+console.log(failures === 0 ? 'browser tests: all passed' : `browser tests: ${failures} failed`);
+process.exit(failures === 0 ? 0 : 1);

@@ -1,0 +1,63 @@
+// What the browser tests and the speed benchmark share: `m4mesh serve` on a
+// free loopback port, Debian's Chromium driven by playwright-core, and a
+// screenshot check that needs no image library (the page itself reads the
+// PNG back and counts its colours).
+import { spawn } from 'node:child_process';
+import { cpSync, mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { chromium } from 'playwright-core';
+
+// `m4mesh serve FOLDER --port 0 [--rate R]`; resolves to { url, stop }.
+export function serve(m4mesh, folder, rate = 0) {
+  const args = ['serve', folder, '--port', '0', ...(rate ? ['--rate', String(rate)] : [])];
+  const child = spawn(m4mesh, args, { stdio: ['ignore', 'pipe', 'inherit'] });
+  return new Promise((resolve, reject) => {
+    let out = '';
+    child.on('exit', (code) => reject(new Error(`m4mesh serve exited with ${code}`)));
+    child.stdout.on('data', (data) => {
+      out += data;
+      const match = out.match(/at (http:\/\/\S+\/)/);
+      if (match) resolve({ url: match[1], stop: () => child.kill() });
+    });
+  });
+}
+
+// A copy of the built site in a temporary folder, with `extra` files beside it ({ name: path }).
+export function siteCopy(site, extra = {}) {
+  const folder = mkdtempSync(join(tmpdir(), 'm4mesh-web-'));
+  cpSync(site, folder, { recursive: true });
+  for (const [name, path] of Object.entries(extra)) cpSync(path, join(folder, name));
+  return { folder, remove: () => rmSync(folder, { recursive: true, force: true }) };
+}
+
+// Headless Chromium as this machine runs it: no sandbox (root), software WebGL, no background traffic.
+export function launch() {
+  return chromium.launch({
+    executablePath: process.env.M4MESH_CHROMIUM || '/usr/bin/chromium',
+    args: ['--no-sandbox', '--disable-gpu', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--disable-background-networking',
+      '--disable-component-update', '--disable-sync', '--no-first-run', '--disable-quic'],
+  });
+}
+
+// The screenshot's distinct colours and the spread of its brightness (a blank page has one colour, no spread).
+export async function pictureStatistics(page, png) {
+  return page.evaluate(async (base64) => {
+    const image = new Image();
+    image.src = `data:image/png;base64,${base64}`;
+    await image.decode();
+    const canvas = new OffscreenCanvas(image.width, image.height);
+    const context = canvas.getContext('2d');
+    context.drawImage(image, 0, 0);
+    const data = context.getImageData(0, 0, image.width, image.height).data;
+    const colours = new Set();
+    let sum = 0, squares = 0;
+    for (let k = 0; k < data.length; k += 4) {
+      colours.add((data[k] << 16) | (data[k + 1] << 8) | data[k + 2]);
+      const light = (data[k] + data[k + 1] + data[k + 2]) / 3;
+      sum += light, (squares += light * light);
+    }
+    const n = data.length / 4;
+    return { colours: colours.size, spread: Math.sqrt(squares / n - (sum / n) ** 2) };
+  }, png.toString('base64'));
+}
