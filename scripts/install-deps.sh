@@ -8,4 +8,9 @@ apt-get install -y -qq --no-install-recommends \
   libgtest-dev libgmock-dev libbenchmark-dev \
   libcli11-dev libssl-dev libcgal-dev nlohmann-json3-dev libdraco-dev libeigen3-dev \
   libpng-dev libgif-dev python3-dev pybind11-dev python3-matplotlib python3-numpy python3-pytest \
+  libcpp-httplib-dev emscripten nodejs chromium \
   > /dev/null
+# npm comes with some Node.js builds (NodeSource's); Debian's comes apart.
+command -v npm > /dev/null || apt-get install -y -qq --no-install-recommends npm > /dev/null
+# three.js for the web player, playwright-core to drive Chromium in the browser tests (web/package-lock.json).
+npm ci --prefix "$(dirname "$0")/../web" --no-audit --no-fund --loglevel=error

@@ -10,7 +10,7 @@ import { existsSync, mkdtempSync, readFileSync, readdirSync, rmSync, statSync } 
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { gzipSync } from 'node:zlib';
-import { launch, serve, siteCopy } from '../web/tests/harness.mjs';
+import { launch, serve, siteCopy, until } from '../web/tests/harness.mjs';
 
 const root = resolve(new URL('..', import.meta.url).pathname);
 const build = resolve(process.argv[2] || join(root, 'build'));
@@ -50,7 +50,7 @@ let web;
 try {
   const page = await browser.newPage();
   await page.goto(`${server.url}#bench?run&repeat=5&streams=${Object.keys(streams).join(',')}`);
-  await page.waitForFunction(() => window.m4mesh?.bench?.done || window.m4mesh?.failure, null, { timeout: 900000 });
+  await until(page, () => window.m4mesh?.bench?.done, 900000);
   web = await page.evaluate(() => ({ results: window.m4mesh.bench.results, agent: navigator.userAgent }));
 } finally {
   await browser.close();

@@ -42,6 +42,7 @@ export class Player {
     this.orthographic = new THREE.OrthographicCamera(-1, 1, 1, -1, -10, 10);
     this.camera = this.perspective;
     this.controls = new OrbitControls(this.perspective, this.renderer.domElement);
+    this.controls.addEventListener('change', () => (this.dirty = true));
     this.texture = checkerboard();
     this.playing = true;
     this.frame = 0;
@@ -64,7 +65,7 @@ export class Player {
     });
     this.slider.addEventListener('input', () => this.show(Number(this.slider.value)));
     document.getElementById('wireframe').addEventListener('change', (event) => {
-      if (this.mesh) this.mesh.material.wireframe = event.target.checked;
+      if (this.mesh) this.mesh.material.wireframe = event.target.checked, (this.dirty = true);
     });
     document.getElementById('texture').addEventListener('change', (event) => {
       if (event.target.files[0]) this.setTexture(event.target.files[0]);
@@ -75,6 +76,7 @@ export class Player {
     const width = this.container.clientWidth, height = this.container.clientHeight;
     if (!width || !height) return;
     this.renderer.setSize(width, height);
+    this.dirty = true;
     this.perspective.aspect = width / height;
     this.perspective.updateProjectionMatrix();
     if (this.bounds2d) this.fitOrthographic();
@@ -85,7 +87,7 @@ export class Player {
     const texture = await new THREE.TextureLoader().loadAsync(url);
     texture.colorSpace = THREE.SRGBColorSpace;
     this.texture = texture;
-    if (this.mesh && this.kind === '2d') this.mesh.material.map = texture, this.mesh.material.needsUpdate = true;
+    if (this.mesh && this.kind === '2d') this.mesh.material.map = texture, (this.mesh.material.needsUpdate = true), (this.dirty = true);
   }
 
   reset(name, size) {
@@ -221,6 +223,7 @@ export class Player {
     let half = Math.max((y1 - y0) / 2, (x1 - x0) / 2 / aspect) * 1.08;
     Object.assign(this.orthographic, { left: cx - half * aspect, right: cx + half * aspect, top: cy + half, bottom: cy - half });
     this.orthographic.updateProjectionMatrix();
+    this.dirty = true;
   }
 
   // The mesh of plane `index`: the texture lies on its I-plane's nodes, stretched over their pixels.
@@ -283,6 +286,7 @@ export class Player {
       this.changed = false;
       this.frame = Math.min(this.frame, available - 1);
       if (this.kind === '2d' ? this.load2d(this.frame) : this.load3d(this.frame)) {
+        this.dirty = true;
         player.frameShown = this.frame;
         player.framesDrawn += 1;
         if (!player.downloadDone) player.framesDrawnDuringDownload += 1;
@@ -293,8 +297,11 @@ export class Player {
       this.slider.value = String(this.frame);
       this.label.textContent = `frame ${this.frame + 1} / ${player.frames || available}`;
     }
-    this.controls.update();
-    this.renderer.render(this.scene, this.camera);
+    // Drawn only when something changed: software WebGL keeps up, laptops stay cool.
+    if (this.dirty) {
+      this.dirty = false;
+      this.renderer.render(this.scene, this.camera);
+    }
   }
 
   describe() {

@@ -14,7 +14,7 @@ import { execFileSync } from 'node:child_process';
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import http from 'node:http';
 import { join } from 'node:path';
-import { launch, pictureStatistics, serve } from './harness.mjs';
+import { launch, pictureStatistics, serve, until } from './harness.mjs';
 
 const [m4mesh, site, shots] = process.argv.slice(2);
 if (!m4mesh || !site) throw new Error('usage: node browser_test.mjs M4MESH SITE [SCREENSHOT_FOLDER]');
@@ -26,10 +26,9 @@ function expect(condition, what) {
   if (!condition) failures++;
 }
 
-// Waits until `predicate(window.m4mesh)` holds; fails on a page error.
-async function until(page, predicate, timeout = 60000) {
-  await page.waitForFunction(`(() => { const s = window.m4mesh; if (s?.failure) throw new Error(s.failure); return (${predicate})(s); })()`,
-    null, { timeout, polling: 100 });
+// Waits until `predicate(window.m4mesh)` holds; returns the state then.
+async function stateWhen(page, predicate, timeout = 60000) {
+  await until(page, `() => (${predicate})(window.m4mesh)`, timeout);
   return page.evaluate(() => JSON.parse(JSON.stringify(window.m4mesh, (k, v) => (k.endsWith('View') || k === 'module' ? undefined : v))));
 }
 
@@ -64,7 +63,7 @@ try {
 
   // 1. Both suites, decoded in the browser.
   let page = await openPage(browser, `${server.url}#conformance?run`);
-  const run = (await until(page, (s) => s.conformance?.done, 180000)).conformance;
+  const run = (await stateWhen(page, (s) => s.conformance?.done, 180000)).conformance;
   const total = manifests.reduce((n, m) => n + m.streams.length, 0);
   expect(run.passed === total && run.failed === 0, `conformance in the browser: ${run.passed} of ${total} streams pass (${run.decoded} decoded with the manifest's MD5, ${run.rejected} rejected with its error)`);
   for (const r of run.results.filter((r) => !r.pass)) console.log(`     ${r.suite} ${r.id}: ${r.detail}`);
@@ -97,45 +96,45 @@ try {
 
   // 3. A 3D stream shaded, a 2D stream as the texture it warps.
   page = await openPage(browser, `${server.url}#player?stream=conformance/mesh3d/streams/bfs3d-01-average.m4m`);
-  let state = await until(page, (s) => s.player?.done && s.player.framesDrawn >= 3);
-  expect(state.player.codec === 'bfs3d' && state.player.error === null, `3D player: ${state.player.codec}, ${state.player.frames} frames, ${state.player.framesDrawn} drawn`);
+  let shown = await stateWhen(page, (s) => s.player?.done && s.player.framesDrawn >= 3);
+  expect(shown.player.codec === 'bfs3d' && shown.player.error === null, `3D player: ${shown.player.codec}, ${shown.player.frames} frames, ${shown.player.framesDrawn} drawn`);
   await picture(page, 'player-3d');
   await page.close();
   page = await openPage(browser, `${server.url}#player?stream=conformance/streams/p35-long-sequence.m4m`);
-  state = await until(page, (s) => s.player?.done && s.player.framesDrawn >= 3);
-  expect(state.player.kind === '2d' && state.player.frames > 2, `2D player: ${state.player.frames} planes, ${state.player.framesDrawn} drawn`);
+  shown = await stateWhen(page, (s) => s.player?.done && s.player.framesDrawn >= 3);
+  expect(shown.player.kind === '2d' && shown.player.frames > 2, `2D player: ${shown.player.frames} planes, ${shown.player.framesDrawn} drawn`);
   await picture(page, 'player-2d');
   await page.close();
 
   // 4. A progressive stream arriving at 4,000 bytes/s: frames before the end, refined as units arrive.
   page = await openPage(browser, `${slow.url}#player?stream=conformance/mesh3d/streams/cpca-09-many-clusters.m4m`);
-  state = await until(page, (s) => s.player?.framesDrawn > 0);
-  expect(!state.player.downloadDone && state.player.bytesReceived < state.player.bytesTotal,
-    `progressive: first frame drawn at ${state.player.bytesReceived} of ${state.player.bytesTotal} bytes, ${state.player.unitsApplied} units applied`);
+  shown = await stateWhen(page, (s) => s.player?.framesDrawn > 0);
+  expect(!shown.player.downloadDone && shown.player.bytesReceived < shown.player.bytesTotal,
+    `progressive: first frame drawn at ${shown.player.bytesReceived} of ${shown.player.bytesTotal} bytes, ${shown.player.unitsApplied} units applied`);
   await picture(page, 'progressive-1');
-  state = await until(page, (s) => s.player.bytesReceived > s.player.bytesTotal / 2);
+  shown = await stateWhen(page, (s) => s.player.bytesReceived > s.player.bytesTotal / 2);
   await picture(page, 'progressive-2');
-  state = await until(page, (s) => s.player.done && s.player.unitsAppliedWhenDrawn.length >= 3);
+  shown = await stateWhen(page, (s) => s.player.done && s.player.unitsAppliedWhenDrawn.length >= 3);
   await picture(page, 'progressive-3');
-  const applied = state.player.unitsAppliedWhenDrawn;
+  const applied = shown.player.unitsAppliedWhenDrawn;
   expect(applied.every((units, k) => k === 0 || units > applied[k - 1]) && applied.length >= 3,
     `progressive: units applied when frames were drawn grow (${applied.length} steps, ${applied[0]} … ${applied[applied.length - 1]})`);
-  expect(state.player.framesDrawnDuringDownload > 0, `progressive: ${state.player.framesDrawnDuringDownload} frames drawn during the download`);
+  expect(shown.player.framesDrawnDuringDownload > 0, `progressive: ${shown.player.framesDrawnDuringDownload} frames drawn during the download`);
   await page.close();
 
   // 5. The analyzer: the units, the elements of one, the chart; a stream with an error located in the list.
   page = await openPage(browser, `${server.url}#analyzer?stream=conformance/mesh3d/streams/cpca-01-wpt.m4m`);
-  state = await until(page, (s) => s.analyzer?.elementsShown > 0);
+  shown = await stateWhen(page, (s) => s.analyzer?.elementsShown > 0);
   const info = execFileSync(m4mesh, ['info', join(site, 'conformance/mesh3d/streams/cpca-01-wpt.m4m')], { encoding: 'utf8' });
   const units = [...info.matchAll(/units: (\d+)/g)].reduce((n, m) => n + Number(m[1]), 0);
-  expect(state.analyzer.parts.length === units + 1 && state.analyzer.errors === 0 && state.analyzer.chartKinds.length > 0,
-    `analyzer: ${state.analyzer.parts.length - 1} units listed (m4mesh info: ${units}), ${state.analyzer.elementsShown} elements of ${state.analyzer.selected}, ${state.analyzer.chartKinds.length} kinds in the chart`);
+  expect(shown.analyzer.parts.length === units + 1 && shown.analyzer.errors === 0 && shown.analyzer.chartKinds.length > 0,
+    `analyzer: ${shown.analyzer.parts.length - 1} units listed (m4mesh info: ${units}), ${shown.analyzer.elementsShown} elements of ${shown.analyzer.selected}, ${shown.analyzer.chartKinds.length} kinds in the chart`);
   await picture(page, 'analyzer', 'main');
   await page.close();
   page = await openPage(browser, `${server.url}#analyzer?stream=conformance/mesh3d/streams/x-62-cpca-beyond-trajectories.m4m`);
-  state = await until(page, (s) => s.analyzer?.elementsShown > 0);
-  expect(state.analyzer.errors === 1 && /unit 6/.test(state.analyzer.selected) && /cluster at bit 2952/.test(state.analyzer.findings[0]),
-    `analyzer: the error is listed and its unit selected (${state.analyzer.findings[0]}; ${state.analyzer.selected})`);
+  shown = await stateWhen(page, (s) => s.analyzer?.elementsShown > 0);
+  expect(shown.analyzer.errors === 1 && /unit 6/.test(shown.analyzer.selected) && /cluster at bit 2952/.test(shown.analyzer.findings[0]),
+    `analyzer: the error is listed and its unit selected (${shown.analyzer.findings[0]}; ${shown.analyzer.selected})`);
   await picture(page, 'analyzer-error', 'main');
   await page.close();
 } finally {

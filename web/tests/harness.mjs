@@ -61,3 +61,18 @@ export async function pictureStatistics(page, png) {
     return { colours: colours.size, spread: Math.sqrt(squares / n - (sum / n) ** 2) };
   }, png.toString('base64'));
 }
+
+// Resolves once `predicate` (a function run in the page) returns true,
+// looking every half second; a page's own failure (window.m4mesh.failure)
+// ends it. (Playwright's waitForFunction, and polling more often, starve the
+// page's animation frames under software WebGL.)
+export async function until(page, predicate, timeout = 60000) {
+  const end = Date.now() + timeout;
+  for (;;) {
+    await page.waitForTimeout(500);
+    const [done, failure] = await page.evaluate(`[Boolean((${predicate})()), window.m4mesh?.failure ?? null]`);
+    if (failure) throw new Error(`the page failed: ${failure}`);
+    if (done) return;
+    if (Date.now() > end) throw new Error(`timed out after ${timeout / 1000} s waiting for ${predicate}`);
+  }
+}
