@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -14,6 +15,7 @@
 #include "conformance/manifest.h"
 #include "decoder/decoder.h"
 #include "decoder/mesh3d/container_decoder.h"
+#include "mesh3d/quantization.h"
 #include "syntax/mesh3d/container.h"
 #include "syntax/mesh_object.h"
 #include "syntax/trace.h"
@@ -90,6 +92,50 @@ TEST(Conformance, RejectionsArePlacedAtTheFirstBitOfTheirField) {
     }
   }
   EXPECT_GE(checked, 45);
+}
+
+// A stream decoded while it arrives (the web player): bytes come 97 at a
+// time, the decoder is extended with those up to the last start code, takes
+// every whole unit, and ends with the same frames and hash checks as the
+// decoder given the whole stream, on every valid stream of the 3D suite.
+TEST(Conformance, StreamsDecodeAlikeWhileTheyArrive) {
+  size_t checked = 0;
+  for (const ManifestEntry& e : read_manifest((kSuite / "mesh3d" / "manifest.json").string()).entries) {
+    if (!e.valid) continue;
+    const std::vector<uint8_t> stream = read_file((kSuite / "mesh3d" / e.file).string());
+    Decode3dOptions options;
+    options.verify = true;
+    std::optional<Mesh3dDecoder> decoder;
+    std::map<uint32_t, std::vector<Float3>> frames;
+    const auto take_units = [&] {
+      while (decoder->units_taken() < decoder->units_received()) {
+        ASSERT_TRUE(decoder->next_unit()) << e.id;
+        for (uint32_t f : decoder->unit().frames) decoder->frame(f, frames[f] = std::vector<Float3>(decoder->header().vertex_count));
+      }
+    };
+    const auto feed = [&](std::span<const uint8_t> bytes) {
+      if (decoder)
+        decoder->extend(bytes);
+      else
+        decoder.emplace(bytes, options);
+      take_units();
+    };
+    for (size_t received = 97; received < stream.size(); received += 97)
+      if (const size_t whole = whole_payloads_size(std::span(stream).first(received)); whole > 0) feed(std::span(stream).first(whole));
+    feed(stream);
+    EXPECT_FALSE(decoder->next_unit()) << e.id;
+    EXPECT_FALSE(decoder->first_mismatch().has_value()) << e.id;
+    std::vector<uint8_t> bytes;
+    const size_t frame_count = decoder->header().frame_count != 0 ? decoder->header().frame_count : frames.size();  // 0: streaming
+    for (uint32_t f = 0; f < frame_count; ++f) {
+      if (decoder->progressive()) decoder->frame(f, frames[f] = std::vector<Float3>(decoder->header().vertex_count));
+      const std::vector<uint8_t> b = frame_bytes(frames[f]);
+      bytes.insert(bytes.end(), b.begin(), b.end());
+    }
+    EXPECT_EQ(bytes, decoded_frames3d(stream)) << e.id;
+    ++checked;
+  }
+  EXPECT_GE(checked, 80u);
 }
 
 TEST(Conformance, SuiteSize) {

@@ -64,8 +64,8 @@ export async function pictureStatistics(page, png) {
 
 // Resolves once `predicate` (a function run in the page) returns true,
 // looking every half second; a page's own failure (window.m4mesh.failure)
-// ends it. (Playwright's waitForFunction, and polling more often, starve the
-// page's animation frames under software WebGL.)
+// ends it. (Playwright's waitForFunction did not resolve here on a page
+// busy with software WebGL.)
 export async function until(page, predicate, timeout = 60000) {
   const end = Date.now() + timeout;
   for (;;) {
