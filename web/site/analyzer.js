@@ -57,9 +57,12 @@ export class Analyzer {
   // 3D: the object header, every unit with its type, frame and bytes, the end code.
   units(bytes, lines) {
     const layout = JSON.parse(this.module.units3d(bytes));
-    const parts = [{ label: 'object header', unit: -1, lines: lines.filter((l) => l[0] === -1 && l[3] !== 'mesh_object_end_code') }];
+    const byUnit = new Map();
+    for (const line of lines) byUnit.get(line[0])?.push(line) ?? byUnit.set(line[0], [line]);
+    const header = (byUnit.get(-1) ?? []).filter((l) => l[3] !== 'mesh_object_end_code');
+    const parts = [{ label: 'object header', unit: -1, lines: header }];
     (layout.units ?? []).forEach((unit, index) => {
-      const own = lines.filter((l) => l[0] === index);
+      const own = byUnit.get(index) ?? [];
       const field = (name) => own.find((l) => l[3] === name)?.[5];
       const type = { 0: 'base mesh', 1: 'frame', 2: 'refinement', 3: 'hash', 4: 'group hash' }[field('unit_type')] ?? `type ${field('unit_type') ?? '?'}`;
       const frame = field('frame_index');

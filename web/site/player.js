@@ -24,6 +24,19 @@ function checkerboard(size = 256, square = 16) {
   return texture;
 }
 
+// The rectangle, in pixels, that nodes (x, y pairs in half pixels) reach;
+// with `whole`, that of the pixels holding them (as canvas_over does).
+function bounds(nodeLists, whole = false) {
+  let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
+  for (const nodes of nodeLists)
+    for (let k = 0; k < nodes.length; k += 2) {
+      const x = whole ? Math.floor(nodes[k] / 2) : nodes[k] / 2, y = whole ? Math.floor(nodes[k + 1] / 2) : nodes[k + 1] / 2;
+      x0 = Math.min(x0, x), x1 = Math.max(x1, whole ? x + 1 : x);
+      y0 = Math.min(y0, y), y1 = Math.max(y1, whole ? y + 1 : y);
+    }
+  return { x0, y0, x1, y1 };
+}
+
 export class Player {
   constructor(module, container, state) {
     this.module = module;
@@ -205,13 +218,7 @@ export class Player {
     this.camera = this.orthographic;
     this.controls.enabled = false;
     // The view holds every plane's nodes (half pixels; y down as in the picture).
-    let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
-    for (const plane of this.planes)
-      for (let k = 0; k < plane.nodes.length; k += 2) {
-        x0 = Math.min(x0, plane.nodes[k] / 2), x1 = Math.max(x1, plane.nodes[k] / 2);
-        y0 = Math.min(y0, plane.nodes[k + 1] / 2), y1 = Math.max(y1, plane.nodes[k + 1] / 2);
-      }
-    this.bounds2d = { x0, y0, x1, y1 };
+    this.bounds2d = bounds(this.planes.map((plane) => plane.nodes));
     this.fitOrthographic();
     this.changed = true;
   }
@@ -233,11 +240,7 @@ export class Player {
     if (!this.mesh || this.meshIntra !== intra) {
       if (this.mesh) this.scene.remove(this.mesh), this.mesh.geometry.dispose();
       const nodes = this.planes[intra].nodes;
-      let x0 = Infinity, y0 = Infinity, x1 = -Infinity, y1 = -Infinity;
-      for (let k = 0; k < nodes.length; k += 2) {
-        x0 = Math.min(x0, Math.floor(nodes[k] / 2)), x1 = Math.max(x1, Math.floor(nodes[k] / 2) + 1);
-        y0 = Math.min(y0, Math.floor(nodes[k + 1] / 2)), y1 = Math.max(y1, Math.floor(nodes[k + 1] / 2) + 1);
-      }
+      const { x0, y0, x1, y1 } = bounds([nodes], true);
       const uv = new Float32Array(nodes.length);
       for (let k = 0; k < nodes.length; k += 2) {
         uv[k] = (nodes[k] / 2 - x0) / (x1 - x0);
