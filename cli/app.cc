@@ -16,6 +16,7 @@
 #include "cli/pictures.h"
 #include "cli/rd.h"
 #include "cli/serve.h"
+#include "cli/track.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "conformance/checker.h"
@@ -346,6 +347,23 @@ int run_m4mesh(int argc, const char* const* argv) {
   render_cmd->add_option("--fps", render_args.fps, "frames per second of a GIF")->capture_default_str();
   render_cmd->add_option("--size", render_args.size, "the picture's longer side in pixels (default: one pixel per half pixel of the mesh)");
 
+  TrackArgs track_args;
+  CLI::App* track_cmd = app.add_subcommand("track", "Turn a video into a 2D mesh object: a mesh on the first frame, its nodes tracked through the video (docs/tracking.md)");
+  track_cmd->add_option("input", track_args.input, "a video FFmpeg reads, or an image sequence as FFmpeg names it (frames/%04d.png)")->required();
+  track_cmd->add_option("-o,--output", track_args.output, "the 2D mesh stream")->required();
+  track_cmd->add_option("--texture", track_args.texture, "write the first frame as the PNG texture `m4mesh render --texture` lays on the mesh");
+  track_cmd->add_option("--uniform", track_args.uniform, "a uniform mesh of WxH-pixel cells (the default, 16x16)");
+  track_cmd->add_option("--nodes", track_args.nodes, "a content-based Delaunay mesh of about N nodes");
+  track_cmd->add_option("--mask", track_args.mask, "a PNG of the first frame, white where the object is: the Delaunay mesh covers the object only (with --nodes)");
+  track_cmd->add_option("--frames", track_args.frames, "frames A … B only (A:B, A: or :B)");
+  track_cmd->add_option("--search", track_args.search, "pixels a node's polygon is searched each way, frame to frame (block matching uses the same)")->capture_default_str();
+  track_cmd->add_option("--levels", track_args.levels, "pyramid levels above full size, 0 … 4 (default: while the coarsest keeps 32 pixels a side)");
+  track_cmd->add_option("--reference", track_args.reference, "match each frame against the first frame (the texture; no drift) or the previous one")
+      ->check(CLI::IsMember({"first", "previous"}))
+      ->capture_default_str();
+  track_cmd->add_option("--block", track_args.block, "block matching's block side in pixels (default: as many blocks as mesh nodes)");
+  track_cmd->add_option("--report", track_args.report, "a CSV of every frame: bits, mesh coverage, PSNR of the rendering, of mesh and of block motion compensation");
+
   Render3dArgs render3d_args;
   CLI::App* render3d_cmd = app.add_subcommand("render3d", "Draw a 3D sequence or stream shaded; with --compare, beside its original, coloured by its error");
   render3d_cmd->add_option("input", render3d_args.input, "a sequence (frames, .m4seq, .pc2) or a mesh3d stream")->required();
@@ -432,6 +450,7 @@ int run_m4mesh(int argc, const char* const* argv) {
     if (*rd_cmd) return console::set_input(rd_args.input), run_rd(rd_args);
     if (*render_cmd) return console::set_input(render_args.input), run_render(render_args);
     if (*render3d_cmd) return run_render3d(render3d_args);
+    if (*track_cmd) return console::set_input(track_args.input), run_track(track_args);
   } catch (const Error& e) {
     std::cout.flush();
     // Input and file errors name their own file (and line); usage errors concern no file.

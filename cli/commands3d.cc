@@ -293,9 +293,6 @@ int run_encode3d(const Encode3dArgs& args) {
   return 0;
 }
 
-namespace {
-
-// --frames A:B (both included; "A:" to the end, ":B" from the first).
 std::pair<uint32_t, uint32_t> frame_range(const std::string& text) {
   if (text.empty()) return {0, UINT32_MAX};
   const size_t colon = text.find(':');
@@ -312,8 +309,6 @@ std::pair<uint32_t, uint32_t> frame_range(const std::string& text) {
   if (range.first > range.second) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--frames " + text + ": A is after B");
   return range;
 }
-
-}  // namespace
 
 int run_decode3d(const Decode3dArgs& args) {
   const bool writes = !args.output.empty();

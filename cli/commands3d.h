@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "codecs3d/options.h"
 #include "mesh3d/sequence.h"
@@ -34,6 +35,9 @@ void refuse_trace_to_output(bool trace, const std::string& output);
 // Before anything is read, usage errors for an output that is an input,
 // or that exists without -y (console::check_output).
 void refuse_overwriting(const std::string& input, const std::string& output);
+
+// --frames A:B (both included; "A:" to the end, ":B" from the first; empty: all).
+std::pair<uint32_t, uint32_t> frame_range(const std::string& text);
 
 struct Encode3dArgs {
   std::string input;

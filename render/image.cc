@@ -1,6 +1,7 @@
 #include "render/image.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <gif_lib.h>
 #include <png.h>
@@ -19,6 +20,20 @@ Error image_error(const std::string& path, const std::string& message) {
 }
 
 }  // namespace
+
+Rgb bilinear(const Image& image, double u, double v) {
+  u = std::clamp(u, 0.0, image.width - 1.0);
+  v = std::clamp(v, 0.0, image.height - 1.0);
+  const auto x = static_cast<uint32_t>(u), y = static_cast<uint32_t>(v);
+  const uint32_t x1 = std::min(x + 1, image.width - 1), y1 = std::min(y + 1, image.height - 1);
+  const double fx = u - x, fy = v - y;
+  auto mix = [&](uint8_t Rgb::*c) {
+    const double top = image.at(x, y).*c * (1 - fx) + image.at(x1, y).*c * fx;
+    const double bottom = image.at(x, y1).*c * (1 - fx) + image.at(x1, y1).*c * fx;
+    return static_cast<uint8_t>(std::lround(top * (1 - fy) + bottom * fy));
+  };
+  return {mix(&Rgb::r), mix(&Rgb::g), mix(&Rgb::b)};
+}
 
 Image resized(const Image& image, uint32_t width, uint32_t height) {
   Image out(width, height);

@@ -24,6 +24,10 @@ struct Image {
   const Rgb& at(uint32_t x, uint32_t y) const { return pixels[size_t{y} * width + x]; }
 };
 
+// The picture at texel coordinates (u, v) (texel centres at integers),
+// bilinear, the edge texels repeated outside; channels rounded.
+Rgb bilinear(const Image& image, double u, double v);
+
 // The picture scaled to width × height: each pixel the mean of the pixels
 // it covers (the nearest one when enlarging).
 Image resized(const Image& image, uint32_t width, uint32_t height);

@@ -10,6 +10,7 @@ namespace {
 
 constexpr Rgb kBackground{40, 40, 48};
 constexpr Rgb kWire{255, 230, 60};
+constexpr double kOnEdge = 1e-9;
 
 int64_t floor_half(int64_t v) { return v >= 0 ? v / 2 : -((-v + 1) / 2); }
 
@@ -58,30 +59,20 @@ Image checkerboard(uint32_t width, uint32_t height, uint32_t square) {
 }
 
 TextureWarp::TextureWarp(std::span<const Point> intra_nodes, std::span<const Triangle> triangles, const Image& texture, const Canvas& canvas)
+    : TextureWarp(intra_nodes, triangles, texture, canvas_over(intra_nodes), canvas) {}
+
+TextureWarp::TextureWarp(std::span<const Point> intra_nodes, std::span<const Triangle> triangles, const Image& texture, const Canvas& box,
+                         const Canvas& canvas)
     : triangles_(triangles.begin(), triangles.end()), texture_(texture), canvas_(canvas) {
-  const Canvas box = canvas_over(intra_nodes);
   const double su = static_cast<double>(texture.width) / box.width, sv = static_cast<double>(texture.height) / box.height;
   // A node at X half pixels lies at pixel X / 2; pixel centres sit at k + 1/2, texel centres at k.
   for (const Point& p : intra_nodes)
     texels_.push_back({(p.x / 2.0 - static_cast<double>(box.x0)) * su - 0.5, (p.y / 2.0 - static_cast<double>(box.y0)) * sv - 0.5});
 }
 
-Rgb TextureWarp::sample(double u, double v) const {
-  u = std::clamp(u, 0.0, texture_.width - 1.0);
-  v = std::clamp(v, 0.0, texture_.height - 1.0);
-  const auto x = static_cast<uint32_t>(u), y = static_cast<uint32_t>(v);
-  const uint32_t x1 = std::min(x + 1, texture_.width - 1), y1 = std::min(y + 1, texture_.height - 1);
-  const double fx = u - x, fy = v - y;
-  auto mix = [&](uint8_t Rgb::*c) {
-    const double top = texture_.at(x, y).*c * (1 - fx) + texture_.at(x1, y).*c * fx;
-    const double bottom = texture_.at(x, y1).*c * (1 - fx) + texture_.at(x1, y1).*c * fx;
-    return static_cast<uint8_t>(std::lround(top * (1 - fy) + bottom * fy));
-  };
-  return {mix(&Rgb::r), mix(&Rgb::g), mix(&Rgb::b)};
-}
-
-Image TextureWarp::render(std::span<const Point> nodes, bool wireframe) const {
+Image TextureWarp::render(std::span<const Point> nodes, bool wireframe, std::vector<uint8_t>* covered) const {
   Image image(canvas_.width, canvas_.height, kBackground);
+  if (covered) covered->assign(image.pixels.size(), 0);
   auto pixel = [&](const Point& p) {
     return std::pair<double, double>{p.x / 2.0 - static_cast<double>(canvas_.x0), p.y / 2.0 - static_cast<double>(canvas_.y0)};
   };
@@ -105,9 +96,11 @@ Image TextureWarp::render(std::span<const Point> nodes, bool wireframe) const {
         const double wb = ((px - ax) * (cy - ay) - (py - ay) * (cx - ax)) / area;
         const double wc = ((bx - ax) * (py - ay) - (by - ay) * (px - ax)) / area;
         const double wa = 1 - wb - wc;
-        if (wa < 0 || wb < 0 || wc < 0) continue;
+        // Pixel centres on an edge belong to the triangle (division rounds them either way).
+        if (wa < -kOnEdge || wb < -kOnEdge || wc < -kOnEdge) continue;
         image.at(static_cast<uint32_t>(x), static_cast<uint32_t>(y)) =
-            sample(wa * ta.u + wb * tb.u + wc * tc.u, wa * ta.v + wb * tb.v + wc * tc.v);
+            bilinear(texture_, wa * ta.u + wb * tb.u + wc * tc.u, wa * ta.v + wb * tb.v + wc * tc.v);
+        if (covered) (*covered)[static_cast<size_t>(y) * canvas_.width + static_cast<size_t>(x)] = 1;
       }
   }
   if (wireframe)

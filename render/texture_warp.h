@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "mesh/geometry.h"
 #include "mesh/topology.h"
@@ -30,16 +31,19 @@ class TextureWarp {
  public:
   // The texture is stretched over the pixels of the I-plane's nodes.
   TextureWarp(std::span<const Point> intra_nodes, std::span<const Triangle> triangles, const Image& texture, const Canvas& canvas);
+  // The texture is stretched over `texture_box`.
+  TextureWarp(std::span<const Point> intra_nodes, std::span<const Triangle> triangles, const Image& texture, const Canvas& texture_box,
+              const Canvas& canvas);
 
   // The plane whose nodes are `nodes` (the I-plane's indices); pixels no
-  // triangle covers are the background; with `wireframe`, edges drawn over.
-  Image render(std::span<const Point> nodes, bool wireframe) const;
+  // triangle covers are the background (0 in `covered`, when given); with
+  // `wireframe`, edges drawn over.
+  Image render(std::span<const Point> nodes, bool wireframe, std::vector<uint8_t>* covered = nullptr) const;
 
  private:
   struct Texel {
     double u, v;
   };
-  Rgb sample(double u, double v) const;
 
   std::vector<Triangle> triangles_;
   std::vector<Texel> texels_;  // per node: where its I-plane position lies in the texture

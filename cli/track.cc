@@ -1,0 +1,112 @@
+#include "cli/track.h"
+
+#include <charconv>
+#include <cmath>
+#include <numeric>
+
+#include "cli/commands3d.h"
+#include "cli/console.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "video/track.h"
+
+namespace m4mesh {
+
+namespace {
+
+[[noreturn]] void usage(const std::string& message) { throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, message); }
+
+std::pair<uint32_t, uint32_t> cell_size(const std::string& text) {
+  const size_t x = text.find('x');
+  uint32_t w = 0, h = 0;
+  const char* end = text.data() + text.size();
+  if (x == std::string::npos || std::from_chars(text.data(), text.data() + x, w).ptr != text.data() + x ||
+      std::from_chars(text.data() + x + 1, end, h).ptr != end)
+    usage("--uniform " + text + ": cells as WxH pixels (16x16)");
+  return {w, h};
+}
+
+std::string decibels(double value) {
+  if (std::isnan(value)) return "";
+  if (std::isinf(value)) return "inf";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", value);
+  return text;
+}
+
+// The mean of a measure over frames 1 … (the first has no motion, and its
+// rendering is the texture itself).
+double later_mean(const std::vector<TrackedFrame>& frames, double TrackedFrame::*measure) {
+  double sum = 0;
+  for (size_t f = 1; f < frames.size(); ++f) sum += frames[f].*measure;
+  return frames.size() > 1 ? sum / static_cast<double>(frames.size() - 1) : std::nan("");
+}
+
+}  // namespace
+
+int run_track(const TrackArgs& args) {
+  TrackSettings settings;
+  if (!args.uniform.empty() && args.nodes > 0) usage("--uniform and --nodes: one mesh or the other");
+  if (!args.uniform.empty()) std::tie(settings.cell_width, settings.cell_height) = cell_size(args.uniform);
+  settings.nodes = args.nodes;
+  if (args.search < 1 || args.search > 48) usage("--search: 1 … 48 pixels");
+  if (args.levels < -1 || args.levels > 4) usage("--levels: 0 … 4");
+  settings.tracker.search = args.search;
+  settings.tracker.levels = args.levels;
+  settings.tracker.reference = args.reference == "previous" ? TrackingReference::kPrevious : TrackingReference::kFirst;
+  if (args.block != 0 && (args.block < 2 || args.block > 64)) usage("--block: 2 … 64 pixels");
+  settings.block = args.block;
+  const auto [first, last] = frame_range(args.frames);
+  settings.first_frame = first;
+  settings.end_frame = last == UINT32_MAX ? -1 : int64_t{last} + 1;
+  for (const std::string* output : {&args.output, &args.texture, &args.report})
+    if (!output->empty()) refuse_overwriting(args.input, *output);
+  if (!args.mask.empty()) refuse_overwriting(args.mask, args.output);
+  Image mask;
+  if (!args.mask.empty()) {
+    mask = read_png(args.mask);
+    settings.mask = &mask;
+  }
+  console::Progress progress("tracking frame", 0);
+  settings.progress = [&](int64_t done, int64_t total) { progress.update(static_cast<size_t>(done), static_cast<size_t>(std::max(done, total))); };
+
+  const TrackResult result = track_video(args.input, settings);
+  progress.finish();
+
+  write_file_atomically(args.output, std::string_view(reinterpret_cast<const char*>(result.stream.data()), result.stream.size()));
+  if (!args.texture.empty()) write_png(result.texture, args.texture);
+  if (!args.report.empty()) {
+    std::string csv = "frame,bits,coverage,render_psnr,mesh_mc_psnr,block_mc_psnr\n";
+    for (const TrackedFrame& f : result.frames) {
+      char line[160];
+      std::snprintf(line, sizeof line, "%lld,%llu,%.4f,%s,%s,%s\n", static_cast<long long>(f.frame), static_cast<unsigned long long>(f.bits), f.coverage,
+                    decibels(f.render_psnr).c_str(), decibels(f.mesh_psnr).c_str(), decibels(f.block_psnr).c_str());
+      csv += line;
+    }
+    write_file_atomically(args.report, csv);
+  }
+
+  const VideoInfo& video = result.video;
+  const size_t nodes = result.mesh.tracking.nodes.size(), frames = result.frames.size();
+  if (video.width != video.coded_width || video.height != video.coded_height)
+    console::say("note: %u × %u frames scaled to %u × %u (a mesh covers at most 512 × 512 pixels)", video.coded_width, video.coded_height, video.width,
+                 video.height);
+  const uint64_t later_bits = std::accumulate(result.frames.begin() + 1, result.frames.end(), uint64_t{0},
+                                              [](uint64_t sum, const TrackedFrame& f) { return sum + f.bits; });
+  console::say("%s: %zu planes, %zu nodes (%s), %zu bytes; I-plane %llu bits, P-planes %.0f bits a frame", args.output.c_str(), frames, nodes,
+               result.mesh.plane.info.kind == MeshKind::kUniform ? "uniform" : "content-based Delaunay", result.stream.size(),
+               static_cast<unsigned long long>(result.frames.front().bits), frames > 1 ? static_cast<double>(later_bits) / static_cast<double>(frames - 1) : 0.0);
+  if (frames > 1) {
+    console::say("texture warped by the mesh against the video: %s dB (luma PSNR, mean of frames %lld … %lld)",
+                 decibels(later_mean(result.frames, &TrackedFrame::render_psnr)).c_str(), static_cast<long long>(result.frames[1].frame),
+                 static_cast<long long>(result.frames.back().frame));
+    console::say("motion compensation from the previous frame: mesh %s dB (%zu vectors), %u × %u blocks %s dB (%u vectors)",
+                 decibels(later_mean(result.frames, &TrackedFrame::mesh_psnr)).c_str(), nodes, result.block, result.block,
+                 decibels(later_mean(result.frames, &TrackedFrame::block_psnr)).c_str(), result.blocks);
+  } else {
+    console::say("one frame: the mesh object is its texture, with no motion");
+  }
+  return 0;
+}
+
+}  // namespace m4mesh

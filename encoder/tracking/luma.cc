@@ -1,0 +1,49 @@
+#include "encoder/tracking/luma.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace m4mesh {
+
+float Luma::sample(double x, double y) const {
+  const double u = std::clamp(x - 0.5, 0.0, width - 1.0), v = std::clamp(y - 0.5, 0.0, height - 1.0);
+  const auto x0 = static_cast<uint32_t>(u), y0 = static_cast<uint32_t>(v);
+  const uint32_t x1 = std::min(x0 + 1, width - 1), y1 = std::min(y0 + 1, height - 1);
+  const auto fx = static_cast<float>(u - x0), fy = static_cast<float>(v - y0);
+  const float top = at(x0, y0) + (at(x1, y0) - at(x0, y0)) * fx;
+  const float bottom = at(x0, y1) + (at(x1, y1) - at(x0, y1)) * fx;
+  return top + (bottom - top) * fy;
+}
+
+Luma halved(const Luma& picture) {
+  Luma half(std::max<uint32_t>(1, picture.width / 2), std::max<uint32_t>(1, picture.height / 2));
+  for (uint32_t y = 0; y < half.height; ++y)
+    for (uint32_t x = 0; x < half.width; ++x) {
+      const uint32_t x0 = std::min(2 * x, picture.width - 1), x1 = std::min(2 * x + 1, picture.width - 1);
+      const uint32_t y0 = std::min(2 * y, picture.height - 1), y1 = std::min(2 * y + 1, picture.height - 1);
+      half.at(x, y) = (picture.at(x0, y0) + picture.at(x1, y0) + picture.at(x0, y1) + picture.at(x1, y1)) * 0.25f;
+    }
+  return half;
+}
+
+std::vector<Luma> pyramid(const Luma& picture, int levels) {
+  std::vector<Luma> result{picture};
+  for (int l = 0; l < levels; ++l) result.push_back(halved(result.back()));
+  return result;
+}
+
+double psnr(const Luma& a, const Luma& b, const std::vector<uint8_t>& counted) {
+  double sum = 0;
+  size_t count = 0;
+  for (size_t i = 0; i < a.values.size(); ++i) {
+    if (!counted.empty() && !counted[i]) continue;
+    const double d = static_cast<double>(a.values[i]) - b.values[i];
+    sum += d * d;
+    ++count;
+  }
+  if (count == 0 || sum == 0) return std::numeric_limits<double>::infinity();
+  return 10 * std::log10(255.0 * 255.0 * static_cast<double>(count) / sum);
+}
+
+}  // namespace m4mesh

@@ -1,0 +1,37 @@
+// Grey pictures for motion estimation. Coordinates are continuous pixels:
+// pixel (i, j) covers [i, i + 1) × [j, j + 1), so its centre is at
+// (i + ½, j + ½) and a mesh node at X half pixels lies at X / 2 (as
+// render/texture_warp.h draws it).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace m4mesh {
+
+struct Luma {
+  uint32_t width = 0, height = 0;
+  std::vector<float> values;  // row by row from the top
+
+  Luma() = default;
+  Luma(uint32_t w, uint32_t h, float fill = 0) : width(w), height(h), values(size_t{w} * h, fill) {}
+  float& at(uint32_t x, uint32_t y) { return values[size_t{y} * width + x]; }
+  float at(uint32_t x, uint32_t y) const { return values[size_t{y} * width + x]; }
+
+  // Bilinear between pixel centres, the edge pixels repeated outside.
+  float sample(double x, double y) const;
+};
+
+// Half the size, each pixel the mean of the 2 × 2 it covers (an odd last
+// row or column is dropped): coordinates halve exactly.
+Luma halved(const Luma& picture);
+
+// picture, halved, halved again …: `levels` + 1 pictures, finest first.
+std::vector<Luma> pyramid(const Luma& picture, int levels);
+
+// PSNR in dB of b against a (peak 255) over the pixels where `counted` is
+// non-zero (all when empty); +inf when they agree.
+double psnr(const Luma& a, const Luma& b, const std::vector<uint8_t>& counted = {});
+
+}  // namespace m4mesh

@@ -1,0 +1,231 @@
+#include "encoder/tracking/node_tracker.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "common/error.h"
+
+namespace m4mesh {
+
+namespace {
+
+// Levels while the coarsest picture keeps 32 pixels on its shorter side.
+int automatic_levels(uint32_t width, uint32_t height) {
+  int levels = 0;
+  while (levels < 4 && (std::min(width, height) >> (levels + 1)) >= 32) ++levels;
+  return levels;
+}
+
+double orientation(const std::array<double, 2>& a, const std::array<double, 2>& b, const std::array<double, 2>& c) {
+  return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+}  // namespace
+
+NodeTracker::NodeTracker(TrackingMesh mesh, const Luma& first, const TrackerOptions& options)
+    : mesh_(std::move(mesh)), options_(options), positions_(mesh_.nodes), previous_(mesh_.nodes) {
+  if (mesh_.freedom.size() != mesh_.nodes.size()) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "tracking: a freedom per node");
+  if (options_.levels > 4 || options_.search > 63)
+    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "tracking: at most 4 pyramid levels and a search of 63 pixels");
+  levels_ = options_.levels >= 0 ? options_.levels : automatic_levels(first.width, first.height);
+  node_triangles_.resize(mesh_.nodes.size());
+  for (uint32_t t = 0; t < mesh_.triangles.size(); ++t)
+    for (NodeIndex n : mesh_.triangles[t].v) node_triangles_[n].push_back(t);
+  x_lo_ = y_lo_ = std::numeric_limits<double>::max();
+  x_hi_ = y_hi_ = std::numeric_limits<double>::lowest();
+  for (const Point& p : mesh_.nodes) {
+    x_lo_ = std::min(x_lo_, p.x / 2.0), x_hi_ = std::max(x_hi_, p.x / 2.0);
+    y_lo_ = std::min(y_lo_, p.y / 2.0), y_hi_ = std::max(y_hi_, p.y / 2.0);
+  }
+  previous_pyramid_ = pyramid(first, levels_);
+  build_samples(previous_pyramid_, mesh_.nodes);
+}
+
+void NodeTracker::build_samples(const std::vector<Luma>& reference, const std::vector<Point>& at) {
+  samples_.assign(reference.size(), std::vector<std::vector<Sample>>(mesh_.triangles.size()));
+  for (size_t level = 0; level < reference.size(); ++level) {
+    const Luma& picture = reference[level];
+    const double scale = 0.5 / static_cast<double>(1 << level);
+    for (uint32_t t = 0; t < mesh_.triangles.size(); ++t) {
+      const Triangle& tri = mesh_.triangles[t];
+      const double ax = at[tri.v[0]].x * scale, ay = at[tri.v[0]].y * scale;
+      const double bx = at[tri.v[1]].x * scale, by = at[tri.v[1]].y * scale;
+      const double cx = at[tri.v[2]].x * scale, cy = at[tri.v[2]].y * scale;
+      const double area = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+      if (area <= 0) continue;
+      const auto x_from = static_cast<int64_t>(std::max(0.0, std::floor(std::min({ax, bx, cx}))));
+      const auto x_to = static_cast<int64_t>(std::min<double>(picture.width - 1, std::ceil(std::max({ax, bx, cx}))));
+      const auto y_from = static_cast<int64_t>(std::max(0.0, std::floor(std::min({ay, by, cy}))));
+      const auto y_to = static_cast<int64_t>(std::min<double>(picture.height - 1, std::ceil(std::max({ay, by, cy}))));
+      std::vector<Sample>& out = samples_[level][t];
+      for (int64_t y = y_from; y <= y_to; ++y)
+        for (int64_t x = x_from; x <= x_to; ++x) {
+          const double px = static_cast<double>(x) + 0.5, py = static_cast<double>(y) + 0.5;
+          const double b1 = ((px - ax) * (cy - ay) - (py - ay) * (cx - ax)) / area;
+          const double b2 = ((bx - ax) * (py - ay) - (by - ay) * (px - ax)) / area;
+          if (b1 < 0 || b2 < 0 || b1 + b2 > 1) continue;
+          out.push_back({static_cast<float>(b1), static_cast<float>(b2), picture.at(static_cast<uint32_t>(x), static_cast<uint32_t>(y))});
+        }
+    }
+  }
+}
+
+double NodeTracker::triangle_cost(int level, uint32_t t, const std::vector<Position>& p, NodeIndex moved, const Position& to) const {
+  const Triangle& tri = mesh_.triangles[t];
+  const Position& a = tri.v[0] == moved ? to : p[tri.v[0]];
+  const Position& b = tri.v[1] == moved ? to : p[tri.v[1]];
+  const Position& c = tri.v[2] == moved ? to : p[tri.v[2]];
+  const Luma& picture = frame_pyramid_[static_cast<size_t>(level)];
+  double sum = 0;
+  for (const Sample& s : samples_[static_cast<size_t>(level)][t]) {
+    const double b0 = 1.0 - s.b1 - s.b2;
+    const double x = b0 * a[0] + s.b1 * b[0] + s.b2 * c[0], y = b0 * a[1] + s.b1 * b[1] + s.b2 * c[1];
+    sum += std::abs(picture.sample(x, y) - s.value);
+  }
+  return sum;
+}
+
+bool NodeTracker::keeps_orientation(uint32_t node, const Position& to, const std::vector<Position>& p) const {
+  for (uint32_t t : node_triangles_[node]) {
+    const Triangle& tri = mesh_.triangles[t];
+    auto at = [&](NodeIndex n) -> const Position& { return n == node ? to : p[n]; };
+    if (orientation(at(tri.v[0]), at(tri.v[1]), at(tri.v[2])) <= 0) return false;
+  }
+  return true;
+}
+
+bool NodeTracker::allowed(uint32_t node, const Position& to, double scale) const {
+  const Point& from = positions_[node];
+  const double limit = kMaxNodeMotion * 0.5 * scale;
+  if (std::abs(to[0] - from.x * 0.5 * scale) > limit || std::abs(to[1] - from.y * 0.5 * scale) > limit) return false;
+  const NodeFreedom freedom = mesh_.freedom[node];
+  if (freedom == NodeFreedom::kAlongX) return to[0] >= x_lo_ * scale && to[0] <= x_hi_ * scale;
+  if (freedom == NodeFreedom::kAlongY) return to[1] >= y_lo_ * scale && to[1] <= y_hi_ * scale;
+  return true;
+}
+
+void NodeTracker::translate_polygons(int level, std::vector<Position>& p, double scale) {
+  const Luma& picture = frame_pyramid_[static_cast<size_t>(level)];
+  const auto range = static_cast<int>(std::ceil(options_.search * scale));
+  std::vector<Position> offsets(p.size(), Position{0, 0});
+  std::vector<std::array<double, 3>> mapped;  // x, y, reference value of each polygon sample
+  for (uint32_t n = 0; n < p.size(); ++n) {
+    const NodeFreedom freedom = mesh_.freedom[n];
+    if (freedom == NodeFreedom::kFixed) continue;
+    mapped.clear();
+    for (uint32_t t : node_triangles_[n]) {
+      const Triangle& tri = mesh_.triangles[t];
+      const Position &a = p[tri.v[0]], &b = p[tri.v[1]], &c = p[tri.v[2]];
+      for (const Sample& s : samples_[static_cast<size_t>(level)][t]) {
+        const double b0 = 1.0 - s.b1 - s.b2;
+        mapped.push_back({b0 * a[0] + s.b1 * b[0] + s.b2 * c[0], b0 * a[1] + s.b1 * b[1] + s.b2 * c[1], s.value});
+      }
+    }
+    if (mapped.empty()) continue;
+    const int rx = freedom == NodeFreedom::kAlongY ? 0 : range, ry = freedom == NodeFreedom::kAlongX ? 0 : range;
+    double best = std::numeric_limits<double>::max();
+    int best_norm = 0;
+    for (int dy = -ry; dy <= ry; ++dy)
+      for (int dx = -rx; dx <= rx; ++dx) {
+        double sum = 0;
+        for (const auto& [x, y, value] : mapped) {
+          sum += std::abs(picture.sample(x + dx, y + dy) - value);
+          if (sum > best) break;
+        }
+        const int norm = std::abs(dx) + std::abs(dy);
+        if (sum < best || (sum == best && norm < best_norm)) best = sum, best_norm = norm, offsets[n] = {double(dx), double(dy)};
+      }
+  }
+  // Each node takes its polygon's offset when no triangle folds; a node
+  // refused waits for its neighbours to move first.
+  for (int pass = 0; pass < 3; ++pass) {
+    bool moved = false;
+    for (uint32_t n = 0; n < p.size(); ++n) {
+      if (offsets[n][0] == 0 && offsets[n][1] == 0) continue;
+      const Position to{p[n][0] + offsets[n][0], p[n][1] + offsets[n][1]};
+      if (!allowed(n, to, scale) || !keeps_orientation(n, to, p)) continue;
+      p[n] = to;
+      offsets[n] = {0, 0};
+      moved = true;
+    }
+    if (!moved) break;
+  }
+}
+
+void NodeTracker::descend(int level, std::vector<Position>& p, double scale, double step) {
+  for (int sweep = 0; sweep < options_.sweeps; ++sweep) {
+    bool moved = false;
+    for (uint32_t n = 0; n < p.size(); ++n) {
+      const NodeFreedom freedom = mesh_.freedom[n];
+      if (freedom == NodeFreedom::kFixed) continue;
+      double current = 0;
+      for (uint32_t t : node_triangles_[n]) current += costs_[t];
+      double best = current;
+      Position best_to = p[n];
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          if ((dx == 0 && dy == 0) || (freedom == NodeFreedom::kAlongX && dy != 0) || (freedom == NodeFreedom::kAlongY && dx != 0)) continue;
+          const Position to{p[n][0] + dx * step, p[n][1] + dy * step};
+          if (!allowed(n, to, scale) || !keeps_orientation(n, to, p)) continue;
+          double cost = 0;
+          for (uint32_t t : node_triangles_[n]) {
+            cost += triangle_cost(level, t, p, n, to);
+            if (cost >= best) break;
+          }
+          if (cost < best) best = cost, best_to = to;
+        }
+      if (best_to == p[n]) continue;
+      p[n] = best_to;
+      for (uint32_t t : node_triangles_[n]) costs_[t] = triangle_cost(level, t, p, kNoNode, p[n]);
+      moved = true;
+    }
+    if (!moved) break;
+  }
+}
+
+const std::vector<Point>& NodeTracker::track(const Luma& frame) {
+  if (frame.width != previous_pyramid_[0].width || frame.height != previous_pyramid_[0].height)
+    throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "tracking: every frame must have the first frame's size");
+  frame_pyramid_ = pyramid(frame, levels_);
+  if (options_.reference == TrackingReference::kPrevious) build_samples(previous_pyramid_, positions_);
+
+  // The start: constant velocity when that folds nothing, else where the nodes were.
+  std::vector<Position> p(positions_.size());
+  auto start_at = [&](bool with_velocity) {
+    for (size_t n = 0; n < p.size(); ++n) {
+      Point q = positions_[n];
+      if (with_velocity && mesh_.freedom[n] != NodeFreedom::kFixed) {
+        const int32_t vx = mesh_.freedom[n] == NodeFreedom::kAlongY ? 0 : positions_[n].x - previous_[n].x;
+        const int32_t vy = mesh_.freedom[n] == NodeFreedom::kAlongX ? 0 : positions_[n].y - previous_[n].y;
+        q = {q.x + vx, q.y + vy};
+      }
+      p[n] = {q.x * 0.5, q.y * 0.5};
+    }
+  };
+  start_at(has_velocity_);
+  if (has_velocity_) {
+    bool valid = true;
+    for (uint32_t n = 0; n < p.size() && valid; ++n) valid = allowed(n, p[n], 1.0) && keeps_orientation(n, p[n], p);
+    if (!valid) start_at(false);
+  }
+
+  for (int level = levels_; level >= 0; --level) {
+    const double scale = 1.0 / static_cast<double>(1 << level);
+    for (Position& q : p) q = {q[0] * scale, q[1] * scale};
+    if (level == levels_) translate_polygons(level, p, scale);
+    costs_.resize(mesh_.triangles.size());
+    for (uint32_t t = 0; t < mesh_.triangles.size(); ++t) costs_[t] = triangle_cost(level, t, p, kNoNode, p[0]);
+    descend(level, p, scale, 1.0);
+    descend(level, p, scale, 0.5);
+    for (Position& q : p) q = {q[0] / scale, q[1] / scale};
+  }
+
+  previous_ = positions_;
+  for (size_t n = 0; n < p.size(); ++n) positions_[n] = {static_cast<int32_t>(std::lround(p[n][0] * 2)), static_cast<int32_t>(std::lround(p[n][1] * 2))};
+  has_velocity_ = true;
+  if (options_.reference == TrackingReference::kPrevious) previous_pyramid_ = frame_pyramid_;
+  return positions_;
+}
+
+}  // namespace m4mesh

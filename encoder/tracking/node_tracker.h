@@ -1,0 +1,84 @@
+// Node motion estimation for a 2D mesh object: where each node of a mesh
+// laid on the first frame lies in every later frame. Hierarchical: on the
+// coarsest level of an image pyramid each node's polygon (its triangles)
+// is matched by translation (full search); on every level down to full
+// size, nodes then move one by one to the neighbouring position that
+// lowers the warp error of their polygon most (the hexagonal matching of
+// Nakaya & Harashima), ending on the half-pixel grid the syntax carries.
+// A move that would fold a triangle over (orient ≤ 0) is never taken, so
+// the topology of the first frame holds in every frame.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "encoder/tracking/luma.h"
+#include "mesh/geometry.h"
+#include "mesh/topology.h"
+
+namespace m4mesh {
+
+// How a node may move: freely, not at all (a frame corner), or along the
+// frame edge it lies on, inside the first frame's mesh rectangle.
+enum class NodeFreedom : uint8_t { kFree, kFixed, kAlongX, kAlongY };
+
+struct TrackingMesh {
+  std::vector<Point> nodes;          // half pixels, on the first frame
+  std::vector<Triangle> triangles;   // clockwise (orient > 0)
+  std::vector<NodeFreedom> freedom;  // per node
+};
+
+// What a frame is matched against: the first frame (the texture the
+// decoder warps; no drift) or the previous frame.
+enum class TrackingReference { kFirst, kPrevious };
+
+struct TrackerOptions {
+  uint32_t search = 16;  // pixels a polygon's translation is searched, each way
+  int levels = -1;       // pyramid levels above full size (0 … 4); −1 chooses
+  TrackingReference reference = TrackingReference::kFirst;
+  int sweeps = 4;  // most descent sweeps per level and step
+};
+
+// The most a node moves between frames, in half pixels: a P-plane's vectors
+// fit motion_range_code 3 ([−128, 127]).
+inline constexpr int32_t kMaxNodeMotion = 127;
+
+class NodeTracker {
+ public:
+  NodeTracker(TrackingMesh mesh, const Luma& first, const TrackerOptions& options);
+
+  // The node positions in the next frame (half pixels, the first frame's
+  // node indices): no triangle folded, each node within kMaxNodeMotion of
+  // its previous position.
+  const std::vector<Point>& track(const Luma& frame);
+  const std::vector<Point>& positions() const { return positions_; }
+  int levels() const { return levels_; }
+
+ private:
+  struct Sample {
+    float b1, b2;  // barycentric weights of corners 1 and 2 in the reference triangle
+    float value;   // the reference picture at that pixel centre
+  };
+  using Position = std::array<double, 2>;  // pixels of a pyramid level
+
+  void build_samples(const std::vector<Luma>& reference, const std::vector<Point>& at);
+  double triangle_cost(int level, uint32_t t, const std::vector<Position>& p, NodeIndex moved, const Position& to) const;
+  bool keeps_orientation(uint32_t node, const Position& to, const std::vector<Position>& p) const;
+  bool allowed(uint32_t node, const Position& to, double scale) const;
+  void translate_polygons(int level, std::vector<Position>& p, double scale);
+  void descend(int level, std::vector<Position>& p, double scale, double step);
+
+  TrackingMesh mesh_;
+  TrackerOptions options_;
+  int levels_ = 0;
+  std::vector<std::vector<uint32_t>> node_triangles_;
+  double x_lo_ = 0, x_hi_ = 0, y_lo_ = 0, y_hi_ = 0;  // the first frame's mesh rectangle, pixels
+  std::vector<std::vector<std::vector<Sample>>> samples_;  // [level][triangle]
+  std::vector<Luma> frame_pyramid_, previous_pyramid_;
+  std::vector<Point> positions_, previous_;
+  std::vector<double> costs_;  // per triangle, at the current level and positions
+  bool has_velocity_ = false;
+};
+
+}  // namespace m4mesh

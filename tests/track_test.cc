@@ -1,0 +1,308 @@
+// m4mesh track (video/track.h, encoder/tracking/): videos made here, with
+// known motion, compressed by FFmpeg; the tracked nodes against the truth.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include "cli/app.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "common/random.h"
+#include "decoder/decoder.h"
+#include "render/texture_warp.h"
+#include "video/block_matching.h"
+#include "video/track.h"
+
+namespace m4mesh {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A folder for one test's files; kept under $M4MESH_TRACK_KEEP when set
+// (scripts/track_figures.sh measures the same videos).
+class Workspace {
+ public:
+  explicit Workspace(const std::string& name) {
+    const char* keep = std::getenv("M4MESH_TRACK_KEEP");
+    keep_ = keep && *keep;
+    path_ = fs::path(keep_ ? keep : testing::TempDir()) / ("track-" + name);
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~Workspace() {
+    std::error_code ignored;
+    if (!keep_) fs::remove_all(path_, ignored);
+  }
+  std::string operator/(const std::string& name) const { return (path_ / name).string(); }
+
+ private:
+  fs::path path_;
+  bool keep_ = false;
+};
+
+// A colourful picture with structure at every scale: random soft blobs and edges.
+Image pattern(uint32_t width, uint32_t height, uint64_t seed) {
+  SplitMix64 random(seed);
+  auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * static_cast<double>(random.next() >> 11) / 9007199254740992.0; };
+  struct Blob {
+    double x, y, radius, r, g, b;
+  };
+  std::vector<Blob> blobs;
+  const int count = static_cast<int>(width * height / 60);
+  for (int i = 0; i < count; ++i)
+    blobs.push_back({uniform(0, width), uniform(0, height), uniform(2, 8), uniform(-90, 90), uniform(-90, 90), uniform(-90, 90)});
+  Image picture(width, height);
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      double r = 128, g = 128, b = 128;
+      for (const Blob& blob : blobs) {
+        const double d2 = ((x - blob.x) * (x - blob.x) + (y - blob.y) * (y - blob.y)) / (blob.radius * blob.radius);
+        const double weight = d2 < 1 ? 1 - d2 * d2 * 0.6 : std::exp(-(d2 - 1) * 3) * 0.4;
+        r += blob.r * weight, g += blob.g * weight, b += blob.b * weight;
+      }
+      auto channel = [](double v) { return static_cast<uint8_t>(std::clamp(std::lround(v), 0L, 255L)); };
+      picture.at(x, y) = {channel(r), channel(g), channel(b)};
+    }
+  return picture;
+}
+
+void write_frames(const Workspace& folder, const std::vector<Image>& frames) {
+  for (size_t t = 0; t < frames.size(); ++t) {
+    char name[32];
+    std::snprintf(name, sizeof name, "%03zu.png", t);
+    write_png(frames[t], folder / name);
+  }
+}
+
+// The frames as H.264 (yuv420p), as a camera's video would come.
+std::string h264_video(const Workspace& folder, const std::vector<Image>& frames) {
+  write_frames(folder, frames);
+  const std::string video = folder / "video.mp4";
+  const std::string command = "ffmpeg -nostdin -v error -y -framerate 25 -i '" + folder / "%03d.png" +
+                              "' -c:v libx264 -preset fast -crf 12 -pix_fmt yuv420p -movflags +faststart '" + video + "'";
+  EXPECT_EQ(std::system(command.c_str()), 0) << command;
+  return video;
+}
+
+// A smooth motion that vanishes on the frame's border: pixels, at frame t.
+struct SmoothMotion {
+  double width, height;
+  std::pair<double, double> at(double x, double y, int t) const {
+    const double fx = std::clamp(x / width, 0.0, 1.0), fy = std::clamp(y / height, 0.0, 1.0);
+    const double bump = std::sin(std::numbers::pi * fx) * std::sin(std::numbers::pi * fy);
+    const double phase = 2 * std::numbers::pi * t / 24.0;
+    return {5.0 * std::sin(phase) * bump, 3.5 * std::sin(phase * 0.7) * bump * std::cos(std::numbers::pi * (fx - 0.3))};
+  }
+};
+
+// Frames warped from a texture by a fine mesh (4-pixel cells) moved by
+// `motion`: the truth of any point is that mesh's piecewise-affine map.
+struct WarpedVideo {
+  FrameMesh truth_mesh;
+  std::vector<std::vector<Point>> truth;  // the fine mesh's nodes per frame
+  std::vector<Image> frames;
+
+  WarpedVideo(uint32_t width, uint32_t height, int count, const SmoothMotion& motion) : truth_mesh(uniform_frame_mesh(width, height, 4, 4)) {
+    const std::vector<Point>& nodes = truth_mesh.tracking.nodes;
+    const Canvas box = canvas_over(nodes);
+    const Image texture = pattern(box.width, box.height, 7);
+    const TextureWarp warp(nodes, truth_mesh.tracking.triangles, texture, Canvas{0, 0, width, height});
+    for (int t = 0; t < count; ++t) {
+      std::vector<Point> moved;
+      for (const Point& p : nodes) {
+        const auto [dx, dy] = motion.at(p.x / 2.0, p.y / 2.0, t);
+        moved.push_back({p.x + static_cast<int32_t>(std::lround(2 * dx)), p.y + static_cast<int32_t>(std::lround(2 * dy))});
+      }
+      frames.push_back(warp.render(moved, false));
+      truth.push_back(std::move(moved));
+    }
+  }
+
+  // Where the point at q (half pixels, frame 0) lies in frame t, in pixels.
+  std::pair<double, double> truth_at(const Point& q, size_t t) const {
+    const std::vector<Point>& p0 = truth_mesh.tracking.nodes;
+    for (const Triangle& tri : truth_mesh.tracking.triangles) {
+      const Point &a = p0[tri.v[0]], &b = p0[tri.v[1]], &c = p0[tri.v[2]];
+      const double area = static_cast<double>(orient(a, b, c));
+      const double wb = static_cast<double>(orient(a, q, c)) / area, wc = static_cast<double>(orient(a, b, q)) / area, wa = 1 - wb - wc;
+      if (wa < -1e-9 || wb < -1e-9 || wc < -1e-9) continue;
+      const Point &at = truth[t][tri.v[0]], &bt = truth[t][tri.v[1]], &ct = truth[t][tri.v[2]];
+      return {(wa * at.x + wb * bt.x + wc * ct.x) / 2, (wa * at.y + wb * bt.y + wc * ct.y) / 2};
+    }
+    ADD_FAILURE() << "node " << q.x << ", " << q.y << " outside the truth mesh";
+    return {0, 0};
+  }
+};
+
+double mean_error(const TrackResult& result, const std::function<std::pair<double, double>(const Point&, size_t)>& truth) {
+  double sum = 0;
+  size_t count = 0;
+  for (size_t t = 1; t < result.positions.size(); ++t)
+    for (size_t n = 0; n < result.positions[t].size(); ++n) {
+      const auto [x, y] = truth(result.positions[0][n], t);
+      sum += std::hypot(result.positions[t][n].x / 2.0 - x, result.positions[t][n].y / 2.0 - y);
+      ++count;
+    }
+  return sum / static_cast<double>(count);
+}
+
+void expect_no_fold(const TrackResult& result) {
+  for (size_t t = 0; t < result.positions.size(); ++t)
+    for (const Triangle& tri : result.mesh.tracking.triangles)
+      ASSERT_GT(orient(result.positions[t][tri.v[0]], result.positions[t][tri.v[1]], result.positions[t][tri.v[2]]), 0) << "frame " << t;
+}
+
+TEST(Track, UniformNodesFollowASmoothWarpThroughH264) {
+  const Workspace folder("smooth");
+  const WarpedVideo video(160, 128, 16, SmoothMotion{160, 128});
+  TrackSettings settings;
+  const TrackResult result = track_video(h264_video(folder, video.frames), settings);
+  ASSERT_EQ(result.positions.size(), 16u);
+  EXPECT_EQ(result.mesh.plane.info.kind, MeshKind::kUniform);
+  expect_no_fold(result);
+  const double error = mean_error(result, [&](const Point& q, size_t t) { return video.truth_at(q, t); });
+  std::printf("uniform 16x16 on a smooth warp, H.264: mean node error %.3f px\n", error);
+  EXPECT_LE(error, 0.5);
+  // The texture warped by the tracked mesh comes close to the video.
+  for (size_t t = 1; t < result.frames.size(); ++t) EXPECT_GT(result.frames[t].render_psnr, 30) << "frame " << t;
+}
+
+TEST(Track, ContentBasedNodesFollowASmoothWarpThroughH264) {
+  const Workspace folder("smooth-delaunay");
+  const WarpedVideo video(160, 128, 16, SmoothMotion{160, 128});
+  TrackSettings settings;
+  settings.nodes = 80;
+  const TrackResult result = track_video(h264_video(folder, video.frames), settings);
+  EXPECT_EQ(result.mesh.plane.info.kind, MeshKind::kDelaunay);
+  EXPECT_NEAR(static_cast<double>(result.mesh.tracking.nodes.size()), 80, 4);
+  expect_no_fold(result);
+  const double error = mean_error(result, [&](const Point& q, size_t t) { return video.truth_at(q, t); });
+  std::printf("content-based Delaunay (80 nodes) on a smooth warp, H.264: mean node error %.3f px\n", error);
+  EXPECT_LE(error, 0.5);
+}
+
+// The stream decodes to the tracked nodes, and `m4mesh render` of it with
+// the written texture draws the frames the measurement compared.
+TEST(Track, RenderOfTheStreamIsWhatWasMeasured) {
+  const Workspace folder("render");
+  const WarpedVideo video(96, 80, 6, SmoothMotion{96, 80});
+  const std::string input = h264_video(folder, video.frames);
+  const std::string stream = folder / "out.m4m", texture = folder / "first.png", picture = folder / "plane5.png";
+  std::vector<const char*> track{"m4mesh", "-q", "track", input.c_str(), "-o", stream.c_str(), "--texture", texture.c_str(), "--nodes", "40"};
+  ASSERT_EQ(run_m4mesh(static_cast<int>(track.size()), track.data()), 0);
+  std::vector<const char*> render{"m4mesh", "-q", "render", stream.c_str(), "-o", picture.c_str(), "--texture", texture.c_str(), "--plane", "5"};
+  ASSERT_EQ(run_m4mesh(static_cast<int>(render.size()), render.data()), 0);
+
+  TrackSettings settings;
+  settings.nodes = 40;
+  const TrackResult result = track_video(input, settings);
+  EXPECT_EQ(result.stream, read_file(stream));
+  const Image drawn = read_png(picture);
+  ASSERT_EQ(drawn.width, 96u);
+  ASSERT_EQ(drawn.height, 80u);
+  VideoReader reader(input);
+  Image frame;
+  for (int t = 0; t <= 5; ++t) ASSERT_TRUE(reader.next(frame));
+  EXPECT_EQ(result.frames[5].coverage, 1.0);
+  EXPECT_NEAR(psnr(luma_of(frame), luma_of(drawn)), result.frames[5].render_psnr, 1e-9);
+}
+
+// An object moving over a still background, outlined by a mask: an image
+// sequence read by FFmpeg's pattern.
+TEST(Track, MaskedObjectMovesOverAStillBackground) {
+  const Workspace folder("object");
+  const uint32_t w = 144, h = 112;
+  const double cx = 56, cy = 60, radius = 30, vx = 1.5, vy = -0.75;
+  const Image background = pattern(w, h, 11), object = pattern(w, h, 23);
+  std::vector<Image> frames;
+  for (int t = 0; t < 12; ++t) {
+    Image frame = background;
+    for (uint32_t y = 0; y < h; ++y)
+      for (uint32_t x = 0; x < w; ++x) {
+        const double u = x + 0.5 - vx * t, v = y + 0.5 - vy * t;  // the point of frame 0 seen here
+        if ((u - cx) * (u - cx) + (v - cy) * (v - cy) <= radius * radius) frame.at(x, y) = bilinear(object, u - 0.5, v - 0.5);
+      }
+    frames.push_back(std::move(frame));
+  }
+  write_frames(folder, frames);
+  Image mask(w, h);
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x)
+      if ((x + 0.5 - cx) * (x + 0.5 - cx) + (y + 0.5 - cy) * (y + 0.5 - cy) <= radius * radius) mask.at(x, y) = {255, 255, 255};
+  TrackSettings settings;
+  settings.nodes = 50;
+  settings.mask = &mask;
+  const TrackResult result = track_video(folder / "%03d.png", settings);
+  ASSERT_EQ(result.positions.size(), 12u);
+  expect_no_fold(result);
+  // Every node inside the disc.
+  for (const Point& p : result.mesh.tracking.nodes) EXPECT_LE(std::hypot(p.x / 2.0 - cx, p.y / 2.0 - cy), radius);
+  const double error = mean_error(result, [&](const Point& q, size_t t) {
+    return std::pair<double, double>{q.x / 2.0 + vx * static_cast<double>(t), q.y / 2.0 + vy * static_cast<double>(t)};
+  });
+  std::printf("masked object (50 nodes), PNG sequence: mean node error %.3f px\n", error);
+  EXPECT_LE(error, 0.5);
+  EXPECT_LT(result.frames[1].coverage, 0.25);
+}
+
+TEST(Track, OneFrameIsAStillTexture) {
+  const Workspace folder("one");
+  write_frames(folder, {pattern(64, 48, 3)});
+  const TrackResult result = track_video(folder / "%03d.png", {});
+  ASSERT_EQ(result.frames.size(), 1u);
+  Decoder decoder(result.stream);
+  ASSERT_TRUE(decoder.next());
+  EXPECT_TRUE(decoder.info().intra);
+  EXPECT_FALSE(decoder.next());
+}
+
+// A blank video: nodes spread evenly (nothing has structure), and none moves.
+TEST(Track, BlankVideoGivesAnEvenMeshThatStaysStill) {
+  const Workspace folder("blank");
+  write_frames(folder, std::vector<Image>(4, Image(64, 48, Rgb{90, 90, 90})));
+  TrackSettings settings;
+  settings.nodes = 30;
+  const TrackResult result = track_video(folder / "%03d.png", settings);
+  ASSERT_EQ(result.positions.size(), 4u);
+  EXPECT_GE(result.mesh.tracking.nodes.size(), 25u);
+  for (const std::vector<Point>& frame : result.positions) EXPECT_EQ(frame, result.mesh.tracking.nodes);
+}
+
+template <typename F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(Track, DegenerateInputsGiveClearErrors) {
+  const Workspace folder("errors");
+  write_frames(folder, std::vector<Image>(2, pattern(8, 8, 5)));
+  EXPECT_NE(error_of([&] { track_video(folder / "%03d.png", {}); }).find("smaller than one 16 × 16 mesh cell"), std::string::npos);
+
+  const std::string garbage = folder / "garbage.mp4";
+  std::ofstream(garbage) << std::string(5000, 'x');
+  EXPECT_NE(error_of([&] { track_video(garbage, {}); }).find(garbage + ": not a video FFmpeg can read"), std::string::npos);
+  EXPECT_NE(error_of([&] { track_video(folder / "missing.mp4", {}); }).find("No such file"), std::string::npos);
+
+  // A video cut short: fewer frames than it states, never a shorter object.
+  const WarpedVideo video(64, 48, 8, SmoothMotion{64, 48});
+  const std::vector<uint8_t> whole = read_file(h264_video(folder, video.frames));
+  const std::string cut = folder / "cut.mp4";
+  write_file_atomically(cut, std::string_view(reinterpret_cast<const char*>(whole.data()), whole.size() * 3 / 4));
+  EXPECT_NE(error_of([&] { track_video(cut, {}); }), "no error");
+
+  TrackSettings past_end;
+  past_end.first_frame = 20;
+  EXPECT_NE(error_of([&] { track_video(folder / "%03d.png", past_end); }).find("--frames starts at frame 20"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace m4mesh

@@ -1,0 +1,170 @@
+#include "video/track.h"
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+
+#include "common/error.h"
+#include "decoder/decoder.h"
+#include "encoder/encoder.h"
+#include "render/texture_warp.h"
+#include "video/block_matching.h"
+
+namespace m4mesh {
+
+namespace {
+
+[[noreturn]] void refuse(ErrorKind kind, const std::string& message) { throw Error(kind, "", kNoPlane, kNoOffset, message); }
+
+// The texture: the first frame over the mesh's rectangle, its edge pixels
+// repeated where the rectangle reaches past the frame.
+Image texture_over(const Image& frame, const Canvas& box) {
+  Image texture(box.width, box.height);
+  for (uint32_t y = 0; y < box.height; ++y)
+    for (uint32_t x = 0; x < box.width; ++x)
+      texture.at(x, y) = frame.at(static_cast<uint32_t>(std::clamp<int64_t>(box.x0 + x, 0, frame.width - 1)),
+                                  static_cast<uint32_t>(std::clamp<int64_t>(box.y0 + y, 0, frame.height - 1)));
+  return texture;
+}
+
+// The block side whose blocks over the covered pixels come nearest to `vectors`.
+uint32_t matching_block(uint32_t vectors, const std::vector<uint8_t>& covered, uint32_t width, uint32_t height, uint32_t& blocks) {
+  uint32_t best = 4;
+  int64_t best_gap = std::numeric_limits<int64_t>::max();
+  for (uint32_t side = 4; side <= 64; ++side) {
+    uint32_t count = 0;
+    for (uint32_t by = 0; by < height; by += side)
+      for (uint32_t bx = 0; bx < width; bx += side) {
+        bool any = false;
+        for (uint32_t y = by; y < std::min(by + side, height) && !any; ++y)
+          for (uint32_t x = bx; x < std::min(bx + side, width) && !any; ++x) any = covered[size_t{y} * width + x] != 0;
+        count += any;
+      }
+    const int64_t gap = std::abs(int64_t{count} - vectors);
+    if (gap < best_gap) best_gap = gap, best = side, blocks = count;
+  }
+  return best;
+}
+
+uint32_t blocks_over(uint32_t side, const std::vector<uint8_t>& covered, uint32_t width, uint32_t height) {
+  uint32_t count = 0;
+  for (uint32_t by = 0; by < height; by += side)
+    for (uint32_t bx = 0; bx < width; bx += side) {
+      bool any = false;
+      for (uint32_t y = by; y < std::min(by + side, height) && !any; ++y)
+        for (uint32_t x = bx; x < std::min(bx + side, width) && !any; ++x) any = covered[size_t{y} * width + x] != 0;
+      count += any;
+    }
+  return count;
+}
+
+}  // namespace
+
+Mask mask_from_image(const Image& picture, uint32_t width, uint32_t height) {
+  const Image sized = picture.width == width && picture.height == height ? picture : resized(picture, width, height);
+  Mask mask{width, height, std::vector<uint8_t>(size_t{width} * height)};
+  for (size_t i = 0; i < sized.pixels.size(); ++i) {
+    const Rgb& p = sized.pixels[i];
+    mask.inside[i] = p.r + p.g + p.b > 3 * 127;
+  }
+  return mask;
+}
+
+TrackResult track_video(const std::string& path, const TrackSettings& settings) {
+  if (settings.first_frame < 0 || (settings.end_frame >= 0 && settings.end_frame <= settings.first_frame))
+    refuse(ErrorKind::kUsage, "--frames A:B: 0 ≤ A < B");
+  if (settings.mask && settings.nodes == 0) refuse(ErrorKind::kUsage, "--mask outlines a content-based Delaunay mesh: give --nodes N");
+  VideoReader reader(path, kMaxMeshFrameSide);
+  TrackResult result;
+  result.video = reader.info();
+  const uint32_t w = result.video.width, h = result.video.height;
+  Image frame, previous;
+  while (reader.frames_read() <= settings.first_frame)
+    if (!reader.next(frame))
+      refuse(ErrorKind::kInput, path + ": " + std::to_string(reader.frames_read()) + " frames; --frames starts at frame " +
+                                    std::to_string(settings.first_frame));
+
+  // The mesh on the first frame.
+  Luma luma = luma_of(frame);
+  if (settings.nodes > 0) {
+    std::optional<Mask> mask;
+    if (settings.mask) {
+      const Image& m = *settings.mask;
+      const bool coded_size = m.width == result.video.coded_width && m.height == result.video.coded_height;
+      if (!coded_size && (m.width != w || m.height != h))
+        refuse(ErrorKind::kUsage, "the mask is " + std::to_string(m.width) + " × " + std::to_string(m.height) + " pixels, the video " +
+                                      std::to_string(result.video.coded_width) + " × " + std::to_string(result.video.coded_height));
+      mask = mask_from_image(m, w, h);
+    }
+    result.mesh = content_frame_mesh(luma, settings.nodes, mask ? &*mask : nullptr);
+  } else {
+    result.mesh = uniform_frame_mesh(w, h, settings.cell_width, settings.cell_height);
+  }
+  const FrameMesh& mesh = result.mesh;
+  const Canvas frame_canvas{0, 0, w, h};
+  result.texture = texture_over(frame, canvas_over(mesh.tracking.nodes));
+  const TextureWarp texture_warp(mesh.tracking.nodes, mesh.tracking.triangles, result.texture, frame_canvas);
+  std::vector<uint8_t> covered;
+
+  auto measure = [&](const std::vector<Point>& at, bool with_motion) {
+    TrackedFrame report;
+    report.frame = settings.first_frame + static_cast<int64_t>(result.positions.size());
+    const Image rendered = texture_warp.render(at, false, &covered);
+    report.coverage = static_cast<double>(std::count(covered.begin(), covered.end(), 1)) / static_cast<double>(covered.size());
+    report.render_psnr = psnr(luma, luma_of(rendered), covered);
+    report.mesh_psnr = report.block_psnr = std::numeric_limits<double>::quiet_NaN();
+    if (with_motion) {
+      const std::vector<Point>& before = result.positions.back();
+      const TextureWarp motion(before, mesh.tracking.triangles, previous, frame_canvas, frame_canvas);
+      std::vector<uint8_t> moved_over;
+      report.mesh_psnr = psnr(luma, luma_of(motion.render(at, false, &moved_over)), moved_over);
+      const BlockPrediction blocks = block_prediction(previous, luma_of(previous), luma, result.block, settings.tracker.search);
+      report.block_psnr = psnr(luma, luma_of(blocks.picture), moved_over);
+    }
+    result.frames.push_back(report);
+    result.positions.push_back(at);
+  };
+  measure(mesh.tracking.nodes, false);
+  result.block = settings.block;
+  if (result.block == 0)
+    result.block = matching_block(static_cast<uint32_t>(mesh.tracking.nodes.size()), covered, w, h, result.blocks);
+  else
+    result.blocks = blocks_over(result.block, covered, w, h);
+
+  // Every later frame.
+  NodeTracker tracker(mesh.tracking, luma, settings.tracker);
+  result.levels = tracker.levels();
+  const int64_t stated_end = result.video.frames > 0 ? result.video.frames : -1;
+  const int64_t end = settings.end_frame >= 0 && stated_end >= 0 ? std::min(settings.end_frame, stated_end) : std::max(settings.end_frame, stated_end);
+  const int64_t total = end >= 0 ? std::max<int64_t>(1, end - settings.first_frame) : 0;
+  if (settings.progress) settings.progress(1, total);
+  while (settings.end_frame < 0 || reader.frames_read() < settings.end_frame) {
+    previous = std::move(frame);
+    if (!reader.next(frame)) break;
+    luma = luma_of(frame);
+    measure(tracker.track(luma), true);
+    if (settings.progress) settings.progress(static_cast<int64_t>(result.positions.size()), total);
+  }
+  if (settings.end_frame >= 0 && reader.frames_read() < settings.end_frame)
+    refuse(ErrorKind::kInput, path + ": " + std::to_string(reader.frames_read()) + " frames; --frames ends at frame " + std::to_string(settings.end_frame));
+
+  // The stream, and each plane's bits as the decoder reads it back.
+  std::vector<MeshPlane> planes{mesh.plane};
+  for (size_t f = 1; f < result.positions.size(); ++f) planes.push_back(inter_plane(result.positions[f]));
+  result.stream = encode(planes).stream;
+  Decoder decoder(result.stream);
+  uint64_t start = 0;
+  for (TrackedFrame& report : result.frames) {
+    if (!decoder.next() || !decoder.info().intra != (&report != &result.frames.front()))
+      throw std::logic_error("track: the stream does not read back plane by plane");
+    const std::vector<Point>& expected = result.positions[static_cast<size_t>(&report - result.frames.data())];
+    if (!std::equal(expected.begin(), expected.end(), decoder.nodes().begin(), decoder.nodes().end()))
+      throw std::logic_error("track: a decoded plane differs from the tracked nodes");
+    report.bits = decoder.bit_position() - start;
+    start = decoder.bit_position();
+  }
+  return result;
+}
+
+}  // namespace m4mesh
