@@ -34,12 +34,13 @@ std::string decibels(double value) {
   return text;
 }
 
-// The mean of a measure over frames 1 … (the first has no motion, and its
-// rendering is the texture itself).
-double later_mean(const std::vector<TrackedFrame>& frames, double TrackedFrame::*measure) {
-  double sum = 0;
-  for (size_t f = 1; f < frames.size(); ++f) sum += frames[f].*measure;
-  return frames.size() > 1 ? sum / static_cast<double>(frames.size() - 1) : std::nan("");
+// A measure over frames 1 … (the first has no motion, and its rendering is
+// the texture itself): the PSNR of their mean squared error.
+double later_psnr(const std::vector<TrackedFrame>& frames, double TrackedFrame::*measure) {
+  if (frames.size() < 2) return std::nan("");
+  double error = 0;  // in units of 255²
+  for (size_t f = 1; f < frames.size(); ++f) error += std::pow(10.0, -(frames[f].*measure) / 10);
+  return -10 * std::log10(error / static_cast<double>(frames.size() - 1));
 }
 
 }  // namespace
@@ -86,6 +87,7 @@ int run_track(const TrackArgs& args) {
     write_file_atomically(args.report, csv);
   }
 
+  for (const std::string& warning : result.warnings) console::say("warning: %s", warning.c_str());
   const VideoInfo& video = result.video;
   const size_t nodes = result.mesh.tracking.nodes.size(), frames = result.frames.size();
   if (video.width != video.coded_width || video.height != video.coded_height)
@@ -97,12 +99,12 @@ int run_track(const TrackArgs& args) {
                result.mesh.plane.info.kind == MeshKind::kUniform ? "uniform" : "content-based Delaunay", result.stream.size(),
                static_cast<unsigned long long>(result.frames.front().bits), frames > 1 ? static_cast<double>(later_bits) / static_cast<double>(frames - 1) : 0.0);
   if (frames > 1) {
-    console::say("texture warped by the mesh against the video: %s dB (luma PSNR, mean of frames %lld … %lld)",
-                 decibels(later_mean(result.frames, &TrackedFrame::render_psnr)).c_str(), static_cast<long long>(result.frames[1].frame),
+    console::say("texture warped by the mesh against the video: %s dB (luma PSNR of the mean squared error of frames %lld … %lld)",
+                 decibels(later_psnr(result.frames, &TrackedFrame::render_psnr)).c_str(), static_cast<long long>(result.frames[1].frame),
                  static_cast<long long>(result.frames.back().frame));
     console::say("motion compensation from the previous frame: mesh %s dB (%zu vectors), %u × %u blocks %s dB (%u vectors)",
-                 decibels(later_mean(result.frames, &TrackedFrame::mesh_psnr)).c_str(), nodes, result.block, result.block,
-                 decibels(later_mean(result.frames, &TrackedFrame::block_psnr)).c_str(), result.blocks);
+                 decibels(later_psnr(result.frames, &TrackedFrame::mesh_psnr)).c_str(), nodes, result.block, result.block,
+                 decibels(later_psnr(result.frames, &TrackedFrame::block_psnr)).c_str(), result.blocks);
   } else {
     console::say("one frame: the mesh object is its texture, with no motion");
   }

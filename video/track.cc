@@ -82,8 +82,9 @@ TrackResult track_video(const std::string& path, const TrackSettings& settings) 
   Image frame, previous;
   while (reader.frames_read() <= settings.first_frame)
     if (!reader.next(frame))
-      refuse(ErrorKind::kInput, path + ": " + std::to_string(reader.frames_read()) + " frames; --frames starts at frame " +
-                                    std::to_string(settings.first_frame));
+      refuse(ErrorKind::kInput, reader.frames_read() == 0 ? path + ": no frame could be read"
+                                                          : path + ": " + std::to_string(reader.frames_read()) + " frames; --frames starts at frame " +
+                                                                std::to_string(settings.first_frame));
 
   // The mesh on the first frame.
   Luma luma = luma_of(frame);
@@ -146,6 +147,8 @@ TrackResult track_video(const std::string& path, const TrackSettings& settings) 
     measure(tracker.track(luma), true);
     if (settings.progress) settings.progress(static_cast<int64_t>(result.positions.size()), total);
   }
+  if (result.video.frames > 0 && reader.frames_read() < result.video.frames && (settings.end_frame < 0 || settings.end_frame > reader.frames_read()))
+    result.warnings.push_back(path + " states " + std::to_string(result.video.frames) + " frames; it ends after " + std::to_string(reader.frames_read()));
   if (settings.end_frame >= 0 && reader.frames_read() < settings.end_frame)
     refuse(ErrorKind::kInput, path + ": " + std::to_string(reader.frames_read()) + " frames; --frames ends at frame " + std::to_string(settings.end_frame));
 

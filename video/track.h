@@ -46,6 +46,7 @@ struct TrackResult {
   std::vector<TrackedFrame> frames;
   uint32_t block = 0, blocks = 0;  // block matching's side and its vectors a frame
   int levels = 0;                  // the tracker's pyramid levels
+  std::vector<std::string> warnings;
 };
 
 TrackResult track_video(const std::string& path, const TrackSettings& settings);

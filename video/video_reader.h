@@ -30,7 +30,9 @@ class VideoReader {
 
   const VideoInfo& info() const;
   // The next frame in display order; false at the end. A frame the decoder
-  // finds damaged, or whose size changes, is a kInput error naming it.
+  // finds damaged, or whose size changes, is a kInput error naming it. (A
+  // file may end before the frame count it states, with no damaged packet:
+  // FFmpeg reads such files as they are, and so does this.)
   bool next(Image& frame);
   int64_t frames_read() const;
 

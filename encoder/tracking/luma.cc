@@ -6,16 +6,6 @@
 
 namespace m4mesh {
 
-float Luma::sample(double x, double y) const {
-  const double u = std::clamp(x - 0.5, 0.0, width - 1.0), v = std::clamp(y - 0.5, 0.0, height - 1.0);
-  const auto x0 = static_cast<uint32_t>(u), y0 = static_cast<uint32_t>(v);
-  const uint32_t x1 = std::min(x0 + 1, width - 1), y1 = std::min(y0 + 1, height - 1);
-  const auto fx = static_cast<float>(u - x0), fy = static_cast<float>(v - y0);
-  const float top = at(x0, y0) + (at(x1, y0) - at(x0, y0)) * fx;
-  const float bottom = at(x0, y1) + (at(x1, y1) - at(x0, y1)) * fx;
-  return top + (bottom - top) * fy;
-}
-
 Luma halved(const Luma& picture) {
   Luma half(std::max<uint32_t>(1, picture.width / 2), std::max<uint32_t>(1, picture.height / 2));
   for (uint32_t y = 0; y < half.height; ++y)

@@ -4,6 +4,7 @@
 // render/texture_warp.h draws it).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -20,7 +21,15 @@ struct Luma {
   float at(uint32_t x, uint32_t y) const { return values[size_t{y} * width + x]; }
 
   // Bilinear between pixel centres, the edge pixels repeated outside.
-  float sample(double x, double y) const;
+  float sample(double x, double y) const {
+    const double u = std::clamp(x - 0.5, 0.0, width - 1.0), v = std::clamp(y - 0.5, 0.0, height - 1.0);
+    const auto x0 = static_cast<uint32_t>(u), y0 = static_cast<uint32_t>(v);
+    const uint32_t x1 = std::min(x0 + 1, width - 1), y1 = std::min(y0 + 1, height - 1);
+    const auto fx = static_cast<float>(u - x0), fy = static_cast<float>(v - y0);
+    const float top = at(x0, y0) + (at(x1, y0) - at(x0, y0)) * fx;
+    const float bottom = at(x0, y1) + (at(x1, y1) - at(x0, y1)) * fx;
+    return top + (bottom - top) * fy;
+  }
 };
 
 // Half the size, each pixel the mean of the 2 × 2 it covers (an odd last
