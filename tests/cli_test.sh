@@ -126,15 +126,15 @@ if "$m4mesh" encode "$work/bad.txt" -o "$work/bad.m4m" 2> "$work/err"; then fail
 grep -q "^error: .*bad.txt:18: expected an integer for y" "$work/err" || fail "input error: $(cat "$work/err")"
 
 # 3D: the encoder's trace equals the decoder's; check finds a damaged unit and carries on.
-"$m4mesh" encode3d tests/data/tetra-frames -o "$work/tracked.m4m" --trace > "$work/t-encode.trace" 2> /dev/null || fail "encode3d --trace"
-"$m4mesh" trace "$work/tracked.m4m" > "$work/t-decode.trace"
+"$m4mesh" encode3d tests/data/tetra-frames -o "$work/t.m4m" --trace > "$work/t-encode.trace" 2> /dev/null || fail "encode3d --trace"
+"$m4mesh" trace "$work/t.m4m" > "$work/t-decode.trace"
 cmp -s "$work/t-encode.trace" "$work/t-decode.trace" || fail "3D encoder and decoder traces differ"
 grep -q "motion_nonzero" "$work/t-decode.trace" || fail "3D trace lacks bins"
-"$m4mesh" check "$work/tracked.m4m" | grep -q ": conformant$" || fail "3D check of a good stream"
+"$m4mesh" check "$work/t.m4m" | grep -q ": conformant$" || fail "3D check of a good stream"
 if "$m4mesh" check "$source/conformance/mesh3d/streams/x-06-frame-cut.m4m" > "$work/check3d"; then fail "3D check passed a cut frame"; fi
 grep -q "^error: unit 2, frame 1, arithmetic_bytes at bit [0-9]*: " "$work/check3d" || fail "3D check: $(cat "$work/check3d")"
 # decode3d into a folder named with a trailing '/': the temporary folder lies beside it.
-"$m4mesh" decode3d "$work/tracked.m4m" -o "$work/frames/" --verify > /dev/null || fail "decode3d -o folder/"
+"$m4mesh" decode3d "$work/t.m4m" -o "$work/frames/" --verify > /dev/null || fail "decode3d -o folder/"
 [ -f "$work/frames/0001.obj" ] || fail "decode3d -o folder/ wrote no frames"
 ! ls -a "$work" "$work/frames" | grep -q partial || fail "decode3d left its temporary folder"
 # Quality targets: the search is printed and the kept stream meets the target.
@@ -174,10 +174,10 @@ echo "not a frame" > "$work/frames-in/notes.txt"
 grep -q "^warning: .*frames-in: 1 files not used (not .obj frames), .*notes.txt$" "$work/err" || fail "unused-file warning: $(cat "$work/err")"
 
 # metrics --stream: the rate as the docs define it, then the whole stream; a stream of another sequence is refused.
-"$m4mesh" metrics tests/data/tetra-frames "$work/tracked.m4m" --stream "$work/tracked.m4m" > "$work/metrics" || fail "metrics --stream"
+"$m4mesh" metrics tests/data/tetra-frames "$work/t.m4m" --stream "$work/t.m4m" > "$work/metrics" || fail "metrics --stream"
 grep -q "^rate .* bits/vertex/frame (frame units over vertices × (frames − 1))$" "$work/metrics" || fail "metrics rate: $(cat "$work/metrics")"
 grep -q "^stream .* bits/vertex/frame (the whole stream over vertices × frames, as rd.s bpvf)$" "$work/metrics" || fail "metrics stream: $(cat "$work/metrics")"
-status=0; "$m4mesh" metrics tests/data/tetra-frames "$work/tracked.m4m" --stream "$source/conformance/mesh3d/streams/cpca-01-wpt.m4m" > "$work/metrics" 2> "$work/err" || status=$?
+status=0; "$m4mesh" metrics tests/data/tetra-frames "$work/t.m4m" --stream "$source/conformance/mesh3d/streams/cpca-01-wpt.m4m" > "$work/metrics" 2> "$work/err" || status=$?
 [ "$status" = 1 ] && [ ! -s "$work/metrics" ] && grep -q "not of the sequence compared" "$work/err" || fail "metrics of another stream: exit $status, $(cat "$work/err")"
 
 # A progressive stream: decode3d --max-bytes takes a prefix; progressive prints the curve.
@@ -191,20 +191,20 @@ if "$m4mesh" decode3d "$cpca" --max-bytes 100 -o "$work/none.m4seq" 2> "$work/er
 grep -q "holds no unit" "$work/err" || fail "--max-bytes below the first unit: $(cat "$work/err")"
 "$m4mesh" progressive "$cpca" "$work/full.m4seq" --step 1 > "$work/curve" || fail "progressive"
 [ "$(tail -1 "$work/curve" | awk '{print $3}')" = "0.00000" ] || fail "progressive: the whole stream against its own decoding: $(tail -1 "$work/curve")"
-if "$m4mesh" progressive "$work/tracked.m4m" tests/data/tetra-frames 2> "$work/err"; then fail "progressive on a frame codec"; fi
+if "$m4mesh" progressive "$work/t.m4m" tests/data/tetra-frames 2> "$work/err"; then fail "progressive on a frame codec"; fi
 grep -q "progressive needs a progressive codec" "$work/err" || fail "progressive on a frame codec: $(cat "$work/err")"
 # --reorder: vertices in coding order, and the decoder and info say so.
 "$m4mesh" encode3d tests/data/tetra-frames --reorder -o "$work/re.m4m" > /dev/null || fail "encode3d --reorder"
 "$m4mesh" info "$work/re.m4m" | grep -q "vertex order: coding order" || fail "info of a reordered stream: $("$m4mesh" info "$work/re.m4m")"
 "$m4mesh" decode3d "$work/re.m4m" -o "$work/re.m4seq" > /dev/null 2> "$work/err" || fail "decode3d of a reordered stream"
 grep -q "^note: .* numbers its vertices in coding order" "$work/err" || fail "decode3d note: $(cat "$work/err")"
-"$m4mesh" info "$work/tracked.m4m" | grep -q "vertex order: the input's" || fail "info of an input-order stream"
+"$m4mesh" info "$work/t.m4m" | grep -q "vertex order: the input's" || fail "info of an input-order stream"
 
 # PC2 output, with its OBJ beside it, reads back as the same sequence; it never overwrites the input's OBJ.
-"$m4mesh" decode3d "$work/tracked.m4m" -o "$work/t.pc2" > /dev/null || fail "decode3d -o .pc2"
+"$m4mesh" decode3d "$work/t.m4m" -o "$work/t.pc2" > /dev/null || fail "decode3d -o .pc2"
 [ -f "$work/t.obj" ] || fail "decode3d -o .pc2 wrote no .obj"
 "$m4mesh" convert "$work/t.pc2" "$work/from-pc2.m4seq" > /dev/null || fail "convert .pc2"
-"$m4mesh" decode3d "$work/tracked.m4m" -o "$work/direct.m4seq" > /dev/null || fail "decode3d -o .m4seq"
+"$m4mesh" decode3d "$work/t.m4m" -o "$work/direct.m4seq" > /dev/null || fail "decode3d -o .m4seq"
 cmp -s "$work/from-pc2.m4seq" "$work/direct.m4seq" || fail "a PC2 round trip differs from the .m4seq"
 cp tests/data/tetra-frames/1.obj "$work/one.obj"
 cp "$work/one.obj" "$work/one-before.obj"
@@ -219,23 +219,23 @@ grep -q "decoding from the intra refresh at frame 2" "$work/err" || fail "decode
 cmp -s "$work/intra-3.f32" <(tail -c +$(( 3 * 60 + 1 )) "$work/intra-all.f32") || fail "decode3d --frames 3:3 from the refresh differs"
 
 # PLY frames: one file per frame by a '*' pattern, read back alike; ASCII PLY reads too.
-"$m4mesh" decode3d "$work/tracked.m4m" -o "$work/ply/*.ply" 2> /dev/null || fail "decode3d -o 'ply/*.ply'"
+"$m4mesh" decode3d "$work/t.m4m" -o "$work/ply/*.ply" 2> /dev/null || fail "decode3d -o 'ply/*.ply'"
 [ -f "$work/ply/0004.ply" ] && head -2 "$work/ply/0001.ply" | grep -q "^format binary_little_endian 1.0$" || fail "PLY frames not written"
 "$m4mesh" convert "$work/ply/*.ply" "$work/from-ply.m4seq" 2> /dev/null || fail "convert 'ply/*.ply'"
 cmp -s "$work/from-ply.m4seq" "$work/direct.m4seq" || fail "a PLY round trip differs from the .m4seq"
-status=0; "$m4mesh" decode3d "$work/tracked.m4m" -o "$work/one.ply" 2> "$work/err" || status=$?
+status=0; "$m4mesh" decode3d "$work/t.m4m" -o "$work/one.ply" 2> "$work/err" || status=$?
 [ "$status" = 2 ] && grep -q "need a name with '\*'" "$work/err" || fail "several frames into one .ply: exit $status, $(cat "$work/err")"
 mkdir "$work/ascii"
 printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\nproperty uchar red\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 1\n1 0 0 2\n1 1 0 3\n0 1 0.5 4\n4 0 1 2 3\n' > "$work/ascii/1.ply"
 "$m4mesh" convert "$work/ascii" "$work/ascii.m4seq" 2> "$work/err" && grep -q "1 frames of 4 vertices" "$work/err" || fail "ASCII PLY: $(cat "$work/err")"
 
 # metrics: JSON and CSV, per frame; a warning when an outlier sets the box.
-"$m4mesh" metrics tests/data/tetra-frames "$work/tracked.m4m" --stream "$work/tracked.m4m" --json --per-frame > "$work/m.json" || fail "metrics --json"
+"$m4mesh" metrics tests/data/tetra-frames "$work/t.m4m" --stream "$work/t.m4m" --json --per-frame > "$work/m.json" || fail "metrics --json"
 python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert len(d['frames'])==4 and 'kg_error_percent' in d and 'stream_rate_bpvf' in d" "$work/m.json" ||
   fail "metrics --json: $(cat "$work/m.json")"
-[ "$("$m4mesh" metrics tests/data/tetra-frames "$work/tracked.m4m" --csv | head -1)" = "kg_error_percent,rmse,max_error,psnr_db,sted_spatial,sted_temporal,sted" ] ||
+[ "$("$m4mesh" metrics tests/data/tetra-frames "$work/t.m4m" --csv | head -1)" = "kg_error_percent,rmse,max_error,psnr_db,sted_spatial,sted_temporal,sted" ] ||
   fail "metrics --csv header"
-[ "$("$m4mesh" metrics tests/data/tetra-frames "$work/tracked.m4m" --csv --per-frame | wc -l)" = 5 ] || fail "metrics --csv --per-frame: a header and 4 frames"
+[ "$("$m4mesh" metrics tests/data/tetra-frames "$work/t.m4m" --csv --per-frame | wc -l)" = 5 ] || fail "metrics --csv --per-frame: a header and 4 frames"
 mkdir "$work/far"
 for k in 1 2 3 4; do
   { for i in $(seq 0 199); do echo "v $((i % 20)) $((i / 20)) $((k * i % 7))"; done; echo "v 1e9 0 0"
@@ -371,12 +371,12 @@ else
 fi
 
 # track: usage errors exit 2 and leave no output; a file that is no video exits 1.
-status=0; "$m4mesh" track "$work/none.mp4" -o "$work/tracked.m4m" --uniform 16x16 --nodes 30 2> "$work/err" || status=$?
+status=0; "$m4mesh" track "$work/none.mp4" -o "$work/from-video.m4m" --uniform 16x16 --nodes 30 2> "$work/err" || status=$?
 [ "$status" = 2 ] && grep -q "one mesh or the other" "$work/err" || fail "track: --uniform with --nodes: exit $status, $(cat "$work/err")"
-head -c 3000 /dev/urandom > "$work/noise.mp4"
-status=0; "$m4mesh" track "$work/noise.mp4" -o "$work/tracked.m4m" 2> "$work/err" || status=$?
+yes "not a video" | head -c 3000 > "$work/noise.mp4"
+status=0; "$m4mesh" track "$work/noise.mp4" -o "$work/from-video.m4m" 2> "$work/err" || status=$?
 [ "$status" = 1 ] && grep -q "^error: $work/noise.mp4: not a video FFmpeg can read" "$work/err" || fail "track: not a video: exit $status, $(cat "$work/err")"
-[ ! -e "$work/tracked.m4m" ] || fail "track: a failed run left its output"
+[ ! -e "$work/from-video.m4m" ] || fail "track: a failed run left its output"
 
 "$m4mesh" demo --frames 12 > "$work/demo" || fail "demo failed"
 grep -q "bit-exact" "$work/demo" || fail "demo not bit-exact"
