@@ -373,7 +373,7 @@ fi
 # track: usage errors exit 2 and leave no output; a file that is no video exits 1.
 status=0; "$m4mesh" track "$work/none.mp4" -o "$work/from-video.m4m" --uniform 16x16 --nodes 30 2> "$work/err" || status=$?
 [ "$status" = 2 ] && grep -q "one mesh or the other" "$work/err" || fail "track: --uniform with --nodes: exit $status, $(cat "$work/err")"
-yes "not a video" | head -c 3000 > "$work/noise.mp4"
+printf "not a video %.0s" $(seq 300) > "$work/noise.mp4"
 status=0; "$m4mesh" track "$work/noise.mp4" -o "$work/from-video.m4m" 2> "$work/err" || status=$?
 [ "$status" = 1 ] && grep -q "^error: $work/noise.mp4: not a video FFmpeg can read" "$work/err" || fail "track: not a video: exit $status, $(cat "$work/err")"
 [ ! -e "$work/from-video.m4m" ] || fail "track: a failed run left its output"
