@@ -21,5 +21,5 @@ ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:ha
 echo "== mutation testing: the CI subset (the whole run: python3 scripts/mutants.py)"
 python3 scripts/mutants.py --subset ci --work "${TMPDIR:-/tmp}/m4mesh-mutants-ci"
 
-echo "== fuzzing: each target for ${M4MESH_FUZZ_SECONDS:-30}s"
-bash scripts/fuzz.sh "${M4MESH_FUZZ_SECONDS:-30}"
+echo "== fuzzing: each target for ${M4MESH_FUZZ_SECONDS:-20}s"
+bash scripts/fuzz.sh "${M4MESH_FUZZ_SECONDS:-20}"
