@@ -13,7 +13,8 @@ cmake --build build -j"$jobs"
 ctest --test-dir build --output-on-failure -j"$jobs"
 
 echo "== AddressSanitizer + UndefinedBehaviorSanitizer build: tests"
-cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DM4MESH_SANITIZE=ON -DM4MESH_BENCHMARKS=OFF -DM4MESH_WEB=OFF -DM4MESH_CGAL=OFF > /dev/null
+# -O1 -g1 compiles in half the time of -O2 -g (CLI11's app.cc: 26 s against 69 s) and keeps line numbers in reports.
+cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DM4MESH_SANITIZE=ON -DM4MESH_BENCHMARKS=OFF -DM4MESH_WEB=OFF -DM4MESH_CGAL=OFF > /dev/null
 cmake --build build-sanitize -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-sanitize --output-on-failure -j"$jobs"

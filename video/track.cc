@@ -28,25 +28,7 @@ Image texture_over(const Image& frame, const Canvas& box) {
   return texture;
 }
 
-// The block side whose blocks over the covered pixels come nearest to `vectors`.
-uint32_t matching_block(uint32_t vectors, const std::vector<uint8_t>& covered, uint32_t width, uint32_t height, uint32_t& blocks) {
-  uint32_t best = 4;
-  int64_t best_gap = std::numeric_limits<int64_t>::max();
-  for (uint32_t side = 4; side <= 64; ++side) {
-    uint32_t count = 0;
-    for (uint32_t by = 0; by < height; by += side)
-      for (uint32_t bx = 0; bx < width; bx += side) {
-        bool any = false;
-        for (uint32_t y = by; y < std::min(by + side, height) && !any; ++y)
-          for (uint32_t x = bx; x < std::min(bx + side, width) && !any; ++x) any = covered[size_t{y} * width + x] != 0;
-        count += any;
-      }
-    const int64_t gap = std::abs(int64_t{count} - vectors);
-    if (gap < best_gap) best_gap = gap, best = side, blocks = count;
-  }
-  return best;
-}
-
+// Blocks of side × side pixels holding a covered pixel.
 uint32_t blocks_over(uint32_t side, const std::vector<uint8_t>& covered, uint32_t width, uint32_t height) {
   uint32_t count = 0;
   for (uint32_t by = 0; by < height; by += side)
@@ -57,6 +39,15 @@ uint32_t blocks_over(uint32_t side, const std::vector<uint8_t>& covered, uint32_
       count += any;
     }
   return count;
+}
+
+// The block side (4 … 64) whose blocks over the covered pixels come nearest to `vectors`.
+uint32_t matching_block(uint32_t vectors, const std::vector<uint8_t>& covered, uint32_t width, uint32_t height) {
+  uint32_t best = 4;
+  int64_t best_gap = std::numeric_limits<int64_t>::max();
+  for (uint32_t side = 4; side <= 64; ++side)
+    if (const int64_t gap = std::abs(int64_t{blocks_over(side, covered, width, height)} - vectors); gap < best_gap) best_gap = gap, best = side;
+  return best;
 }
 
 }  // namespace
@@ -127,11 +118,8 @@ TrackResult track_video(const std::string& path, const TrackSettings& settings) 
     result.positions.push_back(at);
   };
   measure(mesh.tracking.nodes, false);
-  result.block = settings.block;
-  if (result.block == 0)
-    result.block = matching_block(static_cast<uint32_t>(mesh.tracking.nodes.size()), covered, w, h, result.blocks);
-  else
-    result.blocks = blocks_over(result.block, covered, w, h);
+  result.block = settings.block != 0 ? settings.block : matching_block(static_cast<uint32_t>(mesh.tracking.nodes.size()), covered, w, h);
+  result.blocks = blocks_over(result.block, covered, w, h);
 
   // Every later frame.
   NodeTracker tracker(mesh.tracking, luma, settings.tracker);

@@ -20,7 +20,7 @@ static_assert(sizeof(Rgb) == 3, "Image rows are copied as packed RGB");
 namespace {
 
 // Sizes past this are refused before any picture is allocated.
-constexpr int kMaxCodedSide = 16384;
+constexpr int kMaxCodedSide = 8192;
 
 std::string av_reason(int code) {
   char text[AV_ERROR_MAX_STRING_SIZE] = {};
