@@ -1,6 +1,7 @@
 #include "video/block_matching.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace m4mesh {

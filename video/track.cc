@@ -1,5 +1,6 @@
 #include "video/track.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
