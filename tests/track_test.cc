@@ -303,6 +303,9 @@ TEST(Track, DegenerateInputsGiveClearErrors) {
   TrackSettings past_end;
   past_end.first_frame = 20;
   EXPECT_NE(error_of([&] { track_video(folder / "%03d.png", past_end); }).find("--frames starts at frame 20"), std::string::npos);
+  TrackSettings ends_late;
+  ends_late.end_frame = 12;  // --frames 0:11 of the 8 frames h264_video left there
+  EXPECT_NE(error_of([&] { track_video(folder / "%03d.png", ends_late); }).find("8 frames; --frames ends at frame 11"), std::string::npos);
 }
 
 // A natural video: a tree in the wind (OpenCV's sample tree.avi, Debian's

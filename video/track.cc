@@ -139,7 +139,7 @@ TrackResult track_video(const std::string& path, const TrackSettings& settings) 
   if (result.video.frames > 0 && reader.frames_read() < result.video.frames && (settings.end_frame < 0 || settings.end_frame > reader.frames_read()))
     result.warnings.push_back(path + " states " + std::to_string(result.video.frames) + " frames; it ends after " + std::to_string(reader.frames_read()));
   if (settings.end_frame >= 0 && reader.frames_read() < settings.end_frame)
-    refuse(ErrorKind::kInput, path + ": " + std::to_string(reader.frames_read()) + " frames; --frames ends at frame " + std::to_string(settings.end_frame));
+    refuse(ErrorKind::kInput, path + ": " + std::to_string(reader.frames_read()) + " frames; --frames ends at frame " + std::to_string(settings.end_frame - 1));
 
   // The stream, and each plane's bits as the decoder reads it back.
   std::vector<MeshPlane> planes{mesh.plane};
@@ -147,13 +147,12 @@ TrackResult track_video(const std::string& path, const TrackSettings& settings) 
   result.stream = encode(planes).stream;
   Decoder decoder(result.stream);
   uint64_t start = 0;
-  for (TrackedFrame& report : result.frames) {
-    if (!decoder.next() || !decoder.info().intra != (&report != &result.frames.front()))
-      throw std::logic_error("track: the stream does not read back plane by plane");
-    const std::vector<Point>& expected = result.positions[static_cast<size_t>(&report - result.frames.data())];
+  for (size_t f = 0; f < result.frames.size(); ++f) {
+    if (!decoder.next() || decoder.info().intra != (f == 0)) throw std::logic_error("track: the stream does not read back plane by plane");
+    const std::vector<Point>& expected = result.positions[f];
     if (!std::equal(expected.begin(), expected.end(), decoder.nodes().begin(), decoder.nodes().end()))
       throw std::logic_error("track: a decoded plane differs from the tracked nodes");
-    report.bits = decoder.bit_position() - start;
+    result.frames[f].bits = decoder.bit_position() - start;
     start = decoder.bit_position();
   }
   return result;
