@@ -72,6 +72,7 @@ TrackResult track_video(const std::string& path, const TrackSettings& settings) 
   result.video = reader.info();
   const uint32_t w = result.video.width, h = result.video.height;
   Image frame, previous;
+  Luma previous_luma;
   while (reader.frames_read() <= settings.first_frame)
     if (!reader.next(frame))
       refuse(ErrorKind::kInput, reader.frames_read() == 0 ? path + ": no frame could be read"
@@ -112,7 +113,7 @@ TrackResult track_video(const std::string& path, const TrackSettings& settings) 
       const TextureWarp motion(before, mesh.tracking.triangles, previous, frame_canvas, frame_canvas);
       std::vector<uint8_t> moved_over;
       report.mesh_psnr = psnr(luma, luma_of(motion.render(at, false, &moved_over)), moved_over);
-      const BlockPrediction blocks = block_prediction(previous, luma_of(previous), luma, result.block, settings.tracker.search);
+      const BlockPrediction blocks = block_prediction(previous, previous_luma, luma, result.block, settings.tracker.search);
       report.block_psnr = psnr(luma, luma_of(blocks.picture), moved_over);
     }
     result.frames.push_back(report);
@@ -131,6 +132,7 @@ TrackResult track_video(const std::string& path, const TrackSettings& settings) 
   if (settings.progress) settings.progress(1, total);
   while (settings.end_frame < 0 || reader.frames_read() < settings.end_frame) {
     previous = std::move(frame);
+    previous_luma = std::move(luma);
     if (!reader.next(frame)) break;
     luma = luma_of(frame);
     measure(tracker.track(luma), true);

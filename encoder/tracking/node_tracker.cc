@@ -224,7 +224,7 @@ const std::vector<Point>& NodeTracker::track(const Luma& frame) {
   previous_ = positions_;
   for (size_t n = 0; n < p.size(); ++n) positions_[n] = {static_cast<int32_t>(std::lround(p[n][0] * 2)), static_cast<int32_t>(std::lround(p[n][1] * 2))};
   has_velocity_ = true;
-  if (options_.reference == TrackingReference::kPrevious) previous_pyramid_ = frame_pyramid_;
+  if (options_.reference == TrackingReference::kPrevious) previous_pyramid_ = std::move(frame_pyramid_);
   return positions_;
 }
 
