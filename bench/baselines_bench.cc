@@ -24,7 +24,7 @@
 #include "bench/sequences.h"
 #include "encoder/mesh3d/base_mesh.h"
 #include "mesh3d/base_mesh.h"
-#include "mesh3d/draco_reference.h"
+#include "anchors/draco_reference.h"
 #include "mesh3d/metrics.h"
 
 namespace m4mesh {

@@ -8,7 +8,7 @@
 #include "bench/sequences.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
-#include "mesh3d/draco_reference.h"
+#include "anchors/draco_reference.h"
 #include "mesh3d/metrics.h"
 
 namespace m4mesh {

@@ -104,8 +104,7 @@ int run_decode(const DecodeArgs& args) {
   const std::vector<uint8_t> stream = read_file(args.input);
   if (is_mesh3d_stream(stream)) {
     if (args.output.empty() || args.md5_only || args.keep_going)
-      throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
-                  args.input + ": a mesh3d stream: m4mesh decode3d " + args.input + " -o FOLDER/, FILE.m4seq or FILE.f32");
+      throw usage_error(args.input + ": a mesh3d stream: m4mesh decode3d " + args.input + " -o FOLDER/, FILE.m4seq or FILE.f32");
     Decode3dArgs three_d;
     three_d.input = args.input;
     three_d.output = args.output;
@@ -211,8 +210,7 @@ std::string default_suite() {
   const fs::path tool = fs::read_symlink("/proc/self/exe", ignored).parent_path();
   for (const fs::path& folder : {fs::path("conformance"), tool / ".." / "share" / "m4mesh" / "conformance", tool / ".." / ".." / "conformance"})
     if (fs::exists(folder / "manifest.json", ignored)) return folder.lexically_normal().string();
-  throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
-              "no conformance suite in ./conformance or beside the tool: m4mesh conform FOLDER (the folder holding manifest.json)");
+  throw usage_error("no conformance suite in ./conformance or beside the tool: m4mesh conform FOLDER (the folder holding manifest.json)");
 }
 
 int run_conform(ConformOptions options) {

@@ -16,6 +16,7 @@
 
 #include "cli/console.h"
 #include "codecs3d/registry.h"
+#include "encoder/mesh3d/codec_encoders.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/md5.h"
@@ -49,11 +50,10 @@ SequenceOutput sequence_output(const std::string& output, bool f32_allowed, cons
   if (output == "-") {
     if (format.empty() || format == "m4seq") return SequenceOutput::kM4seq;
     if (format == "f32" && f32_allowed) return SequenceOutput::kF32;
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
-                "--format " + format + ": standard output takes m4seq" + std::string(f32_allowed ? " or f32" : ""));
+    throw usage_error("--format " + format + ": standard output takes m4seq" + std::string(f32_allowed ? " or f32" : ""));
   }
   if (!format.empty())
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--format is for -o - (standard output); a file's form comes from its name");
+    throw usage_error("--format is for -o - (standard output); a file's form comes from its name");
   const fs::path path(output);
   const std::string extension = path.filename().empty() ? "" : path.extension().string();
   if (extension.empty()) return SequenceOutput::kObjFolder;
@@ -61,8 +61,7 @@ SequenceOutput sequence_output(const std::string& output, bool f32_allowed, cons
   if (extension == ".pc2") return SequenceOutput::kPc2;
   if (extension == ".ply") return SequenceOutput::kPly;
   if (extension == ".f32" && f32_allowed) return SequenceOutput::kF32;
-  throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
-              output + ": unknown output format '" + extension + "' (a folder of OBJ frames, .m4seq, .pc2, .ply" + (f32_allowed ? ", .f32" : "") +
+  throw usage_error(output + ": unknown output format '" + extension + "' (a folder of OBJ frames, .m4seq, .pc2, .ply" + (f32_allowed ? ", .f32" : "") +
                   "; a folder whose name holds a dot takes a trailing '/')");
 }
 
@@ -71,8 +70,7 @@ SequenceOutput sequence_output(const std::string& output, bool f32_allowed, cons
 void write_ply_frames(const MeshSequence& sequence, const std::string& output) {
   const size_t star = fs::path(output).filename().string().find('*');
   if (star == std::string::npos && sequence.frames.size() != 1)
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
-                output + ": " + std::to_string(sequence.frames.size()) + " frames need a name with '*' for the frame number (frames/*.ply)");
+    throw usage_error(output + ": " + std::to_string(sequence.frames.size()) + " frames need a name with '*' for the frame number (frames/*.ply)");
   std::vector<std::string> paths;
   for (size_t k = 0; k < sequence.frames.size(); ++k) {
     std::string path = output;
@@ -168,14 +166,14 @@ void refuse_overwriting(const std::string& input, const std::string& output) {
     for (const fs::path& in : with_faces(input))
       for (const fs::path& out : with_faces(output))
         if (fs::equivalent(in, out, ignored))
-          throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, out.string() + ": the output is the input; refusing to overwrite it");
+          throw usage_error(out.string() + ": the output is the input; refusing to overwrite it");
   }
   console::check_output(output);
 }
 
 void refuse_trace_to_output(bool trace, const std::string& output) {
   if (trace && output == "-")
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--trace prints to standard output, which -o - takes: write the stream to a file");
+    throw usage_error("--trace prints to standard output, which -o - takes: write the stream to a file");
 }
 
 void add_codec_options(CLI::App& command, Encode3dArgs& args) {
@@ -191,11 +189,11 @@ void add_codec_options(CLI::App& command, Encode3dArgs& args) {
   // One flag per option name; codecs that share a name share the flag.
   std::set<std::string> added;
   for (const Codec3d& c : codecs3d())
-    for (const CodecOption& o : c.options) {
+    for (const CodecOption& o : codec_encoding(c).options) {
       if (o.name == "target-kg" || !added.insert(o.name).second) continue;  // the target is a flag of every codec
       std::string owners;
       for (const Codec3d& other : codecs3d())
-        for (const CodecOption& p : other.options)
+        for (const CodecOption& p : codec_encoding(other).options)
           if (p.name == o.name) owners += (owners.empty() ? "" : ", ") + other.name;
       const std::string help = o.help + " [" + owners + "]" + (o.default_value.empty() ? "" : " (default " + o.default_value + ")");
       const std::string name = o.name;
@@ -210,8 +208,7 @@ int run_encode3d(const Encode3dArgs& args) {
   refuse_trace_to_output(args.trace, args.output);
   refuse_overwriting(args.input, args.output);
   if (fs::is_regular_file(args.input) && is_mesh3d_stream(read_file(args.input)))
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
-                args.input + ": a mesh3d stream; encode3d takes frames (m4mesh decode3d turns a stream into frames)");
+    throw usage_error(args.input + ": a mesh3d stream; encode3d takes frames (m4mesh decode3d turns a stream into frames)");
   const auto reading = std::chrono::steady_clock::now();
   const MeshSequence sequence = load_sequence(args.input, !console::quiet());
   console::detail("%s: %zu frames of %u vertices and %zu faces read in %.3f s", args.input.c_str(), sequence.frames.size(),
@@ -233,8 +230,8 @@ int run_encode3d(const Encode3dArgs& args) {
   const QualityTarget target{args.target_kg, args.target_psnr};
   const bool targeted = target.set();
   if (targeted) check_target(target);
-  if (args.codec == "auto" && !targeted) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--codec auto needs --target-kg or --target-psnr");
-  if (targeted && args.trace) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--trace and a quality target: trace the stream the search keeps");
+  if (args.codec == "auto" && !targeted) throw usage_error("--codec auto needs --target-kg or --target-psnr");
+  if (targeted && args.trace) throw usage_error("--trace and a quality target: trace the stream the search keeps");
   const double bits = 8.0 / (static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size()));
   auto print_trial = [&](const TargetTrial& t) {
     progress.finish();
@@ -301,26 +298,25 @@ std::pair<uint32_t, uint32_t> frame_range(const std::string& text) {
     uint32_t value = 0;
     const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), value);
     if (error != std::errc() || end != part.data() + part.size())
-      throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--frames " + text + ": frames A:B, A: or :B");
+      throw usage_error("--frames " + text + ": frames A:B, A: or :B");
     return value;
   };
-  if (colon == std::string::npos) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--frames " + text + ": frames A:B, A: or :B");
+  if (colon == std::string::npos) throw usage_error("--frames " + text + ": frames A:B, A: or :B");
   const std::pair<uint32_t, uint32_t> range{number(text.substr(0, colon), 0), number(text.substr(colon + 1), UINT32_MAX)};
-  if (range.first > range.second) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--frames " + text + ": A is after B");
+  if (range.first > range.second) throw usage_error("--frames " + text + ": A is after B");
   return range;
 }
 
 int run_decode3d(const Decode3dArgs& args) {
   const bool writes = !args.output.empty();
-  if (!writes && !args.md5) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "decode3d needs -o OUTPUT, or --md5");
+  if (!writes && !args.md5) throw usage_error("decode3d needs -o OUTPUT, or --md5");
   if (writes) refuse_overwriting(args.input, args.output);
   const auto [first, last] = frame_range(args.frames);
   std::vector<uint8_t> stream = read_file(args.input);
   if (args.max_bytes > 0) {
     const ContainerPrefix prefix = container_prefix(split_container(stream), stream.size(), args.max_bytes);
     if (prefix.units == 0)
-      throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
-                  "--max-bytes " + std::to_string(args.max_bytes) + " holds no unit: the first ends later");
+      throw usage_error("--max-bytes " + std::to_string(args.max_bytes) + " holds no unit: the first ends later");
     say("prefix: %zu units, %llu of %zu bytes", prefix.units, static_cast<unsigned long long>(prefix.bytes), stream.size());
     stream.resize(prefix.bytes);
   }
@@ -382,7 +378,7 @@ int run_decode3d(const Decode3dArgs& args) {
     std::fprintf(stderr, "%s: no frame decoded before the error; nothing written\n", args.input.c_str());
     return 1;
   }
-  if (written.empty()) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--frames " + args.frames + ": the stream has no frame there");
+  if (written.empty()) throw usage_error("--frames " + args.frames + ": the stream has no frame there");
   if (to_folder) {
     install_obj_frames(temporary, fs::path(args.output));
   } else if (writes && form == SequenceOutput::kF32) {
@@ -498,7 +494,7 @@ int run_trace3d(const std::string& input) {
 }
 
 int run_metrics(const MetricsArgs& args) {
-  if (args.json && args.csv) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--json or --csv, not both");
+  if (args.json && args.csv) throw usage_error("--json or --csv, not both");
   console::set_input(args.original);
   const MeshSequence given_original = load_sequence(args.original, !console::quiet());
   // The stream is checked against the sequence before anything is printed.

@@ -5,7 +5,7 @@
 #include <string>
 #include <utility>
 
-#include "codecs3d/options.h"
+#include "encoder/mesh3d/codec_options.h"
 #include "mesh3d/sequence.h"
 
 namespace CLI {

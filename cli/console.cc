@@ -78,7 +78,7 @@ void check_output(const std::string& path) {
   std::error_code error;
   const fs::file_status status = fs::status(path, error);
   const bool taken = fs::is_regular_file(status) || (fs::is_directory(status) && !fs::is_empty(path, error));
-  if (taken) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, path + ": exists; -y replaces it");
+  if (taken) throw usage_error(path + ": exists; -y replaces it");
 }
 
 }  // namespace m4mesh::console

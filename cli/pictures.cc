@@ -22,12 +22,12 @@ namespace {
 bool gif_output(const std::string& output, const char* command) {
   const std::string extension = std::filesystem::path(output).extension().string();
   if (extension != ".gif" && extension != ".png")
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, output + ": " + command + " writes .gif (every frame) or .png (one frame)");
+    throw usage_error(output + ": " + command + " writes .gif (every frame) or .png (one frame)");
   return extension == ".gif";
 }
 
 uint32_t gif_delay(double fps) {
-  if (!(fps > 0 && fps <= 100)) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--fps: 0 < fps ≤ 100");
+  if (!(fps > 0 && fps <= 100)) throw usage_error("--fps: 0 < fps ≤ 100");
   return static_cast<uint32_t>(std::lround(100.0 / fps));
 }
 
@@ -48,19 +48,17 @@ int run_render(const RenderArgs& args) {
   refuse_overwriting(args.input, args.output);
   const std::vector<uint8_t> stream = read_file(args.input);
   if (is_mesh3d_stream(stream))
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, args.input + ": a mesh3d stream; render draws 2D mesh streams");
+    throw usage_error(args.input + ": a mesh3d stream; render draws 2D mesh streams");
   // First pass: the rectangle every plane fits in, and the plane count.
   Canvas canvas;
   uint32_t planes = 0;
   for (Decoder decoder(stream); decoder.next(); ++planes) canvas = united(canvas, canvas_over(decoder.nodes()));
   if (!to_gif && args.plane >= planes)
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
-                "--plane " + std::to_string(args.plane) + ": the stream has planes 0 … " + std::to_string(planes - 1));
+    throw usage_error("--plane " + std::to_string(args.plane) + ": the stream has planes 0 … " + std::to_string(planes - 1));
   if (canvas.width > 8192 || canvas.height > 8192)
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
-                args.input + ": the planes span " + std::to_string(canvas.width) + " × " + std::to_string(canvas.height) +
+    throw usage_error(args.input + ": the planes span " + std::to_string(canvas.width) + " × " + std::to_string(canvas.height) +
                     " pixels; render draws up to 8192 × 8192");
-  if (args.size != 0 && (args.size < 16 || args.size > 8192)) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--size: 16 … 8192 pixels");
+  if (args.size != 0 && (args.size < 16 || args.size > 8192)) throw usage_error("--size: 16 … 8192 pixels");
   const double zoom = args.size == 0 ? 1.0 : static_cast<double>(args.size) / std::max(canvas.width, canvas.height);
   const uint32_t width = std::max<uint32_t>(1, static_cast<uint32_t>(std::lround(canvas.width * zoom)));
   const uint32_t height = std::max<uint32_t>(1, static_cast<uint32_t>(std::lround(canvas.height * zoom)));
@@ -98,10 +96,10 @@ int run_render(const RenderArgs& args) {
 int run_render3d(const Render3dArgs& args) {
   const bool gif = gif_output(args.output, "render3d");
   const uint32_t delay = gif_delay(args.fps);
-  if (args.size < 16 || args.size > 4096) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--size: 16 … 4096 pixels");
+  if (args.size < 16 || args.size > 4096) throw usage_error("--size: 16 … 4096 pixels");
   if (args.max_error && !(std::isfinite(*args.max_error) && *args.max_error > 0))
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--max-error: a finite error above 0");
-  if (args.max_error && args.compare.empty()) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--max-error colours the error: it needs --compare");
+    throw usage_error("--max-error: a finite error above 0");
+  if (args.max_error && args.compare.empty()) throw usage_error("--max-error colours the error: it needs --compare");
   refuse_overwriting(args.input, args.output);
   if (!args.compare.empty()) refuse_overwriting(args.compare, args.output);
   StreamFacts facts;
@@ -119,8 +117,7 @@ int run_render3d(const Render3dArgs& args) {
                   args.compare + " and " + args.input + " have other faces (or the same faces numbered otherwise): not a sequence and its decoding");
   }
   if (!gif && args.frame >= shown.frames.size())
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
-                "--frame " + std::to_string(args.frame) + ": the sequence has frames 0 … " + std::to_string(shown.frames.size() - 1));
+    throw usage_error("--frame " + std::to_string(args.frame) + ": the sequence has frames 0 … " + std::to_string(shown.frames.size() - 1));
   const bool compare = !args.compare.empty();
   const std::vector<std::pair<Vec3, Vec3>> boxes = view_boxes(compare ? original : shown, args.view);
   auto error_at = [&](size_t f, uint32_t i) {

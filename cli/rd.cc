@@ -10,6 +10,7 @@
 #include "cli/commands3d.h"
 #include "cli/console.h"
 #include "codecs3d/registry.h"
+#include "encoder/mesh3d/codec_encoders.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/parallel.h"
@@ -44,9 +45,9 @@ std::vector<RdPoint> rd_sweep(const MeshSequence& s, const std::vector<std::stri
   std::vector<RdPoint> tried;
   std::vector<std::pair<const Codec3d*, std::string>> settings;  // per point: the codec and its knob's value
   for (const Codec3d* codec : codec_rows(codecs))
-    for (const std::string& value : codec->quality.coarse_to_fine) {
-      std::string parameter = "--" + codec->quality.option + " " + value;
-      for (const auto& [name, beside] : codec->quality.beside) parameter += " --" + name + " " + beside;
+    for (const std::string& value : codec_encoding(*codec).quality.coarse_to_fine) {
+      std::string parameter = "--" + codec_encoding(*codec).quality.option + " " + value;
+      for (const auto& [name, beside] : codec_encoding(*codec).quality.beside) parameter += " --" + name + " " + beside;
       tried.push_back({codec->name, parameter});
       settings.emplace_back(codec, value);
     }
@@ -58,8 +59,8 @@ std::vector<RdPoint> rd_sweep(const MeshSequence& s, const std::vector<std::stri
         const auto& [codec, value] = settings[k];
         Encode3dOptions options;
         options.codec = codec->name;
-        options.codec_options = codec->quality.beside;
-        options.codec_options[codec->quality.option] = value;
+        options.codec_options = codec_encoding(*codec).quality.beside;
+        options.codec_options[codec_encoding(*codec).quality.option] = value;
         options.hashes = false;
         auto start = std::chrono::steady_clock::now();
         std::vector<uint8_t> stream;
@@ -120,12 +121,12 @@ int run_rd(const RdArgs& args) {
   namespace fs = std::filesystem;
   const std::string extension = args.output == "-" ? "" : fs::path(args.output).extension().string();
   if (args.output != "-" && extension != ".csv" && extension != ".json")
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, args.output + ": rd writes .csv or .json (or - for CSV on standard output)");
+    throw usage_error(args.output + ": rd writes .csv or .json (or - for CSV on standard output)");
   const bool json = args.json || extension == ".json";
   refuse_overwriting(args.input, args.output);
   const MeshSequence sequence = load_sequence(args.input, !console::quiet());
   size_t total = 0;
-  for (const Codec3d* codec : codec_rows(args.codecs)) total += codec->quality.coarse_to_fine.size();
+  for (const Codec3d* codec : codec_rows(args.codecs)) total += codec_encoding(*codec).quality.coarse_to_fine.size();
   console::Progress progress("rate-distortion point", total);
   size_t done = 0;
   const auto start = std::chrono::steady_clock::now();

@@ -25,8 +25,7 @@ fs::path default_site() {
   const fs::path tool = fs::read_symlink("/proc/self/exe", ignored).parent_path();
   for (const fs::path& folder : {tool / ".." / "web" / "site", tool / ".." / "share" / "m4mesh" / "site"})
     if (fs::exists(folder / "index.html", ignored)) return fs::weakly_canonical(folder);
-  throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
-              "no web site beside the tool: build it (cmake --build build: it needs Emscripten and web/node_modules, see docs/web.md) or name a FOLDER");
+  throw usage_error("no web site beside the tool: build it (cmake --build build: it needs Emscripten and web/node_modules, see docs/web.md) or name a FOLDER");
 }
 
 const char* content_type(const fs::path& file) {

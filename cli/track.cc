@@ -14,7 +14,7 @@ namespace m4mesh {
 
 namespace {
 
-[[noreturn]] void usage(const std::string& message) { throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, message); }
+[[noreturn]] void usage(const std::string& message) { throw usage_error(message); }
 
 std::pair<uint32_t, uint32_t> cell_size(const std::string& text) {
   const size_t x = text.find('x');

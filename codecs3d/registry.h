@@ -1,30 +1,22 @@
-// The table of 3D codecs: one row per codec_id, with everything the rest
-// of m4mesh needs to know of a codec. The container decoder and encoder,
-// `info`, the command line's options and the conformance tooling read it;
-// nothing else compares codec ids. Adding a codec: docs/architecture.md.
+// The table of 3D codecs: one row per codec_id with what both directions
+// know of a codec (name, document, unit types). Each direction keeps its
+// own factories beside it: decoder/mesh3d/codec_decoders.h and
+// encoder/mesh3d/codec_encoders.h, so that a decode-only program links no
+// encoder. Nothing else compares codec ids. Adding a codec:
+// docs/architecture.md.
 #pragma once
 
 #include <cstdint>
-#include <functional>
-#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
-#include "codecs3d/codec_decoder.h"
-#include "codecs3d/codec_encoder.h"
-#include "codecs3d/options.h"
+#include "syntax/mesh3d/container.h"
 
 namespace m4mesh {
 
-// The option that sets a codec's quality, and its values from the coarsest
-// to the finest: what a quality target (encoder/mesh3d/quality_target.h)
-// searches.
-struct QualityKnob {
-  std::string option;
-  std::vector<std::string> coarse_to_fine;
-  CodecOptionValues beside;  // set with the knob in sweeps and searches, unless given
-};
+// The codec_id of each codec m4mesh implements.
+enum Codec3dId : uint32_t { kBfs3dId = 1, kAffineOctreeId = 2, kLccId = 3, kCpcaWptId = 4 };
 
 struct Codec3d {
   uint32_t id = 0;  // codec_id
@@ -33,11 +25,6 @@ struct Codec3d {
   std::string doc;  // its specification, under docs/
   // The unit types it uses besides frame hash units (any other is an error).
   std::vector<UnitType> unit_types;
-  std::vector<CodecOption> options;
-  QualityKnob quality;
-  // Reads the codec header (after the object header) and makes the decoder.
-  std::function<std::unique_ptr<CodecDecoder3d>(const ObjectHeader&, syntax::ReadIO&)> make_decoder;
-  std::function<std::unique_ptr<CodecEncoder3d>(const MeshSequence&, const CodecSettings&)> make_encoder;
 
   bool uses(UnitType type) const;
 };
@@ -47,7 +34,8 @@ std::span<const Codec3d> codecs3d();
 const Codec3d* find_codec3d(uint32_t id);
 // A usage error lists the registered names.
 const Codec3d& codec3d_by_name(const std::string& name);
-// Adds a row at run time (a codec of a test); its id must be free.
+// Adds a row at run time (a codec of a test); its id must be free. Its
+// halves are registered with register_decoder3d() and register_encoder3d().
 void register_codec3d(Codec3d codec);
 
 }  // namespace m4mesh

@@ -62,4 +62,6 @@ Error input_error(const std::string& file, int64_t line, const std::string& mess
   return Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, text);
 }
 
+Error usage_error(const std::string& message) { return Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, message); }
+
 }  // namespace m4mesh

@@ -62,5 +62,7 @@ class Error : public std::runtime_error {
 
 // An encoder-input or file error that names the file and line.
 Error input_error(const std::string& file, int64_t line, const std::string& message);
+// Bad options or a bad request of the caller's: no element, plane or offset.
+Error usage_error(const std::string& message);
 
 }  // namespace m4mesh

@@ -8,7 +8,7 @@
 #include "common/md5.h"
 #include "conformance/checker.h"
 #include "conformance/coverage.h"
-#include "conformance/suite3d.h"
+#include "conformance/suite3d/suite3d.h"
 #include "decoder/decoder.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "syntax/mesh3d/container.h"

@@ -1,6 +1,6 @@
 // The 2D conformance suite generator: every stream of conformance/streams,
 // built deterministically so that the committed suite can be regenerated.
-// SuiteCase is the case of both suites (conformance/suite3d.h).
+// SuiteCase is the case of both suites (conformance/suite3d/suite3d.h).
 #pragma once
 
 #include <cstdint>

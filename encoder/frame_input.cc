@@ -72,7 +72,7 @@ bool detect_uniform(const std::vector<Point>& nodes, const std::vector<Triangle>
 
 FrameInput planes_from_frames(const std::vector<ObjFrame>& frames, const std::vector<std::string>& names, double scale) {
   if (frames.empty()) throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "no frames");
-  if (!(scale > 0) || !std::isfinite(scale)) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "the scale must be positive");
+  if (!(scale > 0) || !std::isfinite(scale)) throw usage_error("the scale must be positive");
   const ObjFrame& first = frames[0];
   const size_t count = first.vertices.size();
   if (count < 3 || count > 1023 * 1023) throw input_error(names[0], 0, "a mesh needs 3 … 1046529 vertices");

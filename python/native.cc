@@ -26,7 +26,7 @@ namespace {
 using Frames = py::array_t<float, py::array::c_style | py::array::forcecast>;
 using Faces = py::array_t<int32_t, py::array::c_style | py::array::forcecast>;
 
-Error usage(const std::string& message) { return Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, message); }
+Error usage(const std::string& message) { return usage_error(message); }
 
 MeshSequence sequence_of(const Frames& frames, const Faces& faces) {
   if (frames.ndim() != 3 || frames.shape(2) != 3) throw usage("frames: an array of shape (frames, vertices, 3)");

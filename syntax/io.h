@@ -291,10 +291,12 @@ class CountIO : public IOBase {
   explicit CountIO(const char* watched = nullptr, uint64_t occurrence = 0) : watched_(watched), occurrence_(occurrence) {}
   uint64_t bits() const { return bits_; }
   uint64_t offset_of_watched() const { return watched_offset_; }
+  // The watched field's width in bits (a section's: 8 per byte).
+  uint64_t bits_of_watched() const { return watched_bits_; }
 
   template <class T>
   void field(const char* name, int bits, T&) {
-    watch(name);
+    watch(name, static_cast<uint64_t>(bits));
     bits_ += static_cast<uint64_t>(bits);
   }
   template <class T>
@@ -305,7 +307,7 @@ class CountIO : public IOBase {
   template <class T>
   void vlc(const char* name, const VlcTable& table, T& symbol) {
     if (!table.has_symbol(symbol)) fail(ErrorKind::kOutOfRange, name, "value has no code");
-    watch(name);
+    watch(name, static_cast<uint64_t>(table.code(symbol).length));
     bits_ += static_cast<uint64_t>(table.code(symbol).length);
   }
   void start_code(const char*, uint32_t) { bits_ += 32; }
@@ -314,14 +316,20 @@ class CountIO : public IOBase {
   void resize(std::vector<T>& items, uint32_t count, const char* element, int = 1) {
     if (items.size() != count) fail(ErrorKind::kStructure, element, "item count differs from the syntax");
   }
-  void section(const char*, uint64_t length, std::span<const uint8_t>&) { bits_ += 8 * length; }
+  void section(const char* name, uint64_t length, std::span<const uint8_t>&) {
+    watch(name, 8 * length);
+    bits_ += 8 * length;
+  }
   void tail_section(const char*, std::span<const uint8_t>& bytes) { bits_ += 8 * bytes.size(); }
   void require_remaining_bytes(const char*, uint64_t) const {}
   void require_length(const char*, uint64_t) const {}
 
  private:
-  void watch(const char* name) {
-    if (watched_ && watched_offset_ == kNotSeen && std::string_view(name) == watched_ && seen_++ == occurrence_) watched_offset_ = bits_;
+  void watch(const char* name, uint64_t bits) {
+    if (watched_ && watched_offset_ == kNotSeen && std::string_view(name) == watched_ && seen_++ == occurrence_) {
+      watched_offset_ = bits_;
+      watched_bits_ = bits;
+    }
   }
 
   static constexpr uint64_t kNotSeen = ~uint64_t{0};
@@ -329,6 +337,7 @@ class CountIO : public IOBase {
   const char* watched_;
   uint64_t occurrence_, seen_ = 0;
   uint64_t watched_offset_ = kNotSeen;
+  uint64_t watched_bits_ = 0;
 };
 
 }  // namespace m4mesh::syntax

@@ -8,7 +8,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
-#include "conformance/suite3d.h"
+#include "conformance/suite3d/suite3d.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/metrics.h"

@@ -12,7 +12,7 @@
 #include "codecs3d/codec_decoder.h"
 #include "codecs3d/codec_encoder.h"
 #include "encoder/mesh3d/base_mesh.h"
-#include "mesh3d/draco_reference.h"
+#include "anchors/draco_reference.h"
 #include "mesh3d/quantization.h"
 #include "test_util.h"
 

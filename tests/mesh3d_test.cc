@@ -13,7 +13,7 @@
 #include "common/error.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
-#include "mesh3d/draco_reference.h"
+#include "anchors/draco_reference.h"
 #include "mesh3d/metrics.h"
 #include "mesh3d/quantization.h"
 #include "mesh3d/sequence.h"

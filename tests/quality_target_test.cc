@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "codecs3d/registry.h"
+#include "encoder/mesh3d/codec_encoders.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/quality_target.h"
 #include "mesh3d/metrics.h"
@@ -28,7 +29,7 @@ TEST(QualityTarget, EveryCodecMeetsAKgTargetWithItsCoarsestSetting) {
     EXPECT_LE(kg_error(s, decoded), 1.0) << name;
     ASSERT_FALSE(trials.empty());
     // The kept trial is the last that met the target; every trial coarser than it missed.
-    const QualityKnob& knob = codec3d_by_name(name).quality;
+    const QualityKnob& knob = codec_encoding(codec3d_by_name(name)).quality;
     const auto kept = std::find_if(trials.rbegin(), trials.rend(), [](const TargetTrial& t) { return t.meets; });
     ASSERT_NE(kept, trials.rend()) << name;
     EXPECT_EQ(kept->bytes, r.stream.size()) << name;

@@ -10,6 +10,8 @@
 
 #include "cli/app.h"
 #include "codecs3d/registry.h"
+#include "decoder/mesh3d/codec_decoders.h"
+#include "encoder/mesh3d/codec_encoders.h"
 #include "common/atomic_file.h"
 #include "conformance/manifest.h"
 #include "conformance/runner.h"
@@ -170,17 +172,15 @@ class ReorderedEncoder final : public CodecEncoder3d {
 void register_toy() {
   static const bool registered = [] {
     register_codec3d({kToyId, "toy-progressive", "a test's progressive codec: 16-bit positions in two refinement units", "tests/registry_test.cc",
-                      {UnitType::kBaseMesh, UnitType::kRefinement},
-                      {{"levels", "toy-progressive: refinement units to send", OptionKind::kInteger, "2", 1, 2}},
-                      {"levels", {"1", "2"}, {}},
-                      [](const ObjectHeader& h, syntax::ReadIO&) { return std::make_unique<ToyDecoder>(h); },
-                      [](const MeshSequence&, const CodecSettings& s) { return std::make_unique<ToyEncoder>(s.integer("levels")); }});
+                      {UnitType::kBaseMesh, UnitType::kRefinement}});
+    register_decoder3d(kToyId, [](const ObjectHeader& h, syntax::ReadIO&) { return std::make_unique<ToyDecoder>(h); });
+    register_encoder3d(kToyId, {{{"levels", "toy-progressive: refinement units to send", OptionKind::kInteger, "2", 1, 2}},
+                                {"levels", {"1", "2"}, {}},
+                                [](const MeshSequence&, const CodecSettings& s) { return std::make_unique<ToyEncoder>(s.integer("levels")); }});
     register_codec3d({kToyId + 1, "toy-reordered", "a test's codec that decodes frames out of display order", "tests/registry_test.cc",
-                      {UnitType::kBaseMesh, UnitType::kFrame},
-                      {},
-                      {},
-                      [](const ObjectHeader& h, syntax::ReadIO&) { return std::make_unique<ReorderedDecoder>(h); },
-                      [](const MeshSequence&, const CodecSettings&) { return std::make_unique<ReorderedEncoder>(); }});
+                      {UnitType::kBaseMesh, UnitType::kFrame}});
+    register_decoder3d(kToyId + 1, [](const ObjectHeader& h, syntax::ReadIO&) { return std::make_unique<ReorderedDecoder>(h); });
+    register_encoder3d(kToyId + 1, {{}, {}, [](const MeshSequence&, const CodecSettings&) { return std::make_unique<ReorderedEncoder>(); }});
     return true;
   }();
   (void)registered;

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "conformance/suite3d.h"
+#include "conformance/suite3d/suite3d.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
 #include "tests/test_util.h"

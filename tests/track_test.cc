@@ -1,4 +1,4 @@
-// m4mesh track (video/track.h, encoder/tracking/): videos made here, with
+// m4mesh track (video/track.h, video/tracking/): videos made here, with
 // known motion, compressed by FFmpeg; the tracked nodes against the truth.
 #include <gtest/gtest.h>
 

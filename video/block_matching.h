@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "encoder/tracking/luma.h"
+#include "video/tracking/luma.h"
 #include "render/image.h"
 
 namespace m4mesh {

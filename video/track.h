@@ -1,6 +1,6 @@
 // A video turned into a 2D mesh object (the encoder's front end): a mesh
 // laid on the first frame, its nodes tracked through the video
-// (encoder/tracking/), the planes coded by the 2D encoder, with the
+// (video/tracking/), the planes coded by the 2D encoder, with the
 // measurements of the mesh-motion literature beside them.
 #pragma once
 
@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "encoder/tracking/mesh_design.h"
-#include "encoder/tracking/node_tracker.h"
+#include "video/tracking/mesh_design.h"
+#include "video/tracking/node_tracker.h"
 #include "render/image.h"
 #include "video/video_reader.h"
 

@@ -5,6 +5,7 @@
 #include "bitstream/bit_reader.h"
 #include "codecs3d/registry.h"
 #include "common/md5.h"
+#include "decoder/mesh3d/codec_decoders.h"
 #include "mesh3d/quantization.h"
 #include "syntax/mesh3d/base_mesh.h"
 
@@ -31,8 +32,9 @@ Mesh3dDecoder::Mesh3dDecoder(std::span<const uint8_t> stream, const Decode3dOpti
   try {
     syntax::describe(io, header_);
     codec_row_ = find_codec3d(header_.codec_id);
-    if (!codec_row_) io.fail(ErrorKind::kReservedValue, "codec_id", "unknown codec " + std::to_string(header_.codec_id));
-    codec_ = codec_row_->make_decoder(header_, io);
+    const MakeDecoder3d* make_decoder = codec_row_ ? find_decoder3d(header_.codec_id) : nullptr;
+    if (!make_decoder) io.fail(ErrorKind::kReservedValue, "codec_id", "unknown codec " + std::to_string(header_.codec_id));
+    codec_ = (*make_decoder)(header_, io);
     if (reader.bits_left() != 0)
       throw Error(ErrorKind::kStructure, "object_payload", kNoPlane, static_cast<int64_t>(reader.position()),
                   std::to_string(reader.bits_left() / 8) + " bytes left over after the " + codec_row_->name + " header");
@@ -262,7 +264,7 @@ bool Mesh3dDecoder::next_unit() {
 void Mesh3dDecoder::extend(std::span<const uint8_t> received) {
   ContainerParts parts = split_container(received);
   if (parts.units.size() < parts_.units.size() || parts.object_payload != parts_.object_payload)
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "the bytes received do not continue those decoded so far");
+    throw usage_error("the bytes received do not continue those decoded so far");
   parts_ = std::move(parts);
   if (next_unit_ > 0)
     while (next_unit_ < parts_.units.size() && is_hash_unit(next_unit_)) check_hash(next_unit_++);
@@ -312,8 +314,7 @@ void for_each_prefix(std::span<const uint8_t> stream,
   const ContainerParts parts = split_container(stream);
   Mesh3dDecoder decoder(stream);
   if (!decoder.progressive())
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset,
-                decoder.codec().name + " decodes frame by frame; progressive needs a progressive codec (cpca-wpt)");
+    throw usage_error(decoder.codec().name + " decodes frame by frame; progressive needs a progressive codec (cpca-wpt)");
   MeshSequence decoded;
   decoded.vertex_count = decoder.header().vertex_count;
   decoded.frames.resize(decoder.header().frame_count, std::vector<Vec3>(decoded.vertex_count));

@@ -7,7 +7,7 @@
 
 #include "common/bit_cast.h"
 #include "encoder/mesh3d/grid_frame_encoder.h"
-#include "codecs3d/options.h"
+#include "encoder/mesh3d/codec_options.h"
 #include "mesh3d/affine_octree.h"
 #include "syntax/mesh3d/affine_octree.h"
 #include "syntax/mesh3d/entropy_io.h"
@@ -33,7 +33,7 @@ class AffineOctreeEncoder final : public GridFrameEncoder {
     header_.matrix_range_log2 = static_cast<uint32_t>(settings.integer("matrix-range-log2"));
     header_.max_depth = static_cast<uint32_t>(settings.integer("max-depth"));
     if (header_.matrix_range_log2 >= header_.matrix_bits)
-      throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--matrix-range-log2 must be below --matrix-bits (affine-octree)");
+      throw usage_error("--matrix-range-log2 must be below --matrix-bits (affine-octree)");
   }
 
   void write_header(syntax::WriteIO& io) override { syntax::describe(io, header_); }

@@ -3,7 +3,7 @@
 
 #include "common/bit_cast.h"
 #include "encoder/mesh3d/grid_frame_encoder.h"
-#include "codecs3d/options.h"
+#include "encoder/mesh3d/codec_options.h"
 #include "mesh3d/bfs3d.h"
 #include "syntax/mesh3d/bfs3d.h"
 #include "syntax/mesh3d/entropy_io.h"

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "codecs3d/registry.h"
+#include "encoder/mesh3d/codec_encoders.h"
 #include "encoder/mesh3d/base_mesh.h"
 #include "common/md5.h"
 #include "common/error.h"
@@ -112,12 +113,13 @@ void check_sequence(const MeshSequence& input) {
 Encode3dResult encode_mesh3d(const MeshSequence& input, const Encode3dOptions& options) {
   check_sequence(input);
   if (options.reorder && options.codec_options.count("reference"))
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "--reorder and --reference: the rest shape's vertices would keep the input's numbers");
+    throw usage_error("--reorder and --reference: the rest shape's vertices would keep the input's numbers");
   const BaseMeshPlan plan = plan_base_mesh(input.faces, input.vertex_count, options.reorder);
   const MeshSequence s = in_coding_order(input, plan, options.reorder);
   const Codec3d& codec = codec3d_by_name(options.codec);
-  const CodecSettings settings(codec.name, codec.options, options.codec_options, options.threads);
-  std::unique_ptr<CodecEncoder3d> encoder = codec.make_encoder(s, settings);
+  const CodecEncoding& encoding = codec_encoding(codec);
+  const CodecSettings settings(codec.name, encoding.options, options.codec_options, options.threads);
+  std::unique_ptr<CodecEncoder3d> encoder = encoding.make_encoder(s, settings);
 
   ContainerWriter container;
   Encode3dResult result;

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "codecs3d/codec_encoder.h"
-#include "codecs3d/options.h"
+#include "encoder/mesh3d/codec_options.h"
 #include "mesh3d/sequence.h"
 #include "syntax/trace.h"
 
@@ -18,7 +18,7 @@ namespace m4mesh {
 
 struct Encode3dOptions {
   std::string codec = "bfs3d";   // a name of the registry
-  CodecOptionValues codec_options;  // the codec's own (codecs3d/options.h)
+  CodecOptionValues codec_options;  // the codec's own (encoder/mesh3d/codec_options.h)
   bool hashes = true;            // hash units of the decoded frames
   uint32_t hash_group = 16;      // frames per group hash unit; 1: a frame hash unit (MD5) per frame
   uint32_t frame_rate_num = 25;

@@ -12,7 +12,7 @@
 #include <optional>
 
 #include "codecs3d/codec_encoder.h"
-#include "codecs3d/options.h"
+#include "encoder/mesh3d/codec_options.h"
 #include "common/bit_cast.h"
 #include "common/error.h"
 #include "common/parallel.h"
@@ -43,7 +43,6 @@ constexpr int kPaperClusters = 10;
 // The mean shape's quantization bits: the default, and the range --bits takes.
 constexpr int kDefaultBits = 12, kMinBits = 4, kMaxBits = 24;
 
-Error usage_error(const std::string& message) { return Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, message); }
 
 // A whole number least … most written in `text`, else a usage error naming the option.
 size_t parse_count(const std::string& text, const char* option, size_t most, size_t least = 1) {

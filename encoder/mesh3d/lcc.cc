@@ -9,7 +9,7 @@
 #include <numbers>
 
 #include "codecs3d/codec_encoder.h"
-#include "codecs3d/options.h"
+#include "encoder/mesh3d/codec_options.h"
 #include "common/bit_cast.h"
 #include "common/error.h"
 #include "mesh3d/lcc.h"
@@ -22,7 +22,6 @@ namespace m4mesh {
 
 namespace {
 
-Error usage_error(const std::string& message) { return Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, message); }
 
 int32_t rounded(double value, int32_t lo, int32_t hi) {
   const double r = std::nearbyint(value);

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "codecs3d/registry.h"
+#include "encoder/mesh3d/codec_encoders.h"
 #include "common/error.h"
 #include "common/parallel.h"
 #include "encoder/mesh3d/base_mesh.h"
@@ -15,10 +16,10 @@ namespace m4mesh {
 
 namespace {
 
-Error usage_error(const std::string& message) { return Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, message); }
 
 bool has_option(const Codec3d& codec, const std::string& name) {
-  return std::any_of(codec.options.begin(), codec.options.end(), [&](const CodecOption& o) { return o.name == name; });
+  const std::vector<CodecOption>& options = codec_encoding(codec).options;
+  return std::any_of(options.begin(), options.end(), [&](const CodecOption& o) { return o.name == name; });
 }
 
 // Encodes and measures the decoder's output (the encoder's closed loop
@@ -59,7 +60,7 @@ Encode3dResult encode_to_target(const MeshSequence& s, const Encode3dOptions& op
     if (!t.meets) throw usage_error("the target is out of reach for " + codec.name);
     return result;
   }
-  const QualityKnob& knob = codec.quality;
+  const QualityKnob& knob = codec_encoding(codec).quality;
   if (knob.coarse_to_fine.empty()) throw usage_error(codec.name + " has no quality parameter to search");
   if (options.codec_options.count(knob.option))
     throw usage_error("--" + knob.option + " and a quality target: the target chooses --" + knob.option + " (" + codec.name + ")");

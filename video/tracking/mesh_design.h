@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "encoder/tracking/luma.h"
-#include "encoder/tracking/node_tracker.h"
+#include "video/tracking/luma.h"
+#include "video/tracking/node_tracker.h"
 #include "mesh/plane.h"
 
 namespace m4mesh {

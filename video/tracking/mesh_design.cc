@@ -1,4 +1,4 @@
-#include "encoder/tracking/mesh_design.h"
+#include "video/tracking/mesh_design.h"
 
 #include <algorithm>
 #include <cmath>

@@ -11,8 +11,9 @@
 
 namespace m4mesh {
 
-// The cases in groups: Affine-Octree, bfs3d, rejected. With `traced`, each
-// stream to decode keeps the trace its encoder printed.
+// The cases codec by codec (conformance/suite3d/), then the streams to
+// reject, in the manifest's order. With `traced`, each stream to decode
+// keeps the trace its encoder printed.
 std::vector<SuiteCase> build_suite3d(bool traced = false);
 
 }  // namespace m4mesh

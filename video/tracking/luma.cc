@@ -1,4 +1,4 @@
-#include "encoder/tracking/luma.h"
+#include "video/tracking/luma.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "codecs3d/options.h"
+#include "encoder/mesh3d/codec_options.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -9,7 +9,6 @@ namespace m4mesh {
 
 namespace {
 
-Error usage_error(const std::string& message) { return Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, message); }
 
 std::string range_text(const CodecOption& o) {
   auto number = [](double v) {

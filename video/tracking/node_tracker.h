@@ -13,7 +13,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "encoder/tracking/luma.h"
+#include "video/tracking/luma.h"
 #include "mesh/geometry.h"
 #include "mesh/topology.h"
 

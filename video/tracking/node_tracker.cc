@@ -1,4 +1,4 @@
-#include "encoder/tracking/node_tracker.h"
+#include "video/tracking/node_tracker.h"
 
 #include <algorithm>
 #include <cmath>
@@ -25,9 +25,9 @@ double orientation(const std::array<double, 2>& a, const std::array<double, 2>& 
 
 NodeTracker::NodeTracker(TrackingMesh mesh, const Luma& first, const TrackerOptions& options)
     : mesh_(std::move(mesh)), options_(options), positions_(mesh_.nodes), previous_(mesh_.nodes) {
-  if (mesh_.freedom.size() != mesh_.nodes.size()) throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "tracking: a freedom per node");
+  if (mesh_.freedom.size() != mesh_.nodes.size()) throw usage_error("tracking: a freedom per node");
   if (options_.levels > 4 || options_.search > 63)
-    throw Error(ErrorKind::kUsage, "", kNoPlane, kNoOffset, "tracking: at most 4 pyramid levels and a search of 63 pixels");
+    throw usage_error("tracking: at most 4 pyramid levels and a search of 63 pixels");
   levels_ = options_.levels >= 0 ? options_.levels : automatic_levels(first.width, first.height);
   node_triangles_.resize(mesh_.nodes.size());
   for (uint32_t t = 0; t < mesh_.triangles.size(); ++t)

@@ -1,7 +1,9 @@
 // A 3D codec's own encoder options: declared by the codec (name, help,
-// default, range), given as text by the user (`encode3d --NAME VALUE`),
-// checked and typed here. The command line is built from the declarations
-// of every registered codec (codecs3d/registry.h).
+// default, range), given as text by the user (`encode3d --NAME VALUE`).
+// Integers, numbers and flags are checked and typed here; a text option
+// (cpca-wpt's "auto or a number") is handed to its codec, which checks it.
+// The command line is built from the declarations of every registered
+// codec (encoder/mesh3d/codec_encoders.h).
 #pragma once
 
 #include <map>

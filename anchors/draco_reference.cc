@@ -1,4 +1,4 @@
-#include "mesh3d/draco_reference.h"
+#include "anchors/draco_reference.h"
 
 #include <algorithm>
 

@@ -1,0 +1,164 @@
+// The base mesh's streams (docs/base_mesh.md) and those to reject.
+#include <cstdio>
+
+#include "conformance/suite3d/cases.h"
+#include "conformance/suite3d/inputs.h"
+#include "conformance/suite3d/stream_edits.h"
+#include "conformance/suite3d/base_mesh_oracles.h"
+#include "syntax/mesh3d/affine_octree.h"
+#include "syntax/mesh3d/base_mesh.h"
+#include "syntax/mesh3d/bfs3d.h"
+
+namespace m4mesh::suite3d {
+
+// The base mesh: every kind of face and vertex, in the input order and in
+// coding order; a row-major sheet, whose input numbers parallelograms predict.
+std::vector<SuiteCase> base_mesh_cases(bool traced) {
+  std::vector<SuiteCase> suite;
+  const MeshSequence awkward = awkward_mesh(4);
+  suite.push_back(valid("base-01-awkward", "components, borders, vertices in no face, non-manifold, degenerate and repeated faces",
+                        {"base-mesh"}, awkward, Encode3dOptions{}, traced));
+  Encode3dOptions reorder;
+  reorder.reorder = true;
+  suite.push_back(valid("base-02-coding-order", "the same mesh numbered in coding order (encode3d --reorder)", {"base-mesh"}, awkward,
+                        reorder, traced));
+  suite.push_back(valid("base-03-row-major", "a row-major sheet: input numbers predicted by parallelograms", {"base-mesh"},
+                        rotating_sheet(3), Encode3dOptions{}, traced));
+  suite.push_back(valid("base-04-crown", "gates with up to 8 candidates: candidate indices 1 … 7, the cut at 8, and a loose face (v, v, u)",
+                        {"base-mesh"}, crown(2, 12, 12), Encode3dOptions{}, traced));
+  suite.push_back(valid("base-05-irregular", "a grid of random diagonals: gate and candidate contexts over most pairs of degrees, both ways",
+                        {"base-mesh"}, irregular_grid(2, 16), Encode3dOptions{}, traced));
+  Encode3dOptions bits24;
+  bits24.codec_options = {{"bits", "24"}};
+  suite.push_back(valid("base-06-shuffled", "256 vertices numbered at random (vertex order 1), loose faces on a 2^8 index, parallelograms "
+                        "across edges that loose faces repeat", {"base-mesh"}, shuffled_grid(2), Encode3dOptions{}, traced));
+  {
+    MeshSequence spiky = spiky_sheet(2, 32, 200, 46, 4);
+    renumber_at_random(spiky, 1289);
+    suite.push_back(valid("base-07-spikes", "1,291 vertices numbered at random, a quarter of them off their place by 2^−2 … 2^−23 of the box on a "
+                          "24-bit grid: position and order residuals of every prefix length", {"base-mesh"}, spiky, bits24, traced));
+  }
+  Encode3dOptions bits16;
+  bits16.codec_options = {{"bits", "16"}};
+  suite.push_back(valid("base-08-far-chain", "a chain of faces whose third vertices are often earlier ones at random: far vertices at "
+                        "every distance, after near and far ones", {"base-mesh"}, far_chain(3000, 51), Encode3dOptions{}, traced));
+  suite.push_back(valid("base-09-dense-soup", "300 faces on 32 vertices at random: gates with 3 and more candidates at every pair of "
+                        "degrees, every candidate index", {"base-mesh"}, dense_soup(32, 300, 54), Encode3dOptions{}, traced));
+  suite.push_back(valid("base-10-loose-chain", "vertices in no face, each off the one before by a residual of every prefix length 0 … 13 "
+                        "after each class", {"base-mesh"}, loose_chain(prefix_schedule()), bits16, traced));
+  suite.push_back(valid("base-11-parallelograms", "separate quads whose fourth vertex is off the parallelogram by a residual of every "
+                        "prefix length 0 … 13 after each class", {"base-mesh"}, parallelogram_quads(prefix_schedule()), bits16, traced));
+  suite.push_back(written_case("base-12-order-prefixes", "a face and 23,997 vertices in no face whose vertex order differences take every "
+                              "prefix length 0 … 13 after each class (written symbol by symbol)", {"base-mesh"},
+                              [] {
+                                constexpr uint32_t kVertices = 24000;
+                                FirstFarOracle seed;  // the one face: a seed of new vertices
+                                return written_base_mesh_stream(kVertices, 1, seed, order_schedule(kVertices));
+                              }()));
+  {
+    const std::vector<uint64_t> seeds = covering_component_seeds();
+    const Traversed size = traversed(ComponentOracle(seeds));
+    ComponentOracle oracle(seeds);
+    suite.push_back(written_case("base-13-gate-contexts", "components of random answers, chosen among many for the gate and candidate "
+                                "contexts they reach (written symbol by symbol)", {"base-mesh"},
+                                written_base_mesh_stream(size.vertices, size.faces, oracle)));
+  }
+  // The first far residual of a unit is the only one after a zero class: one prefix length per unit.
+  for (int e = 4; e <= 12; ++e) {
+    FirstFarOracle oracle{static_cast<uint32_t>(3 << (e - 1))};
+    char id[40];
+    std::snprintf(id, sizeof id, "base-14-first-far-%02d", e);
+    suite.push_back(written_case(id, "a fan whose first far vertex takes a residual of prefix length " + std::to_string(e) + " (written symbol by symbol)",
+                                {"base-mesh"}, written_base_mesh_stream(oracle.from + 2, oracle.from + 1, oracle)));
+  }
+  {
+    FarScheduleOracle oracle(20000);
+    const Traversed size = traversed(oracle);
+    suite.push_back(written_case("base-15-far-prefixes", "a fan of 20,000 vertices, then faces on far vertices whose residuals take every "
+                                "prefix length 0 … 13 after a residual of length 0 and of length 1 (written symbol by symbol)", {"base-mesh"},
+                                written_base_mesh_stream(size.vertices, size.faces, oracle)));
+  }
+  return suite;
+}
+
+// The base mesh unit's fields, and bytes left over after its sections.
+std::vector<SuiteCase> base_mesh_unit_rejected(const std::vector<SuiteCase>& valid) {
+  std::vector<SuiteCase> suite;
+  const std::vector<uint8_t> awkward = stream_of(valid, "base-01-awkward");
+  auto base_unit = [](ContainerParts& p) -> std::vector<uint8_t>& { return unit_of(p, UnitType::kBaseMesh, 0).payload; };
+  suite.push_back(invalid("x-46-base-vertex-order", "vertex_order 3", {"base-mesh"},
+                          edited(awkward, [&](ContainerParts& p) { put_field(base_unit(p), unit_field<BaseMeshData>("vertex_order"), 3); }), ErrorKind::kOutOfRange,
+                          "vertex_order", 0));
+  suite.push_back(invalid("x-47-base-loose-faces", "loose_face_count one more than face_count", {"base-mesh"},
+                          edited(awkward,
+                                 [&](ContainerParts& p) {
+                                   const uint64_t faces = field_value(p.object_payload, object_field<Bfs3dHeader>(awkward, "face_count"));
+                                   put_field(base_unit(p), unit_field<BaseMeshData>("loose_face_count"), faces + 1);
+                                 }),
+                          ErrorKind::kOutOfRange, "loose_face_count", 0));
+  suite.push_back(invalid("x-48-base-raw-left-over", "a byte after the raw bits", {"base-mesh"},
+                          edited(awkward, [&](ContainerParts& p) { base_unit(p).push_back(0x00); }), ErrorKind::kStructure, "base_mesh", 0));
+  suite.push_back(invalid("x-49-base-bins-left-over", "a zero byte after the last bin, counted by arithmetic_bytes", {"base-mesh"},
+                          edited(awkward,
+                                 [&](ContainerParts& p) {
+                                   std::vector<uint8_t>& unit = base_unit(p);
+                                   const FieldBytes length = unit_field<BaseMeshData>("arithmetic_bytes");
+                                   const uint64_t bins = field_value(unit, length);
+                                   unit.insert(unit.begin() + static_cast<std::ptrdiff_t>(unit_field<BaseMeshData>("bins").first + bins), 0x00);
+                                   put_field(unit, length, bins + 1);
+                                 }),
+                          ErrorKind::kStructure, "base_mesh", 0));
+  return suite;
+}
+
+// A vertex count one short.
+std::vector<SuiteCase> base_mesh_count_rejected(const std::vector<SuiteCase>& valid) {
+  std::vector<SuiteCase> suite;
+  const std::vector<uint8_t> tetrahedron = stream_of(valid, "ao-06-direct-root");
+  suite.push_back(invalid("x-53-vertex-count-short", "vertex_count 3 for a tetrahedron: its fourth vertex is one too many", {"base-mesh"},
+                          edited(tetrahedron, [&](ContainerParts& p) { put_field(p.object_payload, object_field<AffineOctreeHeader>(tetrahedron, "vertex_count"), 3); }), ErrorKind::kStructure,
+                          "gate_new_vertex", 0));
+  return suite;
+}
+
+// Traversals and vertex orders that break a rule, written symbol by symbol.
+std::vector<SuiteCase> base_mesh_traversal_rejected(const std::vector<SuiteCase>& valid) {
+  std::vector<SuiteCase> suite;
+  const std::vector<uint8_t> base = stream_of(valid, "ao-01-me1-k16");
+  {
+    // Base mesh units of the box and sheet (ao-01) broken by the traversal's answers.
+    const ObjectHeader object = read_headers<AffineOctreeHeader>(split_container(base)).first;
+    auto broken = [&](BrokenBaseMesh oracle) {
+      return edited(base, [&](ContainerParts& p) {
+        ContainerUnit& unit = unit_of(p, UnitType::kBaseMesh, 0);
+        unit.payload = broken_base_mesh_unit(unit_header_bytes(unit.payload), object.vertex_count, object.face_count, oracle);
+      });
+    };
+    BrokenBaseMesh seed_repeats;
+    seed_repeats.old_corner = 1;
+    suite.push_back(invalid("x-59-base-seed-repeats", "a seed face whose second corner is its first vertex again", {"base-mesh"},
+                            broken(seed_repeats), ErrorKind::kStructure, "seed_vertex", 0));
+    suite.push_back(invalid("x-60-base-far-unnumbered", "a far vertex equal to the count of vertices numbered so far", {"base-mesh"},
+                            broken(BrokenBaseMesh{}), ErrorKind::kOutOfRange, "far_vertex", 0));
+  }
+  {
+    // One triangle (a seed, three border gates) whose last vertex takes the
+    // rank one past the single input number left.
+    MeshSequence triangle;
+    triangle.vertex_count = 3;
+    triangle.faces = {{{0, 1, 2}}};
+    triangle.frames = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}}};
+    BrokenBaseMesh borders;
+    borders.answer = {GateSymbol::kBorder, 0, 0};
+    suite.push_back(invalid("x-61-base-order-past", "a vertex order whose last difference is one past the input numbers not taken", {"base-mesh"},
+                            edited(encode_mesh3d(triangle, Encode3dOptions{}).stream,
+                                   [&](ContainerParts& p) {
+                                     ContainerUnit& unit = unit_of(p, UnitType::kBaseMesh, 0);
+                                     unit.payload = broken_base_mesh_unit(unit_header_bytes(unit.payload), 3, 1, borders, {0, 0, 1});
+                                   }),
+                            ErrorKind::kOutOfRange, "vertex_order_difference", 0));
+  }
+  return suite;
+}
+
+}  // namespace m4mesh::suite3d

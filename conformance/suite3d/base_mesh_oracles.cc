@@ -1,0 +1,75 @@
+#include "conformance/suite3d/base_mesh_oracles.h"
+
+#include <algorithm>
+
+namespace m4mesh::suite3d {
+
+std::vector<uint8_t> base_mesh_unit(std::vector<uint8_t> unit_header, syntax::EntropyWriteIO<false>& symbols, uint32_t vertex_order) {
+  const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
+  BaseMeshData data;
+  data.vertex_order = vertex_order;
+  data.arithmetic_bytes = static_cast<uint32_t>(bins.size());
+  data.bins = bins;
+  data.raw = raw;
+  return unit_with(std::move(unit_header), data);
+}
+
+std::vector<uint8_t> broken_base_mesh_unit(std::vector<uint8_t> unit_header, uint32_t vertex_count, uint32_t face_count, BrokenBaseMesh oracle,
+                                           std::vector<int32_t> order_differences) {
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+  StopAtFailureIO io(symbols);
+  syntax::BaseMeshContexts contexts;
+  GateTraversal traversal(face_count);
+  try {
+    describe_traversal(io, contexts, traversal, vertex_count, face_count, &oracle);
+    describe_loose_faces(io, vertex_count, std::span<Triangle>());
+    for (int32_t& d : order_differences) contexts.order.describe(io, 0, d, syntax::kOrderNames);
+  } catch (const StopAtFailureIO::Stop&) {
+  }
+  return base_mesh_unit(std::move(unit_header), symbols, order_differences.empty() ? kVertexOrderCoding : kVertexOrderFromGate);
+}
+
+std::vector<uint64_t> covering_component_seeds() {
+  std::vector<uint64_t> chosen;
+  std::set<std::tuple<std::string, int, bool>> reached;
+  SplitMix64 random(57);
+  for (;;) {
+    uint64_t best = 0;
+    size_t most = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+      const uint64_t seed = random.next();
+      size_t fresh = 0;
+      for (const auto& bin : traversed(ComponentOracle({seed})).bins) fresh += !reached.count(bin);
+      if (fresh > most) {
+        most = fresh;
+        best = seed;
+      }
+    }
+    if (most == 0) return chosen;
+    chosen.push_back(best);
+    const Traversed t = traversed(ComponentOracle({best}));
+    reached.insert(t.bins.begin(), t.bins.end());
+  }
+}
+
+std::vector<int32_t> order_schedule(uint32_t count) {
+  std::vector<uint32_t> unused(count);
+  for (uint32_t i = 0; i < count; ++i) unused[i] = i;
+  const std::vector<int32_t> schedule = prefix_schedule();
+  std::vector<int32_t> differences;
+  int64_t previous = -1;
+  for (uint32_t i = 0; i < count; ++i) {
+    const int64_t predicted = std::clamp<int64_t>(previous + 1, 0, count - 1);
+    const int64_t from = std::lower_bound(unused.begin(), unused.end(), static_cast<uint32_t>(predicted)) - unused.begin();
+    const int64_t room_above = static_cast<int64_t>(unused.size()) - from;
+    int32_t d = i < schedule.size() ? std::abs(schedule[i]) : 0;
+    if (room_above <= from) d = -d;
+    if (room_above == 0 && d == 0) d = -1;  // the prediction is past every number left
+    differences.push_back(d);
+    previous = unused[static_cast<size_t>(from + d)];
+    unused.erase(unused.begin() + from + d);
+  }
+  return differences;
+}
+
+}  // namespace m4mesh::suite3d

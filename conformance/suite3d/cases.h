@@ -1,0 +1,68 @@
+// The 3D suite's cases, codec by codec (one file each), and what they
+// share: how a case is made from a sequence, a written stream or a
+// rejected one, and each codec's encoder options as the suite uses them.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/error.h"
+#include "conformance/suite.h"
+#include "encoder/mesh3d/codec_options.h"
+#include "encoder/mesh3d/container_encoder.h"
+#include "mesh3d/sequence.h"
+
+namespace m4mesh::suite3d {
+
+// A stream to decode, with a frame hash unit per frame unless a group is
+// given; with `traced`, the encoder's trace of it is kept.
+SuiteCase valid(std::string id, std::string purpose, std::vector<std::string> clauses, const MeshSequence& s, Encode3dOptions o,
+                bool traced, uint32_t hash_group = 1);
+
+// A stream to decode whose units (some or all) are written symbol by
+// symbol, for what m4mesh's encoder never writes.
+SuiteCase written_case(std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream);
+
+// A stream to reject with the error a decoder must report (the frame as its plane).
+SuiteCase invalid(std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream, ErrorKind kind,
+                  std::string element, int64_t frame);
+
+// A codec with its options, a frame hash unit per frame (the conformance
+// streams hash every frame).
+Encode3dOptions codec_with(std::string codec, CodecOptionValues values);
+
+// The codecs' options as the suite uses them.
+Encode3dOptions lcc(CodecOptionValues values);
+// Affine-Octree at ME `me` percent and k bits per matrix element.
+Encode3dOptions affine(const std::string& me, int k = 16);
+// cpca-wpt with the paper's tools (shape components, basis predicted in
+// index order) unless `values` name others.
+Encode3dOptions cpca(CodecOptionValues values);
+
+// Each group's streams to decode, in the manifest's order.
+std::vector<SuiteCase> affine_octree_cases(bool traced);
+std::vector<SuiteCase> bfs3d_cases(bool traced);
+std::vector<SuiteCase> lcc_cases(bool traced);
+std::vector<SuiteCase> cpca_cases(bool traced);
+std::vector<SuiteCase> group_hash_cases(bool traced);
+std::vector<SuiteCase> base_mesh_cases(bool traced);
+
+// Streams to reject, each made from a valid one of `valid`, in parts that
+// keep the manifest's order (suite3d.cc joins them).
+std::vector<SuiteCase> container_header_rejected(const std::vector<SuiteCase>& valid);
+std::vector<SuiteCase> affine_octree_rejected(const std::vector<SuiteCase>& valid);
+std::vector<SuiteCase> container_unit_rejected(const std::vector<SuiteCase>& valid);
+std::vector<SuiteCase> bfs3d_rejected(const std::vector<SuiteCase>& valid);
+std::vector<SuiteCase> lcc_rejected(const std::vector<SuiteCase>& valid);
+std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid);
+std::vector<SuiteCase> group_hash_rejected(const std::vector<SuiteCase>& valid);
+std::vector<SuiteCase> base_mesh_unit_rejected(const std::vector<SuiteCase>& valid);
+std::vector<SuiteCase> container_edge_rejected(const std::vector<SuiteCase>& valid);
+std::vector<SuiteCase> base_mesh_count_rejected(const std::vector<SuiteCase>& valid);
+std::vector<SuiteCase> affine_octree_edge_rejected(const std::vector<SuiteCase>& valid);
+std::vector<SuiteCase> bfs3d_prefix_rejected(const std::vector<SuiteCase>& valid);
+std::vector<SuiteCase> base_mesh_traversal_rejected(const std::vector<SuiteCase>& valid);
+std::vector<SuiteCase> bfs3d_header_rejected(const std::vector<SuiteCase>& valid);
+
+}  // namespace m4mesh::suite3d

@@ -1,0 +1,422 @@
+// The clustered-PCA codec's streams (docs/codec_cpca_wpt.md) and those to reject.
+#include <algorithm>
+#include <optional>
+
+#include "conformance/suite3d/cases.h"
+#include "conformance/suite3d/inputs.h"
+#include "conformance/suite3d/stream_edits.h"
+#include "decoder/mesh3d/container_decoder.h"
+#include "encoder/mesh3d/base_mesh.h"
+#include "mesh3d/cpca_wpt.h"
+#include "syntax/mesh3d/cpca_wpt.h"
+#include "syntax/mesh3d/entropy_io.h"
+
+namespace m4mesh::suite3d {
+
+namespace {
+
+// The position of the n-th refinement unit (n from 0) among a stream's units.
+size_t refinement_unit(const ContainerParts& parts, size_t n) {
+  for (size_t k = 0; k < parts.units.size(); ++k)
+    if (unit_header_of(parts.units[k].payload).type() == UnitType::kRefinement && n-- == 0) return k;
+  throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no such refinement unit");
+}
+
+// A refinement unit's fields.
+FieldBytes refinement_field(const char* name) { return unit_field<CpcaRefinement>(name); }
+uint32_t unit_kind(const ContainerUnit& unit) { return static_cast<uint32_t>(field_value(unit.payload, refinement_field("unit_kind"))); }
+bool is_refinement(const ContainerUnit& unit) { return unit_header_of(unit.payload).type() == UnitType::kRefinement; }
+
+// A refinement unit (frame 0) of cluster `cluster` with the bins and raw
+// bits of its symbols.
+std::vector<uint8_t> refinement_bytes(uint32_t cluster, uint32_t kind, uint32_t shift, syntax::EntropyWriteIO<false>& symbols) {
+  const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
+  BitWriter writer;
+  syntax::WriteIO io(writer);
+  UnitHeader header{static_cast<uint32_t>(UnitType::kRefinement), 0};
+  syntax::describe(io, header);
+  CpcaRefinement r{cluster, kind, shift, static_cast<uint32_t>(bins.size()), bins, raw};
+  syntax::describe(io, r);
+  return writer.take_bytes();
+}
+
+// A refinement unit (frame 0, shift 16) whose symbols are the residuals
+// given, channel and value, in order: values the encoder's description
+// refuses to write, for the decoder to reject.
+std::vector<uint8_t> crafted_refinement(uint32_t cluster, uint32_t kind, const std::vector<std::pair<int, int32_t>>& residuals) {
+  syntax::ResidualCoder<4> coder;
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+  for (auto [channel, value] : residuals) coder.describe(symbols, channel, value, syntax::kCpcaBasis);
+  return refinement_bytes(cluster, kind, kCpcaShiftBias, symbols);
+}
+
+// The start of a clustered-PCA stream written symbol by symbol: the
+// encoder's object header and base mesh for `s` (one cluster, no hash
+// units), the header's cluster map replaced by `cluster_of` (and F by
+// `fraction_bits` when given); refinement units follow.
+ContainerWriter cpca_written_start(const MeshSequence& s, const std::vector<uint32_t>& cluster_of, uint32_t clusters,
+                                   std::optional<uint32_t> fraction_bits) {
+  Encode3dOptions o = cpca({{"clusters", "1"}});
+  o.hashes = false;
+  ContainerParts parts = split_container(encode_mesh3d(s, o).stream);
+  auto [object, header] = read_headers<CpcaHeader>(parts);
+  syntax::EntropyWriteIO<false> map(syntax::SectionPlace{});
+  std::vector<uint32_t> clusters_of = cluster_of;
+  syntax::describe_cluster_map(map, clusters_of, clusters);
+  const std::vector<uint8_t> map_bins = map.finish_bins(), map_raw = map.finish_raw();
+  header.cluster_count = clusters;
+  if (fraction_bits) header.fraction_bits = *fraction_bits;
+  header.map_bins_bytes = static_cast<uint32_t>(map_bins.size());
+  header.map_bins = map_bins;
+  header.map_raw_bytes = static_cast<uint32_t>(map_raw.size());
+  header.map_raw = map_raw;
+  BitWriter payload;
+  syntax::WriteIO out(payload);
+  syntax::describe(out, object);
+  syntax::describe(out, header);
+  ContainerWriter writer;
+  writer.object(payload.take_bytes());
+  writer.unit(unit_of(parts, UnitType::kBaseMesh, 0).payload);
+  return writer;
+}
+
+// A clustered-PCA stream of 2 frames written symbol by symbol (no hash
+// units) over a base mesh the encoder wrote: 255 clusters, F = 16, and
+// - a cluster map of clusters 0 … 254 in turn, then per pattern of
+//   for_each_prefix_pattern() up to e = 7 (cluster differences reach 254)
+//   200 vertices of cluster 64 and steps up by the pattern's two values;
+// - per pattern p (e up to 13), cluster p's start (shift 17) whose
+//   translation on every axis is the pattern's first value in frame 0 and
+//   moves by its second in frame 1;
+// - cluster 64's component whose basis steps through prefix_schedule() on
+//   every axis;
+// - per pattern pair 2c, 2c + 1, two components of cluster c whose
+//   coefficients step by the pattern's values.
+std::vector<uint8_t> cpca_written_stream() {
+  constexpr uint32_t kClusters = kCpcaMaxClusters, kQuietCluster = 64;
+  std::vector<uint32_t> cluster_of;
+  for (uint32_t c = 0; c < kClusters; ++c) cluster_of.push_back(c);
+  for_each_prefix_pattern(7, [&](int32_t first, int32_t second) {
+    cluster_of.insert(cluster_of.end(), 200, kQuietCluster);
+    cluster_of.push_back(kQuietCluster + static_cast<uint32_t>(std::abs(first)));
+    cluster_of.push_back(cluster_of.back() + static_cast<uint32_t>(std::abs(second)));
+  });
+  const int loose = static_cast<int>(cluster_of.size()) - 11;  // designed_loose()'s sheet and box hold 11
+  ContainerWriter writer =
+      cpca_written_start(designed_loose(2, loose, [](int, int) { return 0; }), cluster_of, kClusters, kCpcaMaxFractionBits);
+
+  const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, kClusters);
+  auto start = [&](uint32_t cluster, std::vector<int32_t> translation) {
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    syntax::describe_start(symbols, translation);
+    writer.unit(refinement_bytes(cluster, kCpcaStart, kCpcaShiftBias + 1, symbols));
+  };
+  auto component = [&](uint32_t cluster, std::vector<int32_t> basis, std::vector<int32_t> coefficients) {
+    basis.resize(3 * members[cluster].size());
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    syntax::describe_operator(symbols, basis, coefficients);
+    writer.unit(refinement_bytes(cluster, kCpcaComponent, kCpcaShiftBias, symbols));
+  };
+  std::vector<std::pair<int32_t, int32_t>> patterns;
+  for_each_prefix_pattern(13, [&](int32_t first, int32_t second) { patterns.emplace_back(first, second); });
+  for (uint32_t c = 0; c < patterns.size(); ++c) {
+    const auto [first, second] = patterns[c];
+    start(c, {first, first, first, first + second, first + second, first + second});
+  }
+  start(kQuietCluster, std::vector<int32_t>(6));
+  std::vector<int32_t> basis;
+  int32_t value = 0;
+  for (int32_t step : prefix_schedule()) {
+    value += step;
+    basis.insert(basis.end(), 3, value);
+  }
+  component(kQuietCluster, basis, {1, 1});
+  for (uint32_t c = 0; 2 * c < patterns.size(); ++c)
+    for (uint32_t k = 2 * c; k < std::min<size_t>(2 * c + 2, patterns.size()); ++k)
+      component(c, {1, 1, 1}, {patterns[k].first, patterns[k].first + patterns[k].second});
+  return writer.finish();
+}
+
+// A clustered-PCA stream of 2 frames written symbol by symbol (no hash
+// units) with a component of unit_kind 2 (shapes over the mesh) and one of
+// unit_kind 3 (trajectories) per cluster below, each carrying the same
+// values, over the separate quads of parallelogram_quads() at one place
+// and as many vertices in no face:
+// - cluster 0, the quads: a component whose basis is 0 at a quad's first
+//   three vertices and prefix_schedule()'s next value at its fourth, so
+//   that the parallelogram channels carry the schedule;
+// - cluster 1, the vertices in no face (each predicted by the one before):
+//   a component whose basis steps through prefix_schedule();
+// - clusters 2 … 43, one vertex each: per pattern of
+//   for_each_prefix_pattern(), a component whose coefficients step by the
+//   pattern's values on every lane.
+std::vector<uint8_t> cpca_mesh_written_stream() {
+  const std::vector<int32_t> schedule = prefix_schedule();
+  std::vector<std::pair<int32_t, int32_t>> patterns;
+  for_each_prefix_pattern(13, [&](int32_t first, int32_t second) { patterns.emplace_back(first, second); });
+  MeshSequence s = parallelogram_quads(std::vector<int32_t>(schedule.size(), 0));
+  const uint32_t quads_end = s.vertex_count;
+  for (size_t i = 0; i < schedule.size() + patterns.size(); ++i) s.frames[0].push_back({40000.0 + static_cast<double>(i % 64), 40000, 40000});
+  s.vertex_count = static_cast<uint32_t>(s.frames[0].size());
+  s.frames = {s.frames[0], s.frames[0]};
+  std::vector<uint32_t> cluster_of(s.vertex_count, 0);
+  for (uint32_t v = quads_end; v < quads_end + schedule.size(); ++v) cluster_of[v] = 1;
+  for (uint32_t p = 0; p < patterns.size(); ++p) cluster_of[quads_end + schedule.size() + p] = 2 + p;
+  const uint32_t clusters = 2 + static_cast<uint32_t>(patterns.size());
+
+  ContainerWriter writer = cpca_written_start(s, cluster_of, clusters, std::nullopt);
+
+  const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false);
+  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, clusters);
+  const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, clusters);
+  // One value per member (every axis alike), one per frame (every lane alike).
+  auto component = [&](uint32_t kind, uint32_t cluster, const std::vector<int32_t>& values, std::pair<int32_t, int32_t> frames) {
+    const size_t per_member = kind == kCpcaTrajectory ? 1 : 3;
+    std::vector<int32_t> basis, coefficients;
+    for (int32_t v : values) basis.insert(basis.end(), per_member, v);
+    coefficients.insert(coefficients.end(), 3 / per_member, frames.first);
+    coefficients.insert(coefficients.end(), 3 / per_member, frames.second);
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    if (kind == kCpcaTrajectory)
+      mesh.describe_operator<1>(symbols, cluster, basis, coefficients);
+    else
+      mesh.describe_operator<3>(symbols, cluster, basis, coefficients);
+    writer.unit(refinement_bytes(cluster, kind, kCpcaShiftBias, symbols));
+  };
+  for (uint32_t c = 0; c < clusters; ++c) {
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    std::vector<int32_t> translation(6);
+    syntax::describe_start(symbols, translation);
+    writer.unit(refinement_bytes(c, kCpcaStart, kCpcaShiftBias, symbols));
+  }
+  std::vector<int32_t> quads(members[0].size(), 0);
+  size_t next = 0;
+  for (size_t i = 0; i < members[0].size(); ++i)
+    if (members[0][i] >= 11 && (members[0][i] - 11) % 4 == 3) quads[i] = schedule[next++];  // a quad's fourth vertex
+  std::vector<int32_t> chain;
+  int32_t value = 0;
+  for (int32_t step : schedule) chain.push_back(value += step);
+  for (const uint32_t kind : {kCpcaMeshComponent, kCpcaTrajectory}) {
+    component(kind, 0, quads, {1, 1});
+    component(kind, 1, chain, {1, 1});
+    for (uint32_t p = 0; p < patterns.size(); ++p)
+      component(kind, 2 + p, {1}, {patterns[p].first, patterns[p].first + patterns[p].second});
+  }
+  return writer.finish();
+}
+
+// One cluster with more components of both kinds than either limit: the
+// units of a moving tetrahedron's shape components (3 over 3 frames, the
+// limit), then those of its trajectory components (3: its 4 vertices less
+// their mean), no hash units.
+std::vector<uint8_t> cpca_mixed_kinds_stream() {
+  auto units = [](const char* model) {
+    Encode3dOptions o = cpca({{"clusters", "1"}, {"noise", "-4"}, {"model", model}});
+    o.hashes = false;
+    return split_container(encode_mesh3d(moving_tetrahedron(3), o).stream);
+  };
+  ContainerParts shapes = units("shape");
+  const ContainerParts trajectories = units("trajectory");
+  for (const ContainerUnit& unit : trajectories.units)
+    if (is_refinement(unit) && unit_kind(unit) == kCpcaTrajectory) shapes.units.push_back(unit);
+  ContainerWriter writer;
+  writer.object(shapes.object_payload);
+  for (const ContainerUnit& unit : shapes.units) writer.unit(unit.payload);
+  return writer.finish();
+}
+
+}  // namespace
+
+// The clustered-PCA codec's streams: both orders, a prefix cut at a unit
+// boundary, the finest and coarsest quantization, one cluster, F = 0.
+std::vector<SuiteCase> cpca_cases(bool traced) {
+  const MeshSequence flag = waving_flag(9, 8, false);
+  std::vector<SuiteCase> suite;
+  suite.push_back(valid("cpca-01-wpt", "cpca-wpt, 4 clusters, weighted progressive order", {"cpca", "container-units"}, flag,
+                        cpca({{"clusters", "4"}}), traced));
+  suite.push_back(valid("cpca-02-rpt", "cpca-wpt, round robin over the clusters", {"cpca"}, flag, cpca({{"clusters", "4"}, {"order", "rpt"}}),
+                        traced));
+  {
+    // The prefix of cpca-01 through its twelfth unit (no hash units, no
+    // end code), traced as the encoder traced those units.
+    const SuiteCase& full = suite.front();
+    const ContainerParts parts = split_container(full.stream);
+    SuiteCase prefix = decode_case(
+        "cpca-03-prefix", "the first 12 units of cpca-01: a prefix cut at a unit boundary decodes", {"cpca", "cpca-prefix"},
+        std::vector<uint8_t>(full.stream.begin(), full.stream.begin() + static_cast<std::ptrdiff_t>(parts.units[12].byte_offset)));
+    if (traced) prefix.encoder_trace = full.encoder_trace.substr(0, full.encoder_trace.find("\nunit 12 ") + 1);
+    suite.push_back(std::move(prefix));
+  }
+  suite.push_back(valid("cpca-04-fine", "every component at the finest noise step, a 16-bit grid", {"cpca"}, flag,
+                        cpca({{"clusters", "3"}, {"components", "4096"}, {"noise", "-4"}, {"bits", "16"}}), traced));
+  suite.push_back(valid("cpca-05-coarse", "the coarsest noise step on a 4-bit grid", {"cpca"}, flag,
+                        cpca({{"clusters", "3"}, {"noise", "12"}, {"bits", "4"}}), traced));
+  suite.push_back(valid("cpca-06-one-cluster", "one cluster", {"cpca"}, flag, cpca({{"clusters", "1"}}), traced));
+  suite.push_back(valid("cpca-08-spikes", "vertices that jump by 2^−2 … 2^−23 of the box on a 24-bit grid", {"cpca"},
+                        spiky_sheet(8, 16, 0, 43, 30), cpca({{"clusters", "3"}, {"bits", "24"}, {"noise", "-4"}, {"components", "4096"}}), traced));
+  suite.push_back(valid("cpca-09-many-clusters", "200 clusters over 389 vertices: cluster numbers far apart", {"cpca"},
+                        spiky_sheet(4, 16, 100, 47, 3), cpca({{"clusters", "200"}, {"bits", "24"}}), traced));
+  suite.push_back(written_case("cpca-10-written", "a stream written symbol by symbol: every prefix length 0 … 13 after each class in "
+                              "translations, basis values and coefficients, cluster differences up to 254, F = 16, start shifts above 16",
+                              {"cpca"}, cpca_written_stream()));
+  suite.push_back(valid("cpca-11-mesh-basis", "shape components whose basis is predicted over the base mesh (unit_kind 2)", {"cpca"}, flag,
+                        cpca({{"clusters", "4"}, {"basis", "mesh"}}), traced));
+  suite.push_back(valid("cpca-12-trajectories", "trajectory components (unit_kind 3)", {"cpca"}, flag,
+                        cpca({{"clusters", "4"}, {"model", "trajectory"}}), traced));
+  suite.push_back(valid("cpca-13-trajectories-scattered", "trajectory components of 200 clusters over a sheet: members without neighbours",
+                        {"cpca"}, spiky_sheet(4, 16, 100, 47, 3), cpca({{"clusters", "200"}, {"bits", "24"}, {"model", "trajectory"}}), traced));
+  suite.push_back(written_case("cpca-14-mesh-written", "unit_kind 2 and 3 written symbol by symbol: every prefix length 0 … 13 after "
+                              "each class on the parallelogram, neighbour and coefficient channels", {"cpca"}, cpca_mesh_written_stream()));
+  suite.push_back(written_case("cpca-16-mixed-kinds", "one cluster of 4 vertices over 3 frames: 3 shape components (its limit, "
+                              "min(3M, N) = 3) and 3 trajectory components (of min(M, 3N) = 4), counted apart", {"cpca"}, cpca_mixed_kinds_stream()));
+  suite.push_back(valid("cpca-07-no-fraction", "a 24-bit grid: fraction_bits 0", {"cpca"}, flag, cpca({{"clusters", "2"}, {"bits", "24"}}),
+                        traced));
+  return suite;
+}
+
+// The clustered-PCA codec's streams to reject: header ranges, and the unit
+// rules (cluster, start, component count).
+std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
+  std::vector<SuiteCase> suite;
+  const std::vector<uint8_t> base = stream_of(valid, "cpca-01-wpt");
+  auto field = [&base](const char* name) { return object_field<CpcaHeader>(base, name); };
+  const struct {
+    const char* id;
+    const char* purpose;
+    const char* field;
+    uint8_t value;
+    ErrorKind kind;
+    const char* element;
+  } header_cases[] = {
+      {"x-26-cpca-no-cluster", "cluster_count 0", "cluster_count", 0, ErrorKind::kOutOfRange, "cluster_count"},
+      {"x-27-cpca-fraction-bits", "fraction_bits 17", "fraction_bits", 17, ErrorKind::kOutOfRange, "fraction_bits"},
+      {"x-28-cpca-map-beyond", "cluster_count 3 while the map names cluster 3", "cluster_count", 3, ErrorKind::kOutOfRange, "cluster_of_vertex"},
+      {"x-29-cpca-empty-cluster", "cluster_count 5 while the map names clusters 0 … 3", "cluster_count", 5, ErrorKind::kStructure, "cluster_count"},
+      {"x-37-cpca-quantization-bits", "quantization_bits 3", "quantization_bits", 3, ErrorKind::kOutOfRange, "quantization_bits"},
+  };
+  for (const auto& c : header_cases)
+    suite.push_back(invalid(c.id, c.purpose, {"cpca"}, edited(base, [&](ContainerParts& p) { put_field(p.object_payload, field(c.field), c.value); }),
+                            c.kind, c.element, kNoPlane));
+  suite.push_back(invalid("x-30-cpca-no-frame-count", "frame_count 0 (unknown)", {"cpca"},
+                          edited(base,
+                                 [&](ContainerParts& p) { put_field(p.object_payload, field("frame_count"), 0); }),
+                          ErrorKind::kStructure, "frame_count", kNoPlane));
+  suite.push_back(invalid("x-31-cpca-cluster-beyond", "a refinement unit for cluster 4 of 4", {"cpca"},
+                          edited(base, [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, refinement_field("cluster"), 4); }),
+                          ErrorKind::kOutOfRange, "cluster", 0));
+  suite.push_back(invalid("x-32-cpca-unit-kind", "unit_kind 4", {"cpca"},
+                          edited(base, [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, refinement_field("unit_kind"), 4); }),
+                          ErrorKind::kOutOfRange, "unit_kind", 0));
+  // The first component unit of a kind moves before every refinement unit (they follow the base mesh).
+  auto component_first = [](uint32_t kind) {
+    return [kind](ContainerParts& p) {
+      size_t k = refinement_unit(p, 0);
+      while (unit_kind(p.units[k]) != kind) ++k;
+      ContainerUnit component = p.units[k];
+      p.units.erase(p.units.begin() + static_cast<std::ptrdiff_t>(k));
+      p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(refinement_unit(p, 0)), component);
+    };
+  };
+  suite.push_back(invalid("x-33-cpca-not-started", "a component of a cluster before the cluster's start", {"cpca"},
+                          edited(base, component_first(kCpcaComponent)), ErrorKind::kStructure, "unit_kind", 0));
+  suite.push_back(invalid("x-65-cpca-mesh-not-started", "a unit_kind 2 component of a cluster before the cluster's start", {"cpca"},
+                          edited(stream_of(valid, "cpca-11-mesh-basis"), component_first(kCpcaMeshComponent)), ErrorKind::kStructure, "unit_kind", 0));
+  suite.push_back(invalid("x-66-cpca-trajectory-not-started", "a trajectory component of a cluster before the cluster's start", {"cpca"},
+                          edited(stream_of(valid, "cpca-12-trajectories"), component_first(kCpcaTrajectory)), ErrorKind::kStructure, "unit_kind",
+                          0));
+  suite.push_back(invalid("x-34-cpca-second-start", "a cluster's start sent twice", {"cpca"},
+                          edited(base,
+                                 [](ContainerParts& p) {
+                                   const size_t first = refinement_unit(p, 0);
+                                   p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(first) + 1, p.units[first]);
+                                 }),
+                          ErrorKind::kStructure, "unit_kind", 0));
+  suite.push_back(invalid("x-35-cpca-refinement-frame", "a refinement unit naming frame 1", {"cpca"},
+                          edited(base, [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, unit_header_field("frame_index"), 1); }),
+                          ErrorKind::kStructure, "frame_index", 1));
+  suite.push_back(invalid("x-38-cpca-shift", "shift 64", {"cpca"},
+                          edited(base, [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, refinement_field("shift"), 64); }),
+                          ErrorKind::kOutOfRange, "shift", 0));
+  {
+    // Values beyond their ranges, in the first refinement units: cluster
+    // 0's start, then one of its components.
+    const ContainerParts parts = split_container(base);
+    const size_t start = refinement_unit(parts, 0);
+    const uint32_t cluster = static_cast<uint32_t>(field_value(parts.units[start].payload, refinement_field("cluster")));
+    // The cluster's size, from the header's cluster map.
+    const auto [object, header] = read_headers<CpcaHeader>(parts);
+    const std::vector<uint32_t> cluster_of = syntax::read_cluster_map<false>(header, object.vertex_count, syntax::SectionPlace{});
+    std::vector<std::pair<int, int32_t>> coefficient_beyond(3 * static_cast<size_t>(std::count(cluster_of.begin(), cluster_of.end(), cluster)));
+    for (size_t j = 0; j < coefficient_beyond.size(); ++j) coefficient_beyond[j] = {static_cast<int>(j % 3), 0};
+    coefficient_beyond.emplace_back(syntax::kCpcaCoefficientChannel, (1 << 23) + 1);
+    const struct {
+      const char* id;
+      const char* purpose;
+      uint32_t kind;
+      std::vector<std::pair<int, int32_t>> residuals;
+      const char* element;
+    } ranges[] = {
+        {"x-39-cpca-translation-range", "a start whose first translation is 2^29 + 1", kCpcaStart, {{0, (1 << 29) + 1}}, "translation"},
+        {"x-40-cpca-basis-range", "a component whose first basis value is 2^15 + 1", kCpcaComponent, {{0, (1 << 15) + 1}}, "basis"},
+        {"x-41-cpca-coefficient-range", "a component whose first coefficient is 2^23 + 1", kCpcaComponent, coefficient_beyond, "coefficient"},
+        // The first member in coding order has no member before it: channel D, from 0.
+        {"x-63-cpca-mesh-basis-range", "a unit_kind 2 component whose first basis value is 2^15 + 1", kCpcaMeshComponent,
+         {{3, (1 << 15) + 1}}, "mesh_basis"},
+        {"x-64-cpca-trajectory-basis-range", "a trajectory component whose first basis value is 2^15 + 1", kCpcaTrajectory,
+         {{1, (1 << 15) + 1}}, "trajectory_basis"},
+    };
+    for (const auto& c : ranges)
+      suite.push_back(invalid(c.id, c.purpose, {"cpca"},
+                              edited(base,
+                                     [&](ContainerParts& p) {
+                                       const std::vector<uint8_t> unit = crafted_refinement(cluster, c.kind, c.residuals);
+                                       // A start replaces cluster's start; a component follows it.
+                                       if (c.kind == kCpcaStart)
+                                         p.units[start].payload = unit;
+                                       else
+                                         p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(start) + 1, ContainerUnit{0, 0, unit});
+                                     }),
+                              ErrorKind::kOutOfRange, c.element, 0));
+  }
+  {
+    // One cluster over 3 frames has 3 components: its fourth is one too many.
+    const std::vector<uint8_t> short_stream = encode_mesh3d(moving_tetrahedron(3), cpca({{"clusters", "1"}, {"noise", "-4"}})).stream;
+    suite.push_back(invalid("x-36-cpca-beyond-components", "a fourth component of a cluster over 3 frames", {"cpca"},
+                            edited(short_stream,
+                                   [](ContainerParts& p) {
+                                     size_t last = refinement_unit(p, 0), components = 0;
+                                     for (size_t k = 0; k < p.units.size(); ++k)
+                                       if (is_refinement(p.units[k])) {
+                                         last = k;
+                                         components += unit_kind(p.units[k]) == kCpcaComponent;
+                                       }
+                                     const ContainerUnit copy = p.units[last];
+                                     for (size_t extra = components; extra < 4; ++extra)
+                                       p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(last) + 1, copy);
+                                   }),
+                            ErrorKind::kStructure, "cluster", 0));
+  }
+  {
+    // One cluster of 4 vertices has at most 4 trajectory components: a fifth is one too many.
+    const std::vector<uint8_t> short_stream =
+        encode_mesh3d(moving_tetrahedron(3), cpca({{"clusters", "1"}, {"noise", "-4"}, {"model", "trajectory"}})).stream;
+    suite.push_back(invalid("x-62-cpca-beyond-trajectories", "a fifth trajectory component of a cluster of 4 vertices", {"cpca"},
+                            edited(short_stream,
+                                   [](ContainerParts& p) {
+                                     size_t last = 0, components = 0;
+                                     for (size_t k = 0; k < p.units.size(); ++k)
+                                       if (is_refinement(p.units[k]) && unit_kind(p.units[k]) == kCpcaTrajectory) {
+                                         last = k;
+                                         ++components;
+                                       }
+                                     if (components == 0) throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no trajectory unit");
+                                     const ContainerUnit copy = p.units[last];
+                                     for (size_t extra = components; extra < 5; ++extra)
+                                       p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(last) + 1, copy);
+                                   }),
+                            ErrorKind::kStructure, "cluster", 0));
+  }
+  return suite;
+}
+
+}  // namespace m4mesh::suite3d

@@ -1,0 +1,107 @@
+#include "mesh3d/gate_traversal.h"
+
+#include <algorithm>
+
+namespace m4mesh {
+
+GateTraversal::GateTraversal(uint32_t expected_faces) {
+  const size_t faces = std::min<uint32_t>(expected_faces, 1u << 20);
+  edges_.reserve(3 * faces);
+  index_.reserve(3 * faces);
+  gates_.reserve(faces);
+  faces_.reserve(faces);
+}
+
+uint32_t GateTraversal::new_vertex() {
+  const uint32_t v = visited();
+  parents_.push_back({{v, v, v}});
+  degree_.push_back(0);
+  out_head_.push_back(kNone);
+  in_head_.push_back(kNone);
+  return v;
+}
+
+bool GateTraversal::next_gate(HalfEdge& gate) {
+  while (next_gate_ < gates_.size()) {
+    const Edge& e = edges_[gates_[next_gate_++]];
+    if (e.open) {
+      gate = {e.from, e.to};
+      return true;
+    }
+  }
+  return false;
+}
+
+void GateTraversal::candidates(HalfEdge gate, std::vector<uint32_t>& out) const {
+  out.clear();
+  for (uint32_t e = out_head_[gate.to]; e != kNone && out.size() < kMaxCandidates; e = edges_[e].out_next)
+    if (edges_[e].to != gate.from) out.push_back(edges_[e].to);
+  for (uint32_t e = in_head_[gate.from]; e != kNone && out.size() < kMaxCandidates; e = edges_[e].in_next) {
+    const uint32_t c = edges_[e].from;
+    if (c != gate.to && std::find(out.begin(), out.end(), c) == out.end()) out.push_back(c);
+  }
+}
+
+syntax::GateContext GateTraversal::context(HalfEdge gate, uint32_t candidates) const {
+  const uint32_t from = std::min<uint32_t>(degree_[gate.from], 7), to = std::min<uint32_t>(degree_[gate.to], 7);
+  return {static_cast<int>(std::min<uint32_t>(candidates, 3) * 8 + std::max(from, to)), static_cast<int>(to * 8 + from)};
+}
+
+void GateTraversal::close(uint32_t index) {
+  Edge& e = edges_[index];
+  e.open = false;
+  if (e.out_prev != kNone) edges_[e.out_prev].out_next = e.out_next;
+  else out_head_[e.from] = e.out_next;
+  if (e.out_next != kNone) edges_[e.out_next].out_prev = e.out_prev;
+  if (e.in_prev != kNone) edges_[e.in_prev].in_next = e.in_next;
+  else in_head_[e.to] = e.in_next;
+  if (e.in_next != kNone) edges_[e.in_next].in_prev = e.in_prev;
+}
+
+// A face's half-edge from→to: it closes the open half-edge to→from when
+// there is one, else it is open: a new gate.
+void GateTraversal::link(uint32_t from, uint32_t to) {
+  const uint32_t face = static_cast<uint32_t>(faces_.size());
+  const uint32_t index = static_cast<uint32_t>(edges_.size());
+  index_.insert(from, to, index);
+  const uint32_t reverse = index_.find(to, from);
+  if (reverse != kNone && edges_[reverse].open) {
+    close(reverse);
+    edges_.push_back({from, to, face, false, kNone, kNone, kNone, kNone});
+    return;
+  }
+  const uint32_t out_next = out_head_[from], in_next = in_head_[to];
+  edges_.push_back({from, to, face, true, kNone, out_next, kNone, in_next});
+  if (out_next != kNone) edges_[out_next].out_prev = index;
+  if (in_next != kNone) edges_[in_next].in_prev = index;
+  out_head_[from] = index;
+  in_head_[to] = index;
+  gates_.push_back(index);
+}
+
+bool GateTraversal::add_face(const Triangle& face) {
+  const auto [a, b, c] = face.v;
+  if (a == b || b == c || c == a) return false;
+  if (index_.find(a, b) != kNone || index_.find(b, c) != kNone || index_.find(c, a) != kNone) return false;
+  link(a, b);
+  link(b, c);
+  link(c, a);
+  for (NodeIndex v : face.v) ++degree_[v];
+  faces_.push_back(face);
+  return true;
+}
+
+bool GateTraversal::attach(HalfEdge gate, uint32_t c) {
+  if (c >= visited()) return false;
+  const bool numbered_here = degree_[c] == 0;
+  const Triangle in_front = faces_[edges_[index_.find(gate.from, gate.to)].face];
+  if (!add_face(Triangle{{gate.to, gate.from, c}})) return false;
+  if (numbered_here) parents_[c] = {{gate.from, gate.to, in_front.third(gate.from, gate.to)}};
+  return true;
+}
+
+bool GateTraversal::seed(const Triangle& face) { return add_face(face); }
+
+void GateTraversal::border(HalfEdge gate) { close(index_.find(gate.from, gate.to)); }
+
+}  // namespace m4mesh

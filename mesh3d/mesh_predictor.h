@@ -1,0 +1,83 @@
+// The parallelogram prediction over a mesh (docs/base_mesh.md,
+// "Positions"), shared by the base mesh's positions and the codecs that
+// predict other values on the vertices (cpca-wpt's bases).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "mesh/topology.h"
+#include "mesh3d/directed_edge_index.h"
+#include "syntax/mesh3d/base_mesh.h"
+
+namespace m4mesh {
+
+// Floor division, for predictions of either sign.
+inline int64_t floor_div(int64_t sum, int64_t n) {
+  const int64_t q = sum / n;
+  return (sum % n != 0 && sum < 0) ? q - 1 : q;
+}
+
+// The parallelogram prediction of docs/base_mesh.md ("Positions") for any
+// values that live on the vertices (positions, a component's basis) and
+// any set of vertices already known; the faces in any numbering, in their
+// decoded order (which sets each directed edge's first face).
+class MeshPredictor {
+ public:
+  MeshPredictor(std::span<const Triangle> faces, uint32_t vertex_count);
+
+  // The prediction p of vertex v from the known vertices' values (D per
+  // vertex; never v's own): the mean (floor) of the parallelograms x + y − z of the
+  // faces (v, x, y) whose x, y and opposite z (the third vertex of the
+  // first face with the directed edge y → x) are known, channel
+  // kParallelogramChannel; else the mean of the known corners of the faces
+  // around v, each counted once per face, channel kNeighbourChannel; −1
+  // (p untouched) when no corner is known.
+  template <size_t D, class Known, class Value>
+  int predict(uint32_t v, Known known, Value value, std::array<int64_t, D>& p) const {
+    std::array<int64_t, D> sum{};
+    int64_t n = 0;
+    for (uint32_t i = first_[v]; i < first_[v + 1]; ++i) {
+      const Triangle& t = faces_[around_[i]];
+      const int corner = t.corner_of(v);
+      const uint32_t x = t.v[(corner + 1) % 3], y = t.v[(corner + 2) % 3];
+      if (t.v[corner] != v || !known(x) || !known(y)) continue;
+      const uint32_t z = opposite(y, x);
+      if (z == kNoNode || !known(z)) continue;
+      const auto& vx = value(x);
+      const auto& vy = value(y);
+      const auto& vz = value(z);
+      for (size_t a = 0; a < D; ++a) sum[a] += int64_t{vx[a]} + vy[a] - vz[a];
+      ++n;
+    }
+    if (n > 0) {
+      for (size_t a = 0; a < D; ++a) p[a] = floor_div(sum[a], n);
+      return syntax::kParallelogramChannel;
+    }
+    for (uint32_t i = first_[v]; i < first_[v + 1]; ++i)
+      for (NodeIndex u : faces_[around_[i]].v)
+        if (u != v && known(u)) {
+          const auto& vu = value(u);
+          for (size_t a = 0; a < D; ++a) sum[a] += vu[a];
+          ++n;
+        }
+    if (n == 0) return -1;
+    for (size_t a = 0; a < D; ++a) p[a] = floor_div(sum[a], n);
+    return syntax::kNeighbourChannel;
+  }
+
+ private:
+  // The third vertex of the first face with the directed edge from→to; kNoNode without one.
+  uint32_t opposite(uint32_t from, uint32_t to) const {
+    const uint32_t face = edges_.find(from, to);
+    return face == DirectedEdgeIndex::kNone ? kNoNode : faces_[face].third(from, to);
+  }
+
+  std::span<const Triangle> faces_;
+  std::vector<uint32_t> first_, around_;
+  DirectedEdgeIndex edges_;  // the first face of each directed edge
+};
+
+}  // namespace m4mesh
