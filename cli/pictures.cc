@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "cli/commands3d.h"
+#include "cli/sequence_files.h"
 #include "cli/console.h"
 #include "common/atomic_file.h"
 #include "common/error.h"

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/commands3d.h"
+#include "cli/sequence_files.h"
 #include "cli/console.h"
 #include "codecs3d/registry.h"
 #include "encoder/mesh3d/codec_encoders.h"

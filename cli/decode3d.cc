@@ -1,0 +1,142 @@
+#include "cli/decode3d.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "cli/console.h"
+#include "cli/sequence_files.h"
+#include "codecs3d/registry.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "common/md5.h"
+#include "decoder/mesh3d/container_decoder.h"
+#include "mesh3d/quantization.h"
+
+namespace m4mesh {
+
+namespace {
+
+namespace fs = std::filesystem;
+using console::say;
+
+}  // namespace
+
+int run_decode3d(const Decode3dArgs& args) {
+  const bool writes = !args.output.empty();
+  if (!writes && !args.md5) throw usage_error("decode3d needs -o OUTPUT, or --md5");
+  if (writes) refuse_overwriting(args.input, args.output);
+  const auto [first, last] = frame_range(args.frames);
+  std::vector<uint8_t> stream = read_file(args.input);
+  if (args.max_bytes > 0) {
+    const ContainerPrefix prefix = container_prefix(split_container(stream), stream.size(), args.max_bytes);
+    if (prefix.units == 0)
+      throw usage_error("--max-bytes " + std::to_string(args.max_bytes) + " holds no unit: the first ends later");
+    say("prefix: %zu units, %llu of %zu bytes", prefix.units, static_cast<unsigned long long>(prefix.bytes), stream.size());
+    stream.resize(prefix.bytes);
+  }
+  Decode3dOptions options;
+  options.verify = args.verify;
+  const SequenceOutput form = writes ? sequence_output(args.output, true, args.format) : SequenceOutput::kF32;
+  Mesh3dDecoder decoder(stream, options);
+  console::detail("%s: codec %s, %u vertices, %u faces, %u frames", args.input.c_str(), decoder.codec().name.c_str(),
+                  decoder.header().vertex_count, decoder.header().face_count, decoder.header().frame_count);
+  if (decoder.vertex_order() == kVertexOrderCoding)
+    say("note: %s numbers its vertices in coding order (encode3d --reorder), not necessarily the input's", args.input.c_str());
+  if (const uint32_t start = first > 0 ? decoder.seek(first) : 0; start > 0)
+    console::detail("%s: decoding from the intra refresh at frame %u", args.input.c_str(), start);
+  const bool to_folder = writes && form == SequenceOutput::kObjFolder;
+  Md5 md5;  // of every frame's binary32 bytes: the 3D conformance hash
+  // Frames go to a staging folder that gives the output its frames only when all are decoded.
+  const fs::path temporary = staging_folder(args.output);
+  console::Progress progress("decoding frame", decoder.header().frame_count);
+  MeshSequence sequence;
+  sequence.vertex_count = decoder.header().vertex_count;
+  std::vector<uint32_t> written;
+  bool failed = false;
+  try {
+    // Every frame is decoded (a group hash may cover frames after the range); those in the range are written.
+    while (decoder.next_frame()) {
+      progress.update(decoder.frame_index() + 1);
+      if (decoder.frame_index() < first || decoder.frame_index() > last) continue;
+      if (args.md5) {
+        const std::vector<uint8_t> bytes = frame_bytes(decoder.positions());
+        md5.update(bytes.data(), bytes.size());
+      }
+      written.push_back(decoder.frame_index());
+      if (!writes) continue;
+      std::vector<Vec3> frame;
+      frame.reserve(decoder.positions().size());
+      for (const Float3& p : decoder.positions()) frame.push_back({p[0], p[1], p[2]});
+      if (to_folder) {
+        fs::create_directories(temporary);
+        write_obj_frame(frame, decoder.faces(), (temporary / obj_frame_name(decoder.frame_index())).string());
+      } else {
+        sequence.frames.push_back(std::move(frame));
+      }
+      // Past the range nothing is written; without --verify nothing more is needed.
+      if (decoder.frame_index() == last && !args.verify) break;
+    }
+  } catch (const Error& e) {
+    if (!args.keep_going) {
+      fs::remove_all(temporary);
+      throw;
+    }
+    std::fprintf(stderr, "error: %s: %s\n", args.input.c_str(), e.what());
+    failed = true;
+  } catch (...) {
+    fs::remove_all(temporary);
+    throw;
+  }
+  progress.finish();
+  if (written.empty() && failed) {
+    std::fprintf(stderr, "%s: no frame decoded before the error; nothing written\n", args.input.c_str());
+    return 1;
+  }
+  if (written.empty()) throw usage_error("--frames " + args.frames + ": the stream has no frame there");
+  if (to_folder) {
+    install_obj_frames(temporary, fs::path(args.output));
+  } else if (writes && form == SequenceOutput::kF32) {
+    std::string bytes;
+    for (const std::vector<Vec3>& frame : sequence.frames) {
+      std::vector<Float3> positions;
+      for (const Vec3& v : frame) positions.push_back({static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)});
+      const std::vector<uint8_t> b = frame_bytes(positions);
+      bytes.append(b.begin(), b.end());
+    }
+    write_file_atomically(args.output, bytes);
+  } else if (writes) {
+    sequence.faces = decoder.faces();
+    write_sequence_file(form, sequence, args.output);
+  }
+  if (failed) {
+    std::fprintf(stderr, "%s: decoded %zu frames before the error; %s holds them\n", args.input.c_str(), written.size(), args.output.c_str());
+    return 1;
+  }
+  say("%s: %zu frames of %u vertices%s", writes ? args.output.c_str() : args.input.c_str(), written.size(), decoder.header().vertex_count,
+              decoder.has_end_code() || args.max_bytes > 0 ? "" : " (warning: no end code)");
+  // Hash units may check a group of frames after its last: the results come
+  // at the end, on standard error when the frames fill standard output.
+  std::FILE* report = args.output == "-" ? stderr : stdout;
+  if (args.md5) std::fprintf(report, "%s\n", md5.hex_digest().c_str());
+  std::vector<uint32_t> mismatched, unchecked;
+  for (uint32_t f : written) {
+    const std::optional<bool> ok = decoder.hash_result(f);
+    if (args.verify) std::fprintf(report, "frame %u: %s\n", f, !ok ? "NO HASH" : *ok ? "OK" : "MISMATCH");
+    if (ok.has_value() && !*ok) mismatched.push_back(f);
+    if (!ok.has_value()) unchecked.push_back(f);
+  }
+  if (args.verify) std::fprintf(report, "verify: %zu mismatches, %zu frames without a hash\n", mismatched.size(), unchecked.size());
+  if (!mismatched.empty())
+    std::fprintf(stderr, "error: %s: %zu decoded frames differ from their hash unit (the first: frame %u)\n", args.input.c_str(),
+                 mismatched.size(), mismatched.front());
+  // --verify promises that every frame was checked: a frame without a hash fails it.
+  if (args.verify && !unchecked.empty())
+    std::fprintf(stderr,
+                 "error: %s: --verify: %zu frames carry no hash to check (the first: frame %u): the stream was encoded with --no-hash, "
+                 "or --frames starts inside a group whose hash covers frames not decoded\n",
+                 args.input.c_str(), unchecked.size(), unchecked.front());
+  return mismatched.empty() && (!args.verify || unchecked.empty()) ? 0 : 1;
+}
+
+}  // namespace m4mesh

@@ -1,0 +1,143 @@
+#include <filesystem>
+
+#include "cli/encode3d.h"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <iostream>
+#include <set>
+
+#include "cli/console.h"
+#include "cli/sequence_files.h"
+#include "codecs3d/registry.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "encoder/mesh3d/codec_encoders.h"
+#include "encoder/mesh3d/container_encoder.h"
+#include "encoder/mesh3d/quality_target.h"
+
+namespace m4mesh {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using console::say;
+
+}  // namespace
+
+void add_codec_options(CLI::App& command, Encode3dArgs& args) {
+  std::string names;
+  for (const Codec3d& c : codecs3d())
+    names += (names.empty() ? "" : ", ") + c.name;
+  command.add_option("--codec", args.codec, "codec: " + names + ", or auto (every codec at the quality target, the smallest kept)")
+      ->capture_default_str();
+  command.add_option("--target-kg", args.target_kg,
+                     "the smallest stream whose decoded KG error is at most this (percent), searching the codec's quality parameter");
+  command.add_option("--target-psnr", args.target_psnr, "the smallest stream whose decoded PSNR is at least this (dB)");
+  command.add_option("--threads", args.threads, "trials at once in --codec auto and in cpca-wpt's own search (default 0: every core; the stream kept does not depend on it)");
+  // One flag per option name; codecs that share a name share the flag.
+  std::set<std::string> added;
+  for (const Codec3d& c : codecs3d())
+    for (const CodecOption& o : codec_encoding(c).options) {
+      if (o.name == "target-kg" || !added.insert(o.name).second) continue;  // the target is a flag of every codec
+      std::string owners;
+      for (const Codec3d& other : codecs3d())
+        for (const CodecOption& p : codec_encoding(other).options)
+          if (p.name == o.name) owners += (owners.empty() ? "" : ", ") + other.name;
+      const std::string help = o.help + " [" + owners + "]" + (o.default_value.empty() ? "" : " (default " + o.default_value + ")");
+      const std::string name = o.name;
+      if (o.kind == OptionKind::kFlag)
+        command.add_flag_function("--" + name, [&args, name](int64_t) { args.codec_options[name] = "1"; }, help);
+      else
+        command.add_option_function<std::string>("--" + name, [&args, name](const std::string& v) { args.codec_options[name] = v; }, help);
+    }
+}
+
+int run_encode3d(const Encode3dArgs& args) {
+  refuse_trace_to_output(args.trace, args.output);
+  refuse_overwriting(args.input, args.output);
+  if (fs::is_regular_file(args.input) && is_mesh3d_stream(read_file(args.input)))
+    throw usage_error(args.input + ": a mesh3d stream; encode3d takes frames (m4mesh decode3d turns a stream into frames)");
+  const auto reading = std::chrono::steady_clock::now();
+  const MeshSequence sequence = load_sequence(args.input, !console::quiet());
+  console::detail("%s: %zu frames of %u vertices and %zu faces read in %.3f s", args.input.c_str(), sequence.frames.size(),
+                  sequence.vertex_count, sequence.faces.size(),
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - reading).count());
+  Trace trace(std::cout);
+  Encode3dOptions options;
+  options.codec = args.codec;
+  options.codec_options = args.codec_options;
+  options.hashes = !args.no_hash;
+  options.hash_group = args.hash_group;
+  options.reorder = args.reorder;
+  options.frame_rate_num = static_cast<uint32_t>(args.fps);
+  options.trace = args.trace ? &trace : nullptr;
+  options.threads = args.threads;
+  // Codecs count their own steps: frames, or cpca-wpt's units.
+  console::Progress progress("encoding", sequence.frames.size());
+  options.progress = [&](size_t done, size_t total) { progress.update(done, total); };
+  const QualityTarget target{args.target_kg, args.target_psnr};
+  const bool targeted = target.set();
+  if (targeted) check_target(target);
+  if (args.codec == "auto" && !targeted) throw usage_error("--codec auto needs --target-kg or --target-psnr");
+  if (targeted && args.trace) throw usage_error("--trace and a quality target: trace the stream the search keeps");
+  const double bits = 8.0 / (static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size()));
+  auto print_trial = [&](const TargetTrial& t) {
+    progress.finish();
+    say("  %-14s %-22s %10llu bytes %8.4f bpvf  KG %9.5f  PSNR %8.3f  %s", t.codec.c_str(), t.parameter.c_str(),
+                 static_cast<unsigned long long>(t.bytes), static_cast<double>(t.bytes) * bits, t.kg, t.psnr,
+                 t.meets ? "meets" : "misses");
+  };
+  const auto start = std::chrono::steady_clock::now();
+  Encode3dResult result;
+  if (args.codec == "auto") {
+    say("every codec at the target:");
+    result = encode_smallest(sequence, options, target, print_trial, options.codec);
+    say("kept: %s", options.codec.c_str());
+  } else if (targeted) {
+    say("%s, searching its quality for the target:", args.codec.c_str());
+    result = encode_to_target(sequence, options, target, print_trial);
+  } else {
+    result = encode_mesh3d(sequence, options);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  progress.finish();
+  write_file_atomically(args.output, std::string_view(reinterpret_cast<const char*>(result.stream.data()), result.stream.size()));
+  const double vertex_frames = static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size() - 1);
+  char figure[160];
+  // The whole stream's rate is rd's bpvf and metrics' stream rate.
+  std::snprintf(figure, sizeof figure, " (%.4f bits/vertex/frame)",
+                8.0 * static_cast<double>(result.stream.size()) / (static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size())));
+  std::string line = args.output + ": " + std::to_string(result.stream.size()) + " bytes" + figure;
+  for (uint32_t t = 0; t < kUnitTypes; ++t) {
+    const uint64_t bytes = result.unit_bytes[t];
+    if (bytes == 0) continue;
+    std::snprintf(figure, sizeof figure, ", %s %llu bytes", unit_type_name(static_cast<UnitType>(t)), static_cast<unsigned long long>(bytes));
+    line += figure;
+    if (static_cast<UnitType>(t) == UnitType::kBaseMesh && result.unit_count[t] > 1)
+      std::snprintf(figure, sizeof figure, " in %llu units (%.2f bits/vertex each)", static_cast<unsigned long long>(result.unit_count[t]),
+                    8.0 * static_cast<double>(bytes) / static_cast<double>(result.unit_count[t]) / sequence.vertex_count);
+    else if (static_cast<UnitType>(t) == UnitType::kBaseMesh)
+      std::snprintf(figure, sizeof figure, " (%.2f bits/vertex)", 8.0 * static_cast<double>(bytes) / sequence.vertex_count);
+    else if (static_cast<UnitType>(t) == UnitType::kFrame && vertex_frames > 0)
+      std::snprintf(figure, sizeof figure, " (%.3f bits/vertex/frame)", 8.0 * static_cast<double>(bytes) / vertex_frames);
+    else
+      figure[0] = '\0';
+    line += figure;
+  }
+  line += ", other " + std::to_string(result.other_bytes);
+  say("%s", line.c_str());
+  if (!result.statistics.empty()) {
+    std::string figures = options.codec + ":";
+    for (size_t i = 0; i < result.statistics.size(); ++i) {
+      std::snprintf(figure, sizeof figure, "%s%.10g %s", i ? ", " : " ", result.statistics[i].second, result.statistics[i].first.c_str());
+      figures += figure;
+    }
+    say("%s", figures.c_str());
+  }
+  say("encoded %zu frames of %u vertices in %.3f s (%.1f M vertices/s)", sequence.frames.size(), sequence.vertex_count, seconds, static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size()) / seconds / 1e6);
+  return 0;
+}
+
+}  // namespace m4mesh

@@ -1,0 +1,34 @@
+// m4mesh encode3d: an animated 3D mesh to a mesh3d stream, by one codec or
+// the smallest stream at a quality target.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "encoder/mesh3d/codec_options.h"
+
+namespace CLI {
+class App;
+}
+
+namespace m4mesh {
+
+struct Encode3dArgs {
+  std::string input;
+  std::string output;
+  std::string codec = "bfs3d";       // or "auto": every codec at the target, the smallest kept
+  CodecOptionValues codec_options;  // only those given
+  std::optional<double> target_kg, target_psnr;  // a quality target
+  bool no_hash = false;
+  bool reorder = false;      // vertices renumbered in coding order
+  uint32_t hash_group = 16;  // frames per group hash unit; 1: a frame hash unit per frame
+  int fps = 25;
+  bool trace = false;
+  unsigned threads = 0;  // --codec auto: codecs searched at once; 0: every core
+};
+// Adds --codec, the quality targets and every registered codec's own
+// options to `command`.
+void add_codec_options(CLI::App& command, Encode3dArgs& args);
+int run_encode3d(const Encode3dArgs& args);
+
+}  // namespace m4mesh

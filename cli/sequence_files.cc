@@ -1,0 +1,182 @@
+#include "cli/sequence_files.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <charconv>
+
+#include "cli/console.h"
+#include "codecs3d/registry.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "decoder/mesh3d/container_decoder.h"
+#include "encoder/mesh3d/base_mesh.h"
+#include "mesh3d/ply.h"
+
+namespace m4mesh {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// PLY frames: the '*' of the name replaced by 0001, 0002, …; a name
+// without '*' takes one frame. Existing files are refused before any is written.
+void write_ply_frames(const MeshSequence& sequence, const std::string& output) {
+  const size_t star = fs::path(output).filename().string().find('*');
+  if (star == std::string::npos && sequence.frames.size() != 1)
+    throw usage_error(output + ": " + std::to_string(sequence.frames.size()) + " frames need a name with '*' for the frame number (frames/*.ply)");
+  std::vector<std::string> paths;
+  for (size_t k = 0; k < sequence.frames.size(); ++k) {
+    std::string path = output;
+    if (star != std::string::npos) {
+      char number[24];
+      std::snprintf(number, sizeof number, "%04zu", k + 1);
+      path.replace(output.size() - fs::path(output).filename().string().size() + star, 1, number);
+    }
+    console::check_output(path);
+    paths.push_back(path);
+  }
+  if (const fs::path folder = fs::path(output).parent_path(); !folder.empty()) fs::create_directories(folder);
+  for (size_t k = 0; k < paths.size(); ++k) write_ply_frame(sequence.frames[k], sequence.faces, paths[k]);
+}
+
+// Whether a file name is one obj_frame_name gives (0001.obj, …).
+bool is_obj_frame_name(const std::string& name) {
+  const std::string stem = name.size() > 4 ? name.substr(0, name.size() - 4) : "";
+  return name.ends_with(".obj") && stem.size() >= 4 && std::all_of(stem.begin(), stem.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+}  // namespace
+
+SequenceOutput sequence_output(const std::string& output, bool f32_allowed, const std::string& format) {
+  if (output == "-") {
+    if (format.empty() || format == "m4seq") return SequenceOutput::kM4seq;
+    if (format == "f32" && f32_allowed) return SequenceOutput::kF32;
+    throw usage_error("--format " + format + ": standard output takes m4seq" + std::string(f32_allowed ? " or f32" : ""));
+  }
+  if (!format.empty())
+    throw usage_error("--format is for -o - (standard output); a file's form comes from its name");
+  const fs::path path(output);
+  const std::string extension = path.filename().empty() ? "" : path.extension().string();
+  if (extension.empty()) return SequenceOutput::kObjFolder;
+  if (extension == ".m4seq") return SequenceOutput::kM4seq;
+  if (extension == ".pc2") return SequenceOutput::kPc2;
+  if (extension == ".ply") return SequenceOutput::kPly;
+  if (extension == ".f32" && f32_allowed) return SequenceOutput::kF32;
+  throw usage_error(output + ": unknown output format '" + extension + "' (a folder of OBJ frames, .m4seq, .pc2, .ply" + (f32_allowed ? ", .f32" : "") +
+                  "; a folder whose name holds a dot takes a trailing '/')");
+}
+
+// A whole sequence to a .m4seq, .pc2 or PLY output.
+void write_sequence_file(SequenceOutput form, const MeshSequence& sequence, const std::string& output) {
+  if (form == SequenceOutput::kPc2)
+    write_pc2_sequence(sequence, output);
+  else if (form == SequenceOutput::kPly)
+    write_ply_frames(sequence, output);
+  else
+    write_binary_sequence(sequence, output);
+}
+
+// The OBJ frames written into `staging` become the frames of `folder`:
+// its earlier frame files (0001.obj, …) go, its other files stay.
+void install_obj_frames(const fs::path& staging, const fs::path& output) {
+  fs::path folder = output.lexically_normal();
+  if (folder.filename().empty()) folder = folder.parent_path();
+  if (!fs::is_directory(folder)) {
+    fs::remove(folder);  // a file the user named as the output (-y)
+    fs::rename(staging, folder);
+    return;
+  }
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder))
+    if (entry.is_regular_file() && is_obj_frame_name(entry.path().filename().string())) fs::remove(entry.path());
+  for (const fs::directory_entry& entry : fs::directory_iterator(staging)) fs::rename(entry.path(), folder / entry.path().filename());
+  fs::remove(staging);
+}
+
+// A staging folder beside `output` (a trailing '/' is not part of the
+// name), of this process's own: nothing the user did not name is touched.
+fs::path staging_folder(const std::string& output) {
+  fs::path folder = fs::path(output).lexically_normal();
+  if (folder.filename().empty()) folder = folder.parent_path();
+  return folder.string() + ".partial-" + std::to_string(getpid());
+}
+
+MeshSequence load_sequence_or_stream(const std::string& path, StreamFacts* facts) {
+  console::set_input(path);
+  if (facts) *facts = StreamFacts{};
+  if (path == "-" || fs::is_regular_file(path)) {
+    const std::vector<uint8_t> bytes = read_file(path);
+    if (is_mesh3d_stream(bytes)) {
+      if (facts) {
+        const Mesh3dDecoder header(bytes);
+        *facts = {header.codec().name, bytes.size(), header.vertex_order() == kVertexOrderCoding};
+      }
+      return decode_mesh3d(bytes);
+    }
+  }
+  return load_sequence(path, !console::quiet());
+}
+
+MeshSequence original_as_decoded(const MeshSequence& original, const MeshSequence& decoded, bool coding_order, const std::string& decoded_name) {
+  if (!coding_order || original.vertex_count != decoded.vertex_count) return original;
+  // The faces alone fix the coding order: the encoder's plan gives the numbering back.
+  const MeshSequence renumbered = in_coding_order(original, plan_base_mesh(original.faces, original.vertex_count, true), true);
+  if (!same_faces(renumbered.faces, decoded.faces))
+    throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
+                decoded_name + " numbers its vertices in coding order, but its faces are not the original's in that order: not a stream of this original");
+  return renumbered;
+}
+
+void refuse_overwriting(const std::string& input, const std::string& output) {
+  if (input != "-" && output != "-") {
+    // A PC2 cache comes with the OBJ beside it (its faces), as an input and as an output.
+    auto with_faces = [](const std::string& path) {
+      std::vector<fs::path> paths{path};
+      if (fs::path(path).extension() == ".pc2") paths.push_back(pc2_faces_path(path));
+      return paths;
+    };
+    std::error_code ignored;
+    for (const fs::path& in : with_faces(input))
+      for (const fs::path& out : with_faces(output))
+        if (fs::equivalent(in, out, ignored))
+          throw usage_error(out.string() + ": the output is the input; refusing to overwrite it");
+  }
+  console::check_output(output);
+}
+
+void refuse_trace_to_output(bool trace, const std::string& output) {
+  if (trace && output == "-")
+    throw usage_error("--trace prints to standard output, which -o - takes: write the stream to a file");
+}
+
+std::pair<uint32_t, uint32_t> frame_range(const std::string& text) {
+  if (text.empty()) return {0, UINT32_MAX};
+  const size_t colon = text.find(':');
+  auto number = [&](const std::string& part, uint32_t otherwise) {
+    if (part.empty()) return otherwise;
+    uint32_t value = 0;
+    const auto [end, error] = std::from_chars(part.data(), part.data() + part.size(), value);
+    if (error != std::errc() || end != part.data() + part.size())
+      throw usage_error("--frames " + text + ": frames A:B, A: or :B");
+    return value;
+  };
+  if (colon == std::string::npos) throw usage_error("--frames " + text + ": frames A:B, A: or :B");
+  const std::pair<uint32_t, uint32_t> range{number(text.substr(0, colon), 0), number(text.substr(colon + 1), UINT32_MAX)};
+  if (range.first > range.second) throw usage_error("--frames " + text + ": A is after B");
+  return range;
+}
+
+UnitSizes unit_sizes(const ContainerParts& parts, uint64_t stream_size) {
+  UnitSizes sizes;
+  for (size_t k = 0; k < parts.units.size(); ++k) {
+    const uint64_t end = k + 1 < parts.units.size() ? parts.units[k + 1].byte_offset : stream_size - (parts.has_end_code ? 4 : 0);
+    const uint32_t type = parts.units[k].payload.empty() ? kUnitTypes : parts.units[k].payload[0];
+    if (type < kUnitTypes) {
+      sizes.bytes[type] += end - parts.units[k].byte_offset;
+      ++sizes.count[type];
+    }
+  }
+  return sizes;
+}
+
+}  // namespace m4mesh

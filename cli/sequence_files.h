@@ -1,0 +1,67 @@
+// What the commands read and write: sequences and streams in every form
+// the command line takes, the frames asked for, and the rules for the
+// files a user names (an output that is an input, or that exists).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+
+#include "mesh3d/sequence.h"
+#include "syntax/mesh3d/container.h"
+
+namespace m4mesh {
+
+// A sequence output's form from its name: a folder of OBJ frames (no
+// extension, or a trailing '/'), .m4seq, .pc2 (with its .obj), PLY frames
+// (a .ply name, with a '*' for the frame number when there are several) or
+// .f32; anything else is a usage error, not a folder. Standard output ("-")
+// takes `format`: m4seq (the default) or f32.
+enum class SequenceOutput { kObjFolder, kM4seq, kPc2, kPly, kF32 };
+SequenceOutput sequence_output(const std::string& output, bool f32_allowed, const std::string& format = "");
+
+// A whole sequence to a .m4seq, .pc2 or PLY output.
+void write_sequence_file(SequenceOutput form, const MeshSequence& sequence, const std::string& output);
+
+// The OBJ frames written into `staging` become the frames of `folder`:
+// its earlier frame files (0001.obj, …) go, its other files stay.
+void install_obj_frames(const std::filesystem::path& staging, const std::filesystem::path& output);
+
+// A staging folder beside `output` (a trailing '/' is not part of the
+// name), of this process's own: nothing the user did not name is touched.
+std::filesystem::path staging_folder(const std::string& output);
+
+// Per unit_type, the units of a mesh3d stream and their bytes (start codes included).
+struct UnitSizes {
+  uint64_t bytes[kUnitTypes] = {};
+  uint64_t count[kUnitTypes] = {};
+};
+UnitSizes unit_sizes(const ContainerParts& parts, uint64_t stream_size);
+
+// What a stream tells besides its frames; an empty codec for a sequence.
+struct StreamFacts {
+  std::string codec;
+  uint64_t bytes = 0;
+  bool coding_order = false;  // its vertices numbered in coding order (encode3d --reorder)
+};
+
+// A sequence's frames, or a mesh3d stream's decoded frames (read once),
+// with the stream's facts in `facts`.
+MeshSequence load_sequence_or_stream(const std::string& path, StreamFacts* facts = nullptr);
+
+// The original numbered as `decoded` numbers its vertices: when a stream
+// of encode3d --reorder was decoded, in coding order (the encoder's plan of
+// the original's faces); an input error when it is not this original's.
+MeshSequence original_as_decoded(const MeshSequence& original, const MeshSequence& decoded, bool coding_order, const std::string& decoded_name);
+
+// A usage error when the trace and the stream would share standard output.
+void refuse_trace_to_output(bool trace, const std::string& output);
+// Before anything is read, usage errors for an output that is an input,
+// or that exists without -y (console::check_output).
+void refuse_overwriting(const std::string& input, const std::string& output);
+
+// --frames A:B (both included; "A:" to the end, ":B" from the first; empty: all).
+std::pair<uint32_t, uint32_t> frame_range(const std::string& text);
+
+}  // namespace m4mesh
