@@ -11,7 +11,7 @@
 #include "common/error.h"
 #include "common/md5.h"
 #include "decoder/mesh3d/container_decoder.h"
-#include "mesh3d/quantization.h"
+#include "mesh3d/frame_hash.h"
 
 namespace m4mesh {
 

@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
-#include "common/md5.h"
 
 namespace m4mesh {
 
@@ -50,28 +48,6 @@ bool Grid::quantize(const Vec3& p, IntPoint3& q) const {
     q[axis] = static_cast<int32_t>(index);
   }
   return true;
-}
-
-std::vector<uint8_t> frame_bytes(std::span<const Float3> positions) {
-  std::vector<uint8_t> bytes(positions.size() * 12);
-  uint8_t* out = bytes.data();
-  for (const Float3& p : positions)
-    for (float f : p) {
-      uint32_t bits;
-      std::memcpy(&bits, &f, 4);
-      *out++ = static_cast<uint8_t>(bits);
-      *out++ = static_cast<uint8_t>(bits >> 8);
-      *out++ = static_cast<uint8_t>(bits >> 16);
-      *out++ = static_cast<uint8_t>(bits >> 24);
-    }
-  return bytes;
-}
-
-std::string frame_md5(std::span<const Float3> positions) {
-  const std::vector<uint8_t> bytes = frame_bytes(positions);
-  Md5 md5;
-  md5.update(bytes.data(), bytes.size());
-  return md5.hex_digest();
 }
 
 }  // namespace m4mesh

@@ -1,5 +1,5 @@
-// The quantization grid of the 3D codecs and the canonical bytes of a
-// decoded frame (docs/container3d.md), shared by encoders and decoders.
+// The quantization grid of the 3D codecs (docs/container3d.md), shared by
+// encoders and decoders.
 #pragma once
 
 #include <array>
@@ -36,10 +36,5 @@ struct Grid {
   // Encoding (not normative): the nearest grid index; false if beyond ±kMaxQuantized.
   bool quantize(const Vec3& p, IntPoint3& q) const;
 };
-
-// A decoded frame's canonical bytes: binary32 x, y, z per vertex, little-endian.
-std::vector<uint8_t> frame_bytes(std::span<const Float3> positions);
-// Their MD5.
-std::string frame_md5(std::span<const Float3> positions);
 
 }  // namespace m4mesh

@@ -15,7 +15,7 @@
 #include "conformance/manifest.h"
 #include "decoder/decoder.h"
 #include "decoder/mesh3d/container_decoder.h"
-#include "mesh3d/quantization.h"
+#include "mesh3d/frame_hash.h"
 #include "syntax/mesh3d/container.h"
 #include "syntax/mesh_object.h"
 #include "syntax/trace.h"

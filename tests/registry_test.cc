@@ -17,7 +17,7 @@
 #include "conformance/runner.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
-#include "mesh3d/quantization.h"
+#include "mesh3d/frame_hash.h"
 #include "tests/test_util.h"
 
 namespace m4mesh {

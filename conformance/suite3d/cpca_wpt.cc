@@ -60,16 +60,10 @@ ContainerWriter cpca_written_start(const MeshSequence& s, const std::vector<uint
   o.hashes = false;
   ContainerParts parts = split_container(encode_mesh3d(s, o).stream);
   auto [object, header] = read_headers<CpcaHeader>(parts);
-  syntax::EntropyWriteIO<false> map(syntax::SectionPlace{});
-  std::vector<uint32_t> clusters_of = cluster_of;
-  syntax::describe_cluster_map(map, clusters_of, clusters);
-  const std::vector<uint8_t> map_bins = map.finish_bins(), map_raw = map.finish_raw();
   header.cluster_count = clusters;
   if (fraction_bits) header.fraction_bits = *fraction_bits;
-  header.map_bins_bytes = static_cast<uint32_t>(map_bins.size());
-  header.map_bins = map_bins;
-  header.map_raw_bytes = static_cast<uint32_t>(map_raw.size());
-  header.map_raw = map_raw;
+  std::vector<uint8_t> map_bins, map_raw;
+  syntax::write_cluster_map<false>(header, cluster_of, map_bins, map_raw, syntax::SectionPlace{});
   BitWriter payload;
   syntax::WriteIO out(payload);
   syntax::describe(out, object);

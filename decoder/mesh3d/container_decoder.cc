@@ -4,9 +4,7 @@
 
 #include "bitstream/bit_reader.h"
 #include "codecs3d/registry.h"
-#include "common/md5.h"
 #include "decoder/mesh3d/codec_decoders.h"
-#include "mesh3d/quantization.h"
 #include "syntax/mesh3d/base_mesh.h"
 
 namespace m4mesh {
@@ -161,17 +159,6 @@ void Mesh3dDecoder::decode_unit(size_t index) {
   }
 }
 
-namespace {
-
-std::array<uint8_t, 16> frame_digest(std::span<const Float3> positions) {
-  Md5 md5;
-  const std::vector<uint8_t> bytes = frame_bytes(positions);
-  md5.update(bytes.data(), bytes.size());
-  return md5.digest();
-}
-
-}  // namespace
-
 void Mesh3dDecoder::check_hash(size_t index) {
   const UnitHeader header = begin_unit(index);
   if (header.type() == UnitType::kGroupHash) return check_group_hash(index, header);
@@ -182,12 +169,12 @@ void Mesh3dDecoder::check_hash(size_t index) {
   FrameHash hash;
   read_unit_data(index, frame, [&](syntax::ReadIO& io) { syntax::describe(io, hash); });
   if (!options_.verify) return;
-  const std::array<uint8_t, 16> digest = digest_of(frame);
+  const Digest digest = digest_of(frame);
   hash_results_[frame] = std::equal(digest.begin(), digest.end(), hash.md5.begin());
   unit_.verified.push_back(frame);
 }
 
-std::array<uint8_t, 16> Mesh3dDecoder::digest_of(uint32_t frame) const {
+Digest Mesh3dDecoder::digest_of(uint32_t frame) const {
   if (!codec_->holds_all_frames()) return digests_.at(frame);
   std::vector<Float3> positions(header_.vertex_count);
   codec_->frame(frame, positions);
@@ -206,14 +193,13 @@ void Mesh3dDecoder::check_group_hash(size_t index, const UnitHeader& header) {
         io.fail(ErrorKind::kStructure, "group_frames", "a group hash covering frame " + std::to_string(f) + ", which is not decoded yet");
   });
   if (!options_.verify) return;
-  Md5 group;
+  std::vector<Digest> frames;
   for (uint32_t f = first; f < first + hash.group_frames; ++f) {
     // A frame that failed to decode (a check carries on past it) has no digest: the group stays unchecked.
     if (!codec_->holds_all_frames() && !digests_.count(f)) return;
-    const std::array<uint8_t, 16> digest = digest_of(f);
-    group.update(digest.data(), digest.size());
+    frames.push_back(digest_of(f));
   }
-  const std::array<uint8_t, 16> digest = group.digest();
+  const Digest digest = group_digest(frames);
   const bool match = std::equal(digest.begin(), digest.end(), hash.md5.begin());
   for (uint32_t f = first; f < first + hash.group_frames; ++f) {
     hash_results_[f] = match;

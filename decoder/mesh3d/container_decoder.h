@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "codecs3d/codec_decoder.h"
+#include "mesh3d/frame_hash.h"
 #include "mesh3d/sequence.h"
 #include "syntax/mesh3d/container.h"
 #include "syntax/trace.h"
@@ -112,7 +113,7 @@ class Mesh3dDecoder {
   void check_group_hash(size_t index, const UnitHeader& header);
   bool is_hash_unit(size_t index) const;
   // A decoded frame's MD5 digest (with verify).
-  std::array<uint8_t, 16> digest_of(uint32_t frame) const;
+  Digest digest_of(uint32_t frame) const;
   void finish();
   // An error of a unit header's element (unit_type, frame_index).
   [[noreturn]] void fail(ErrorKind kind, size_t index, int64_t frame, const char* element, const std::string& message) const;
@@ -128,7 +129,7 @@ class Mesh3dDecoder {
   std::map<uint32_t, bool> hash_results_;
   // With verify, the MD5 of every frame as it was decoded (a codec that
   // holds every frame is hashed when a group hash is read).
-  std::map<uint32_t, std::array<uint8_t, 16>> digests_;
+  std::map<uint32_t, Digest> digests_;
   // Display order: frames copied out of the codec until their turn.
   std::map<uint32_t, std::vector<Float3>> ready_;
   std::vector<std::vector<Float3>> spare_;

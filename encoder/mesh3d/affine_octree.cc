@@ -98,10 +98,9 @@ class AffineOctreeEncoder final : public GridFrameEncoder {
       return false;
     });
     positions.swap(next_);
-    const std::vector<uint8_t> bins = cells.finish_bins(), raw = cells.finish_raw();
-    AffineFrame data{shift, static_cast<uint32_t>(bins.size()), bins, raw};
-    syntax::describe(io, data);
-    if (io.trace()) io.trace()->stream() << cells.trace_text();
+    AffineFrame data;
+    data.direct_shift = shift;
+    cells.finish(io, data);
   }
 
   // The least-squares affine map of the cell (in cell-local coordinates, as

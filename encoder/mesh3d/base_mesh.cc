@@ -165,12 +165,7 @@ void write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> face
   std::vector<IntPoint3> coded(vertex_count);
   for (uint32_t i = 0; i < vertex_count; ++i) coded[i] = positions[c.input_of[i]];
   describe_positions(symbols, contexts, c.faces, coded);
-  const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
-  data.arithmetic_bytes = static_cast<uint32_t>(bins.size());
-  data.bins = bins;
-  data.raw = raw;
-  syntax::describe(io, data);
-  if (io.trace()) io.trace()->stream() << symbols.trace_text();
+  symbols.finish(io, data);
 }
 
 }  // namespace

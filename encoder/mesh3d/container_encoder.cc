@@ -5,11 +5,10 @@
 #include <map>
 
 #include "codecs3d/registry.h"
-#include "encoder/mesh3d/codec_encoders.h"
-#include "encoder/mesh3d/base_mesh.h"
-#include "common/md5.h"
 #include "common/error.h"
-#include "mesh3d/quantization.h"
+#include "encoder/mesh3d/base_mesh.h"
+#include "encoder/mesh3d/codec_encoders.h"
+#include "mesh3d/frame_hash.h"
 
 namespace m4mesh {
 
@@ -46,11 +45,8 @@ class ContainerSink final : public UnitSink {
       for (size_t v = 0; v < positions.size(); ++v) kept[v] = {positions[v][0], positions[v][1], positions[v][2]};
     }
     if (!options_.hashes) return;
-    Md5 md5;
-    const std::vector<uint8_t> bytes = frame_bytes(positions);
-    md5.update(bytes.data(), bytes.size());
+    const Digest digest = frame_digest(positions);
     if (options_.hash_group <= 1) {
-      const std::array<uint8_t, 16> digest = md5.digest();
       unit(UnitType::kFrameHash, frame, [&](syntax::WriteIO& io) {
         FrameHash hash{digest};
         syntax::describe(io, hash);
@@ -58,19 +54,19 @@ class ContainerSink final : public UnitSink {
       return;
     }
     // The frame's group, once every frame of it is decoded (again).
-    pending_[frame] = md5.digest();
+    pending_[frame] = digest;
     const uint32_t first = frame - frame % options_.hash_group;
     const uint32_t count = std::min(options_.hash_group, frame_count_ - first);
     for (uint32_t f = first; f < first + count; ++f)
       if (!pending_.count(f)) return;
-    Md5 group;
+    std::vector<Digest> frames;
     for (uint32_t f = first; f < first + count; ++f) {
-      group.update(pending_[f].data(), pending_[f].size());
+      frames.push_back(pending_[f]);
       pending_.erase(f);
     }
-    const std::array<uint8_t, 16> digest = group.digest();
+    const Digest group = group_digest(frames);
     unit(UnitType::kGroupHash, first, [&](syntax::WriteIO& io) {
-      GroupHash hash{count, digest};
+      GroupHash hash{count, group};
       syntax::describe(io, hash);
     });
   }
@@ -87,7 +83,7 @@ class ContainerSink final : public UnitSink {
   Encode3dResult& result_;
   uint32_t frame_count_;
   uint64_t units_ = 0;
-  std::map<uint32_t, std::array<uint8_t, 16>> pending_;  // digests of decoded frames whose group is not complete
+  std::map<uint32_t, Digest> pending_;  // digests of decoded frames whose group is not complete
 };
 
 }  // namespace

@@ -3,20 +3,22 @@
 // components of its motion about the mean shape, each quantized into one
 // refinement operator, and the operators sent in decreasing weight (WPT:
 // squared error removed per bit) or round robin over the clusters (RPT).
-#include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
-#include <numbers>
 #include <optional>
 
 #include "codecs3d/codec_encoder.h"
-#include "encoder/mesh3d/codec_options.h"
 #include "common/bit_cast.h"
 #include "common/error.h"
 #include "common/parallel.h"
 #include "encoder/mesh3d/base_mesh.h"
+#include "encoder/mesh3d/codec_options.h"
+#include "encoder/mesh3d/cpca_wpt_analysis.h"
+#include "encoder/mesh3d/cpca_wpt_operators.h"
+#include "encoder/mesh3d/cpca_wpt_options.h"
+#include "encoder/mesh3d/cpca_wpt_plan.h"
 #include "mesh3d/cpca_wpt.h"
 #include "mesh3d/metrics.h"
 #include "mesh3d/quantization.h"
@@ -27,344 +29,28 @@ namespace m4mesh {
 
 namespace {
 
-// The noise step's log2 in half steps (2 log2 Δ): the default, and the
-// range --noise and the search take.
-constexpr int kDefaultNoise = 8, kMinNoise = -8, kMaxNoise = 24;
+using namespace cpca_wpt;
 
-// Principal components per cluster: the paper's, and the most --components takes.
-constexpr size_t kPaperComponents = 40, kMaxComponents = 4096;
 // Trajectory components take their basis this many half steps (√2 each)
 // finer than the equal-error rule: measured, 1 to 2 % fewer bytes at the
 // same KG on the cow and the horse (the basis is predicted over the mesh,
 // the coefficients are not).
 constexpr int kTrajectoryBasisFiner = 1;
-// Clusters: the paper's.
-constexpr int kPaperClusters = 10;
-// The mean shape's quantization bits: the default, and the range --bits takes.
-constexpr int kDefaultBits = 12, kMinBits = 4, kMaxBits = 24;
 
-
-// A whole number least … most written in `text`, else a usage error naming the option.
-size_t parse_count(const std::string& text, const char* option, size_t most, size_t least = 1) {
-  size_t used = 0;
-  unsigned long value = 0;
-  try {
-    value = std::stoul(text, &used);
-  } catch (const std::exception&) {
-  }
-  if (used == 0 || used != text.size() || text[0] == '-' || value < least || value > most)
-    throw usage_error(std::string(option) + " is auto or an integer in " + std::to_string(least) + " … " + std::to_string(most) + " (cpca-wpt)");
-  return value;
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// Vertex v's trajectory is row v: x, y, z of frame 0, then of frame 1, …
-Eigen::MatrixXd trajectories(const MeshSequence& s) {
-  Eigen::MatrixXd x(s.vertex_count, 3 * static_cast<Eigen::Index>(s.frames.size()));
-  for (size_t f = 0; f < s.frames.size(); ++f)
-    for (size_t v = 0; v < s.vertex_count; ++v) {
-      const Vec3& p = s.frames[f][v];
-      x(static_cast<Eigen::Index>(v), static_cast<Eigen::Index>(3 * f)) = p.x;
-      x(static_cast<Eigen::Index>(v), static_cast<Eigen::Index>(3 * f + 1)) = p.y;
-      x(static_cast<Eigen::Index>(v), static_cast<Eigen::Index>(3 * f + 2)) = p.z;
-    }
-  return x;
-}
-
-// k-means on the trajectories, deterministic: the first center is the
-// trajectory farthest from the mean, each next the one farthest from the
-// centers so far (ties: the lowest vertex); then Lloyd iterations (ties:
-// the lowest cluster) until no vertex moves, at most 50. Clusters are
-// numbered by their first vertex; none is empty.
-std::vector<uint32_t> cluster_trajectories(const Eigen::MatrixXd& x, int k) {
-  const Eigen::Index vertices = x.rows();
-  const Eigen::RowVectorXd mean = x.colwise().mean();
-  Eigen::VectorXd nearest = (x.rowwise() - mean).rowwise().squaredNorm();
-  std::vector<Eigen::Index> seeds;
-  for (int c = 0; c < k; ++c) {
-    Eigen::Index far = 0;
-    nearest.maxCoeff(&far);
-    if (c > 0 && !(nearest(far) > 0)) break;  // fewer distinct trajectories than clusters
-    seeds.push_back(far);
-    nearest = nearest.cwiseMin((x.rowwise() - x.row(far)).rowwise().squaredNorm());
-  }
-  Eigen::MatrixXd centers(static_cast<Eigen::Index>(seeds.size()), x.cols());
-  for (size_t c = 0; c < seeds.size(); ++c) centers.row(static_cast<Eigen::Index>(c)) = x.row(seeds[c]);
-  std::vector<uint32_t> cluster(static_cast<size_t>(vertices), UINT32_MAX);
-  for (int iteration = 0; iteration < 50; ++iteration) {
-    const Eigen::MatrixXd cross = x * centers.transpose();
-    const Eigen::VectorXd norms = centers.rowwise().squaredNorm();
-    bool moved = false;
-    for (Eigen::Index v = 0; v < vertices; ++v) {
-      Eigen::Index best = 0;
-      (norms.transpose() - 2 * cross.row(v)).minCoeff(&best);
-      moved |= cluster[static_cast<size_t>(v)] != static_cast<uint32_t>(best);
-      cluster[static_cast<size_t>(v)] = static_cast<uint32_t>(best);
-    }
-    if (!moved) break;
-    Eigen::MatrixXd sums = Eigen::MatrixXd::Zero(centers.rows(), centers.cols());
-    std::vector<double> counts(seeds.size(), 0);
-    for (Eigen::Index v = 0; v < vertices; ++v) {
-      sums.row(cluster[static_cast<size_t>(v)]) += x.row(v);
-      counts[cluster[static_cast<size_t>(v)]] += 1;
-    }
-    for (size_t c = 0; c < seeds.size(); ++c)
-      if (counts[c] > 0) centers.row(static_cast<Eigen::Index>(c)) = sums.row(static_cast<Eigen::Index>(c)) / counts[c];
-  }
-  std::vector<uint32_t> renumbered(seeds.size(), UINT32_MAX);
-  uint32_t next = 0;
-  for (uint32_t& c : cluster) {
-    if (renumbered[c] == UINT32_MAX) renumbered[c] = next++;
-    c = renumbered[c];
-  }
-  return cluster;
-}
-
-// The clusters of k-means asked for `requested` clusters, and its seconds:
-// computed once per count and shared by a search's candidates.
-struct Clustering {
-  int requested = 0;
-  std::vector<uint32_t> cluster_of;
-  double seconds = 0;
-};
-
-Clustering clustering(const MeshSequence& s, int requested) {
-  const auto start = std::chrono::steady_clock::now();
-  Clustering c{requested, cluster_trajectories(trajectories(s), std::min<int>(requested, static_cast<int>(s.vertex_count))), 0};
-  c.seconds = seconds_since(start);
-  return c;
-}
-
-// A principal component of a cluster's motion matrix D (3M × N):
-// D ≈ Σ sigma · basis · coefficientsᵀ, basis and coefficients unit vectors.
-struct Component {
-  double sigma;
-  Eigen::VectorXd basis, coefficients;
-};
-
-// The components in decreasing sigma, at most `count`, those with sigma
-// above 10^−6 of the first: from the eigenvectors of the smaller Gram
-// matrix (DᵀD or DDᵀ). The largest coefficient of each is positive.
-std::vector<Component> principal_components(const Eigen::MatrixXd& d, size_t count) {
-  const bool by_frames = d.rows() >= d.cols();
-  const Eigen::MatrixXd gram = by_frames ? Eigen::MatrixXd(d.transpose() * d) : Eigen::MatrixXd(d * d.transpose());
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gram);
-  std::vector<Component> components;
-  const Eigen::Index n = gram.rows();
-  const double largest = n > 0 ? eigen.eigenvalues()(n - 1) : 0;
-  for (Eigen::Index i = n - 1; i >= 0 && components.size() < count; --i) {
-    const double lambda = eigen.eigenvalues()(i);
-    if (!(lambda > 1e-12 * largest)) break;
-    Component c{std::sqrt(lambda), {}, {}};
-    if (by_frames) {
-      c.coefficients = eigen.eigenvectors().col(i);
-      c.basis = d * c.coefficients / c.sigma;
-    } else {
-      c.basis = eigen.eigenvectors().col(i);
-      c.coefficients = d.transpose() * c.basis / c.sigma;
-    }
-    Eigen::Index at = 0;
-    c.coefficients.cwiseAbs().maxCoeff(&at);
-    if (c.coefficients(at) < 0) {
-      c.coefficients = -c.coefficients;
-      c.basis = -c.basis;
-    }
-    components.push_back(std::move(c));
-  }
-  return components;
-}
-
-// A cluster's translation per frame and axis (3N values, grid units): the
-// mean over its vertices of their motion about the mean shape.
-using Translation = Eigen::VectorXd;
-
-// One refinement unit as coded, with its weight's terms: a cluster's start
-// (translation) or one of its components (basis, coefficients).
-struct Operator {
-  uint32_t cluster = 0;
-  uint32_t kind = kCpcaComponent;
-  uint32_t shift = kCpcaShiftBias;
-  int basis_exponent = 0, coefficient_exponent = 0;  // the values are the real ones × 2^(exponent / 2)
-  std::vector<int32_t> basis, coefficients, translation;
-  double gain = 0;    // the squared error it removes (grid units², the decoder's reconstruction)
-  uint64_t bytes = 0;  // its unit, start code and header included
-};
-
-void apply(CpcaAnimation& animation, std::span<const NodeIndex> members, const Operator& op) {
-  if (op.kind == kCpcaStart)
-    animation.translate(members, op.translation, op.shift);
-  else
-    animation.refine(members, op.basis, op.coefficients, op.shift, op.kind == kCpcaTrajectory);
-}
-
-// A motion matrix (3M × N) as the members' trajectories (M × 3N): row i,
-// column 3n + a holds axis a of member i in frame n.
-Eigen::MatrixXd as_trajectories(const Eigen::MatrixXd& d) {
-  Eigen::MatrixXd t(d.rows() / 3, 3 * d.cols());
-  for (Eigen::Index row = 0; row < d.rows(); ++row)
-    for (Eigen::Index n = 0; n < d.cols(); ++n) t(row / 3, 3 * n + row % 3) = d(row, n);
-  return t;
-}
-
-// Exponent e such that |largest| · 2^e < 2^bits.
-int exponent_for(double largest, int bits) { return largest > 0 ? bits - 1 - std::ilogb(largest) : bits; }
-
-// 2^(half / 2), the same on every platform (√2 is a constant).
-double power_of_two(int half) { return half % 2 == 0 ? std::ldexp(1.0, half / 2) : std::ldexp(std::numbers::sqrt2, (half - 1) / 2); }
-
-// Floor division by 2.
-int half_of(int value) { return value >= 0 ? value / 2 : -((1 - value) / 2); }
-
-std::vector<int32_t> scaled(const Eigen::VectorXd& values, int half_exponent) {
-  const double scale = power_of_two(half_exponent);
-  std::vector<int32_t> out(static_cast<size_t>(values.size()));
-  for (Eigen::Index i = 0; i < values.size(); ++i) out[static_cast<size_t>(i)] = static_cast<int32_t>(std::nearbyint(values(i) * scale));
-  return out;
-}
-
-// The operator of a component at the noise step Δ = 2^(noise / 2) grid
-// units: the coefficients sigma · w in steps of Δ and the basis in steps of
-// about Δ / sigma, so that both add noise of Δ's order to the animation
-// (each as fine as their ranges, 2^15 and 2^23, allow). The two steps are
-// powers of √2 whose product is a power of 2: their product ×
-// 2^−(shift − 16) is in steps of 2^−F grid units.
-// `basis_finer` half steps make the basis finer than that rule.
-Operator quantize(const Component& c, uint32_t cluster, int noise, int fraction_bits, int basis_finer) {
-  const Eigen::VectorXd weighted = c.sigma * c.coefficients;
-  const int basis_exponent = std::min(2 * std::ilogb(c.sigma) - noise + basis_finer, 2 * exponent_for(c.basis.cwiseAbs().maxCoeff(), 15));
-  const int wanted = std::min(-noise, 2 * exponent_for(weighted.cwiseAbs().maxCoeff(), 23));
-  const int shift = std::clamp(half_of(basis_exponent + wanted) - fraction_bits, -static_cast<int>(kCpcaShiftBias),
-                               static_cast<int>(kCpcaMaxShift - kCpcaShiftBias));
-  const int coefficient_exponent = 2 * (shift + fraction_bits) - basis_exponent;
-  Operator op;
-  op.cluster = cluster;
-  op.shift = static_cast<uint32_t>(shift + static_cast<int>(kCpcaShiftBias));
-  op.basis_exponent = basis_exponent;
-  op.coefficient_exponent = coefficient_exponent;
-  op.basis = scaled(c.basis, basis_exponent);
-  op.coefficients = scaled(weighted, coefficient_exponent);
-  for (int32_t v : op.coefficients)
-    if (v > kCpcaMaxCoefficient || v < -kCpcaMaxCoefficient)
-      throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "a motion too large for the fixed point of cpca-wpt: use fewer --bits");
-  return op;
-}
-
-// A cluster's start at the noise step Δ: the translation t is the
-// coefficient of the basis (1, …, 1) of norm √M, so it takes steps of about
-// Δ / √M (as fine as its range, 2^29, allows, and no finer than 2^−F grid
-// units: the shift never rounds, so that a start can be undone exactly).
-Operator quantize_start(const Translation& t, uint32_t cluster, size_t members, int noise, int fraction_bits) {
-  const int wanted = std::min(half_of(2 * std::ilogb(std::sqrt(static_cast<double>(members))) - noise), exponent_for(t.cwiseAbs().maxCoeff(), 29));
-  const int shift = std::clamp(wanted - fraction_bits, -static_cast<int>(kCpcaShiftBias), 0);
-  Operator op;
-  op.cluster = cluster;
-  op.kind = kCpcaStart;
-  op.shift = static_cast<uint32_t>(shift + static_cast<int>(kCpcaShiftBias));
-  op.coefficient_exponent = 2 * (shift + fraction_bits);
-  op.translation = scaled(t, op.coefficient_exponent);
-  for (int32_t v : op.translation)
-    if (v > kCpcaMaxTranslation || v < -kCpcaMaxTranslation)
-      throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "a motion too large for the fixed point of cpca-wpt: use fewer --bits");
-  return op;
-}
-
-// The squared error a start removes, estimated: M (‖t‖² − ‖t̂ − t‖²).
-double estimated_gain(const Translation& t, size_t members, const Operator& op) {
-  double removed = 0;
-  for (Eigen::Index j = 0; j < t.size(); ++j) {
-    const double q = op.translation[static_cast<size_t>(j)] / power_of_two(op.coefficient_exponent);
-    removed += t(j) * t(j) - (q - t(j)) * (q - t(j));
-  }
-  return static_cast<double>(members) * removed;
-}
-
-// The squared error removed by an operator, estimated without decoding:
-// sigma² less the quantization error ‖b̂ŵᵀ − σbwᵀ‖² (from its inner
-// products, b unit).
-double estimated_gain(const Component& c, const Operator& op) {
-  double bb = 0, bq = 0, ww = 0, wq = 0;
-  for (Eigen::Index j = 0; j < c.basis.size(); ++j) {
-    const double b = op.basis[static_cast<size_t>(j)] / power_of_two(op.basis_exponent);
-    bb += b * b;
-    bq += b * c.basis(j);
-  }
-  for (Eigen::Index n = 0; n < c.coefficients.size(); ++n) {
-    const double w = op.coefficients[static_cast<size_t>(n)] / power_of_two(op.coefficient_exponent);
-    ww += w * w;
-    wq += w * c.sigma * c.coefficients(n);
-  }
-  const double noise = bb * ww - 2 * bq * wq + c.sigma * c.sigma;
-  return c.sigma * c.sigma - noise;
-}
-
-// A refinement unit's data.
-template <class SymbolIO>
-void write_refinement(syntax::WriteIO& io, SymbolIO& symbols, Operator& op, const CpcaMeshPrediction& mesh) {
-  if (op.kind == kCpcaStart)
-    syntax::describe_start(symbols, op.translation);
-  else if (op.kind == kCpcaMeshComponent)
-    mesh.describe_operator<3>(symbols, op.cluster, op.basis, op.coefficients);
-  else if (op.kind == kCpcaTrajectory)
-    mesh.describe_operator<1>(symbols, op.cluster, op.basis, op.coefficients);
-  else
-    syntax::describe_operator(symbols, op.basis, op.coefficients);
-  const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
-  CpcaRefinement r{op.cluster, op.kind, op.shift, static_cast<uint32_t>(bins.size()), bins, raw};
-  syntax::describe(io, r);
-  if (io.trace()) io.trace()->stream() << symbols.trace_text();
-}
-
-void write_refinement(syntax::WriteIO& io, Operator& op, const CpcaMeshPrediction& mesh) {
-  const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane()};
-  if (io.trace()) {
-    syntax::EntropyWriteIO<true> symbols(place, io.trace());
-    write_refinement(io, symbols, op, mesh);
-  } else {
-    syntax::EntropyWriteIO<false> symbols(place);
-    write_refinement(io, symbols, op, mesh);
-  }
-}
-
-// The operators of one noise step, their order and how many are sent.
-struct Plan {
-  int noise = 0;  // log2 Δ in half steps
-  std::vector<Operator> operators;
-  std::vector<size_t> order;  // indices into operators, in stream order
-  size_t sent = 0;
-  double estimated_kg = 0;  // of the prefix sent, from the gains
-  uint64_t bytes = 0;       // of the prefix sent
-};
+constexpr syntax::SectionPlace kMapPlace{"cluster_map_bins", "cluster_map_raw", 0, 0, kNoPlane};
 
 class CpcaEncoder final : public CodecEncoder3d {
  public:
   // coding_order: the base mesh's vertices in coding order.
-  CpcaEncoder(const MeshSequence& s, const CodecSettings& settings, int bits, const Clustering& clustering, bool trajectories,
+  CpcaEncoder(const MeshSequence& s, const Options& options, int bits, const Clustering& clustering, bool trajectories,
               std::span<const uint32_t> coding_order)
-      : max_bytes_(static_cast<uint64_t>(settings.number("max-bytes"))),
-        target_kg_(settings.number("target-kg")),
-        round_robin_(settings.text("order") == "rpt"),
-        basis_prediction_(settings.text("basis")),
-        trajectories_(trajectories) {
-    if (settings.text("order") != "wpt" && settings.text("order") != "rpt") throw usage_error("--order is wpt or rpt (cpca-wpt)");
-    if (basis_prediction_ != "index" && basis_prediction_ != "mesh" && basis_prediction_ != "auto")
-      throw usage_error("--basis is index, mesh or auto (cpca-wpt)");
-    components_ = settings.text("components") == "auto" ? (max_bytes_ > 0 || target_kg_ > 0 ? kMaxComponents : kPaperComponents)
-                                                         : parse_count(settings.text("components"), "--components", kMaxComponents);
-    if (settings.text("noise") != "auto") {
-      size_t used = 0;
-      double value = NAN;
-      try {
-        value = std::stod(settings.text("noise"), &used);
-      } catch (const std::exception&) {
-      }
-      if (used != settings.text("noise").size() || !(2 * value >= kMinNoise && 2 * value <= kMaxNoise) || 2 * value != std::floor(2 * value))
-        throw usage_error("--noise is auto or a multiple of 0.5 in " + std::to_string(kMinNoise / 2) + " … " + std::to_string(kMaxNoise / 2) +
-                          " (cpca-wpt)");
-      noise_ = static_cast<int>(2 * value);
-    }
+      : components_(options.components),
+        max_bytes_(options.max_bytes),
+        target_kg_(options.target_kg),
+        round_robin_(options.round_robin),
+        basis_prediction_(options.basis),
+        trajectories_(trajectories),
+        noise_(options.noise) {
     if (uint64_t{s.vertex_count} * s.frames.size() > kCpcaMaxVertexFrames)
       throw usage_error("cpca-wpt takes at most 2^22 vertex-frames (vertices × frames)");
     std::vector<Vec3> mean(s.vertex_count);
@@ -392,7 +78,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     header_.map_bins = map_bins_;
     header_.map_raw = map_raw_;
     syntax::describe(io, header_);
-    if (io.trace()) io.trace()->stream() << write_cluster_map(io.trace());
+    if (io.trace()) io.trace()->stream() << syntax::write_cluster_map<true>(header_, cluster_of_, map_bins_, map_raw_, kMapPlace, io.trace());
   }
 
   // The base mesh, then the plan's operators while the stream through the
@@ -446,7 +132,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     header_.cluster_count = *std::max_element(cluster_of_.begin(), cluster_of_.end()) + 1;
     members_ = cpca_members(cluster_of_, header_.cluster_count);
     mesh_.emplace(s.faces, coding_order, cluster_of_, header_.cluster_count);
-    write_cluster_map();
+    syntax::write_cluster_map<false>(header_, cluster_of_, map_bins_, map_raw_, kMapPlace);
     auto start = std::chrono::steady_clock::now();
     for (uint32_t c = 0; c < header_.cluster_count; ++c) {
       Eigen::MatrixXd d = motion(s, c);
@@ -639,27 +325,6 @@ class CpcaEncoder final : public CodecEncoder3d {
     return sum;
   }
 
-  // The cluster map's sections, and their trace in the place of `like`
-  // when given (printed after the header's fields).
-  std::string write_cluster_map(Trace* like = nullptr) {
-    std::vector<uint32_t> map = cluster_of_;
-    const syntax::SectionPlace place{"cluster_map_bins", "cluster_map_raw", 0, 0, kNoPlane};
-    std::string text;
-    if (like) {
-      syntax::EntropyWriteIO<true> symbols(place, like);
-      syntax::describe_cluster_map(symbols, map, header_.cluster_count);
-      text = symbols.trace_text();
-    } else {
-      syntax::EntropyWriteIO<false> symbols(place);
-      syntax::describe_cluster_map(symbols, map, header_.cluster_count);
-      map_bins_ = symbols.finish_bins();
-      map_raw_ = symbols.finish_raw();
-      header_.map_bins_bytes = static_cast<uint32_t>(map_bins_.size());
-      header_.map_raw_bytes = static_cast<uint32_t>(map_raw_.size());
-    }
-    return text;
-  }
-
   // The bytes of an operator's unit in the stream.
   uint64_t unit_bytes(Operator& op) const {
     BitWriter writer;
@@ -693,43 +358,6 @@ class CpcaEncoder final : public CodecEncoder3d {
     syntax::describe(base_io, unit);
     write_base_mesh(base_io, s.faces, mean_);
     return ContainerWriter::unit_size(object.bytes()) + ContainerWriter::unit_size(base.bytes());
-  }
-
-  // RPT: round r sends every cluster's r-th operator, in cluster order.
-  static std::vector<size_t> round_robin(const std::vector<std::vector<size_t>>& per_cluster) {
-    std::vector<size_t> order;
-    for (size_t round = 0;; ++round) {
-      const size_t before = order.size();
-      for (const std::vector<size_t>& ops : per_cluster)
-        if (round < ops.size()) order.push_back(ops[round]);
-      if (order.size() == before) return order;
-    }
-  }
-
-  // WPT: the next unit of the cluster whose next units remove the most
-  // error per bit, W = Σ gain / Σ bits over the best run of them (so that
-  // a cheap start with little gain counts with the components it opens;
-  // ties: the lowest cluster).
-  static std::vector<size_t> by_weight(const std::vector<Operator>& operators, const std::vector<std::vector<size_t>>& per_cluster) {
-    std::vector<size_t> order, next(per_cluster.size(), 0);
-    for (;;) {
-      size_t best = SIZE_MAX;
-      double best_weight = 0;
-      for (size_t c = 0; c < per_cluster.size(); ++c) {
-        double gain = 0, bits = 0, weight = -INFINITY;
-        for (size_t j = next[c]; j < per_cluster[c].size(); ++j) {
-          gain += operators[per_cluster[c][j]].gain;
-          bits += 8.0 * static_cast<double>(operators[per_cluster[c][j]].bytes);
-          weight = std::max(weight, gain / bits);
-        }
-        if (next[c] < per_cluster[c].size() && (best == SIZE_MAX || weight > best_weight)) {
-          best = c;
-          best_weight = weight;
-        }
-      }
-      if (best == SIZE_MAX) return order;
-      order.push_back(per_cluster[best][next[best]++]);
-    }
   }
 
   // The KG error of the decoder's output after the plan's first `count`
@@ -777,49 +405,22 @@ class CpcaEncoder final : public CodecEncoder3d {
 
 }  // namespace
 
-std::vector<CodecOption> cpca_wpt_options() {
-  return {{"bits", "cpca-wpt: quantization bits of the mean shape (the base mesh), 4 … 24, or auto (12; with --target-kg, from 12 "
-                   "towards the neighbour whose planned stream is smaller while it shrinks)",
-           OptionKind::kText, "auto", 0, 0},
-          {"clusters", "cpca-wpt: k, the clusters of k-means on the vertices' trajectories, 1 … 255, or auto (10, the paper's; with "
-                       "--target-kg the one of 5, 10, 20 and 40 whose planned stream is smallest, then 0.7 and 1.4 times it if smaller)",
-           OptionKind::kText, "auto", 0, 0},
-          {"components", "cpca-wpt: at most this many principal components per cluster, 1 … 4096, or auto (40, the paper's, or every "
-                         "one for --max-bytes or --target-kg)",
-           OptionKind::kText, "auto", 0, 0},
-          {"noise", "cpca-wpt: log2 of the quantization step of the coded values in grid units, −4 … 12 in steps of 0.5, or auto (4, "
-                    "or the best for --max-bytes or --target-kg)",
-           OptionKind::kText, "auto", 0, 0},
-          {"basis", "cpca-wpt: how a component's basis values are predicted: index (from the member before in index order, the "
-                    "paper's), mesh (by the base mesh's parallelograms, along its traversal) or auto (per component the smaller unit)",
-           OptionKind::kText, "auto", 0, 0},
-          {"model", "cpca-wpt: the components' space: shape (3 basis values per vertex, 1 coefficient per frame: the paper's), "
-                    "trajectory (1 value per vertex, 3 per frame, predicted over the base mesh) or auto (trajectory; with --target-kg the "
-                    "one whose planned stream is smallest)",
-           OptionKind::kText, "auto", 0, 0},
-          {"order", "cpca-wpt: wpt (by squared error removed per bit) or rpt (round robin over the clusters)", OptionKind::kText, "wpt", 0, 0},
-          {"max-bytes", "cpca-wpt: the stream's size at most (0: every operator)", OptionKind::kNumber, "0", 0, 1e15},
-          {"target-kg", "cpca-wpt: stop at the first operator whose decoded KG error is at most this (0: off)", OptionKind::kNumber, "0", 0,
-           100}};
-}
-
 std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequence, const CodecSettings& settings) {
-  const std::string& model = settings.text("model");
-  if (model != "shape" && model != "trajectory" && model != "auto") throw usage_error("--model is shape, trajectory or auto (cpca-wpt)");
-  const bool target = settings.number("target-kg") > 0;
-  const bool bits_auto = settings.text("bits") == "auto";
-  const int bits = bits_auto ? kDefaultBits : static_cast<int>(parse_count(settings.text("bits"), "--bits", kMaxBits, kMinBits));
-  const std::vector<int> cluster_counts =
-      settings.text("clusters") != "auto" ? std::vector<int>{static_cast<int>(parse_count(settings.text("clusters"), "--clusters", kCpcaMaxClusters))}
-      : target                            ? std::vector<int>{5, 10, 20, 40}
-                                          : std::vector<int>{kPaperClusters};
-  const std::vector<bool> trajectory_models = model == "shape" ? std::vector<bool>{false}
-                                              : model == "trajectory" || !target ? std::vector<bool>{true}
-                                                                                  : std::vector<bool>{true, false};
+  using namespace cpca_wpt;
+  const Options options = parse_options(settings);
+  const bool target = options.target_kg > 0;
+  const bool bits_auto = !options.bits;
+  const int bits = options.bits.value_or(kDefaultBits);
+  const std::vector<int> cluster_counts = options.clusters ? std::vector<int>{*options.clusters}
+                                          : target         ? std::vector<int>{5, 10, 20, 40}
+                                                           : std::vector<int>{kPaperClusters};
+  const std::vector<bool> trajectory_models = options.model == "shape" ? std::vector<bool>{false}
+                                              : options.model == "trajectory" || !target ? std::vector<bool>{true}
+                                                                                          : std::vector<bool>{true, false};
   // The vertices in the base mesh's coding order, once for every candidate.
   const std::vector<uint32_t> coding_order = plan_base_mesh(sequence.faces, sequence.vertex_count, false).input_of;
   if (cluster_counts.size() == 1 && trajectory_models.size() == 1 && !(bits_auto && target))
-    return std::make_unique<CpcaEncoder>(sequence, settings, bits, clustering(sequence, cluster_counts[0]), trajectory_models[0], coding_order);
+    return std::make_unique<CpcaEncoder>(sequence, options, bits, clustering(sequence, cluster_counts[0]), trajectory_models[0], coding_order);
   // The cluster count and model whose plan reaches the target in the fewest
   // bytes, then the counts √2 either side of it, then the mean shape's bits
   // from 12 towards the smaller plan. Candidates run side by side; the
@@ -849,7 +450,7 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequen
         candidates.size(), settings.threads(),
         [&](size_t i) {
           try {
-            built[i] = std::make_unique<CpcaEncoder>(sequence, settings, candidates[i].bits, clusterings.at(candidates[i].clusters),
+            built[i] = std::make_unique<CpcaEncoder>(sequence, options, candidates[i].bits, clusterings.at(candidates[i].clusters),
                                                      candidates[i].trajectories, coding_order);
           } catch (const Error& e) {
             if (e.kind() != ErrorKind::kUsage) throw;

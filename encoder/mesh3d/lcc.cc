@@ -169,10 +169,8 @@ class LccEncoder final : public CodecEncoder3d {
   static void write_frame(syntax::WriteIO& io, SymbolIO& symbols, syntax::ResidualCoder<syntax::kLccChannels>& coder, const LccModel& model,
                           bool predicted, LccIndices& residuals) {
     syntax::describe_symbols(symbols, coder, predicted, residuals.direct, residuals.steps, model.theta_limit(), model.rh_limit());
-    const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
-    LccFrameData data{static_cast<uint32_t>(bins.size()), bins, raw};
-    syntax::describe(io, data);
-    if (io.trace()) io.trace()->stream() << symbols.trace_text();
+    LccFrameData data;
+    symbols.finish(io, data);
   }
 
   // σ: the largest |ρ| and |ζ| of the originals (each vertex in the frame

@@ -138,6 +138,24 @@ std::vector<uint32_t> read_cluster_map(const CpcaHeader& h, uint32_t vertex_coun
   return cluster_of;
 }
 
+// The header's cluster map written, the mirror of read_cluster_map(): the
+// sections into `bins` and `raw`, which `h` then points at with their
+// lengths; returns the symbols' trace (in the place of `like`), which
+// follows the header's fields.
+template <bool kTraced>
+std::string write_cluster_map(CpcaHeader& h, std::vector<uint32_t> cluster_of, std::vector<uint8_t>& bins, std::vector<uint8_t>& raw,
+                              const SectionPlace& place, Trace* like = nullptr) {
+  EntropyWriteIO<kTraced> symbols(place, like);
+  describe_cluster_map(symbols, cluster_of, h.cluster_count);
+  bins = symbols.finish_bins();
+  raw = symbols.finish_raw();
+  h.map_bins_bytes = static_cast<uint32_t>(bins.size());
+  h.map_bins = bins;
+  h.map_raw_bytes = static_cast<uint32_t>(raw.size());
+  h.map_raw = raw;
+  return symbols.trace_text();
+}
+
 // An operator's symbols: the basis value of each member vertex and axis
 // (members in index order, x, y, z), each as the difference to the same
 // axis of the member before (the first to 0), then the coefficient of

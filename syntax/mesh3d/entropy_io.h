@@ -15,6 +15,7 @@
 #include "bitstream/bit_reader.h"
 #include "bitstream/bit_writer.h"
 #include "common/error.h"
+#include "syntax/io.h"
 #include "syntax/trace.h"
 
 namespace m4mesh::syntax {
@@ -109,6 +110,19 @@ class EntropyWriteIO {
     return raw_.take_bytes();
   }
   std::string trace_text() const { return buffer_.str(); }
+
+  // After the last symbol, the mirror of EntropyReadIO::finish(): the
+  // unit's `data` written through `io` with these sections (their length
+  // field, arithmetic_bytes, set), then the symbols' trace after its fields.
+  template <class Data>
+  void finish(WriteIO& io, Data& data) {
+    const std::vector<uint8_t> bins = finish_bins(), raw = finish_raw();
+    data.arithmetic_bytes = static_cast<uint32_t>(bins.size());
+    data.bins = bins;
+    data.raw = raw;
+    describe(io, data);  // unqualified: the unit's describe() is found where this is used
+    if (io.trace()) io.trace()->stream() << trace_text();
+  }
 
  private:
   ArithmeticEncoder bins_;

@@ -1,0 +1,122 @@
+#include "encoder/mesh3d/cpca_wpt_analysis.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace m4mesh::cpca_wpt {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Vertex v's trajectory is row v: x, y, z of frame 0, then of frame 1, …
+Eigen::MatrixXd trajectories(const MeshSequence& s) {
+  Eigen::MatrixXd x(s.vertex_count, 3 * static_cast<Eigen::Index>(s.frames.size()));
+  for (size_t f = 0; f < s.frames.size(); ++f)
+    for (size_t v = 0; v < s.vertex_count; ++v) {
+      const Vec3& p = s.frames[f][v];
+      x(static_cast<Eigen::Index>(v), static_cast<Eigen::Index>(3 * f)) = p.x;
+      x(static_cast<Eigen::Index>(v), static_cast<Eigen::Index>(3 * f + 1)) = p.y;
+      x(static_cast<Eigen::Index>(v), static_cast<Eigen::Index>(3 * f + 2)) = p.z;
+    }
+  return x;
+}
+
+// k-means on the trajectories, deterministic: the first center is the
+// trajectory farthest from the mean, each next the one farthest from the
+// centers so far (ties: the lowest vertex); then Lloyd iterations (ties:
+// the lowest cluster) until no vertex moves, at most 50. Clusters are
+// numbered by their first vertex; none is empty.
+std::vector<uint32_t> cluster_trajectories(const Eigen::MatrixXd& x, int k) {
+  const Eigen::Index vertices = x.rows();
+  const Eigen::RowVectorXd mean = x.colwise().mean();
+  Eigen::VectorXd nearest = (x.rowwise() - mean).rowwise().squaredNorm();
+  std::vector<Eigen::Index> seeds;
+  for (int c = 0; c < k; ++c) {
+    Eigen::Index far = 0;
+    nearest.maxCoeff(&far);
+    if (c > 0 && !(nearest(far) > 0)) break;  // fewer distinct trajectories than clusters
+    seeds.push_back(far);
+    nearest = nearest.cwiseMin((x.rowwise() - x.row(far)).rowwise().squaredNorm());
+  }
+  Eigen::MatrixXd centers(static_cast<Eigen::Index>(seeds.size()), x.cols());
+  for (size_t c = 0; c < seeds.size(); ++c) centers.row(static_cast<Eigen::Index>(c)) = x.row(seeds[c]);
+  std::vector<uint32_t> cluster(static_cast<size_t>(vertices), UINT32_MAX);
+  for (int iteration = 0; iteration < 50; ++iteration) {
+    const Eigen::MatrixXd cross = x * centers.transpose();
+    const Eigen::VectorXd norms = centers.rowwise().squaredNorm();
+    bool moved = false;
+    for (Eigen::Index v = 0; v < vertices; ++v) {
+      Eigen::Index best = 0;
+      (norms.transpose() - 2 * cross.row(v)).minCoeff(&best);
+      moved |= cluster[static_cast<size_t>(v)] != static_cast<uint32_t>(best);
+      cluster[static_cast<size_t>(v)] = static_cast<uint32_t>(best);
+    }
+    if (!moved) break;
+    Eigen::MatrixXd sums = Eigen::MatrixXd::Zero(centers.rows(), centers.cols());
+    std::vector<double> counts(seeds.size(), 0);
+    for (Eigen::Index v = 0; v < vertices; ++v) {
+      sums.row(cluster[static_cast<size_t>(v)]) += x.row(v);
+      counts[cluster[static_cast<size_t>(v)]] += 1;
+    }
+    for (size_t c = 0; c < seeds.size(); ++c)
+      if (counts[c] > 0) centers.row(static_cast<Eigen::Index>(c)) = sums.row(static_cast<Eigen::Index>(c)) / counts[c];
+  }
+  std::vector<uint32_t> renumbered(seeds.size(), UINT32_MAX);
+  uint32_t next = 0;
+  for (uint32_t& c : cluster) {
+    if (renumbered[c] == UINT32_MAX) renumbered[c] = next++;
+    c = renumbered[c];
+  }
+  return cluster;
+}
+
+Clustering clustering(const MeshSequence& s, int requested) {
+  const auto start = std::chrono::steady_clock::now();
+  Clustering c{requested, cluster_trajectories(trajectories(s), std::min<int>(requested, static_cast<int>(s.vertex_count))), 0};
+  c.seconds = seconds_since(start);
+  return c;
+}
+
+// The components in decreasing sigma, at most `count`, those with sigma
+// above 10^−6 of the first: from the eigenvectors of the smaller Gram
+// matrix (DᵀD or DDᵀ). The largest coefficient of each is positive.
+std::vector<Component> principal_components(const Eigen::MatrixXd& d, size_t count) {
+  const bool by_frames = d.rows() >= d.cols();
+  const Eigen::MatrixXd gram = by_frames ? Eigen::MatrixXd(d.transpose() * d) : Eigen::MatrixXd(d * d.transpose());
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gram);
+  std::vector<Component> components;
+  const Eigen::Index n = gram.rows();
+  const double largest = n > 0 ? eigen.eigenvalues()(n - 1) : 0;
+  for (Eigen::Index i = n - 1; i >= 0 && components.size() < count; --i) {
+    const double lambda = eigen.eigenvalues()(i);
+    if (!(lambda > 1e-12 * largest)) break;
+    Component c{std::sqrt(lambda), {}, {}};
+    if (by_frames) {
+      c.coefficients = eigen.eigenvectors().col(i);
+      c.basis = d * c.coefficients / c.sigma;
+    } else {
+      c.basis = eigen.eigenvectors().col(i);
+      c.coefficients = d.transpose() * c.basis / c.sigma;
+    }
+    Eigen::Index at = 0;
+    c.coefficients.cwiseAbs().maxCoeff(&at);
+    if (c.coefficients(at) < 0) {
+      c.coefficients = -c.coefficients;
+      c.basis = -c.basis;
+    }
+    components.push_back(std::move(c));
+  }
+  return components;
+}
+
+// A motion matrix (3M × N) as the members' trajectories (M × 3N): row i,
+// column 3n + a holds axis a of member i in frame n.
+Eigen::MatrixXd as_trajectories(const Eigen::MatrixXd& d) {
+  Eigen::MatrixXd t(d.rows() / 3, 3 * d.cols());
+  for (Eigen::Index row = 0; row < d.rows(); ++row)
+    for (Eigen::Index n = 0; n < d.cols(); ++n) t(row / 3, 3 * n + row % 3) = d(row, n);
+  return t;
+}
+
+}  // namespace m4mesh::cpca_wpt

@@ -1,0 +1,143 @@
+#include "encoder/mesh3d/cpca_wpt_operators.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "common/error.h"
+#include "syntax/mesh3d/cpca_wpt.h"
+#include "syntax/mesh3d/entropy_io.h"
+
+namespace m4mesh::cpca_wpt {
+
+namespace {
+
+// 2^(half / 2), the same on every platform (√2 is a constant).
+double power_of_two(int half) { return half % 2 == 0 ? std::ldexp(1.0, half / 2) : std::ldexp(std::numbers::sqrt2, (half - 1) / 2); }
+
+// Exponent e such that |largest| · 2^e < 2^bits.
+int exponent_for(double largest, int bits) { return largest > 0 ? bits - 1 - std::ilogb(largest) : bits; }
+
+// Floor division by 2.
+int half_of(int value) { return value >= 0 ? value / 2 : -((1 - value) / 2); }
+
+std::vector<int32_t> scaled(const Eigen::VectorXd& values, int half_exponent) {
+  const double scale = power_of_two(half_exponent);
+  std::vector<int32_t> out(static_cast<size_t>(values.size()));
+  for (Eigen::Index i = 0; i < values.size(); ++i) out[static_cast<size_t>(i)] = static_cast<int32_t>(std::nearbyint(values(i) * scale));
+  return out;
+}
+
+template <class SymbolIO>
+void write_refinement(syntax::WriteIO& io, SymbolIO& symbols, Operator& op, const CpcaMeshPrediction& mesh) {
+  if (op.kind == kCpcaStart)
+    syntax::describe_start(symbols, op.translation);
+  else if (op.kind == kCpcaMeshComponent)
+    mesh.describe_operator<3>(symbols, op.cluster, op.basis, op.coefficients);
+  else if (op.kind == kCpcaTrajectory)
+    mesh.describe_operator<1>(symbols, op.cluster, op.basis, op.coefficients);
+  else
+    syntax::describe_operator(symbols, op.basis, op.coefficients);
+  CpcaRefinement r;
+  r.cluster = op.cluster;
+  r.kind = op.kind;
+  r.shift = op.shift;
+  symbols.finish(io, r);
+}
+
+}  // namespace
+
+void apply(CpcaAnimation& animation, std::span<const NodeIndex> members, const Operator& op) {
+  if (op.kind == kCpcaStart)
+    animation.translate(members, op.translation, op.shift);
+  else
+    animation.refine(members, op.basis, op.coefficients, op.shift, op.kind == kCpcaTrajectory);
+}
+
+// The operator of a component at the noise step Δ = 2^(noise / 2) grid
+// units: the coefficients sigma · w in steps of Δ and the basis in steps of
+// about Δ / sigma, so that both add noise of Δ's order to the animation
+// (each as fine as their ranges, 2^15 and 2^23, allow). The two steps are
+// powers of √2 whose product is a power of 2: their product ×
+// 2^−(shift − 16) is in steps of 2^−F grid units.
+// `basis_finer` half steps make the basis finer than that rule.
+Operator quantize(const Component& c, uint32_t cluster, int noise, int fraction_bits, int basis_finer) {
+  const Eigen::VectorXd weighted = c.sigma * c.coefficients;
+  const int basis_exponent = std::min(2 * std::ilogb(c.sigma) - noise + basis_finer, 2 * exponent_for(c.basis.cwiseAbs().maxCoeff(), 15));
+  const int wanted = std::min(-noise, 2 * exponent_for(weighted.cwiseAbs().maxCoeff(), 23));
+  const int shift = std::clamp(half_of(basis_exponent + wanted) - fraction_bits, -static_cast<int>(kCpcaShiftBias),
+                               static_cast<int>(kCpcaMaxShift - kCpcaShiftBias));
+  const int coefficient_exponent = 2 * (shift + fraction_bits) - basis_exponent;
+  Operator op;
+  op.cluster = cluster;
+  op.shift = static_cast<uint32_t>(shift + static_cast<int>(kCpcaShiftBias));
+  op.basis_exponent = basis_exponent;
+  op.coefficient_exponent = coefficient_exponent;
+  op.basis = scaled(c.basis, basis_exponent);
+  op.coefficients = scaled(weighted, coefficient_exponent);
+  for (int32_t v : op.coefficients)
+    if (v > kCpcaMaxCoefficient || v < -kCpcaMaxCoefficient)
+      throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "a motion too large for the fixed point of cpca-wpt: use fewer --bits");
+  return op;
+}
+
+// A cluster's start at the noise step Δ: the translation t is the
+// coefficient of the basis (1, …, 1) of norm √M, so it takes steps of about
+// Δ / √M (as fine as its range, 2^29, allows, and no finer than 2^−F grid
+// units: the shift never rounds, so that a start can be undone exactly).
+Operator quantize_start(const Translation& t, uint32_t cluster, size_t members, int noise, int fraction_bits) {
+  const int wanted = std::min(half_of(2 * std::ilogb(std::sqrt(static_cast<double>(members))) - noise), exponent_for(t.cwiseAbs().maxCoeff(), 29));
+  const int shift = std::clamp(wanted - fraction_bits, -static_cast<int>(kCpcaShiftBias), 0);
+  Operator op;
+  op.cluster = cluster;
+  op.kind = kCpcaStart;
+  op.shift = static_cast<uint32_t>(shift + static_cast<int>(kCpcaShiftBias));
+  op.coefficient_exponent = 2 * (shift + fraction_bits);
+  op.translation = scaled(t, op.coefficient_exponent);
+  for (int32_t v : op.translation)
+    if (v > kCpcaMaxTranslation || v < -kCpcaMaxTranslation)
+      throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "a motion too large for the fixed point of cpca-wpt: use fewer --bits");
+  return op;
+}
+
+// The squared error a start removes, estimated: M (‖t‖² − ‖t̂ − t‖²).
+double estimated_gain(const Translation& t, size_t members, const Operator& op) {
+  double removed = 0;
+  for (Eigen::Index j = 0; j < t.size(); ++j) {
+    const double q = op.translation[static_cast<size_t>(j)] / power_of_two(op.coefficient_exponent);
+    removed += t(j) * t(j) - (q - t(j)) * (q - t(j));
+  }
+  return static_cast<double>(members) * removed;
+}
+
+// The squared error removed by an operator, estimated without decoding:
+// sigma² less the quantization error ‖b̂ŵᵀ − σbwᵀ‖² (from its inner
+// products, b unit).
+double estimated_gain(const Component& c, const Operator& op) {
+  double bb = 0, bq = 0, ww = 0, wq = 0;
+  for (Eigen::Index j = 0; j < c.basis.size(); ++j) {
+    const double b = op.basis[static_cast<size_t>(j)] / power_of_two(op.basis_exponent);
+    bb += b * b;
+    bq += b * c.basis(j);
+  }
+  for (Eigen::Index n = 0; n < c.coefficients.size(); ++n) {
+    const double w = op.coefficients[static_cast<size_t>(n)] / power_of_two(op.coefficient_exponent);
+    ww += w * w;
+    wq += w * c.sigma * c.coefficients(n);
+  }
+  const double noise = bb * ww - 2 * bq * wq + c.sigma * c.sigma;
+  return c.sigma * c.sigma - noise;
+}
+
+void write_refinement(syntax::WriteIO& io, Operator& op, const CpcaMeshPrediction& mesh) {
+  const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane()};
+  if (io.trace()) {
+    syntax::EntropyWriteIO<true> symbols(place, io.trace());
+    write_refinement(io, symbols, op, mesh);
+  } else {
+    syntax::EntropyWriteIO<false> symbols(place);
+    write_refinement(io, symbols, op, mesh);
+  }
+}
+
+}  // namespace m4mesh::cpca_wpt
