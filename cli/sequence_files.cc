@@ -67,7 +67,6 @@ SequenceOutput sequence_output(const std::string& output, bool f32_allowed, cons
                   "; a folder whose name holds a dot takes a trailing '/')");
 }
 
-// A whole sequence to a .m4seq, .pc2 or PLY output.
 void write_sequence_file(SequenceOutput form, const MeshSequence& sequence, const std::string& output) {
   if (form == SequenceOutput::kPc2)
     write_pc2_sequence(sequence, output);
@@ -77,8 +76,6 @@ void write_sequence_file(SequenceOutput form, const MeshSequence& sequence, cons
     write_binary_sequence(sequence, output);
 }
 
-// The OBJ frames written into `staging` become the frames of `folder`:
-// its earlier frame files (0001.obj, …) go, its other files stay.
 void install_obj_frames(const fs::path& staging, const fs::path& output) {
   fs::path folder = output.lexically_normal();
   if (folder.filename().empty()) folder = folder.parent_path();
@@ -93,8 +90,6 @@ void install_obj_frames(const fs::path& staging, const fs::path& output) {
   fs::remove(staging);
 }
 
-// A staging folder beside `output` (a trailing '/' is not part of the
-// name), of this process's own: nothing the user did not name is touched.
 fs::path staging_folder(const std::string& output) {
   fs::path folder = fs::path(output).lexically_normal();
   if (folder.filename().empty()) folder = folder.parent_path();

@@ -291,6 +291,7 @@ class CountIO : public IOBase {
   explicit CountIO(const char* watched = nullptr, uint64_t occurrence = 0) : watched_(watched), occurrence_(occurrence) {}
   uint64_t bits() const { return bits_; }
   uint64_t offset_of_watched() const { return watched_offset_; }
+  bool found_watched() const { return watched_offset_ != kNotSeen; }
   // The watched field's width in bits (a section's: 8 per byte).
   uint64_t bits_of_watched() const { return watched_bits_; }
 

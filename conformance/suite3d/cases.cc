@@ -6,8 +6,6 @@
 
 namespace m4mesh::suite3d {
 
-// A stream to decode, with a frame hash unit per frame unless a group is
-// given; with `traced`, the encoder's trace of it is kept.
 SuiteCase valid(std::string id, std::string purpose, std::vector<std::string> clauses, const MeshSequence& s, Encode3dOptions o,
                 bool traced, uint32_t hash_group) {
   std::ostringstream text;
@@ -19,22 +17,17 @@ SuiteCase valid(std::string id, std::string purpose, std::vector<std::string> cl
   return c;
 }
 
-// A stream to decode whose units (some or all) are written symbol by
-// symbol, for what m4mesh's encoder never writes.
 SuiteCase written_case(std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream) {
   SuiteCase c = decode_case(std::move(id), std::move(purpose), std::move(clauses), std::move(stream));
   c.written = true;
   return c;
 }
 
-// A stream to reject with the error a decoder must report (the frame as its plane).
 SuiteCase invalid(std::string id, std::string purpose, std::vector<std::string> clauses, std::vector<uint8_t> stream, ErrorKind kind,
                   std::string element, int64_t frame) {
   return reject_case(std::move(id), std::move(purpose), std::move(clauses), std::move(stream), kind, std::move(element), frame);
 }
 
-// A codec with its options, a frame hash unit per frame (the conformance
-// streams hash every frame).
 Encode3dOptions codec_with(std::string codec, CodecOptionValues values) {
   Encode3dOptions o;
   o.hash_group = 1;
@@ -45,13 +38,10 @@ Encode3dOptions codec_with(std::string codec, CodecOptionValues values) {
 
 Encode3dOptions lcc(CodecOptionValues values) { return codec_with("lcc", std::move(values)); }
 
-// Affine-Octree at ME `me` percent and k bits per matrix element.
 Encode3dOptions affine(const std::string& me, int k) {
   return codec_with("affine-octree", {{"me", me}, {"matrix-bits", std::to_string(k)}});
 }
 
-// cpca-wpt with the paper's tools (shape components, basis predicted in
-// index order) unless `values` name others.
 Encode3dOptions cpca(CodecOptionValues values) {
   for (const auto& [option, value] : CodecOptionValues{{"model", "shape"}, {"basis", "index"}})
     if (!values.contains(option)) values[option] = value;

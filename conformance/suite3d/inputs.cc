@@ -3,8 +3,8 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -28,10 +28,6 @@ void add_random_frames(MeshSequence& s, int frames, SplitMix64& random) {
 
 }  // namespace
 
-// Inputs built with +, − and × of small rationals only, so that every
-// platform builds the same doubles: the surface of a box (closed, n × n
-// quads per side), a separate open sheet, and a vertex in no face, under a
-// polynomial twist and wave.
 MeshSequence box_and_sheet(int frames, int n) {
   MeshSequence s;
   std::vector<Vec3> base;
@@ -87,7 +83,6 @@ MeshSequence box_and_sheet(int frames, int n) {
   return s;
 }
 
-// A flat sheet rotating in its plane by the exact rotation (3/5, 4/5) scaled down.
 MeshSequence rotating_sheet(int frames) {
   MeshSequence s;
   const int n = 9;
@@ -109,8 +104,6 @@ MeshSequence rotating_sheet(int frames) {
   return s;
 }
 
-// The faces of an n × rows sheet of quads, row by row, vertex (i, j)
-// numbered j (n + 1) + i, each quad cut along the same diagonal.
 std::vector<Triangle> sheet_faces(int n, int rows) {
   std::vector<Triangle> faces;
   auto at = [n](int i, int j) { return static_cast<NodeIndex>(j * (n + 1) + i); };
@@ -122,10 +115,6 @@ std::vector<Triangle> sheet_faces(int n, int rows) {
   return faces;
 }
 
-// A cloth-like flag: an n × n sheet in the plane y = 0 (its rest shape,
-// frame 0), whose later frames carry a cubic wave travelling along x, and
-// a vertex in no face. With `collapse`, one triangle on the coding path
-// degenerates in the last frame (two of its vertices meet).
 MeshSequence waving_flag(int frames, int n, bool collapse) {
   MeshSequence s;
   auto at = [n](int i, int j) { return static_cast<NodeIndex>(j * (n + 1) + i); };
@@ -147,8 +136,6 @@ MeshSequence waving_flag(int frames, int n, bool collapse) {
   return s;
 }
 
-// A long strip of n × rows quads, flat in frame 0, then under a slow wave
-// along x whose amplitude grows across the strip.
 MeshSequence waving_strip(int frames, int n, int rows) {
   MeshSequence s;
   s.faces = sheet_faces(n, rows);
@@ -166,12 +153,6 @@ MeshSequence waving_strip(int frames, int n, int rows) {
   return s;
 }
 
-// An n × n sheet in the box's middle and `loose` vertices in no face
-// beside it, which stay put and now and then (one time in `one_in`), each
-// coordinate on its own, jump to ±2^−u · m/8 off their place (u from 2 to
-// 23, m from 1 to 8) or back: residuals of many prefix lengths after a
-// zero, a short and a long one. Two more vertices in no face hold the unit
-// box. Dyadic values only, the same doubles everywhere.
 MeshSequence spiky_sheet(int frames, int n, int loose, uint64_t seed, int one_in) {
   MeshSequence s;
   s.faces = sheet_faces(n, n);
@@ -204,10 +185,6 @@ MeshSequence spiky_sheet(int frames, int n, int loose, uint64_t seed, int one_in
   return s;
 }
 
-// Residuals that reach every prefix bin of a channel after each class: the
-// patterns of for_each_prefix_pattern(), each after a run of zeros long
-// enough for the channel's order k to return to 0 (the running sum decays
-// by 1/16 per symbol, to below 16).
 std::vector<int32_t> prefix_schedule() {
   constexpr int kQuiet = 100;  // a sum of 2^13 + 2 decays below 16 in 100 symbols
   std::vector<int32_t> schedule;
@@ -219,11 +196,6 @@ std::vector<int32_t> prefix_schedule() {
   return schedule;
 }
 
-// A sequence on the unit grid of 16 bits (the box 0 … 65,535 held by two
-// vertices in no face, so that a grid step is 1) whose `loose` vertices in
-// no face, coded directly one after the other, are offset from their place
-// in frame 0 by `offset(f, v)` steps on each axis; a 2 × 2 sheet beside
-// them stays put.
 MeshSequence designed_loose(int frames, int loose, const std::function<int32_t(int, int)>& offset) {
   MeshSequence s;
   s.faces = sheet_faces(2, 2);
@@ -243,10 +215,6 @@ MeshSequence designed_loose(int frames, int loose, const std::function<int32_t(i
   return s;
 }
 
-// A 2 × 2 sheet and, in no face, a chain of vertices in the middle of the
-// unit grid of 16 bits (as designed_loose()), each one `schedule`'s next
-// value of steps on every axis off the one before: the residuals of the
-// base mesh's positions predicted by the previous vertex.
 MeshSequence loose_chain(const std::vector<int32_t>& schedule) {
   MeshSequence s = designed_loose(1, 0, {});
   s.vertex_count += static_cast<uint32_t>(schedule.size());
@@ -260,10 +228,6 @@ MeshSequence loose_chain(const std::vector<int32_t>& schedule) {
   return s;
 }
 
-// Separate quads on the unit grid of 16 bits (as designed_loose()), each
-// two faces (a, b, c), (c, b, d) at the same place but for d, which is
-// `schedule`'s next value of steps on every axis off the parallelogram
-// b + c − a: the residuals of the base mesh's parallelogram prediction.
 MeshSequence parallelogram_quads(const std::vector<int32_t>& schedule) {
   MeshSequence s = designed_loose(1, 0, {});
   std::vector<Vec3>& frame = s.frames[0];
@@ -281,11 +245,6 @@ MeshSequence parallelogram_quads(const std::vector<int32_t>& schedule) {
   return s;
 }
 
-// Three vertices on the unit grid of 16 bits, so few that the root cell
-// codes their motion directly, in index order, with contexts fresh per
-// frame. Per pattern of for_each_prefix_pattern(), a frame where the first
-// vertex moves by the class's residual and the second by ±2^e on every
-// axis, then a frame back; the third holds the box.
 MeshSequence direct_triples() {
   const std::vector<Vec3> place = {{0, 0, 0}, {32768, 32768, 32768}, {65535, 65535, 65535}};
   MeshSequence s;
@@ -302,13 +261,6 @@ MeshSequence direct_triples() {
   return s;
 }
 
-// Two clusters of 5 vertices on the unit grid of 19 bits, in opposite
-// octants of the root cube, 2^17 apart within each, so that every
-// reconstruction term is exact. Per class and prefix length e (as
-// prefix_schedule()), a frame where the first cluster moves by the matrix
-// whose 12 residuals from identity are the class's residual and the second
-// by one whose residuals are ∓2^e, each its cell's exact fit (for k = 16,
-// f = 14), then a frame back to the clusters' places.
 MeshSequence matrix_pairs() {
   constexpr int kFraction = 14;
   constexpr int64_t kFar = (1 << 19) - 1, kApart = 1 << 17;
@@ -350,7 +302,6 @@ MeshSequence matrix_pairs() {
   return s;
 }
 
-// The flag's rest shape in a file (the lcc codec's --reference takes one).
 std::string rest_shape_file(const MeshSequence& flag) {
   MeshSequence rest = flag;
   rest.frames.resize(1);
@@ -374,11 +325,6 @@ MeshSequence moving_tetrahedron(int frames) {
   return s;
 }
 
-// Tight clusters of 6 vertices, in pairs 12, 20, 40 and 80 steps of a
-// 24-bit grid apart, inside the unit box: on every odd frame one cluster
-// of each pair moves rigidly and the other at random, and on even frames
-// both return. Cells split down to depth 20, where the closest pair is a
-// leaf of 12 vertices; rigid clusters met deeper than 15 are matrix leaves.
 MeshSequence deep_clusters(int frames) {
   constexpr double kStep = 1.0 / (1 << 24);
   MeshSequence s;
@@ -413,11 +359,6 @@ MeshSequence deep_clusters(int frames) {
   return s;
 }
 
-// Clusters of 6 vertices in cells of the octree: two in cells of `depth`
-// whose vertices jump at random in every frame (leaves of more than 4
-// vertices there, coded directly when depth is max_depth), and two pairs
-// of sibling cells one level up, one cluster moving rigidly (a matrix leaf
-// of more than 4 vertices above max_depth), the other at random.
 MeshSequence clustered_jumps(int frames, int depth) {
   MeshSequence s;
   SplitMix64 random(static_cast<uint64_t>(100 + depth));
@@ -460,10 +401,6 @@ MeshSequence clustered_jumps(int frames, int depth) {
   return s;
 }
 
-// What real meshes have, in one sequence numbered out of any traversal's
-// order: a closed octahedron, an open sheet, two fans sharing a vertex, a
-// third face on an edge, a degenerate face, a repeated face, a face turned
-// the wrong way, and vertices in no face; coordinates small integers.
 MeshSequence awkward_mesh(int frames) {
   MeshSequence s;
   std::vector<Vec3> base;
@@ -504,13 +441,6 @@ MeshSequence awkward_mesh(int frames) {
   return s;
 }
 
-// A wheel of 2k faces around a top vertex, whose rim is the top of k
-// strips (arms) rising from a fan at the bottom; arm i is shorter by
-// min(i, k − i), so that the traversal, spreading both ways around the
-// fan, reaches every arm's top in the same wave. The top vertex then has
-// an open half-edge per arm, and the wheel's faces between arms close on
-// candidates 1 … 7, or, past the 8-candidate cut, far vertices. Last, a
-// loose face (v, v, u) on the seed's third corner v and first corner u.
 MeshSequence crown(int frames, int k, int length) {
   MeshSequence s;
   std::vector<Vec3> base = {{0, 0, 2}, {0, 0, -1}};
@@ -542,9 +472,6 @@ MeshSequence crown(int frames, int k, int length) {
   return s;
 }
 
-// An n × n grid whose quads split along either diagonal at random: vertex
-// degrees from 2 to 8, so that gates meet most pairs of degrees, each pair
-// and its mirror many times.
 MeshSequence irregular_grid(int frames, int n) {
   MeshSequence s;
   auto at = [n](int x, int y) { return static_cast<NodeIndex>(y * (n + 1) + x); };
@@ -570,7 +497,6 @@ MeshSequence irregular_grid(int frames, int n) {
   return s;
 }
 
-// The same sequence with its vertices numbered at random.
 void renumber_at_random(MeshSequence& s, uint64_t seed) {
   std::vector<NodeIndex> number(s.vertex_count);
   for (NodeIndex v = 0; v < s.vertex_count; ++v) number[v] = v;
@@ -585,11 +511,6 @@ void renumber_at_random(MeshSequence& s, uint64_t seed) {
   }
 }
 
-// The irregular grid, 16 × 16 = 2^8 vertices numbered at random (so that
-// the gate's vertex predicts input numbers better than parallelograms),
-// with loose faces: a degenerate one, and faces repeating a directed edge
-// of the grid with another third vertex, so that parallelograms across
-// those edges take the first face of the edge.
 MeshSequence shuffled_grid(int frames) {
   MeshSequence s = irregular_grid(frames, 15);
   const size_t grid_faces = s.faces.size();
@@ -601,10 +522,6 @@ MeshSequence shuffled_grid(int frames) {
   return s;
 }
 
-// A chain of faces, each across an edge of the one before, whose third
-// vertex is new or, half of the time, an earlier vertex at random: far
-// vertices at every distance from the gate's (up to the vertex count),
-// after far vertices near and far.
 MeshSequence far_chain(int faces, uint64_t seed) {
   MeshSequence s;
   SplitMix64 random(seed);
@@ -637,9 +554,6 @@ MeshSequence far_chain(int faces, uint64_t seed) {
   return s;
 }
 
-// Faces on few vertices at random, no directed edge twice: vertices with
-// many open half-edges around them, so that gates meet 3 and more
-// candidates at every pair of degrees and take every index.
 MeshSequence dense_soup(uint32_t vertices, int faces, uint64_t seed) {
   MeshSequence s;
   SplitMix64 random(seed);

@@ -1,11 +1,9 @@
 #include "conformance/suite3d/stream_edits.h"
 
 #include "bitstream/bit_reader.h"
-#include "common/error.h"
 
 namespace m4mesh::suite3d {
 
-// The unit of frame `frame` with unit_type `type`.
 ContainerUnit& unit_of(ContainerParts& parts, UnitType type, uint32_t frame) {
   for (ContainerUnit& unit : parts.units)
     if (const UnitHeader header = unit_header_of(unit.payload); header.type() == type && header.frame_index == frame) return unit;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bitstream/bit_writer.h"
+#include "common/error.h"
 #include "conformance/suite.h"
 #include "syntax/io.h"
 #include "syntax/mesh3d/container.h"
@@ -42,14 +43,15 @@ struct FieldBytes {
   size_t last() const { return first + count - 1; }
 };
 
-// The field or section `name` of a description, counted from `offset`
-// bits (which the description's fields before it must leave byte-aligned).
+// The field or section `name` of the structures `parts` described one
+// after the other; it must start and end on a byte.
 template <class... Parts>
 FieldBytes field_bytes(const char* name, Parts&... parts) {
   syntax::CountIO count(name);
   using syntax::describe;  // unqualified: the codecs' describe() are found where this is used
   (describe(count, parts), ...);
-  if (count.offset_of_watched() % 8 != 0 || count.bits_of_watched() % 8 != 0) throw usage_error(std::string("suite: ") + name + " is not byte-aligned");
+  if (!count.found_watched() || count.offset_of_watched() % 8 != 0 || count.bits_of_watched() % 8 != 0)
+    throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, std::string("suite: no byte-aligned field ") + name);
   return {static_cast<size_t>(count.offset_of_watched() / 8), static_cast<size_t>(count.bits_of_watched() / 8)};
 }
 
@@ -75,6 +77,7 @@ FieldBytes unit_field(const char* name) {
 uint64_t field_value(const std::vector<uint8_t>& payload, FieldBytes field);
 void put_field(std::vector<uint8_t>& payload, FieldBytes field, uint64_t value);
 
+// The stream of case `id`.
 const std::vector<uint8_t>& stream_of(const std::vector<SuiteCase>& cases, const std::string& id);
 
 // A unit: its header (the first bytes of the unit it replaces), then its

@@ -9,7 +9,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Vertex v's trajectory is row v: x, y, z of frame 0, then of frame 1, …
 Eigen::MatrixXd trajectories(const MeshSequence& s) {
   Eigen::MatrixXd x(s.vertex_count, 3 * static_cast<Eigen::Index>(s.frames.size()));
   for (size_t f = 0; f < s.frames.size(); ++f)
@@ -22,11 +21,6 @@ Eigen::MatrixXd trajectories(const MeshSequence& s) {
   return x;
 }
 
-// k-means on the trajectories, deterministic: the first center is the
-// trajectory farthest from the mean, each next the one farthest from the
-// centers so far (ties: the lowest vertex); then Lloyd iterations (ties:
-// the lowest cluster) until no vertex moves, at most 50. Clusters are
-// numbered by their first vertex; none is empty.
 std::vector<uint32_t> cluster_trajectories(const Eigen::MatrixXd& x, int k) {
   const Eigen::Index vertices = x.rows();
   const Eigen::RowVectorXd mean = x.colwise().mean();
@@ -78,9 +72,6 @@ Clustering clustering(const MeshSequence& s, int requested) {
   return c;
 }
 
-// The components in decreasing sigma, at most `count`, those with sigma
-// above 10^−6 of the first: from the eigenvectors of the smaller Gram
-// matrix (DᵀD or DDᵀ). The largest coefficient of each is positive.
 std::vector<Component> principal_components(const Eigen::MatrixXd& d, size_t count) {
   const bool by_frames = d.rows() >= d.cols();
   const Eigen::MatrixXd gram = by_frames ? Eigen::MatrixXd(d.transpose() * d) : Eigen::MatrixXd(d * d.transpose());
@@ -110,8 +101,6 @@ std::vector<Component> principal_components(const Eigen::MatrixXd& d, size_t cou
   return components;
 }
 
-// A motion matrix (3M × N) as the members' trajectories (M × 3N): row i,
-// column 3n + a holds axis a of member i in frame n.
 Eigen::MatrixXd as_trajectories(const Eigen::MatrixXd& d) {
   Eigen::MatrixXd t(d.rows() / 3, 3 * d.cols());
   for (Eigen::Index row = 0; row < d.rows(); ++row)

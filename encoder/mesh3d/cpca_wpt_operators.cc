@@ -54,13 +54,6 @@ void apply(CpcaAnimation& animation, std::span<const NodeIndex> members, const O
     animation.refine(members, op.basis, op.coefficients, op.shift, op.kind == kCpcaTrajectory);
 }
 
-// The operator of a component at the noise step Δ = 2^(noise / 2) grid
-// units: the coefficients sigma · w in steps of Δ and the basis in steps of
-// about Δ / sigma, so that both add noise of Δ's order to the animation
-// (each as fine as their ranges, 2^15 and 2^23, allow). The two steps are
-// powers of √2 whose product is a power of 2: their product ×
-// 2^−(shift − 16) is in steps of 2^−F grid units.
-// `basis_finer` half steps make the basis finer than that rule.
 Operator quantize(const Component& c, uint32_t cluster, int noise, int fraction_bits, int basis_finer) {
   const Eigen::VectorXd weighted = c.sigma * c.coefficients;
   const int basis_exponent = std::min(2 * std::ilogb(c.sigma) - noise + basis_finer, 2 * exponent_for(c.basis.cwiseAbs().maxCoeff(), 15));
@@ -81,10 +74,6 @@ Operator quantize(const Component& c, uint32_t cluster, int noise, int fraction_
   return op;
 }
 
-// A cluster's start at the noise step Δ: the translation t is the
-// coefficient of the basis (1, …, 1) of norm √M, so it takes steps of about
-// Δ / √M (as fine as its range, 2^29, allows, and no finer than 2^−F grid
-// units: the shift never rounds, so that a start can be undone exactly).
 Operator quantize_start(const Translation& t, uint32_t cluster, size_t members, int noise, int fraction_bits) {
   const int wanted = std::min(half_of(2 * std::ilogb(std::sqrt(static_cast<double>(members))) - noise), exponent_for(t.cwiseAbs().maxCoeff(), 29));
   const int shift = std::clamp(wanted - fraction_bits, -static_cast<int>(kCpcaShiftBias), 0);
@@ -100,7 +89,6 @@ Operator quantize_start(const Translation& t, uint32_t cluster, size_t members, 
   return op;
 }
 
-// The squared error a start removes, estimated: M (‖t‖² − ‖t̂ − t‖²).
 double estimated_gain(const Translation& t, size_t members, const Operator& op) {
   double removed = 0;
   for (Eigen::Index j = 0; j < t.size(); ++j) {
@@ -110,9 +98,6 @@ double estimated_gain(const Translation& t, size_t members, const Operator& op) 
   return static_cast<double>(members) * removed;
 }
 
-// The squared error removed by an operator, estimated without decoding:
-// sigma² less the quantization error ‖b̂ŵᵀ − σbwᵀ‖² (from its inner
-// products, b unit).
 double estimated_gain(const Component& c, const Operator& op) {
   double bb = 0, bq = 0, ww = 0, wq = 0;
   for (Eigen::Index j = 0; j < c.basis.size(); ++j) {
