@@ -5,8 +5,8 @@
 
 #include <set>
 
-#include "decoder/decoder.h"
-#include "encoder/encoder.h"
+#include "decoder/mesh_object_decoder.h"
+#include "encoder/mesh_object_encoder.h"
 #include "mesh/cdt.h"
 #include "tests/cgal_reference.h"
 

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "decoder/decoder.h"
-#include "encoder/encoder.h"
+#include "decoder/mesh_object_decoder.h"
+#include "encoder/mesh_object_encoder.h"
 
 namespace m4mesh {
 namespace {

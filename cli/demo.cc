@@ -7,9 +7,9 @@
 #include <optional>
 
 #include "cli/console.h"
-#include "decoder/decoder.h"
+#include "decoder/mesh_object_decoder.h"
 #include "render/texture_warp.h"
-#include "encoder/encoder.h"
+#include "encoder/mesh_object_encoder.h"
 
 namespace m4mesh {
 

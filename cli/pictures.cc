@@ -8,7 +8,7 @@
 #include "cli/console.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
-#include "decoder/decoder.h"
+#include "decoder/mesh_object_decoder.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "render/shaded.h"
 #include "render/texture_warp.h"

@@ -1,6 +1,6 @@
 #include "conformance/checker.h"
 
-#include "decoder/decoder.h"
+#include "decoder/mesh_object_decoder.h"
 #include "mesh/cdt.h"
 #include "syntax/describe.h"
 #include "syntax/mesh_object.h"

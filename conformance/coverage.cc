@@ -1,7 +1,7 @@
 #include "conformance/coverage.h"
 
 #include "conformance/checker.h"
-#include "decoder/decoder.h"
+#include "decoder/mesh_object_decoder.h"
 #include "syntax/mesh_object.h"
 #include "syntax/values.h"
 

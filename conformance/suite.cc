@@ -10,7 +10,7 @@
 
 #include "bitstream/start_codes.h"
 #include "common/random.h"
-#include "encoder/encoder.h"
+#include "encoder/mesh_object_encoder.h"
 #include "syntax/mesh_object.h"
 #include "syntax/values.h"
 

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "common/error.h"
-#include "encoder/encoder.h"
+#include "encoder/mesh_object_encoder.h"
 
 namespace m4mesh {
 

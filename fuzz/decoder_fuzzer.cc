@@ -4,7 +4,7 @@
 #include <cstdint>
 
 #include "common/error.h"
-#include "decoder/decoder.h"
+#include "decoder/mesh_object_decoder.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace m4mesh;

@@ -4,7 +4,7 @@
 #include <string_view>
 
 #include "common/error.h"
-#include "encoder/encoder.h"
+#include "encoder/mesh_object_encoder.h"
 #include "mesh/decoded_text.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -12,7 +12,7 @@
 #include "codecs3d/registry.h"
 #include "common/error.h"
 #include "conformance/runner.h"
-#include "decoder/decoder.h"
+#include "decoder/mesh_object_decoder.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
 #include "encoder/mesh3d/quality_target.h"

@@ -7,8 +7,8 @@
 #include <tuple>
 
 #include "conformance/suite.h"
-#include "decoder/decoder.h"
-#include "encoder/encoder.h"
+#include "decoder/mesh_object_decoder.h"
+#include "encoder/mesh_object_encoder.h"
 #include "mesh/decoded_text.h"
 #include "syntax/mesh_object.h"
 #include "tests/test_util.h"

@@ -13,7 +13,7 @@
 #include "conformance/checker.h"
 #include "conformance/coverage.h"
 #include "conformance/manifest.h"
-#include "decoder/decoder.h"
+#include "decoder/mesh_object_decoder.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "mesh3d/frame_hash.h"
 #include "syntax/mesh3d/container.h"

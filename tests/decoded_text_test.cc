@@ -4,7 +4,7 @@
 
 #include "common/error.h"
 #include "common/md5.h"
-#include "encoder/encoder.h"
+#include "encoder/mesh_object_encoder.h"
 #include "mesh/decoded_text.h"
 #include "tests/test_util.h"
 

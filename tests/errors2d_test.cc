@@ -2,8 +2,8 @@
 // nothing crashes, nothing is trusted.
 #include <gtest/gtest.h>
 
-#include "decoder/decoder.h"
-#include "encoder/encoder.h"
+#include "decoder/mesh_object_decoder.h"
+#include "encoder/mesh_object_encoder.h"
 #include "syntax/mesh_object.h"
 #include "syntax/values.h"
 #include "syntax/vlc.h"

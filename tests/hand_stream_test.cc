@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "conformance/suite.h"
-#include "decoder/decoder.h"
-#include "encoder/encoder.h"
+#include "decoder/mesh_object_decoder.h"
+#include "encoder/mesh_object_encoder.h"
 #include "tests/test_util.h"
 
 namespace m4mesh {

@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "common/error.h"
-#include "encoder/encoder.h"
+#include "encoder/mesh_object_encoder.h"
 #include "encoder/frame_input.h"
 #include "mesh/obj.h"
 #include "tests/test_util.h"

@@ -4,7 +4,7 @@
 
 #include <sstream>
 
-#include "encoder/encoder.h"
+#include "encoder/mesh_object_encoder.h"
 #include "syntax/describe.h"
 #include "syntax/io.h"
 #include "syntax/mesh_object.h"

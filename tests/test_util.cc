@@ -5,9 +5,9 @@
 #include <set>
 #include <stdexcept>
 
-#include "decoder/decoder.h"
+#include "decoder/mesh_object_decoder.h"
 #include "decoder/mesh3d/container_decoder.h"
-#include "encoder/encoder.h"
+#include "encoder/mesh_object_encoder.h"
 #include "mesh/cdt.h"
 
 namespace m4mesh::test {

@@ -12,7 +12,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/random.h"
-#include "decoder/decoder.h"
+#include "decoder/mesh_object_decoder.h"
 #include "render/texture_warp.h"
 #include "video/block_matching.h"
 #include "video/track.h"

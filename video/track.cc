@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "common/error.h"
-#include "decoder/decoder.h"
-#include "encoder/encoder.h"
+#include "decoder/mesh_object_decoder.h"
+#include "encoder/mesh_object_encoder.h"
 #include "render/texture_warp.h"
 #include "video/block_matching.h"
 

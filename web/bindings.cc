@@ -14,7 +14,7 @@
 #include "common/error.h"
 #include "common/md5.h"
 #include "conformance/checker.h"
-#include "decoder/decoder.h"
+#include "decoder/mesh_object_decoder.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "mesh/topology.h"
 #include "syntax/mesh3d/container.h"

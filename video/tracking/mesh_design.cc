@@ -6,7 +6,7 @@
 #include <numeric>
 
 #include "common/error.h"
-#include "encoder/encoder.h"
+#include "encoder/mesh_object_encoder.h"
 #include "mesh/cdt.h"
 #include "mesh/uniform.h"
 

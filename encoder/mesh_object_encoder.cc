@@ -1,4 +1,4 @@
-#include "encoder/encoder.h"
+#include "encoder/mesh_object_encoder.h"
 
 #include <algorithm>
 

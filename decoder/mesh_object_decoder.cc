@@ -1,4 +1,4 @@
-#include "decoder/decoder.h"
+#include "decoder/mesh_object_decoder.h"
 
 #include "mesh/cdt.h"
 #include "mesh/decoded_text.h"
