@@ -4,11 +4,11 @@
 // coding of the same grid positions, all in one run; and its coding speed.
 #include <benchmark/benchmark.h>
 
+#include "anchors/draco_reference.h"
 #include "bench/sequences.h"
 #include "codecs3d/codec_decoder.h"
 #include "codecs3d/codec_encoder.h"
 #include "encoder/mesh3d/base_mesh.h"
-#include "anchors/draco_reference.h"
 #include "mesh3d/quantization.h"
 
 namespace m4mesh {

@@ -21,10 +21,10 @@
 #include <cstdlib>
 #include <map>
 
+#include "anchors/draco_reference.h"
 #include "bench/sequences.h"
 #include "encoder/mesh3d/base_mesh.h"
 #include "mesh3d/base_mesh.h"
-#include "anchors/draco_reference.h"
 #include "mesh3d/metrics.h"
 
 namespace m4mesh {

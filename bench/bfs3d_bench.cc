@@ -5,10 +5,10 @@
 
 #include <cmath>
 
+#include "anchors/draco_reference.h"
 #include "bench/sequences.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
-#include "anchors/draco_reference.h"
 #include "mesh3d/metrics.h"
 
 namespace m4mesh {

@@ -8,8 +8,8 @@
 
 #include "cli/console.h"
 #include "decoder/mesh_object_decoder.h"
-#include "render/texture_warp.h"
 #include "encoder/mesh_object_encoder.h"
+#include "render/texture_warp.h"
 
 namespace m4mesh {
 

@@ -10,8 +10,8 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "decoder/mesh_object_decoder.h"
-#include "encoder/mesh_object_encoder.h"
 #include "encoder/frame_input.h"
+#include "encoder/mesh_object_encoder.h"
 #include "mesh/decoded_text.h"
 #include "syntax/mesh3d/container.h"
 

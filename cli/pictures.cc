@@ -4,12 +4,12 @@
 #include <filesystem>
 #include <optional>
 
-#include "cli/sequence_files.h"
 #include "cli/console.h"
+#include "cli/sequence_files.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
-#include "decoder/mesh_object_decoder.h"
 #include "decoder/mesh3d/container_decoder.h"
+#include "decoder/mesh_object_decoder.h"
 #include "render/shaded.h"
 #include "render/texture_warp.h"
 #include "syntax/mesh3d/container.h"

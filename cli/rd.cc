@@ -7,14 +7,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/sequence_files.h"
 #include "cli/console.h"
+#include "cli/sequence_files.h"
 #include "codecs3d/registry.h"
-#include "encoder/mesh3d/codec_encoders.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/parallel.h"
 #include "decoder/mesh3d/container_decoder.h"
+#include "encoder/mesh3d/codec_encoders.h"
 #include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/metrics.h"
 
@@ -44,13 +44,15 @@ std::vector<RdPoint> rd_sweep(const MeshSequence& s, const std::vector<std::stri
   const double vertex_frames = static_cast<double>(s.vertex_count) * static_cast<double>(s.frames.size());
   std::vector<RdPoint> tried;
   std::vector<std::pair<const Codec3d*, std::string>> settings;  // per point: the codec and its knob's value
-  for (const Codec3d* codec : codec_rows(codecs))
-    for (const std::string& value : codec_encoding(*codec).quality.coarse_to_fine) {
-      std::string parameter = "--" + codec_encoding(*codec).quality.option + " " + value;
-      for (const auto& [name, beside] : codec_encoding(*codec).quality.beside) parameter += " --" + name + " " + beside;
+  for (const Codec3d* codec : codec_rows(codecs)) {
+    const QualityKnob& knob = codec_encoding(*codec).quality;
+    for (const std::string& value : knob.coarse_to_fine) {
+      std::string parameter = "--" + knob.option + " " + value;
+      for (const auto& [name, beside] : knob.beside) parameter += " --" + name + " " + beside;
       tried.push_back({codec->name, parameter});
       settings.emplace_back(codec, value);
     }
+  }
   std::vector<std::string> left_out(tried.size());  // why a setting cannot code this sequence
   parallel_for(
       tried.size(), threads,
@@ -59,8 +61,9 @@ std::vector<RdPoint> rd_sweep(const MeshSequence& s, const std::vector<std::stri
         const auto& [codec, value] = settings[k];
         Encode3dOptions options;
         options.codec = codec->name;
-        options.codec_options = codec_encoding(*codec).quality.beside;
-        options.codec_options[codec_encoding(*codec).quality.option] = value;
+        const QualityKnob& knob = codec_encoding(*codec).quality;
+        options.codec_options = knob.beside;
+        options.codec_options[knob.option] = value;
         options.hashes = false;
         auto start = std::chrono::steady_clock::now();
         std::vector<uint8_t> stream;

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numeric>
 
-#include "cli/sequence_files.h"
 #include "cli/console.h"
+#include "cli/sequence_files.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "video/track.h"

@@ -9,8 +9,8 @@
 #include "conformance/checker.h"
 #include "conformance/coverage.h"
 #include "conformance/suite3d/suite3d.h"
-#include "decoder/mesh_object_decoder.h"
 #include "decoder/mesh3d/container_decoder.h"
+#include "decoder/mesh_object_decoder.h"
 #include "syntax/mesh3d/container.h"
 
 namespace m4mesh {

@@ -11,9 +11,9 @@
 #include "conformance/suite3d/suite3d.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
+#include "mesh3d/affine_octree.h"
 #include "mesh3d/metrics.h"
 #include "mesh3d/quantization.h"
-#include "mesh3d/affine_octree.h"
 #include "syntax/mesh3d/affine_octree.h"
 #include "tests/test_util.h"
 

@@ -9,10 +9,10 @@
 #include <filesystem>
 #include <numeric>
 
+#include "anchors/draco_reference.h"
 #include "codecs3d/codec_decoder.h"
 #include "codecs3d/codec_encoder.h"
 #include "encoder/mesh3d/base_mesh.h"
-#include "anchors/draco_reference.h"
 #include "mesh3d/quantization.h"
 #include "test_util.h"
 

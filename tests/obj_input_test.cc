@@ -5,8 +5,8 @@
 #include <fstream>
 
 #include "common/error.h"
-#include "encoder/mesh_object_encoder.h"
 #include "encoder/frame_input.h"
+#include "encoder/mesh_object_encoder.h"
 #include "mesh/obj.h"
 #include "tests/test_util.h"
 

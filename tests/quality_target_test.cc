@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "codecs3d/registry.h"
-#include "encoder/mesh3d/codec_encoders.h"
 #include "decoder/mesh3d/container_decoder.h"
+#include "encoder/mesh3d/codec_encoders.h"
 #include "encoder/mesh3d/quality_target.h"
 #include "mesh3d/metrics.h"
 #include "tests/test_util.h"

@@ -5,8 +5,8 @@
 #include <set>
 #include <stdexcept>
 
-#include "decoder/mesh_object_decoder.h"
 #include "decoder/mesh3d/container_decoder.h"
+#include "decoder/mesh_object_decoder.h"
 #include "encoder/mesh_object_encoder.h"
 #include "mesh/cdt.h"
 

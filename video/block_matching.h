@@ -6,8 +6,8 @@
 
 #include <cstdint>
 
-#include "video/tracking/luma.h"
 #include "render/image.h"
+#include "video/tracking/luma.h"
 
 namespace m4mesh {
 

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "render/image.h"
 #include "video/tracking/mesh_design.h"
 #include "video/tracking/node_tracker.h"
-#include "render/image.h"
 #include "video/video_reader.h"
 
 namespace m4mesh {

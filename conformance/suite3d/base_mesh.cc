@@ -1,10 +1,10 @@
 // The base mesh's streams (docs/base_mesh.md) and those to reject.
 #include <cstdio>
 
+#include "conformance/suite3d/base_mesh_oracles.h"
 #include "conformance/suite3d/cases.h"
 #include "conformance/suite3d/inputs.h"
 #include "conformance/suite3d/stream_edits.h"
-#include "conformance/suite3d/base_mesh_oracles.h"
 #include "syntax/mesh3d/affine_octree.h"
 #include "syntax/mesh3d/base_mesh.h"
 #include "syntax/mesh3d/bfs3d.h"

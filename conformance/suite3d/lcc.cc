@@ -3,10 +3,10 @@
 #include <cmath>
 #include <filesystem>
 
+#include "common/bit_cast.h"
 #include "conformance/suite3d/cases.h"
 #include "conformance/suite3d/inputs.h"
 #include "conformance/suite3d/stream_edits.h"
-#include "common/bit_cast.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "mesh3d/lcc.h"
 #include "syntax/mesh3d/entropy_io.h"

@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "common/bit_cast.h"
-#include "encoder/mesh3d/grid_frame_encoder.h"
 #include "encoder/mesh3d/codec_options.h"
+#include "encoder/mesh3d/grid_frame_encoder.h"
 #include "mesh3d/affine_octree.h"
 #include "syntax/mesh3d/affine_octree.h"
 #include "syntax/mesh3d/entropy_io.h"

@@ -2,8 +2,8 @@
 // breadth first and coded losslessly (docs/codec_bfs3d.md).
 
 #include "common/bit_cast.h"
-#include "encoder/mesh3d/grid_frame_encoder.h"
 #include "encoder/mesh3d/codec_options.h"
+#include "encoder/mesh3d/grid_frame_encoder.h"
 #include "mesh3d/bfs3d.h"
 #include "syntax/mesh3d/bfs3d.h"
 #include "syntax/mesh3d/entropy_io.h"

@@ -9,9 +9,9 @@
 #include <numbers>
 
 #include "codecs3d/codec_encoder.h"
-#include "encoder/mesh3d/codec_options.h"
 #include "common/bit_cast.h"
 #include "common/error.h"
+#include "encoder/mesh3d/codec_options.h"
 #include "mesh3d/lcc.h"
 #include "mesh3d/metrics.h"
 #include "mesh3d/quantization.h"

@@ -6,10 +6,10 @@
 #include <optional>
 
 #include "codecs3d/registry.h"
-#include "encoder/mesh3d/codec_encoders.h"
 #include "common/error.h"
 #include "common/parallel.h"
 #include "encoder/mesh3d/base_mesh.h"
+#include "encoder/mesh3d/codec_encoders.h"
 #include "mesh3d/metrics.h"
 
 namespace m4mesh {

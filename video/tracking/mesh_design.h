@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "mesh/plane.h"
 #include "video/tracking/luma.h"
 #include "video/tracking/node_tracker.h"
-#include "mesh/plane.h"
 
 namespace m4mesh {
 

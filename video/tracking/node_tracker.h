@@ -13,9 +13,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "video/tracking/luma.h"
 #include "mesh/geometry.h"
 #include "mesh/topology.h"
+#include "video/tracking/luma.h"
 
 namespace m4mesh {
 
