@@ -97,7 +97,11 @@ Outcome run_external(SuiteKind kind, const ManifestEntry& e, const std::string& 
   command = replace_all(command, "{method}", std::to_string(e.method));
   // A subshell, so that the command's own redirections win over these.
   const int status = std::system(("( " + command + " ) > /dev/null 2> " + quoted(err.string())).c_str());
-  const int code = status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (status == -1) return {Outcome::kFail, "the decoder could not be started"};
+  // A crash fails any stream: the shell reports a command killed by signal N as 128 + N.
+  const int signal = WIFSIGNALED(status) ? WTERMSIG(status) : WEXITSTATUS(status) > 128 && WEXITSTATUS(status) < 160 ? WEXITSTATUS(status) - 128 : 0;
+  if (signal != 0) return {Outcome::kFail, "killed by signal " + std::to_string(signal) + stderr_of(err)};
+  const int code = WEXITSTATUS(status);
   if (code == 126 || code == 127)
     return {Outcome::kFail, "exit " + std::to_string(code) + (code == 127 ? ": command not found" : ": command not executable") + stderr_of(err)};
   if (!e.valid)
