@@ -48,17 +48,21 @@ TriangleNeighbours triangle_neighbours(std::span<const Triangle> triangles, size
   for (uint32_t k = 0; k < triangles.size(); ++k)
     for (int j = 0; j < 3; ++j) edges[fill[triangles[k].v[j]]++] = Edge{triangles[k].v[(j + 1) % 3], k};
 
+  // Each node's edges by their end, then by triangle: the first edge a → b
+  // found is that of the lowest triangle, and a node of any degree is
+  // searched in logarithmic time.
+  for (size_t n = 0; n < node_count; ++n)
+    std::sort(edges.begin() + first[n], edges.begin() + first[n + 1],
+              [](const Edge& x, const Edge& y) { return x.to != y.to ? x.to < y.to : x.triangle < y.triangle; });
+
   TriangleNeighbours neighbours(triangles.size(), {kNoTriangle, kNoTriangle, kNoTriangle});
   for (uint32_t k = 0; k < triangles.size(); ++k) {
     for (int j = 0; j < 3; ++j) {
       // The edge opposite v[j] runs v[j+1] → v[j+2]; its neighbour holds v[j+2] → v[j+1].
       const NodeIndex a = triangles[k].v[(j + 2) % 3], b = triangles[k].v[(j + 1) % 3];
-      for (uint32_t e = first[a]; e < first[a + 1]; ++e) {
-        if (edges[e].to == b) {
-          neighbours[k][j] = edges[e].triangle;
-          break;
-        }
-      }
+      const auto begin = edges.begin() + first[a], end = edges.begin() + first[a + 1];
+      const auto e = std::lower_bound(begin, end, b, [](const Edge& x, NodeIndex to) { return x.to < to; });
+      if (e != end && e->to == b) neighbours[k][j] = e->triangle;
     }
   }
   return neighbours;

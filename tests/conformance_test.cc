@@ -76,13 +76,19 @@ TEST(Conformance, RejectionsArePlacedAtTheFirstBitOfTheirField) {
       } catch (const Error&) {
       }
       // The last traced line of the element placed at a bit of its payload
-      // (offsets count from the unit's start code, or the stream's start).
+      // (offsets count from the unit's start code, or the stream's start),
+      // in the unit that holds the error (none when the decoder refused the
+      // field before tracing it).
       const std::vector<ContainerUnit> units = manifest.kind == SuiteKind::kMesh3d ? split_container(stream).units : std::vector<ContainerUnit>{};
+      int64_t error_unit = -1;
+      for (size_t u = 0; u < units.size(); ++u)
+        if (e.error_offset >= 0 && 8 * units[u].byte_offset <= static_cast<uint64_t>(e.error_offset)) error_unit = static_cast<int64_t>(u);
       int64_t expected = -1;
       std::istringstream lines(text.str());
       for (std::string l; std::getline(lines, l);) {
         const std::optional<TraceLine> line = parse_trace_line(l);
         if (!line || line->name != e.error_element || line->position.find(':') != std::string::npos) continue;
+        if (line->unit >= 0 && line->unit != error_unit) continue;
         const uint64_t base = line->unit < 0 ? 0 : 8 * units.at(static_cast<size_t>(line->unit)).byte_offset;
         expected = static_cast<int64_t>(base + std::stoull(line->position));
       }

@@ -4,9 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
 
 #include "codecs3d/registry.h"
 #include "common/atomic_file.h"
+#include "conformance/manifest.h"
 #include "syntax/mesh3d/affine_octree.h"
 #include "syntax/mesh3d/base_mesh.h"
 #include "syntax/mesh3d/bfs3d.h"
@@ -75,6 +79,64 @@ TEST(Docs, EverySymbolOfTheCodedDataIsNamed) {
     for (const char* name : {n.nonzero, n.prefix, n.sign_suffix, n.element}) EXPECT_NE(document("base_mesh.md").find(name), std::string::npos) << name;
   for (const char* name : {"seed_new_vertex", "seed_vertex", "gate_new_vertex", "gate_candidate", "candidate_index", "gate_border", "loose_vertex"})
     EXPECT_NE(document("base_mesh.md").find(name), std::string::npos) << name;
+}
+
+// The requirement lists of the docs ("| id | requirement | expect |
+// streams |"): every stream a row names is in a suite and expects what the
+// row says, or the row says why it has none.
+TEST(Docs, EveryRequirementHasItsStreams) {
+  std::map<std::string, ManifestEntry> streams;
+  for (const char* suite : {"manifest.json", "mesh3d/manifest.json"})
+    for (ManifestEntry& e : read_manifest((fs::path(M4MESH_SOURCE_DIR) / "conformance" / suite).string()).entries) streams[e.id] = e;
+  const std::string header = "| id | requirement | expect | streams |";
+  std::set<std::string> ids;
+  size_t rows = 0, without = 0;
+  for (const fs::directory_entry& doc : fs::directory_iterator(fs::path(M4MESH_SOURCE_DIR) / "docs")) {
+    if (doc.path().extension() != ".md") continue;
+    std::istringstream text(document(doc.path().filename().string()));
+    bool in_table = false;
+    for (std::string line; std::getline(text, line);) {
+      if (line == header) {
+        in_table = true;
+        continue;
+      }
+      if (!in_table || line.rfind("|---", 0) == 0) continue;
+      if (line.rfind("| ", 0) != 0) {
+        in_table = false;
+        continue;
+      }
+      std::vector<std::string> cells;
+      for (size_t at = 2, bar; (bar = line.find(" |", at)) != std::string::npos; at = bar + 3) cells.push_back(line.substr(at, bar - at));
+      ASSERT_EQ(cells.size(), 4u) << doc.path().filename() << ": " << line;
+      const std::string where = doc.path().filename().string() + " " + cells[0];
+      EXPECT_TRUE(ids.insert(cells[0]).second) << where << ": the id is taken";
+      ++rows;
+      if (cells[3].rfind("none: ", 0) == 0) {
+        ++without;
+        continue;
+      }
+      std::istringstream expect(cells[2]);
+      std::string verdict, kind, element;
+      expect >> verdict >> kind >> element;
+      ASSERT_TRUE(verdict == "decode" || (verdict == "reject" && !element.empty())) << where << ": expect is 'decode' or 'reject KIND ELEMENT'";
+      std::istringstream names(cells[3]);
+      for (std::string id; std::getline(names >> std::ws, id, ',');) {
+        const auto found = streams.find(id);
+        if (found == streams.end()) {
+          ADD_FAILURE() << where << ": no stream " << id;
+          continue;
+        }
+        const ManifestEntry& e = found->second;
+        if (verdict == "decode")
+          EXPECT_TRUE(e.valid) << where << ": " << id << " is a stream to reject";
+        else
+          EXPECT_TRUE(!e.valid && e.error_kind == kind && e.error_element == element)
+              << where << ": " << id << " expects " << (e.valid ? "to decode" : e.error_kind + " " + e.error_element);
+      }
+    }
+  }
+  EXPECT_GE(rows, 30u);
+  std::printf("%zu requirements listed, %zu with streams\n", rows, rows - without);
 }
 
 TEST(Docs, EveryCodecHasItsDocument) {

@@ -47,6 +47,7 @@ std::vector<SuiteCase> lcc_cases(bool traced);
 std::vector<SuiteCase> cpca_cases(bool traced);
 std::vector<SuiteCase> group_hash_cases(bool traced);
 std::vector<SuiteCase> base_mesh_cases(bool traced);
+std::vector<SuiteCase> container_cases(bool traced);
 
 // Streams to reject, each made from a valid one of `valid`, in parts that
 // keep the manifest's order (suite3d.cc joins them).
@@ -64,5 +65,6 @@ std::vector<SuiteCase> affine_octree_edge_rejected(const std::vector<SuiteCase>&
 std::vector<SuiteCase> bfs3d_prefix_rejected(const std::vector<SuiteCase>& valid);
 std::vector<SuiteCase> base_mesh_traversal_rejected(const std::vector<SuiteCase>& valid);
 std::vector<SuiteCase> bfs3d_header_rejected(const std::vector<SuiteCase>& valid);
+std::vector<SuiteCase> container_rules_rejected(const std::vector<SuiteCase>& valid);
 
 }  // namespace m4mesh::suite3d

@@ -6,6 +6,8 @@
 #include "conformance/suite3d/inputs.h"
 #include "conformance/suite3d/stream_edits.h"
 #include "syntax/mesh3d/affine_octree.h"
+#include "syntax/mesh3d/bfs3d.h"
+#include "syntax/mesh3d/entropy_io.h"
 
 namespace m4mesh::suite3d {
 
@@ -113,6 +115,128 @@ std::vector<SuiteCase> container_edge_rejected(const std::vector<SuiteCase>& val
   }
   suite.push_back(invalid("x-52-version", "version 2", {"container"}, edited(base, [&](ContainerParts& p) { put_field(p.object_payload, object_field<AffineOctreeHeader>(base, "version"), 2); }),
                           ErrorKind::kReservedValue, "version", kNoPlane));
+  return suite;
+}
+
+// The object header's ranges met at both ends: the smallest object, and
+// the slowest and fastest frame rates.
+std::vector<SuiteCase> container_cases(bool traced) {
+  std::vector<SuiteCase> suite;
+  MeshSequence triangle;
+  triangle.vertex_count = 3;
+  triangle.faces = {{{0, 1, 2}}};
+  for (int f = 0; f < 3; ++f) triangle.frames.push_back({{0, 0, 0.5 * f}, {1, 0, 0.25 * f}, {0, 1, 0}});
+  suite.push_back(valid("hdr-01-one-triangle", "vertex_count 3 and face_count 1: the smallest object", {"container"}, triangle,
+                        Encode3dOptions{}, traced));
+  for (const uint32_t rate : {65535u, 1u}) {
+    Encode3dOptions o;
+    o.frame_rate_num = rate;
+    o.frame_rate_den = rate;
+    suite.push_back(valid(rate == 1 ? "hdr-03-frame-rate-min" : "hdr-02-frame-rate-max",
+                          "frame_rate_num and frame_rate_den " + std::to_string(rate) + ", the " + (rate == 1 ? "smallest" : "largest"),
+                          {"container"}, box_and_sheet(3, 2), o, traced));
+  }
+  return suite;
+}
+
+namespace {
+
+// A bfs3d frame unit of `vertex_count` residuals per axis, all 0 but the
+// first x residual, whose raw bits do not end on a byte, with a padding
+// bit set.
+std::vector<uint8_t> bfs3d_padding_unit(std::vector<uint8_t> unit_header, uint32_t vertex_count) {
+  Bfs3dFrame frame;
+  std::vector<uint8_t> sections[3][2];
+  for (int32_t first = 2;; ++first) {
+    std::vector<int32_t> x(vertex_count, 0);
+    x[0] = first;
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    syntax::describe_axis(symbols, std::span<int32_t>(x));
+    if (symbols.raw_bits() % 8 == 0) continue;
+    sections[0][0] = symbols.finish_bins();
+    sections[0][1] = symbols.finish_raw();
+    sections[0][1].back() |= 1;  // the last padding bit
+    break;
+  }
+  for (int axis = 1; axis < 3; ++axis) {
+    std::vector<int32_t> zeros(vertex_count, 0);
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    syntax::describe_axis(symbols, std::span<int32_t>(zeros));
+    sections[axis][0] = symbols.finish_bins();
+    sections[axis][1] = symbols.finish_raw();
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    frame.arithmetic_bytes[axis] = static_cast<uint32_t>(sections[axis][0].size());
+    frame.raw_bytes[axis] = static_cast<uint32_t>(sections[axis][1].size());
+    frame.bins[axis] = sections[axis][0];
+    frame.raw[axis] = sections[axis][1];
+  }
+  return unit_with(std::move(unit_header), frame);
+}
+
+}  // namespace
+
+// The object and unit headers' ranges one past each end, bytes left after
+// the codec header, the units' order and placement, and the end of a
+// section: a bin section one byte short, a raw section's padding not zero.
+std::vector<SuiteCase> container_rules_rejected(const std::vector<SuiteCase>& valid) {
+  std::vector<SuiteCase> suite;
+  const std::vector<uint8_t> base = stream_of(valid, "bfs3d-01-average");
+  const struct {
+    const char* id;
+    const char* purpose;
+    const char* field;
+    uint32_t value;
+  } header_cases[] = {
+      {"x-67-vertex-count-two", "vertex_count 2, one below the smallest", "vertex_count", 2},
+      {"x-68-vertex-count-beyond", "vertex_count 2^24 + 1, one past the largest", "vertex_count", (1u << 24) + 1},
+      {"x-69-face-count-zero", "face_count 0, one below the smallest", "face_count", 0},
+      {"x-70-face-count-beyond", "face_count 2^25 + 1, one past the largest", "face_count", (1u << 25) + 1},
+      {"x-71-frame-rate-num-zero", "frame_rate_num 0", "frame_rate_num", 0},
+      {"x-72-frame-rate-den-zero", "frame_rate_den 0", "frame_rate_den", 0},
+  };
+  for (const auto& c : header_cases)
+    suite.push_back(invalid(c.id, c.purpose, {"container"},
+                            edited(base, [&](ContainerParts& p) { put_field(p.object_payload, object_field<Bfs3dHeader>(base, c.field), c.value); }),
+                            ErrorKind::kOutOfRange, c.field, kNoPlane));
+  suite.push_back(invalid("x-73-object-payload-left-over", "a byte after the codec header", {"container"},
+                          edited(base, [](ContainerParts& p) { p.object_payload.push_back(0x00); }), ErrorKind::kStructure, "object_payload",
+                          kNoPlane));
+  suite.push_back(invalid("x-74-unit-type-5", "unit_type 5, one past the last", {"container-units"},
+                          edited(base, [](ContainerParts& p) { put_field(unit_of(p, UnitType::kFrame, 1).payload, unit_header_field("unit_type"), 5); }),
+                          ErrorKind::kOutOfRange, "unit_type", kNoPlane));
+  suite.push_back(invalid("x-75-first-unit-a-frame", "the base mesh unit and its hash left out: frame 1's unit first", {"container-units"},
+                          edited(base, [](ContainerParts& p) { p.units.erase(p.units.begin(), p.units.begin() + 2); }), ErrorKind::kStructure,
+                          "unit_type", 1));
+  suite.push_back(invalid("x-76-unit-type-unused", "a refinement unit in a bfs3d stream", {"container-units"},
+                          edited(base,
+                                 [](ContainerParts& p) {
+                                   ContainerUnit refinement = unit_of(p, UnitType::kFrame, 1);
+                                   put_field(refinement.payload, unit_header_field("unit_type"), static_cast<uint32_t>(UnitType::kRefinement));
+                                   p.units.insert(p.units.begin() + 2, refinement);  // after the base mesh and its hash
+                                 }),
+                          ErrorKind::kStructure, "unit_type", 1));
+  suite.push_back(invalid("x-77-frame-hash-ahead", "the frame hash unit after frame 1 labelled frame 2", {"container-hash"},
+                          edited(base, [](ContainerParts& p) { put_field(unit_of(p, UnitType::kFrameHash, 1).payload, unit_header_field("frame_index"), 2); }),
+                          ErrorKind::kStructure, "frame_index", 2));
+  suite.push_back(invalid("x-78-bins-one-byte-short", "frame 1's bins_x one byte short, arithmetic_bytes_x one less", {"container"},
+                          edited(base,
+                                 [](ContainerParts& p) {
+                                   std::vector<uint8_t>& unit = unit_of(p, UnitType::kFrame, 1).payload;
+                                   const FieldBytes length = unit_field<Bfs3dFrame>("arithmetic_bytes_x");
+                                   const uint64_t bins = field_value(unit, length);
+                                   unit.erase(unit.begin() + static_cast<std::ptrdiff_t>(unit_field<Bfs3dFrame>("bins_x").first + bins - 1));
+                                   put_field(unit, length, bins - 1);
+                                 }),
+                          ErrorKind::kTruncated, "motion_residual", 1));
+  const uint32_t vertices = read_headers<Bfs3dHeader>(split_container(base)).first.vertex_count;
+  suite.push_back(invalid("x-79-raw-padding", "a padding bit of raw_x set", {"container"},
+                          edited(base,
+                                 [&](ContainerParts& p) {
+                                   ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
+                                   unit.payload = bfs3d_padding_unit(unit_header_bytes(unit.payload), vertices);
+                                 }),
+                          ErrorKind::kStructure, "raw_padding", 1));
   return suite;
 }
 

@@ -52,13 +52,11 @@ UnitHeader Mesh3dDecoder::read_unit_header(size_t index, bool traced) {
   const ContainerUnit& unit = parts_.units[index];
   BitReader reader(unit.payload.data(), unit.payload.size());
   syntax::ReadIO io(reader, traced ? options_.trace : nullptr);
-  const int64_t frame = unit_.frames.empty() ? 0 : unit_.frames.back() + int64_t{1};
-  io.set_plane(frame);
   UnitHeader header;
   try {
     syntax::describe(io, header);
   } catch (const Error& e) {
-    throw located(e, unit.byte_offset, frame, static_cast<int64_t>(index));
+    throw located(e, unit.byte_offset, kNoPlane, static_cast<int64_t>(index));  // the frame is not known before the header is read
   }
   return header;
 }
@@ -138,7 +136,7 @@ void Mesh3dDecoder::decode_unit(size_t index) {
   const UnitHeader header = begin_unit(index);
   const int64_t frame = header.frame_index;
   if (index == 0 && (header.type() != UnitType::kBaseMesh || header.frame_index != 0))
-    fail(ErrorKind::kStructure, index, 0, "unit_type", "the first unit must be the base mesh of frame 0");
+    fail(ErrorKind::kStructure, index, frame, "unit_type", "the first unit must be the base mesh of frame 0");
   if (header.type() == UnitType::kFrameHash)
     fail(ErrorKind::kStructure, index, frame, "unit_type", "a hash unit for a frame the unit before it did not decode");
   if (header.type() == UnitType::kGroupHash)

@@ -104,6 +104,8 @@ class EntropyWriteIO {
   }
 
   std::vector<uint8_t> finish_bins() { return bins_.finish(); }
+  // The raw bits written so far.
+  uint64_t raw_bits() const { return raw_.position(); }
   // The raw bits, zero-padded to a byte.
   std::vector<uint8_t> finish_raw() {
     raw_.write(0, static_cast<int>((8 - raw_.position() % 8) % 8));
