@@ -19,6 +19,7 @@ import os
 import pathlib
 import sys
 import tarfile
+import tempfile
 
 HERE = pathlib.Path(__file__).resolve().parent
 TOP = "m4mesh-conformance"
@@ -55,10 +56,16 @@ def main():
             info.mode = 0o755 if name == "conform.py" else 0o644
             info.mtime = mtime
             tar.addfile(info, io.BytesIO(data))
-    partial = output.with_name(output.name + ".partial")
-    with open(partial, "wb") as raw, gzip.GzipFile(filename="", mode="wb", fileobj=raw, mtime=mtime) as zipped:
-        zipped.write(packed.getvalue())
-    partial.replace(output)
+    # A file of this run's own beside the output, which takes its name only when complete.
+    handle, partial = tempfile.mkstemp(dir=output.parent, prefix=output.name + ".", suffix=".tmp")
+    try:
+        with os.fdopen(handle, "wb") as raw, gzip.GzipFile(filename="", mode="wb", fileobj=raw, mtime=mtime) as zipped:
+            zipped.write(packed.getvalue())
+        os.chmod(partial, 0o644)
+        os.replace(partial, output)
+    except BaseException:
+        os.unlink(partial)
+        raise
     print(f"{output}: {len(entries)} files, {output.stat().st_size} bytes")
     return 0
 
