@@ -1,6 +1,7 @@
 """The conformance package: conformance/conform.py gives m4mesh conform's
 verdict on every stream of both suites for decoders that err in every way
-(wrong output, rejecting everything, crashing), and conformance/package.py
+(wrong output, rejecting everything, killed by a signal: SIGKILL, which
+no sanitizer runtime preloaded into the test can catch), and conformance/package.py
 writes the same archive twice, which runs on its own."""
 
 import os
@@ -28,7 +29,7 @@ def verdicts(output):
 
 
 @pytest.mark.parametrize("suite", sorted(SUITES))
-@pytest.mark.parametrize("decoder", ["cp {in} {out}", "false {in} {out}", "sh -c 'kill -SEGV $$' {in} {out}",
+@pytest.mark.parametrize("decoder", ["cp {in} {out}", "false {in} {out}", "sh -c 'kill -KILL $$' {in} {out}",
                                      "sh -c 'exit 3' {in} {out}"])
 def test_agrees_with_m4mesh_conform(suite, decoder):
     ours = subprocess.run([sys.executable, str(CONFORMANCE / "conform.py"), "--decoder", decoder, "--suite", suite],
@@ -40,11 +41,11 @@ def test_agrees_with_m4mesh_conform(suite, decoder):
 
 
 def test_crashes_fail_streams_to_reject_too():
-    result = subprocess.run([sys.executable, str(CONFORMANCE / "conform.py"), "--decoder", "sh -c 'kill -SEGV $$' {in} {out}",
+    result = subprocess.run([sys.executable, str(CONFORMANCE / "conform.py"), "--decoder", "sh -c 'kill -KILL $$' {in} {out}",
                              "--suite", "3d", "--only", "x-*"], capture_output=True, text=True)
     rows = verdicts(result.stdout)
     assert rows and all(status == "FAIL" for _, status in rows)
-    assert "killed by signal 11" in result.stdout
+    assert "killed by signal 9" in result.stdout
 
 
 def test_only_and_method_skips():
