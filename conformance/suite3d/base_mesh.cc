@@ -140,6 +140,17 @@ std::vector<SuiteCase> base_mesh_traversal_rejected(const std::vector<SuiteCase>
                             broken(seed_repeats), ErrorKind::kStructure, "seed_vertex", 0));
     suite.push_back(invalid("x-60-base-far-unnumbered", "a far vertex equal to the count of vertices numbered so far", {"base-mesh"},
                             broken(BrokenBaseMesh{}), ErrorKind::kOutOfRange, "far_vertex", 0));
+    BrokenBaseMesh old_first;
+    old_first.old_corner = 0;
+    suite.push_back(invalid("x-80-base-old-vertex-first", "the first seed's first corner a vertex numbered before, when none is", {"base-mesh"},
+                            broken(old_first), ErrorKind::kStructure, "seed_new_vertex", 0));
+    BrokenBaseMesh unnumbered;  // a triangle whose gates are borders, then a seed on vertex 3 of 3 numbered
+    unnumbered.old_corner = 0;
+    unnumbered.old_seed = 1;
+    unnumbered.old_vertex = 3;
+    unnumbered.answer = {GateSymbol::kBorder, 0, 0};
+    suite.push_back(invalid("x-81-base-seed-vertex-unnumbered", "a second seed's corner equal to the count of vertices numbered so far",
+                            {"base-mesh"}, broken(unnumbered), ErrorKind::kOutOfRange, "seed_vertex", 0));
   }
   {
     // One triangle (a seed, three border gates) whose last vertex takes the

@@ -37,16 +37,22 @@ class StopAtFailureIO {
   syntax::EntropyWriteIO<false>& io_;
 };
 
-// Answers the traversal's questions for a base mesh that breaks a rule: a
-// first seed of new vertices but for `old_corner` (vertex 0, when it is
-// not −1), then every gate answered `answer`: by default the far vertex 3
-// (the first seed's vertices are 0, 1 and 2, so 3 is not numbered yet).
+// Answers the traversal's questions for a base mesh that breaks a rule:
+// seeds of new vertices but for seed `old_seed`'s `old_corner` (vertex
+// `old_vertex`, when the corner is not −1), and every gate answered
+// `answer`: by default the far vertex 3 (the first seed's vertices are 0,
+// 1 and 2, so 3 is not numbered yet).
 struct BrokenBaseMesh {
   int old_corner = -1;
+  int old_seed = 0;
+  uint32_t old_vertex = 0;
   GateAnswer answer{GateSymbol::kFarVertex, 0, 3};
+  int seeds = 0;  // seeds answered so far
   bool seed_corner(int corner, uint32_t& vertex) {
-    vertex = 0;
-    return corner == old_corner;
+    vertex = old_vertex;
+    const bool old = seeds == old_seed && corner == old_corner;
+    if (corner == 2) ++seeds;
+    return old;
   }
   void numbered(uint32_t) {}
   GateAnswer gate(HalfEdge, std::span<const uint32_t>) { return answer; }
