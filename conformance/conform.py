@@ -58,10 +58,11 @@ def run_decoder(template, stream, out, method, timeout):
 
 def check(entry, kind, stream, template, folder, timeout):
     """pass, FAIL or skip, and what was seen."""
-    if kind == "mesh2d" and entry.get("method", 2) != 2 and "{method}" not in template:
+    method = entry.get("method", 2)
+    if kind == "mesh2d" and method != 2 and "{method}" not in template:
         return "skip", "needs Method I: put {method} in the decoder command"
     out = folder / (entry["id"] + (".f32" if kind == "mesh3d" else ".txt"))
-    code, note = run_decoder(template, stream, out, entry.get("method", 2), timeout)
+    code, note = run_decoder(template, stream, out, method, timeout)
     if code is None:
         return "FAIL", note
     if entry["expect"] != "decode":
@@ -88,10 +89,11 @@ def run_suite(manifest_path, template, only, timeout):
             if only and not any(fnmatch.fnmatchcase(entry["id"], pattern) for pattern in only):
                 continue
             stream = manifest_path.parent / entry["file"]
-            if not stream.exists():
+            stream_md5 = md5_of(stream) if stream.exists() else None
+            if stream_md5 is None:
                 status, detail = "FAIL", f"{stream}: no such file"
-            elif md5_of(stream) != entry["stream_md5"]:
-                status, detail = "FAIL", f"the stream file's MD5 is {md5_of(stream)}, the manifest says {entry['stream_md5']}"
+            elif stream_md5 != entry["stream_md5"]:
+                status, detail = "FAIL", f"the stream file's MD5 is {stream_md5}, the manifest says {entry['stream_md5']}"
             else:
                 status, detail = check(entry, kind, stream, template, pathlib.Path(temporary), timeout)
             counts[status] += 1
