@@ -596,6 +596,10 @@ std::vector<SuiteCase> rejected_cases() {
             return s;
           }(),
           ErrorKind::kMissingStartCode, "mesh_object_end_code", kNoPlane);
+  suite.invalid("n30-nodes-verti-1", "nr_of_mesh_nodes_verti 1", {"4", "11"}, patched(small, "nr_of_mesh_nodes_verti", 0, 1),
+          ErrorKind::kOutOfRange, "nr_of_mesh_nodes_verti", 0);
+  suite.invalid("n31-rect-size-hori-0", "mesh_rect_size_hori 0", {"4", "11"}, patched(small, "mesh_rect_size_hori", 0, 0),
+          ErrorKind::kOutOfRange, "mesh_rect_size_hori", 0);
   return suite.take();
 }
 

@@ -13,13 +13,14 @@ namespace m4mesh::suite3d {
 namespace {
 
 // An Affine-Octree frame unit with its header and the one cell `cell` of
-// `count` vertices, the root, written through `coder` (direct_shift 0).
-std::vector<uint8_t> ao_root_unit(const AffineOctreeHeader& coder, uint32_t count, AffineCell cell, std::vector<uint8_t> unit_header) {
+// `count` vertices, the root, written through `coder`.
+std::vector<uint8_t> ao_root_unit(const AffineOctreeHeader& coder, uint32_t count, AffineCell cell, std::vector<uint8_t> unit_header,
+                                  uint32_t direct_shift = 0) {
   AffineCellCoder cells(coder);
   syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
   cells.describe(symbols, 0, count, cell);
   const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
-  AffineFrame data{0, static_cast<uint32_t>(bins.size()), bins, raw};
+  AffineFrame data{direct_shift, static_cast<uint32_t>(bins.size()), bins, raw};
   return unit_with(std::move(unit_header), data);
 }
 
@@ -49,6 +50,36 @@ std::vector<uint8_t> ao_direct_root_unit(const std::vector<uint8_t>& stream, std
     cell.motion.push_back({d, d, d});
   }
   return ao_root_unit(header, object.vertex_count, cell, std::move(unit_header));
+}
+
+// A frame unit of a tetrahedron's `stream`: its root, 4 vertices, coded
+// directly with direct_shift 26, vertex 0 moved by −1 on x (−2^26 grid
+// steps), the others still.
+std::vector<uint8_t> ao_widest_shift_unit(const std::vector<uint8_t>& stream, std::vector<uint8_t> unit_header) {
+  const auto [object, header] = read_headers<AffineOctreeHeader>(split_container(stream));
+  AffineCell cell;
+  cell.direct = true;
+  cell.motion.assign(object.vertex_count, {0, 0, 0});
+  cell.motion[0][0] = -1;
+  return ao_root_unit(header, object.vertex_count, cell, std::move(unit_header), kMaxDirectShift);
+}
+
+// A 2-frame `stream` with matrix_range_log2 1, where no matrix holds the
+// identity: frame 1's root is a leaf whose diagonal is the largest element,
+// 2^(k−1) − 1 (a shrink by 2^−f), and whose element 1 is the smallest,
+// −2^(k−1).
+std::vector<uint8_t> ao_narrowest_range_stream(const std::vector<uint8_t>& stream) {
+  const auto [object, header] = read_headers<AffineOctreeHeader>(split_container(stream));
+  AffineOctreeHeader narrow = header;
+  narrow.matrix_range_log2 = 1;
+  AffineCell cell;
+  for (int i = 0; i < 3; ++i) cell.matrix[static_cast<size_t>(5 * i)] = narrow.matrix_max();
+  cell.matrix[1] = narrow.matrix_min();
+  return edited(stream, [&](ContainerParts& p) {
+    put_field(p.object_payload, object_field<AffineOctreeHeader>(stream, "matrix_range_log2"), 1);
+    ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
+    unit.payload = ao_root_unit(narrow, object.vertex_count, cell, unit_header_bytes(unit.payload));
+  });
 }
 
 }  // namespace
@@ -136,6 +167,27 @@ std::vector<SuiteCase> affine_octree_cases(bool traced) {
                                 edited(base, [&](ContainerParts& p) {
                                   ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
                                   unit.payload = ao_direct_root_unit(base, unit_header_bytes(unit.payload));
+                                })));
+  }
+  {
+    Encode3dOptions o = affine("1", 4);
+    suite.push_back(valid("ao-15-four-bit-matrices", "k = 4 over [−2, 2): the fewest bits per matrix element", {"ao-header", "ao-reconstruction"},
+                          box_and_sheet(4, 4), o, traced));
+  }
+  {
+    Encode3dOptions o = affine("1");
+    o.hashes = false;
+    suite.push_back(written_case("ao-17-matrix-range-1", "matrix_range_log2 1: a root leaf whose elements are the largest and the smallest k "
+                                 "allows", {"ao-header", "ao-reconstruction"}, ao_narrowest_range_stream(encode_mesh3d(box_and_sheet(2, 4), o).stream)));
+  }
+  {
+    Encode3dOptions o = affine("1");
+    o.hashes = false;
+    const std::vector<uint8_t> base = encode_mesh3d(moving_tetrahedron(2), o).stream;
+    suite.push_back(written_case("ao-16-direct-shift-26", "direct_shift 26, the largest: a vertex moved by 2^26 grid steps", {"ao-frame"},
+                                edited(base, [&](ContainerParts& p) {
+                                  ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
+                                  unit.payload = ao_widest_shift_unit(base, unit_header_bytes(unit.payload));
                                 })));
   }
   return suite;

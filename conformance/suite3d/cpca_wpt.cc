@@ -219,6 +219,50 @@ std::vector<uint8_t> cpca_mixed_kinds_stream() {
   return writer.finish();
 }
 
+// A clustered-PCA stream of 2 frames written symbol by symbol (no hash
+// units) whose values meet their limits, over 255 vertices, one per
+// cluster (the most clusters):
+// - cluster 254's start at shift 0: translations 2^29, then −2^29;
+// - cluster 0's component (unit_kind 1) at shift 63: basis ±2^15,
+//   coefficients ±2^23;
+// - cluster 1's component over the mesh (unit_kind 2) and cluster 2's
+//   trajectory component (unit_kind 3), their values the same.
+std::vector<uint8_t> cpca_limits_stream() {
+  constexpr int32_t kBasis = kCpcaMaxBasis, kCoefficient = kCpcaMaxCoefficient, kTranslation = kCpcaMaxTranslation;
+  const MeshSequence s = designed_loose(2, static_cast<int>(kCpcaMaxClusters) - 11, [](int, int) { return 0; });  // its sheet and box hold 11
+  std::vector<uint32_t> cluster_of(s.vertex_count);
+  for (uint32_t v = 0; v < s.vertex_count; ++v) cluster_of[v] = v;
+  ContainerWriter writer = cpca_written_start(s, cluster_of, kCpcaMaxClusters, std::nullopt);
+  const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false);
+  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, kCpcaMaxClusters);
+  auto start = [&](uint32_t cluster, uint32_t shift, std::vector<int32_t> translation) {
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    syntax::describe_start(symbols, translation);
+    writer.unit(refinement_bytes(cluster, kCpcaStart, shift, symbols));
+  };
+  start(kCpcaMaxClusters - 1, 0, {kTranslation, kTranslation, kTranslation, -kTranslation, -kTranslation, -kTranslation});
+  for (uint32_t cluster : {0u, 1u, 2u}) start(cluster, kCpcaShiftBias, std::vector<int32_t>(6));
+  {
+    std::vector<int32_t> basis{kBasis, -kBasis, kBasis}, coefficients{kCoefficient, -kCoefficient};
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    syntax::describe_operator(symbols, basis, coefficients);
+    writer.unit(refinement_bytes(0, kCpcaComponent, kCpcaMaxShift, symbols));
+  }
+  {
+    std::vector<int32_t> basis{-kBasis, kBasis, -kBasis}, coefficients{-kCoefficient, kCoefficient};
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    mesh.describe_operator<3>(symbols, 1, basis, coefficients);
+    writer.unit(refinement_bytes(1, kCpcaMeshComponent, kCpcaShiftBias + 24, symbols));
+  }
+  {
+    std::vector<int32_t> basis{-kBasis}, coefficients{kCoefficient, -kCoefficient, kCoefficient, -kCoefficient, kCoefficient, -kCoefficient};
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    mesh.describe_operator<1>(symbols, 2, basis, coefficients);
+    writer.unit(refinement_bytes(2, kCpcaTrajectory, kCpcaShiftBias + 24, symbols));
+  }
+  return writer.finish();
+}
+
 }  // namespace
 
 // The clustered-PCA codec's streams: both orders, a prefix cut at a unit
@@ -265,6 +309,8 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
                               "min(3M, N) = 3) and 3 trajectory components (of min(M, 3N) = 4), counted apart", {"cpca"}, cpca_mixed_kinds_stream()));
   suite.push_back(valid("cpca-07-no-fraction", "a 24-bit grid: fraction_bits 0", {"cpca"}, flag, cpca({{"clusters", "2"}, {"bits", "24"}}),
                         traced));
+  suite.push_back(written_case("cpca-17-limits", "values at their limits, written symbol by symbol: translations ±2^29, basis values ±2^15 and "
+                               "coefficients ±2^23 of all three component kinds, shifts 0 and 63, cluster 254 of 255", {"cpca"}, cpca_limits_stream()));
   return suite;
 }
 
@@ -297,6 +343,10 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                           ErrorKind::kStructure, "frame_count", kNoPlane));
   suite.push_back(invalid("x-31-cpca-cluster-beyond", "a refinement unit for cluster 4 of 4", {"cpca"},
                           edited(base, [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, refinement_field("cluster"), 4); }),
+                          ErrorKind::kOutOfRange, "cluster", 0));
+  suite.push_back(invalid("x-95-cpca-cluster-255", "a refinement unit for cluster 255, one past the most clusters", {"cpca"},
+                          edited(stream_of(valid, "cpca-17-limits"),
+                                 [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, refinement_field("cluster"), 255); }),
                           ErrorKind::kOutOfRange, "cluster", 0));
   suite.push_back(invalid("x-32-cpca-unit-kind", "unit_kind 4", {"cpca"},
                           edited(base, [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, refinement_field("unit_kind"), 4); }),

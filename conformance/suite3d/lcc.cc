@@ -224,6 +224,8 @@ std::vector<SuiteCase> lcc_cases(bool traced) {
                         {"lcc"}, waving_strip(6, 200, 3), lcc({{"theta-bits", "12"}}), traced));
   suite.push_back(valid("lcc-10-long-chains-coarse", "a 400 × 3 strip at b_θ 2: every angle a multiple of π/4, the table's octant ends",
                         {"lcc"}, waving_strip(6, 400, 3), lcc({{"theta-bits", "2"}}), traced));
+  suite.push_back(valid("lcc-18-gop-64", "temporal prediction over the longest group, temporal_gop 64: anchors 0, 64 and 65, midpoints between",
+                        {"lcc-temporal"}, waving_flag(66, 4, false), lcc({{"temporal", "1"}, {"gop", "64"}}), traced));
   std::filesystem::remove(rest);
   return suite;
 }
