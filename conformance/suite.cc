@@ -600,6 +600,14 @@ std::vector<SuiteCase> rejected_cases() {
           ErrorKind::kOutOfRange, "nr_of_mesh_nodes_verti", 0);
   suite.invalid("n31-rect-size-hori-0", "mesh_rect_size_hori 0", {"4", "11"}, patched(small, "mesh_rect_size_hori", 0, 0),
           ErrorKind::kOutOfRange, "mesh_rect_size_hori", 0);
+  suite.invalid("n32-delta-y-length-11", "a delta_y of 1024, the shortest of length 11: a node y coordinate of 1024", {"4", "4.1", "11"},
+          unchecked_delaunay(3, 3, {0, 0}, {{10, 1024}, {10, -1000}}), ErrorKind::kOutOfRange, "delta_y", 0);
+  suite.invalid("n33-boundary-zero-area", "a boundary of three collinear nodes: zero area", {"6.1", "11"},
+          unchecked_delaunay({{0, 0}, {0, 100}, {0, 50}}, 3), ErrorKind::kGeometry, "MeshGeometry", 0);
+  suite.invalid("n34-boundary-folds-back", "a boundary that runs back along its own edge at node 3", {"6.1", "11"},
+          unchecked_delaunay({{0, 0}, {0, 100}, {100, 100}, {100, 0}, {100, 50}}, 5), ErrorKind::kGeometry, "MeshGeometry", 0);
+  suite.invalid("n35-boundary-edges-touch", "a boundary node on a non-adjacent boundary edge", {"6.1", "11"},
+          unchecked_delaunay({{0, 0}, {0, 200}, {200, 200}, {200, 0}, {100, 200}}, 5), ErrorKind::kGeometry, "MeshGeometry", 0);
   return suite.take();
 }
 

@@ -159,5 +159,37 @@ TEST(Requirements, EveryRangeEndIsMetAndPassed) {
   std::printf("%zu ranges, %zu ends (%zu out of a suite's reach)\n", ranges.size(), ends, unreachable);
 }
 
+// Every code of §4.1 and §4.2 in a stream to decode, for each element that
+// uses the table; a length-11 delta (|delta| ≥ 1024) puts a coordinate
+// outside 0 … 1023, so its code occurs in a stream to reject, read before
+// the coordinate is refused.
+TEST(Requirements, EveryVlcCodeOccurs) {
+  const std::map<std::string, const VlcTable*> tables = {{"delta_x_len_vlc", &delta_length_table()},
+                                                         {"delta_y_len_vlc", &delta_length_table()},
+                                                         {"delta_mv_x_vlc", &motion_code_table()},
+                                                         {"delta_mv_y_vlc", &motion_code_table()}};
+  constexpr int kRejectedOnly = 11;
+  std::map<std::string, std::set<int>> decoded, rejected;
+  const Manifest manifest = read_manifest((kSuite / "manifest.json").string());
+  for (const ManifestEntry& e : manifest.entries) {
+    std::optional<Error> error;
+    std::istringstream lines(traced(read_file((kSuite / e.file).string()), manifest.kind, error));
+    for (std::string l; std::getline(lines, l);) {
+      const std::optional<TraceLine> line = parse_trace_line(l);
+      if (line && tables.contains(line->name)) (e.valid ? decoded : rejected)[line->name].insert(std::stoi(line->value));
+    }
+  }
+  size_t codes = 0;
+  for (const auto& [element, table] : tables)
+    for (const VlcRow& row : table->rows()) {
+      ++codes;
+      if (table == &delta_length_table() && row.symbol == kRejectedOnly)
+        EXPECT_TRUE(rejected[element].contains(row.symbol)) << element << ": no stream to reject reads the code of " << row.symbol;
+      else
+        EXPECT_TRUE(decoded[element].contains(row.symbol)) << element << ": no stream to decode codes " << row.symbol;
+    }
+  std::printf("%zu codes of %zu elements\n", codes, tables.size());
+}
+
 }  // namespace
 }  // namespace m4mesh
