@@ -114,6 +114,15 @@ std::vector<SuiteCase> bfs3d_cases(bool traced) {
     suite.push_back(valid("bfs3d-06-motion-prefixes", "vertices in no face whose motion takes every prefix length 0 … 13 after each class",
                           {"bfs3d"}, designed_loose(frames, kLoose, offset), o, traced));
   }
+  {
+    // A stream the encoder wrote (no hash units), its step_x the smallest positive binary32.
+    Encode3dOptions o;
+    o.hashes = false;
+    const std::vector<uint8_t> base = encode_mesh3d(box_and_sheet(3, 4), o).stream;
+    const FieldBytes step = object_field<Bfs3dHeader>(base, "step_x");
+    suite.push_back(written_case("bfs3d-07-smallest-step", "step_x 2^−149, the smallest positive binary32 (a subnormal)", {"bfs3d"},
+                                 edited(base, [&](ContainerParts& p) { put_field(p.object_payload, step, 1); })));
+  }
   return suite;
 }
 

@@ -1,6 +1,7 @@
 // Each codec header field's range passed at both ends (docs' syntax
 // tables; tests/requirements_test.cc checks that every end has its
-// stream): the field alone edited in a stream of the codec.
+// stream), and binary32 fields that are not finite or not positive: the
+// field alone edited in a stream of the codec.
 #include "conformance/suite3d/cases.h"
 #include "conformance/suite3d/stream_edits.h"
 #include "syntax/mesh3d/affine_octree.h"
@@ -16,13 +17,17 @@ struct HeaderEdit {
   const char* id;
   const char* field;
   uint32_t value;
+  const char* purpose = nullptr;  // "FIELD VALUE" unless given
 };
+
+// binary32 bit patterns.
+constexpr uint32_t kNan = 0x7FC00000, kInfinity = 0x7F800000, kMinusOne = 0xBF800000;
 
 template <class CodecHeader>
 void add_header_edits(std::vector<SuiteCase>& suite, const std::vector<uint8_t>& base, const char* clause, std::initializer_list<HeaderEdit> edits) {
   for (const HeaderEdit& e : edits) {
     const FieldBytes field = object_field<CodecHeader>(base, e.field);
-    suite.push_back(invalid(e.id, std::string(e.field) + " " + std::to_string(e.value), {clause},
+    suite.push_back(invalid(e.id, e.purpose ? e.purpose : std::string(e.field) + " " + std::to_string(e.value), {clause},
                             edited(base, [&](ContainerParts& p) { put_field(p.object_payload, field, e.value); }), ErrorKind::kOutOfRange, e.field,
                             kNoPlane));
   }
@@ -47,6 +52,15 @@ std::vector<SuiteCase> header_range_ends_rejected(const std::vector<SuiteCase>& 
                                {"x-92-lcc-theta-bits-1", "theta_bits", 1},
                                {"x-93-lcc-rh-bits-0", "rh_bits", 0}});
   add_header_edits<CpcaHeader>(suite, stream_of(valid, "cpca-01-wpt"), "cpca", {{"x-94-cpca-quantization-bits-25", "quantization_bits", 25}});
+  add_header_edits<Bfs3dHeader>(suite, stream_of(valid, "bfs3d-01-average"), "bfs3d",
+                                {{"x-96-bfs3d-origin-nan", "origin_x", kNan, "origin_x a NaN"}, {"x-97-bfs3d-step-zero", "step_y", 0, "step_y 0"}});
+  add_header_edits<AffineOctreeHeader>(suite, stream_of(valid, "ao-01-me1-k16"), "ao-header",
+                                       {{"x-98-ao-step-negative", "step", kMinusOne, "step −1"},
+                                        {"x-99-ao-origin-infinite", "origin_z", kInfinity, "origin_z +∞"}});
+  add_header_edits<LccHeader>(suite, stream_of(valid, "lcc-01-stream"), "lcc",
+                              {{"x-100-lcc-step-infinite", "step_x", kInfinity, "step_x +∞"},
+                               {"x-101-lcc-rh-range-negative", "rh_range", kMinusOne, "rh_range −1"}});
+  add_header_edits<CpcaHeader>(suite, stream_of(valid, "cpca-01-wpt"), "cpca", {{"x-102-cpca-step-nan", "step_z", kNan, "step_z a NaN"}});
   return suite;
 }
 

@@ -21,10 +21,11 @@ namespace {
 // residual limit `rh_limit` (the header's, or more to write a value
 // beyond it).
 std::vector<uint8_t> lcc_unit(const LccHeader& header, bool predicted, LccIndices residuals, int32_t rh_limit,
-                              std::vector<uint8_t> unit_header) {
+                              std::vector<uint8_t> unit_header, int32_t theta_limit = 0) {
   syntax::ResidualCoder<syntax::kLccChannels> coder;
   syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
-  syntax::describe_symbols(symbols, coder, predicted, residuals.direct, residuals.steps, int32_t{1} << header.theta_bits, rh_limit);
+  syntax::describe_symbols(symbols, coder, predicted, residuals.direct, residuals.steps,
+                           theta_limit ? theta_limit : int32_t{1} << header.theta_bits, rh_limit);
   const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
   LccFrameData data{static_cast<uint32_t>(bins.size()), bins, raw};
   return unit_with(std::move(unit_header), data);
@@ -77,6 +78,44 @@ std::vector<uint8_t> lcc_written_stream() {
           residuals.steps[3 + i] = patterns[pattern].second;
         }
       unit.payload = lcc_unit(header, predicted, std::move(residuals), int32_t{1} << header.rh_bits, unit_header_bytes(unit.payload));
+    }
+  });
+}
+
+// An lcc stream (stream mode, temporal prediction with gop 2, b_θ 6,
+// b_rh 4, no hash units) of a strip of two quads over frames 0 … 3,
+// written symbol by symbol with its values at their limits: anchors 1 and
+// 3 alike, their first step's θ, ρ and ζ at the lowest (−2^b_θ, −2^b_rh),
+// their second's at the highest (2^b_θ − 1, 2^b_rh); frame 2, predicted
+// from them, moves ρ and ζ to the other end by residuals ±2^(b_rh+1) and
+// θ by the extreme residuals again. `edit` may change a frame's residuals
+// afterwards (and writes them whatever their range).
+template <class Edit>
+std::vector<uint8_t> lcc_limits_stream(Edit edit) {
+  constexpr int kThetaBits = 6, kRhBits = 4;
+  constexpr int32_t kTheta = 1 << kThetaBits, kRh = 1 << kRhBits;
+  MeshSequence strip;
+  strip.faces = sheet_faces(2, 1);
+  strip.vertex_count = 6;
+  for (int f = 0; f < 4; ++f) strip.frames.push_back({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 0, 1}, {1, 0.25, 1}, {2, 0, 1}});
+  Encode3dOptions o = lcc({{"theta-bits", std::to_string(kThetaBits)}, {"rh-bits", std::to_string(kRhBits)}, {"temporal", "1"}, {"gop", "2"}});
+  o.hashes = false;
+  const std::vector<uint8_t> encoded = encode_mesh3d(strip, o).stream;
+  const LccHeader header = read_headers<LccHeader>(split_container(encoded)).second;
+  const LccOrder order = lcc_order(strip.faces, strip.vertex_count);
+  return edited(encoded, [&](ContainerParts& p) {
+    for (ContainerUnit& unit : p.units) {
+      const UnitHeader unit_header = unit_header_of(unit.payload);
+      if (unit_header.type() != UnitType::kFrame) continue;
+      const bool predicted = unit_header.frame_index == 2;
+      LccIndices residuals{std::vector<int32_t>(3 * order.direct.size()), std::vector<int32_t>(3 * order.steps.size())};
+      const int32_t rh = predicted ? 2 * kRh : kRh;
+      for (size_t i = 0; i < 3; ++i) {
+        residuals.steps[i] = i == 0 ? -kTheta : predicted ? rh : -rh;
+        residuals.steps[3 + i] = i == 0 ? kTheta - 1 : predicted ? -rh : rh;
+      }
+      edit(unit_header.frame_index, residuals);
+      unit.payload = lcc_unit(header, predicted, std::move(residuals), 4 * kRh, unit_header_bytes(unit.payload), 4 * kTheta);
     }
   });
 }
@@ -224,6 +263,9 @@ std::vector<SuiteCase> lcc_cases(bool traced) {
                         {"lcc"}, waving_strip(6, 200, 3), lcc({{"theta-bits", "12"}}), traced));
   suite.push_back(valid("lcc-10-long-chains-coarse", "a 400 × 3 strip at b_θ 2: every angle a multiple of π/4, the table's octant ends",
                         {"lcc"}, waving_strip(6, 400, 3), lcc({{"theta-bits", "2"}}), traced));
+  suite.push_back(written_case("lcc-19-limits", "θ, ρ and ζ at both ends of their ranges in anchors, and ρ and ζ residuals of ±2^(b_rh+1) "
+                               "in a predicted frame, written symbol by symbol", {"lcc", "lcc-temporal"},
+                               lcc_limits_stream([](uint32_t, LccIndices&) {})));
   suite.push_back(valid("lcc-18-gop-64", "temporal prediction over the longest group, temporal_gop 64: anchors 0, 64 and 65, midpoints between",
                         {"lcc-temporal"}, waving_flag(66, 4, false), lcc({{"temporal", "1"}, {"gop", "64"}}), traced));
   std::filesystem::remove(rest);
@@ -293,6 +335,29 @@ std::vector<SuiteCase> lcc_rejected(const std::vector<SuiteCase>& valid) {
                             unit.payload = lcc_rho_unit(cloth, unit_header_bytes(unit.payload), false, 1, 1);
                           }),
                           ErrorKind::kOutOfRange, "rho", 1));
+  // lcc-19 with one value one past its range.
+  const struct {
+    const char* id;
+    const char* purpose;
+    uint32_t frame;
+    size_t index;  // into the frame's step residuals, or the direct ones when `direct`
+    int32_t value;
+    const char* element;
+    bool direct = false;
+  } limits[] = {
+      {"x-103-lcc-theta-high", "an anchor's theta residual 2^b_θ, one past the highest", 1, 3, 1 << 6, "theta"},
+      {"x-104-lcc-theta-low", "a predicted frame's theta residual −2^b_θ − 1, one past the lowest", 2, 0, -(1 << 6) - 1, "theta"},
+      {"x-105-lcc-zeta-anchor", "an anchor's zeta residual 2^b_rh + 1", 3, 5, (1 << 4) + 1, "zeta"},
+      {"x-106-lcc-zeta-predicted", "a predicted frame's zeta residual −2^(b_rh+1) − 1", 2, 5, -(1 << 5) - 1, "zeta"},
+      {"x-107-lcc-zeta-beyond-prediction", "a predicted frame's zeta residual −1 on a prediction of −2^b_rh: an index one below the lowest", 2, 2,
+       -1, "zeta"},
+      {"x-108-lcc-direct-beyond", "an anchor's direct_position residual 2^27: a grid index beyond 2^26", 1, 0, 1 << 27, "direct_position", true},
+  };
+  for (const auto& c : limits)
+    suite.push_back(invalid(c.id, c.purpose, {"lcc"}, lcc_limits_stream([&](uint32_t frame, LccIndices& r) {
+                              if (frame == c.frame) (c.direct ? r.direct : r.steps).at(c.index) = c.value;
+                            }),
+                            ErrorKind::kOutOfRange, c.element, c.frame));
   return suite;
 }
 
