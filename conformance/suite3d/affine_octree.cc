@@ -25,16 +25,16 @@ std::vector<uint8_t> ao_root_unit(const AffineOctreeHeader& coder, uint32_t coun
 }
 
 // An Affine-Octree frame unit of `stream` whose only cell, the root, is a
-// leaf with the identity matrix but element 0 one above what matrix_bits
-// allows (written with twice the range at the same fraction bits).
-std::vector<uint8_t> ao_matrix_beyond_unit(const std::vector<uint8_t>& stream, std::vector<uint8_t> unit_header) {
+// leaf with the identity matrix but element 0 `value` (written with twice
+// the range at the same fraction bits, to pass matrix_bits' range).
+std::vector<uint8_t> ao_matrix_element_unit(const std::vector<uint8_t>& stream, int32_t value, std::vector<uint8_t> unit_header) {
   const auto [object, header] = read_headers<AffineOctreeHeader>(split_container(stream));
   AffineOctreeHeader wider = header;
   ++wider.matrix_bits;
   ++wider.matrix_range_log2;
   AffineCell cell;
   for (int i = 0; i < 3; ++i) cell.matrix[static_cast<size_t>(5 * i)] = int32_t{1} << header.fraction_bits();
-  cell.matrix[0] = header.matrix_max() + 1;
+  cell.matrix[0] = value;
   return ao_root_unit(wider, object.vertex_count, cell, std::move(unit_header));
 }
 
@@ -52,16 +52,22 @@ std::vector<uint8_t> ao_direct_root_unit(const std::vector<uint8_t>& stream, std
   return ao_root_unit(header, object.vertex_count, cell, std::move(unit_header));
 }
 
-// A frame unit of a tetrahedron's `stream`: its root, 4 vertices, coded
-// directly with direct_shift 26, vertex 0 moved by −1 on x (−2^26 grid
-// steps), the others still.
-std::vector<uint8_t> ao_widest_shift_unit(const std::vector<uint8_t>& stream, std::vector<uint8_t> unit_header) {
-  const auto [object, header] = read_headers<AffineOctreeHeader>(split_container(stream));
+// A moving tetrahedron (no hash units) whose frame 1 is written: its
+// root, 4 vertices, coded directly with direct_shift 26, vertex 0 moved by
+// `steps` on x (steps × 2^26 grid steps), the others still.
+std::vector<uint8_t> ao_widest_shift_stream(int32_t steps) {
+  Encode3dOptions o = affine("1");
+  o.hashes = false;
+  const std::vector<uint8_t> base = encode_mesh3d(moving_tetrahedron(2), o).stream;
+  const auto [object, header] = read_headers<AffineOctreeHeader>(split_container(base));
   AffineCell cell;
   cell.direct = true;
   cell.motion.assign(object.vertex_count, {0, 0, 0});
-  cell.motion[0][0] = -1;
-  return ao_root_unit(header, object.vertex_count, cell, std::move(unit_header), kMaxDirectShift);
+  cell.motion[0][0] = steps;
+  return edited(base, [&](ContainerParts& p) {
+    ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
+    unit.payload = ao_root_unit(header, object.vertex_count, cell, unit_header_bytes(unit.payload), kMaxDirectShift);
+  });
 }
 
 // A 2-frame `stream` with matrix_range_log2 1, where no matrix holds the
@@ -181,15 +187,13 @@ std::vector<SuiteCase> affine_octree_cases(bool traced) {
                                  "allows", {"ao-header", "ao-reconstruction"}, ao_narrowest_range_stream(encode_mesh3d(box_and_sheet(2, 4), o).stream)));
   }
   {
-    Encode3dOptions o = affine("1");
-    o.hashes = false;
-    const std::vector<uint8_t> base = encode_mesh3d(moving_tetrahedron(2), o).stream;
-    suite.push_back(written_case("ao-16-direct-shift-26", "direct_shift 26, the largest: a vertex moved by 2^26 grid steps", {"ao-frame"},
-                                edited(base, [&](ContainerParts& p) {
-                                  ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
-                                  unit.payload = ao_widest_shift_unit(base, unit_header_bytes(unit.payload));
-                                })));
+    Encode3dOptions o = affine("1", 4);
+    o.codec_options["matrix-range-log2"] = "3";
+    suite.push_back(valid("ao-18-one-fraction-bit", "k = 4, r = 3: one fraction bit, the largest r below k", {"ao-header", "ao-reconstruction"},
+                          box_and_sheet(4, 4), o, traced));
   }
+  suite.push_back(written_case("ao-16-direct-shift-26", "direct_shift 26, the largest: a vertex moved by 2^26 grid steps", {"ao-frame"},
+                               ao_widest_shift_stream(-1)));
   return suite;
 }
 
@@ -224,9 +228,36 @@ std::vector<SuiteCase> affine_octree_edge_rejected(const std::vector<SuiteCase>&
                           edited(base,
                                  [&](ContainerParts& p) {
                                    ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
-                                   unit.payload = ao_matrix_beyond_unit(base, unit_header_bytes(unit.payload));
+                                   const AffineOctreeHeader header = read_headers<AffineOctreeHeader>(split_container(base)).second;
+                                   unit.payload = ao_matrix_element_unit(base, header.matrix_max() + 1, unit_header_bytes(unit.payload));
                                  }),
                           ErrorKind::kOutOfRange, "matrix_residual", 1));
+  suite.push_back(invalid("x-115-ao-matrix-below", "a root leaf whose matrix element 0 is one below matrix_bits' range", {"ao-cell"},
+                          edited(base,
+                                 [&](ContainerParts& p) {
+                                   ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
+                                   const AffineOctreeHeader header = read_headers<AffineOctreeHeader>(split_container(base)).second;
+                                   unit.payload = ao_matrix_element_unit(base, header.matrix_min() - 1, unit_header_bytes(unit.payload));
+                                 }),
+                          ErrorKind::kOutOfRange, "matrix_residual", 1));
+  suite.push_back(invalid("x-116-ao-direct-beyond", "a vertex moved by −2 × 2^26 grid steps (direct_shift 26): beyond ±2^26", {"ao-frame"},
+                          ao_widest_shift_stream(-2), ErrorKind::kOutOfRange, "direct_motion", 1));
+  suite.push_back(invalid("x-112-ao-range-not-below-bits", "matrix_range_log2 equal to matrix_bits (8): no fraction bits", {"ao-header"},
+                          edited(stream_of(valid, "ao-02-coarse"),
+                                 [&](ContainerParts& p) {
+                                   put_field(p.object_payload, object_field<AffineOctreeHeader>(stream_of(valid, "ao-02-coarse"), "matrix_range_log2"), 8);
+                                 }),
+                          ErrorKind::kOutOfRange, "matrix_range_log2", kNoPlane));
+  {
+    // A zero byte after frame 2's bins, counted by arithmetic_bytes; one after its raw bits.
+    const FieldBytes length = unit_field<AffineFrame>("arithmetic_bytes");
+    suite.push_back(invalid("x-113-ao-bins-left-over", "a byte after the last bin, counted by arithmetic_bytes", {"ao-frame"},
+                            edited(base, [&](ContainerParts& p) { add_bins_byte(unit_of(p, UnitType::kFrame, 2).payload, length); }),
+                            ErrorKind::kStructure, "matrix_residual", 2));
+    suite.push_back(invalid("x-114-ao-raw-left-over", "a byte after the last raw bits", {"ao-frame"},
+                            edited(base, [](ContainerParts& p) { unit_of(p, UnitType::kFrame, 2).payload.push_back(0x00); }),
+                            ErrorKind::kStructure, "matrix_residual", 2));
+  }
   const FieldBytes max_depth = object_field<AffineOctreeHeader>(base, "max_depth");
   suite.push_back(invalid("x-54-max-depth-21", "max_depth 21", {"ao-header"},
                           edited(base, [max_depth](ContainerParts& p) { put_field(p.object_payload, max_depth, 21); }), ErrorKind::kOutOfRange,

@@ -6,6 +6,8 @@
 #include "conformance/suite3d/cases.h"
 #include "conformance/suite3d/inputs.h"
 #include "conformance/suite3d/stream_edits.h"
+#include "decoder/mesh3d/container_decoder.h"
+#include "mesh3d/bfs3d.h"
 #include "syntax/mesh3d/bfs3d.h"
 #include "syntax/mesh3d/entropy_io.h"
 
@@ -60,6 +62,50 @@ std::vector<uint8_t> bfs3d_endless_prefix_unit(std::vector<uint8_t> unit_header)
   frame.arithmetic_bytes[0] = static_cast<uint32_t>(bins.size());
   frame.bins[0] = bins;
   return unit_with(std::move(unit_header), frame);
+}
+
+// A bfs3d frame unit whose motion residuals are `residuals`, per axis in
+// coding order.
+std::vector<uint8_t> bfs3d_unit(std::array<std::vector<int32_t>, 3> residuals, std::vector<uint8_t> unit_header) {
+  Bfs3dFrame frame;
+  std::array<std::vector<uint8_t>, 3> bins, raw;
+  for (int axis = 0; axis < 3; ++axis) {
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    syntax::describe_axis(symbols, std::span<int32_t>(residuals[axis]));
+    bins[axis] = symbols.finish_bins();
+    raw[axis] = symbols.finish_raw();
+    frame.arithmetic_bytes[axis] = static_cast<uint32_t>(bins[axis].size());
+    frame.raw_bytes[axis] = static_cast<uint32_t>(raw[axis].size());
+    frame.bins[axis] = bins[axis];
+    frame.raw[axis] = raw[axis];
+  }
+  return unit_with(std::move(unit_header), frame);
+}
+
+// A triangle with its first corner at the grid's origin (no hash units),
+// whose frame 1, written symbol by symbol (average prediction), moves that
+// corner by (2^26 + `beyond`, −2^26, 0) grid steps and the others by 0.
+std::vector<uint8_t> bfs3d_position_limits_stream(int32_t beyond) {
+  MeshSequence triangle;
+  triangle.vertex_count = 3;
+  triangle.faces = {{{0, 1, 2}}};
+  triangle.frames = {{{0, 0, 0}, {1, 0, 0.5}, {0, 1, 0.25}}, {{0, 0, 0}, {1, 0, 0.5}, {0, 1, 0.25}}};
+  Encode3dOptions o;
+  o.hashes = false;
+  const std::vector<uint8_t> base = encode_mesh3d(triangle, o).stream;
+  const MotionOrder3d order = bfs3d_order(decode_mesh3d(base).faces, triangle.vertex_count);
+  std::vector<std::array<int64_t, 3>> motion(triangle.vertex_count + 1);  // the zero slot last
+  motion[0] = {(int64_t{1} << 26) + beyond, -(int64_t{1} << 26), 0};
+  std::array<std::vector<int32_t>, 3> residuals;
+  for (size_t k = 0; k < order.node.size(); ++k)
+    for (size_t axis = 0; axis < 3; ++axis) {
+      const int64_t w = (motion[order.pred_a[k]][axis] + motion[order.pred_b[k]][axis] + 1) >> 1;
+      residuals[axis].push_back(static_cast<int32_t>(motion[order.node[k]][axis] - w));
+    }
+  return edited(base, [&](ContainerParts& p) {
+    ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
+    unit.payload = bfs3d_unit(residuals, unit_header_bytes(unit.payload));
+  });
 }
 
 }  // namespace
@@ -123,6 +169,8 @@ std::vector<SuiteCase> bfs3d_cases(bool traced) {
     suite.push_back(written_case("bfs3d-07-smallest-step", "step_x 2^−149, the smallest positive binary32 (a subnormal)", {"bfs3d"},
                                  edited(base, [&](ContainerParts& p) { put_field(p.object_payload, step, 1); })));
   }
+  suite.push_back(written_case("bfs3d-08-position-limits", "a vertex moved from the grid's origin to 2^26 on x and −2^26 on y, the ends "
+                               "of the positions' range", {"bfs3d"}, bfs3d_position_limits_stream(0)));
   return suite;
 }
 
@@ -164,6 +212,31 @@ std::vector<SuiteCase> bfs3d_prefix_rejected(const std::vector<SuiteCase>& valid
                                    unit.payload = bfs3d_endless_prefix_unit(unit_header_bytes(unit.payload));
                                  }),
                           ErrorKind::kInvalidCode, "motion_residual", 1));
+  return suite;
+}
+
+// Frame order, an intra frame's faces, a position one past its range.
+std::vector<SuiteCase> bfs3d_rules_rejected(const std::vector<SuiteCase>& valid) {
+  std::vector<SuiteCase> suite;
+  const std::vector<uint8_t> bfs3d = stream_of(valid, "bfs3d-01-average");
+  suite.push_back(invalid("x-109-bfs3d-frame-gap", "frame 2 labelled frame 3", {"bfs3d"},
+                          edited(bfs3d, [](ContainerParts& p) { put_field(unit_of(p, UnitType::kFrame, 2).payload, unit_header_field("frame_index"), 3); }),
+                          ErrorKind::kStructure, "frame_index", 2));
+  {
+    MeshSequence other = box_and_sheet(6, 4);
+    std::swap(other.faces[0], other.faces[1]);
+    const std::vector<uint8_t> intra = split_container(encode_mesh3d(other, Encode3dOptions{}).stream).units[0].payload;
+    suite.push_back(invalid("x-110-bfs3d-intra-other-faces", "an intra base mesh at frame 2 with other faces", {"bfs3d"},
+                            edited(bfs3d,
+                                   [&](ContainerParts& p) {
+                                     ContainerUnit& unit = unit_of(p, UnitType::kFrame, 2);
+                                     unit.payload = intra;
+                                     put_field(unit.payload, unit_header_field("frame_index"), 2);
+                                   }),
+                            ErrorKind::kStructure, "base_mesh", 2));
+  }
+  suite.push_back(invalid("x-111-bfs3d-position-beyond", "a vertex moved from the grid's origin to 2^26 + 1 on x", {"bfs3d"},
+                          bfs3d_position_limits_stream(1), ErrorKind::kOutOfRange, "motion_residual", 1));
   return suite;
 }
 

@@ -44,7 +44,7 @@ std::vector<uint8_t> refinement_bytes(uint32_t cluster, uint32_t kind, uint32_t 
 // given, channel and value, in order: values the encoder's description
 // refuses to write, for the decoder to reject.
 std::vector<uint8_t> crafted_refinement(uint32_t cluster, uint32_t kind, const std::vector<std::pair<int, int32_t>>& residuals) {
-  syntax::ResidualCoder<4> coder;
+  syntax::ResidualCoder<7> coder;  // the most channels of a unit kind (2)
   syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
   for (auto [channel, value] : residuals) coder.describe(symbols, channel, value, syntax::kCpcaBasis);
   return refinement_bytes(cluster, kind, kCpcaShiftBias, symbols);
@@ -348,6 +348,41 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                           edited(stream_of(valid, "cpca-17-limits"),
                                  [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, refinement_field("cluster"), 255); }),
                           ErrorKind::kOutOfRange, "cluster", 0));
+  {
+    // cpca-17's clusters are one vertex each over 2 frames (at most 2
+    // components of kinds 1 and 2, 1 of kind 3); cluster 254 has none, 0 one.
+    const std::vector<uint8_t> limits = stream_of(valid, "cpca-17-limits");
+    constexpr int32_t kBeyond = kCpcaMaxCoefficient + 1;
+    auto appended = [&](std::vector<uint8_t> unit) {
+      return edited(limits, [&](ContainerParts& p) { p.units.push_back(ContainerUnit{0, 0, unit}); });
+    };
+    suite.push_back(invalid("x-121-cpca-trajectory-coefficient-range", "a trajectory component whose first coefficient is 2^23 + 1", {"cpca"},
+                            appended(crafted_refinement(kCpcaMaxClusters - 1, kCpcaTrajectory, {{1, 0}, {2, kBeyond}})), ErrorKind::kOutOfRange,
+                            "trajectory_coefficient", 0));
+    suite.push_back(invalid("x-122-cpca-mesh-coefficient-range", "a unit_kind 2 component whose first coefficient is 2^23 + 1", {"cpca"},
+                            appended(crafted_refinement(0, kCpcaMeshComponent, {{3, 0}, {4, 0}, {5, 0}, {6, kBeyond}})),
+                            ErrorKind::kOutOfRange, "coefficient", 0));
+    const FieldBytes length = refinement_field("arithmetic_bytes");
+    suite.push_back(invalid("x-120-cpca-arithmetic-bytes", "arithmetic_bytes longer than the unit", {"cpca"},
+                            edited(limits, [&](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, length, 0x7F000000); }),
+                            ErrorKind::kOutOfRange, "arithmetic_bytes", 0));
+    suite.push_back(invalid("x-123-cpca-start-left-over", "a byte after a start's last bin, counted by arithmetic_bytes", {"cpca"},
+                            edited(limits, [&](ContainerParts& p) { add_bins_byte(p.units[refinement_unit(p, 0)].payload, length); }),
+                            ErrorKind::kStructure, "translation", 0));
+    // cpca-17's units: 4 starts, then kinds 1, 2 and 3.
+    const struct {
+      const char* id;
+      const char* purpose;
+      size_t unit;
+      const char* element;
+    } raw_left_over[] = {{"x-124-cpca-component-left-over", "a byte after a component's raw bits", 4, "coefficient"},
+                         {"x-125-cpca-mesh-left-over", "a byte after a unit_kind 2 component's raw bits", 5, "coefficient"},
+                         {"x-126-cpca-trajectory-left-over", "a byte after a trajectory component's raw bits", 6, "trajectory_coefficient"}};
+    for (const auto& c : raw_left_over)
+      suite.push_back(invalid(c.id, c.purpose, {"cpca"},
+                              edited(limits, [&](ContainerParts& p) { p.units[refinement_unit(p, c.unit)].payload.push_back(0x00); }),
+                              ErrorKind::kStructure, c.element, 0));
+  }
   suite.push_back(invalid("x-32-cpca-unit-kind", "unit_kind 4", {"cpca"},
                           edited(base, [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, refinement_field("unit_kind"), 4); }),
                           ErrorKind::kOutOfRange, "unit_kind", 0));

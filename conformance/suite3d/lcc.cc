@@ -358,6 +358,16 @@ std::vector<SuiteCase> lcc_rejected(const std::vector<SuiteCase>& valid) {
                               if (frame == c.frame) (c.direct ? r.direct : r.steps).at(c.index) = c.value;
                             }),
                             ErrorKind::kOutOfRange, c.element, c.frame));
+  suite.push_back(invalid("x-117-lcc-frame-after-last", "frame 1's unit again after the last frame", {"lcc"},
+                          edited(cloth, [](ContainerParts& p) { p.units.push_back(unit_of(p, UnitType::kFrame, 1)); }), ErrorKind::kStructure,
+                          "frame_index", 1));
+  const FieldBytes length = unit_field<LccFrameData>("arithmetic_bytes");
+  suite.push_back(invalid("x-118-lcc-arithmetic-bytes", "arithmetic_bytes longer than the frame", {"lcc"},
+                          edited(cloth, [&](ContainerParts& p) { put_field(unit_of(p, UnitType::kFrame, 2).payload, length, 0x7F000000); }),
+                          ErrorKind::kOutOfRange, "arithmetic_bytes", 2));
+  suite.push_back(invalid("x-119-lcc-bins-left-over", "a byte after the last bin, counted by arithmetic_bytes", {"lcc"},
+                          edited(cloth, [&](ContainerParts& p) { add_bins_byte(unit_of(p, UnitType::kFrame, 2).payload, length); }),
+                          ErrorKind::kStructure, "theta", 2));
   return suite;
 }
 

@@ -40,6 +40,12 @@ void put_field(std::vector<uint8_t>& payload, FieldBytes field, uint64_t value) 
   for (size_t i = 0; i < field.count; ++i) payload.at(field.last() - i) = static_cast<uint8_t>(value >> (8 * i));
 }
 
+void add_bins_byte(std::vector<uint8_t>& payload, FieldBytes length) {
+  const uint64_t bins = field_value(payload, length);
+  payload.insert(payload.begin() + static_cast<std::ptrdiff_t>(length.first + length.count + bins), 0x00);
+  put_field(payload, length, bins + 1);
+}
+
 const std::vector<uint8_t>& stream_of(const std::vector<SuiteCase>& cases, const std::string& id) {
   for (const SuiteCase& c : cases)
     if (c.id == id) return c.stream;

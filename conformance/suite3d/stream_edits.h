@@ -77,6 +77,10 @@ FieldBytes unit_field(const char* name) {
 uint64_t field_value(const std::vector<uint8_t>& payload, FieldBytes field);
 void put_field(std::vector<uint8_t>& payload, FieldBytes field, uint64_t value);
 
+// A unit payload whose bin section, which follows its length field
+// `length`, gains a zero byte that the length counts.
+void add_bins_byte(std::vector<uint8_t>& payload, FieldBytes length);
+
 // The stream of case `id`.
 const std::vector<uint8_t>& stream_of(const std::vector<SuiteCase>& cases, const std::string& id);
 
