@@ -48,7 +48,9 @@ class CodecEncoder3d {
 };
 
 // A base mesh unit's data (docs/base_mesh.md): the faces, which must be in
-// coding order (the container encoder puts them so), and the grid positions.
-void write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions);
+// coding order (the container encoder puts them so), and the grid
+// positions; `untraversed` as for plan_base_mesh (encoder/mesh3d/base_mesh.h).
+void write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions,
+                     std::span<const uint32_t> untraversed = {});
 
 }  // namespace m4mesh

@@ -59,14 +59,14 @@ std::vector<uint8_t> ao_widest_shift_stream(int32_t steps) {
   Encode3dOptions o = affine("1");
   o.hashes = false;
   const std::vector<uint8_t> base = encode_mesh3d(moving_tetrahedron(2), o).stream;
-  const auto [object, header] = read_headers<AffineOctreeHeader>(split_container(base));
+  const std::pair<ObjectHeader, AffineOctreeHeader> headers = read_headers<AffineOctreeHeader>(split_container(base));
   AffineCell cell;
   cell.direct = true;
-  cell.motion.assign(object.vertex_count, {0, 0, 0});
+  cell.motion.assign(headers.first.vertex_count, {0, 0, 0});
   cell.motion[0][0] = steps;
   return edited(base, [&](ContainerParts& p) {
     ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
-    unit.payload = ao_root_unit(header, object.vertex_count, cell, unit_header_bytes(unit.payload), kMaxDirectShift);
+    unit.payload = ao_root_unit(headers.second, headers.first.vertex_count, cell, unit_header_bytes(unit.payload), kMaxDirectShift);
   });
 }
 
@@ -75,8 +75,9 @@ std::vector<uint8_t> ao_widest_shift_stream(int32_t steps) {
 // 2^(k−1) − 1 (a shrink by 2^−f), and whose element 1 is the smallest,
 // −2^(k−1).
 std::vector<uint8_t> ao_narrowest_range_stream(const std::vector<uint8_t>& stream) {
-  const auto [object, header] = read_headers<AffineOctreeHeader>(split_container(stream));
-  AffineOctreeHeader narrow = header;
+  const std::pair<ObjectHeader, AffineOctreeHeader> headers = read_headers<AffineOctreeHeader>(split_container(stream));
+  const uint32_t vertex_count = headers.first.vertex_count;
+  AffineOctreeHeader narrow = headers.second;
   narrow.matrix_range_log2 = 1;
   AffineCell cell;
   for (int i = 0; i < 3; ++i) cell.matrix[static_cast<size_t>(5 * i)] = narrow.matrix_max();
@@ -84,7 +85,7 @@ std::vector<uint8_t> ao_narrowest_range_stream(const std::vector<uint8_t>& strea
   return edited(stream, [&](ContainerParts& p) {
     put_field(p.object_payload, object_field<AffineOctreeHeader>(stream, "matrix_range_log2"), 1);
     ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
-    unit.payload = ao_root_unit(narrow, object.vertex_count, cell, unit_header_bytes(unit.payload));
+    unit.payload = ao_root_unit(narrow, vertex_count, cell, unit_header_bytes(unit.payload));
   });
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,13 @@ Encode3dOptions affine(const std::string& me, int k = 16);
 // index order) unless `values` name others.
 Encode3dOptions cpca(CodecOptionValues values);
 
+// A clustered-PCA stream of `s` written symbol by symbol (no hash units):
+// two clusters (the first half of the vertices and the rest), each a start
+// and one component of unit kind `kind` (2 or 3), over a base mesh whose
+// vertices outside the traversal take their coding numbers in the order
+// `untraversed` lists them (m4mesh's increasing order when empty).
+std::vector<uint8_t> cpca_over_mesh_stream(const MeshSequence& s, uint32_t kind, std::span<const uint32_t> untraversed);
+
 // Each group's streams to decode, in the manifest's order.
 std::vector<SuiteCase> affine_octree_cases(bool traced);
 std::vector<SuiteCase> bfs3d_cases(bool traced);
@@ -48,6 +56,7 @@ std::vector<SuiteCase> cpca_cases(bool traced);
 std::vector<SuiteCase> group_hash_cases(bool traced);
 std::vector<SuiteCase> base_mesh_cases(bool traced);
 std::vector<SuiteCase> container_cases(bool traced);
+std::vector<SuiteCase> untraversed_cases(bool traced);
 
 // Streams to reject, each made from a valid one of `valid`, in parts that
 // keep the manifest's order (suite3d.cc joins them).

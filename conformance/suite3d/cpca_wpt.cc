@@ -265,6 +265,35 @@ std::vector<uint8_t> cpca_limits_stream() {
 
 }  // namespace
 
+std::vector<uint8_t> cpca_over_mesh_stream(const MeshSequence& s, uint32_t kind, std::span<const uint32_t> untraversed) {
+  std::vector<uint32_t> cluster_of(s.vertex_count);
+  for (uint32_t v = 0; v < s.vertex_count; ++v) cluster_of[v] = v < s.vertex_count / 2 ? 0 : 1;
+  ContainerWriter writer = cpca_written_start(s, cluster_of, 2, std::nullopt);
+  const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false, untraversed);
+  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, 2);
+  const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, 2);
+  const size_t per_member = kind == kCpcaTrajectory ? 1 : 3, frames = s.frames.size();
+  for (uint32_t c = 0; c < 2; ++c) {
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    std::vector<int32_t> translation(3 * frames);
+    for (size_t i = 0; i < translation.size(); ++i) translation[i] = static_cast<int32_t>(i % 5) - 2;
+    syntax::describe_start(symbols, translation);
+    writer.unit(refinement_bytes(c, kCpcaStart, kCpcaShiftBias, symbols));
+  }
+  for (uint32_t c = 0; c < 2; ++c) {
+    std::vector<int32_t> basis(per_member * members[c].size()), coefficients(3 / per_member * frames);
+    for (size_t i = 0; i < basis.size(); ++i) basis[i] = static_cast<int32_t>((7 * i + c) % 23) - 11;
+    for (size_t i = 0; i < coefficients.size(); ++i) coefficients[i] = static_cast<int32_t>((3 * i) % 7) - 3;
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    if (kind == kCpcaTrajectory)
+      mesh.describe_operator<1>(symbols, c, basis, coefficients);
+    else
+      mesh.describe_operator<3>(symbols, c, basis, coefficients);
+    writer.unit(refinement_bytes(c, kind, kCpcaShiftBias, symbols));
+  }
+  return untraversed.empty() ? writer.finish() : with_untraversed_order(writer.finish(), untraversed);
+}
+
 // The clustered-PCA codec's streams: both orders, a prefix cut at a unit
 // boundary, the finest and coarsest quantization, one cluster, F = 0.
 std::vector<SuiteCase> cpca_cases(bool traced) {

@@ -1,6 +1,11 @@
 #include "conformance/suite3d/stream_edits.h"
 
+#include <set>
+
 #include "bitstream/bit_reader.h"
+#include "codecs3d/codec_decoder.h"
+#include "codecs3d/codec_encoder.h"
+#include "syntax/mesh3d/base_mesh.h"
 
 namespace m4mesh::suite3d {
 
@@ -44,6 +49,49 @@ void add_bins_byte(std::vector<uint8_t>& payload, FieldBytes length) {
   const uint64_t bins = field_value(payload, length);
   payload.insert(payload.begin() + static_cast<std::ptrdiff_t>(length.first + length.count + bins), 0x00);
   put_field(payload, length, bins + 1);
+}
+
+namespace {
+
+// The first base mesh unit of a stream, read, and the number of its faces
+// the traversal coded.
+std::pair<BaseMesh, size_t> first_base_mesh(const ContainerParts& parts) {
+  BitReader object_reader(parts.object_payload.data(), parts.object_payload.size());
+  syntax::ReadIO object_in(object_reader);
+  ObjectHeader object;
+  syntax::describe(object_in, object);
+  const std::vector<uint8_t>& payload = parts.units.at(0).payload;
+  BitReader reader(payload.data(), payload.size());
+  syntax::ReadIO in(reader);
+  UnitHeader header;
+  syntax::describe(in, header);
+  BaseMesh base = read_base_mesh(in, object, nullptr);
+  const size_t loose = field_value(payload, unit_field<BaseMeshData>("loose_face_count"));
+  return {std::move(base), object.face_count - loose};
+}
+
+}  // namespace
+
+std::vector<uint32_t> untraversed_vertices(const std::vector<uint8_t>& stream) {
+  const auto [base, traversal_faces] = first_base_mesh(split_container(stream));
+  std::set<uint32_t> reached;
+  for (size_t f = 0; f < traversal_faces; ++f) reached.insert(base.faces[f].v.begin(), base.faces[f].v.end());
+  std::vector<uint32_t> untraversed;
+  for (uint32_t v = 0; v < base.positions.size(); ++v)
+    if (!reached.contains(v)) untraversed.push_back(v);
+  return untraversed;
+}
+
+std::vector<uint8_t> with_untraversed_order(const std::vector<uint8_t>& stream, std::span<const uint32_t> untraversed) {
+  return edited(stream, [&](ContainerParts& parts) {
+    const BaseMesh base = first_base_mesh(parts).first;
+    BitWriter writer;
+    syntax::WriteIO out(writer);
+    write_base_mesh(out, base.faces, base.positions, untraversed);
+    std::vector<uint8_t>& payload = parts.units.at(0).payload;
+    payload = unit_header_bytes(payload);
+    payload.insert(payload.end(), writer.bytes().begin(), writer.bytes().end());
+  });
 }
 
 const std::vector<uint8_t>& stream_of(const std::vector<SuiteCase>& cases, const std::string& id) {

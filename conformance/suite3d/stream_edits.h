@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,16 @@ void put_field(std::vector<uint8_t>& payload, FieldBytes field, uint64_t value);
 // A unit payload whose bin section, which follows its length field
 // `length`, gains a zero byte that the length counts.
 void add_bins_byte(std::vector<uint8_t>& payload, FieldBytes length);
+
+// The vertices outside the traversal of `stream`'s first base mesh unit, in
+// increasing output number.
+std::vector<uint32_t> untraversed_vertices(const std::vector<uint8_t>& stream);
+
+// `stream` with its first base mesh unit written again, the vertices
+// outside the traversal taking their coding numbers in the order
+// `untraversed` lists them (output numbers): the same decoded mesh, another
+// coding order.
+std::vector<uint8_t> with_untraversed_order(const std::vector<uint8_t>& stream, std::span<const uint32_t> untraversed);
 
 // The stream of case `id`.
 const std::vector<uint8_t>& stream_of(const std::vector<SuiteCase>& cases, const std::string& id);

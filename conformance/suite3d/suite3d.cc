@@ -10,7 +10,7 @@ std::vector<SuiteCase> build_suite3d(bool traced) {
   auto add = [&suite](std::vector<SuiteCase> cases) {
     for (SuiteCase& c : cases) suite.push_back(std::move(c));
   };
-  for (auto group : {affine_octree_cases, bfs3d_cases, lcc_cases, cpca_cases, group_hash_cases, base_mesh_cases, container_cases})
+  for (auto group : {affine_octree_cases, bfs3d_cases, lcc_cases, cpca_cases, group_hash_cases, base_mesh_cases, container_cases, untraversed_cases})
     add(group(traced));
   // The streams to reject, made from those above, in the manifest's order.
   const std::vector<SuiteCase> valid = suite;

@@ -73,11 +73,19 @@ class TraversalOracle {
     input_of_.push_back(pending_);
   }
 
-  // After the traversal: the vertices it did not reach, in input order, and
-  // the loose faces in coding numbers.
-  std::vector<uint32_t> finish(std::vector<Triangle>& loose_faces) {
+  // After the traversal: the vertices it did not reach, in input order or
+  // in the order `untraversed` lists them, and the loose faces in coding
+  // numbers.
+  std::vector<uint32_t> finish(std::vector<Triangle>& loose_faces, std::span<const uint32_t> untraversed) {
+    for (uint32_t v : untraversed) {
+      if (v >= coding_of_.size() || coding_of_[v] != kUnnumbered)
+        throw Error(ErrorKind::kInput, "base_mesh", kNoPlane, kNoOffset, "encoder: vertex " + std::to_string(v) + " is not outside the traversal");
+      coding_of_[v] = static_cast<uint32_t>(input_of_.size());
+      input_of_.push_back(v);
+    }
     for (uint32_t v = 0; v < coding_of_.size(); ++v)
       if (coding_of_[v] == kUnnumbered) {
+        if (!untraversed.empty()) throw Error(ErrorKind::kInput, "base_mesh", kNoPlane, kNoOffset, "encoder: the order misses vertex " + std::to_string(v));
         coding_of_[v] = static_cast<uint32_t>(input_of_.size());
         input_of_.push_back(v);
       }
@@ -118,7 +126,8 @@ struct Connectivity {
 };
 
 template <class IO>
-Connectivity write_connectivity(IO& symbols, syntax::BaseMeshContexts& contexts, std::span<const Triangle> faces, uint32_t vertex_count) {
+Connectivity write_connectivity(IO& symbols, syntax::BaseMeshContexts& contexts, std::span<const Triangle> faces, uint32_t vertex_count,
+                                std::span<const uint32_t> untraversed) {
   TraversalOracle oracle(faces, vertex_count);
   GateTraversal traversal(oracle.traversal_faces());
   describe_traversal(symbols, contexts, traversal, vertex_count, oracle.traversal_faces(), &oracle);
@@ -126,7 +135,7 @@ Connectivity write_connectivity(IO& symbols, syntax::BaseMeshContexts& contexts,
   c.faces = traversal.faces();
   c.parents = traversal.parents();
   std::vector<Triangle> loose;
-  c.input_of = oracle.finish(loose);
+  c.input_of = oracle.finish(loose, untraversed);
   c.loose_faces = static_cast<uint32_t>(loose.size());
   describe_loose_faces(symbols, vertex_count, std::span<Triangle>(loose));
   c.faces.insert(c.faces.end(), loose.begin(), loose.end());
@@ -143,10 +152,11 @@ size_t vertex_order_bytes(uint32_t method, const Connectivity& c) {
 }
 
 template <class IO>
-void write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> faces, std::span<const IntPoint3> positions) {
+void write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> faces, std::span<const IntPoint3> positions,
+                std::span<const uint32_t> untraversed) {
   const uint32_t vertex_count = static_cast<uint32_t>(positions.size());
   syntax::BaseMeshContexts contexts;
-  Connectivity c = write_connectivity(symbols, contexts, faces, vertex_count);
+  Connectivity c = write_connectivity(symbols, contexts, faces, vertex_count, untraversed);
   bool identity = true;
   for (uint32_t i = 0; i < vertex_count; ++i) identity = identity && c.input_of[i] == i;
   // Coding numbers back to input numbers, to compare with the faces given.
@@ -170,10 +180,10 @@ void write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> face
 
 }  // namespace
 
-BaseMeshPlan plan_base_mesh(std::span<const Triangle> faces, uint32_t vertex_count, bool reorder) {
+BaseMeshPlan plan_base_mesh(std::span<const Triangle> faces, uint32_t vertex_count, bool reorder, std::span<const uint32_t> untraversed) {
   syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
   syntax::BaseMeshContexts contexts;
-  Connectivity c = write_connectivity(symbols, contexts, faces, vertex_count);
+  Connectivity c = write_connectivity(symbols, contexts, faces, vertex_count, untraversed);
   BaseMeshPlan plan{std::move(c.faces), std::move(c.input_of), c.loose_faces};
   if (!reorder)
     for (Triangle& t : plan.faces)
@@ -200,14 +210,15 @@ MeshSequence renumbered(const MeshSequence& sequence, std::span<const uint32_t> 
   return s;
 }
 
-void write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions) {
+void write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions,
+                     std::span<const uint32_t> untraversed) {
   const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane()};
   if (io.trace()) {
     syntax::EntropyWriteIO<true> symbols(place, io.trace());
-    write_data(io, symbols, faces, positions);
+    write_data(io, symbols, faces, positions, untraversed);
   } else {
     syntax::EntropyWriteIO<false> symbols(place);
-    write_data(io, symbols, faces, positions);
+    write_data(io, symbols, faces, positions, untraversed);
   }
 }
 

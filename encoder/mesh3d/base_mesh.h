@@ -21,7 +21,10 @@ struct BaseMeshPlan {
 };
 
 // The traversal of `faces`; with `reorder`, faces numbered in coding order.
-BaseMeshPlan plan_base_mesh(std::span<const Triangle> faces, uint32_t vertex_count, bool reorder);
+// The vertices outside the traversal take the last coding numbers in
+// increasing input order, or in the order `untraversed` lists them all (any
+// order is valid: the conformance suite's streams use others).
+BaseMeshPlan plan_base_mesh(std::span<const Triangle> faces, uint32_t vertex_count, bool reorder, std::span<const uint32_t> untraversed = {});
 
 // The sequence with the plan's faces, and with its vertices in coding order
 // when the plan renumbered them.
