@@ -25,16 +25,16 @@ std::vector<uint8_t> ao_root_unit(const AffineOctreeHeader& coder, uint32_t coun
 }
 
 // An Affine-Octree frame unit of `stream` whose only cell, the root, is a
-// leaf with the identity matrix but element 0 `value` (written with twice
-// the range at the same fraction bits, to pass matrix_bits' range).
-std::vector<uint8_t> ao_matrix_element_unit(const std::vector<uint8_t>& stream, int32_t value, std::vector<uint8_t> unit_header) {
+// leaf with the identity matrix but element `element` `value` (written
+// with twice the range at the same fraction bits, to pass matrix_bits' range).
+std::vector<uint8_t> ao_matrix_element_unit(const std::vector<uint8_t>& stream, size_t element, int32_t value, std::vector<uint8_t> unit_header) {
   const auto [object, header] = read_headers<AffineOctreeHeader>(split_container(stream));
   AffineOctreeHeader wider = header;
   ++wider.matrix_bits;
   ++wider.matrix_range_log2;
   AffineCell cell;
   for (int i = 0; i < 3; ++i) cell.matrix[static_cast<size_t>(5 * i)] = int32_t{1} << header.fraction_bits();
-  cell.matrix[0] = value;
+  cell.matrix[element] = value;
   return ao_root_unit(wider, object.vertex_count, cell, std::move(unit_header));
 }
 
@@ -230,7 +230,7 @@ std::vector<SuiteCase> affine_octree_edge_rejected(const std::vector<SuiteCase>&
                                  [&](ContainerParts& p) {
                                    ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
                                    const AffineOctreeHeader header = read_headers<AffineOctreeHeader>(split_container(base)).second;
-                                   unit.payload = ao_matrix_element_unit(base, header.matrix_max() + 1, unit_header_bytes(unit.payload));
+                                   unit.payload = ao_matrix_element_unit(base, 0, header.matrix_max() + 1, unit_header_bytes(unit.payload));
                                  }),
                           ErrorKind::kOutOfRange, "matrix_residual", 1));
   suite.push_back(invalid("x-115-ao-matrix-below", "a root leaf whose matrix element 0 is one below matrix_bits' range", {"ao-cell"},
@@ -238,7 +238,7 @@ std::vector<SuiteCase> affine_octree_edge_rejected(const std::vector<SuiteCase>&
                                  [&](ContainerParts& p) {
                                    ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
                                    const AffineOctreeHeader header = read_headers<AffineOctreeHeader>(split_container(base)).second;
-                                   unit.payload = ao_matrix_element_unit(base, header.matrix_min() - 1, unit_header_bytes(unit.payload));
+                                   unit.payload = ao_matrix_element_unit(base, 0, header.matrix_min() - 1, unit_header_bytes(unit.payload));
                                  }),
                           ErrorKind::kOutOfRange, "matrix_residual", 1));
   suite.push_back(invalid("x-116-ao-direct-beyond", "a vertex moved by −2 × 2^26 grid steps (direct_shift 26): beyond ±2^26", {"ao-frame"},
@@ -258,6 +258,23 @@ std::vector<SuiteCase> affine_octree_edge_rejected(const std::vector<SuiteCase>&
     suite.push_back(invalid("x-114-ao-raw-left-over", "a byte after the last raw bits", {"ao-frame"},
                             edited(base, [](ContainerParts& p) { unit_of(p, UnitType::kFrame, 2).payload.push_back(0x00); }),
                             ErrorKind::kStructure, "matrix_residual", 2));
+  }
+  {
+    // A 24-bit grid, k = 24, r = 8: the largest translation moves the root by about 2^31 steps.
+    Encode3dOptions o = affine("1", 24);
+    o.codec_options["bits"] = "24";
+    o.codec_options["matrix-range-log2"] = "8";
+    o.hashes = false;
+    const std::vector<uint8_t> wide = encode_mesh3d(box_and_sheet(2, 4), o).stream;
+    const int32_t most = read_headers<AffineOctreeHeader>(split_container(wide)).second.matrix_max();
+    suite.push_back(invalid("x-134-ao-affine-beyond", "a root leaf whose translation on x is the largest element: its vertices leave ±2^26",
+                            {"ao-reconstruction"},
+                            edited(wide,
+                                   [&](ContainerParts& p) {
+                                     ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
+                                     unit.payload = ao_matrix_element_unit(wide, 3, most, unit_header_bytes(unit.payload));
+                                   }),
+                            ErrorKind::kOutOfRange, "matrix_residual", 1));
   }
   const FieldBytes max_depth = object_field<AffineOctreeHeader>(base, "max_depth");
   suite.push_back(invalid("x-54-max-depth-21", "max_depth 21", {"ao-header"},

@@ -5,11 +5,26 @@
 #include "conformance/suite3d/cases.h"
 #include "conformance/suite3d/inputs.h"
 #include "conformance/suite3d/stream_edits.h"
+#include "mesh3d/quantization.h"
 #include "syntax/mesh3d/affine_octree.h"
 #include "syntax/mesh3d/base_mesh.h"
 #include "syntax/mesh3d/bfs3d.h"
 
 namespace m4mesh::suite3d {
+
+namespace {
+
+// Five vertices, two degenerate faces and a vertex in no face: every face
+// loose, the traversal empty.
+MeshSequence all_loose() {
+  MeshSequence s;
+  s.vertex_count = 5;
+  s.faces = {{{0, 0, 1}}, {{2, 3, 3}}};
+  s.frames = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}}, {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {0, 0, 2}, {1, 1, 2}}};
+  return s;
+}
+
+}  // namespace
 
 // The base mesh: every kind of face and vertex, in the input order and in
 // coding order; a row-major sheet, whose input numbers parallelograms predict.
@@ -77,6 +92,15 @@ std::vector<SuiteCase> base_mesh_cases(bool traced) {
     suite.push_back(written_case("base-15-far-prefixes", "a fan of 20,000 vertices, then faces on far vertices whose residuals take every "
                                 "prefix length 0 … 13 after a residual of length 0 and of length 1 (written symbol by symbol)", {"base-mesh"},
                                 written_base_mesh_stream(size.vertices, size.faces, oracle)));
+  }
+  suite.push_back(valid("base-16-all-loose", "every face loose (degenerate), no traversal: loose_face_count equal to face_count", {"base-mesh"},
+                        all_loose(), Encode3dOptions{}, traced));
+  {
+    BrokenBaseMesh triangle;  // a seed of three new vertices, its gates borders
+    triangle.answer = {GateSymbol::kBorder, 0, 0};
+    constexpr int32_t kMost = kMaxQuantized;
+    suite.push_back(written_case("base-17-position-limits", "positions at 2^26 and −2^26 on every axis, written symbol by symbol", {"base-mesh"},
+                                 written_base_mesh_stream(3, 1, triangle, {}, {{kMost, -kMost, 0}, {-kMost, kMost, kMost}, {0, 0, -kMost}})));
   }
   return suite;
 }
@@ -168,6 +192,63 @@ std::vector<SuiteCase> base_mesh_traversal_rejected(const std::vector<SuiteCase>
                                      unit.payload = broken_base_mesh_unit(unit_header_bytes(unit.payload), 3, 1, borders, {0, 0, 1});
                                    }),
                             ErrorKind::kOutOfRange, "vertex_order_difference", 0));
+  }
+  return suite;
+}
+
+// The traversal's rules on seeds, candidates and far vertices, loose
+// faces' vertices and bits, and positions, each broken alone.
+std::vector<SuiteCase> base_mesh_rules_rejected(const std::vector<SuiteCase>& valid) {
+  std::vector<SuiteCase> suite;
+  // Base mesh units of an Affine-Octree stream broken by the traversal's answers.
+  auto broken = [&](const char* stream, BrokenBaseMesh oracle) {
+    const std::vector<uint8_t>& base = stream_of(valid, stream);
+    const ObjectHeader object = read_headers<AffineOctreeHeader>(split_container(base)).first;
+    return edited(base, [&](ContainerParts& p) {
+      ContainerUnit& unit = unit_of(p, UnitType::kBaseMesh, 0);
+      unit.payload = broken_base_mesh_unit(unit_header_bytes(unit.payload), object.vertex_count, object.face_count, oracle);
+    });
+  };
+  BrokenBaseMesh second_seed;  // a triangle whose gates are borders, then a seed of new vertices
+  second_seed.answer = {GateSymbol::kBorder, 0, 0};
+  suite.push_back(invalid("x-127-base-seed-beyond", "a tetrahedron's second seed numbering vertices 3 and 4: one past vertex_count", {"base-mesh"},
+                          broken("ao-06-direct-root", second_seed), ErrorKind::kStructure, "seed_new_vertex", 0));
+  BrokenBaseMesh repeated_edge;  // gate 0 → 1 a new vertex 3, gate 1 → 2 the candidate 0: face (2, 1, 0) repeats 1 → 0
+  repeated_edge.script = {{GateSymbol::kNewVertex, 0, 0}, {GateSymbol::kCandidate, 0, 0}};
+  suite.push_back(invalid("x-128-base-candidate-repeats", "a face on a candidate that repeats a directed edge", {"base-mesh"},
+                          broken("ao-01-me1-k16", repeated_edge), ErrorKind::kStructure, "candidate_index", 0));
+  BrokenBaseMesh below_zero;  // gate 0 → 1 answered by vertex −1
+  below_zero.answer = {GateSymbol::kFarVertex, 0, ~uint32_t{0}};
+  suite.push_back(invalid("x-129-base-far-below-zero", "a far vertex of −1", {"base-mesh"}, broken("ao-01-me1-k16", below_zero),
+                          ErrorKind::kOutOfRange, "far_vertex", 0));
+  BrokenBaseMesh far_repeats;  // gate 0 → 1 answered by vertex 0: the face (1, 0, 0)
+  far_repeats.answer = {GateSymbol::kFarVertex, 0, 0};
+  suite.push_back(invalid("x-130-base-far-repeats", "a face on a far vertex that repeats a vertex", {"base-mesh"}, broken("ao-01-me1-k16", far_repeats),
+                          ErrorKind::kStructure, "far_vertex", 0));
+  const std::vector<uint8_t>& loose = stream_of(valid, "base-16-all-loose");
+  suite.push_back(invalid("x-131-base-loose-vertex-beyond", "a loose face's first vertex 5 of 5", {"base-mesh"},
+                          edited(loose,
+                                 [](ContainerParts& p) {
+                                   // The raw section starts with the loose faces: 3 bits a vertex.
+                                   std::vector<uint8_t>& unit = unit_of(p, UnitType::kBaseMesh, 0).payload;
+                                   const size_t raw = unit_field<BaseMeshData>("bins").first + field_value(unit, unit_field<BaseMeshData>("arithmetic_bytes"));
+                                   unit.at(raw) = static_cast<uint8_t>((unit.at(raw) & 0x1F) | 5 << 5);
+                                 }),
+                          ErrorKind::kOutOfRange, "loose_vertex", 0));
+  suite.push_back(invalid("x-132-base-loose-faces-cut", "face_count and loose_face_count 1000: more loose faces than the raw bits hold",
+                          {"base-mesh"},
+                          edited(loose,
+                                 [&](ContainerParts& p) {
+                                   put_field(p.object_payload, object_field<Bfs3dHeader>(loose, "face_count"), 1000);
+                                   put_field(unit_of(p, UnitType::kBaseMesh, 0).payload, unit_field<BaseMeshData>("loose_face_count"), 1000);
+                                 }),
+                          ErrorKind::kTruncated, "loose_vertex", 0));
+  {
+    BrokenBaseMesh triangle;
+    triangle.answer = {GateSymbol::kBorder, 0, 0};
+    suite.push_back(invalid("x-133-base-position-beyond", "a position of 2^26 + 1", {"base-mesh"},
+                            written_base_mesh_stream(3, 1, triangle, {}, {{0, 0, 0}, {kMaxQuantized + 1, 0, 0}, {0, 0, 0}}),
+                            ErrorKind::kOutOfRange, "position", 0));
   }
   return suite;
 }

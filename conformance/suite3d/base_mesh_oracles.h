@@ -39,15 +39,17 @@ class StopAtFailureIO {
 
 // Answers the traversal's questions for a base mesh that breaks a rule:
 // seeds of new vertices but for seed `old_seed`'s `old_corner` (vertex
-// `old_vertex`, when the corner is not −1), and every gate answered
-// `answer`: by default the far vertex 3 (the first seed's vertices are 0,
-// 1 and 2, so 3 is not numbered yet).
+// `old_vertex`, when the corner is not −1), and the gates answered by
+// `script` in turn, then by `answer`: by default the far vertex 3 (the
+// first seed's vertices are 0, 1 and 2, so 3 is not numbered yet).
 struct BrokenBaseMesh {
   int old_corner = -1;
   int old_seed = 0;
   uint32_t old_vertex = 0;
   GateAnswer answer{GateSymbol::kFarVertex, 0, 3};
-  int seeds = 0;  // seeds answered so far
+  std::vector<GateAnswer> script;
+  size_t gates = 0;  // gates answered so far
+  int seeds = 0;     // seeds answered so far
   bool seed_corner(int corner, uint32_t& vertex) {
     vertex = old_vertex;
     const bool old = seeds == old_seed && corner == old_corner;
@@ -55,7 +57,7 @@ struct BrokenBaseMesh {
     return old;
   }
   void numbered(uint32_t) {}
-  GateAnswer gate(HalfEdge, std::span<const uint32_t>) { return answer; }
+  GateAnswer gate(HalfEdge, std::span<const uint32_t>) { return gates < script.size() ? script[gates++] : answer; }
 };
 
 // A base mesh unit for frame 0 from its unit header and its symbols.
@@ -72,10 +74,11 @@ std::vector<uint8_t> broken_base_mesh_unit(std::vector<uint8_t> unit_header, uin
 // `face_count` faces whose base mesh is written symbol by symbol: the
 // traversal the oracle answers, no loose face, the vertex order given by
 // `order_differences` (coding order without), every position at the
-// grid's origin.
+// grid's origin unless `positions` (in coding order) are given; those
+// past ±2^26 are written up to the first, where a decoder must fail.
 template <class Oracle>
 std::vector<uint8_t> written_base_mesh_stream(uint32_t vertex_count, uint32_t face_count, Oracle& oracle,
-                                              std::vector<int32_t> order_differences = {}) {
+                                              std::vector<int32_t> order_differences = {}, std::vector<IntPoint3> positions = {}) {
   MeshSequence points;  // any object of this vertex count: its base mesh unit and face count are replaced
   points.vertex_count = vertex_count;
   points.faces = {{{0, 1, 2}}};
@@ -90,8 +93,11 @@ std::vector<uint8_t> written_base_mesh_stream(uint32_t vertex_count, uint32_t fa
   describe_traversal(symbols, contexts, traversal, vertex_count, face_count, &oracle);
   describe_loose_faces(symbols, vertex_count, std::span<Triangle>());
   for (int32_t& d : order_differences) contexts.order.describe(symbols, 0, d, syntax::kOrderNames);
-  std::vector<IntPoint3> positions(vertex_count);
-  describe_positions(symbols, contexts, traversal.faces(), positions);
+  positions.resize(vertex_count);
+  try {
+    describe_positions(symbols, contexts, traversal.faces(), positions);
+  } catch (const Error&) {
+  }
   const FieldBytes faces = object_field<Bfs3dHeader>(encoded, "face_count");
   return edited(encoded, [&](ContainerParts& p) {
     put_field(p.object_payload, faces, face_count);

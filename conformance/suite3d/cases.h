@@ -77,5 +77,6 @@ std::vector<SuiteCase> bfs3d_header_rejected(const std::vector<SuiteCase>& valid
 std::vector<SuiteCase> container_rules_rejected(const std::vector<SuiteCase>& valid);
 std::vector<SuiteCase> header_range_ends_rejected(const std::vector<SuiteCase>& valid);
 std::vector<SuiteCase> bfs3d_rules_rejected(const std::vector<SuiteCase>& valid);
+std::vector<SuiteCase> base_mesh_rules_rejected(const std::vector<SuiteCase>& valid);
 
 }  // namespace m4mesh::suite3d

@@ -266,6 +266,13 @@ std::vector<SuiteCase> lcc_cases(bool traced) {
   suite.push_back(written_case("lcc-19-limits", "θ, ρ and ζ at both ends of their ranges in anchors, and ρ and ζ residuals of ±2^(b_rh+1) "
                                "in a predicted frame, written symbol by symbol", {"lcc", "lcc-temporal"},
                                lcc_limits_stream([](uint32_t, LccIndices&) {})));
+  suite.push_back(written_case("lcc-20-direct-limits", "lcc-19 with frame 1's first directly coded vertex, at the grid's origin, moved to "
+                               "2^26 on x and −2^26 on y", {"lcc"}, lcc_limits_stream([](uint32_t frame, LccIndices& r) {
+                                 if (frame == 1) {
+                                   r.direct.at(0) = 1 << 26;
+                                   r.direct.at(1) = -(1 << 26);
+                                 }
+                               })));
   suite.push_back(valid("lcc-18-gop-64", "temporal prediction over the longest group, temporal_gop 64: anchors 0, 64 and 65, midpoints between",
                         {"lcc-temporal"}, waving_flag(66, 4, false), lcc({{"temporal", "1"}, {"gop", "64"}}), traced));
   std::filesystem::remove(rest);

@@ -18,7 +18,7 @@ std::vector<SuiteCase> build_suite3d(bool traced) {
                         cpca_rejected, group_hash_rejected, base_mesh_unit_rejected, container_edge_rejected, base_mesh_count_rejected,
                         affine_octree_edge_rejected, bfs3d_prefix_rejected, base_mesh_traversal_rejected, bfs3d_header_rejected,
                         container_rules_rejected, header_range_ends_rejected,
-                        bfs3d_rules_rejected})
+                        bfs3d_rules_rejected, base_mesh_rules_rejected})
     add(rejected(valid));
   return suite;
 }
