@@ -222,19 +222,8 @@ std::vector<SuiteCase> bfs3d_rules_rejected(const std::vector<SuiteCase>& valid)
   suite.push_back(invalid("x-109-bfs3d-frame-gap", "frame 2 labelled frame 3", {"bfs3d"},
                           edited(bfs3d, [](ContainerParts& p) { put_field(unit_of(p, UnitType::kFrame, 2).payload, unit_header_field("frame_index"), 3); }),
                           ErrorKind::kStructure, "frame_index", 2));
-  {
-    MeshSequence other = box_and_sheet(6, 4);
-    std::swap(other.faces[0], other.faces[1]);
-    const std::vector<uint8_t> intra = split_container(encode_mesh3d(other, Encode3dOptions{}).stream).units[0].payload;
-    suite.push_back(invalid("x-110-bfs3d-intra-other-faces", "an intra base mesh at frame 2 with other faces", {"bfs3d"},
-                            edited(bfs3d,
-                                   [&](ContainerParts& p) {
-                                     ContainerUnit& unit = unit_of(p, UnitType::kFrame, 2);
-                                     unit.payload = intra;
-                                     put_field(unit.payload, unit_header_field("frame_index"), 2);
-                                   }),
-                            ErrorKind::kStructure, "base_mesh", 2));
-  }
+  suite.push_back(invalid("x-110-bfs3d-intra-other-faces", "an intra base mesh at frame 2 with other faces", {"bfs3d"},
+                          with_intra_of_other_faces(bfs3d, Encode3dOptions{}), ErrorKind::kStructure, "base_mesh", 2));
   suite.push_back(invalid("x-111-bfs3d-position-beyond", "a vertex moved from the grid's origin to 2^26 + 1 on x", {"bfs3d"},
                           bfs3d_position_limits_stream(1), ErrorKind::kOutOfRange, "motion_residual", 1));
   return suite;

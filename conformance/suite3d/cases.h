@@ -48,6 +48,10 @@ Encode3dOptions cpca(CodecOptionValues values);
 // `untraversed` lists them (m4mesh's increasing order when empty).
 std::vector<uint8_t> cpca_over_mesh_stream(const MeshSequence& s, uint32_t kind, std::span<const uint32_t> untraversed);
 
+// `stream` (of box_and_sheet(6, …)) with frame 2's unit an intra base mesh
+// (encoded with `o`) whose faces differ from frame 0's: two swapped.
+std::vector<uint8_t> with_intra_of_other_faces(const std::vector<uint8_t>& stream, const Encode3dOptions& o);
+
 // Each group's streams to decode, in the manifest's order.
 std::vector<SuiteCase> affine_octree_cases(bool traced);
 std::vector<SuiteCase> bfs3d_cases(bool traced);

@@ -47,22 +47,20 @@ std::vector<SuiteCase> container_unit_rejected(const std::vector<SuiteCase>& val
                             while (unit_header_of(p.units.back().payload).frame_index > 3) p.units.pop_back();
                           }),
                           ErrorKind::kTruncated, "mesh3d_unit_start_code", 4));
-  {
-    // An intra base mesh whose faces are not frame 0's.
-    MeshSequence other = box_and_sheet(6, 4);
-    std::swap(other.faces[0], other.faces[1]);
-    const std::vector<uint8_t> other_stream = encode_mesh3d(other, affine("1")).stream;
-    const std::vector<uint8_t> intra = split_container(other_stream).units[0].payload;
-    suite.push_back(invalid("x-09-intra-other-faces", "an intra base mesh with other faces", {"container-units"},
-                            edited(base,
-                                   [&](ContainerParts& p) {
-                                     ContainerUnit& unit = unit_of(p, UnitType::kFrame, 2);
-                                     unit.payload = intra;
-                                     put_field(unit.payload, unit_header_field("frame_index"), 2);
-                                   }),
-                            ErrorKind::kStructure, "base_mesh", 2));
-  }
+  suite.push_back(invalid("x-09-intra-other-faces", "an intra base mesh with other faces", {"container-units"},
+                          with_intra_of_other_faces(base, affine("1")), ErrorKind::kStructure, "base_mesh", 2));
   return suite;
+}
+
+std::vector<uint8_t> with_intra_of_other_faces(const std::vector<uint8_t>& stream, const Encode3dOptions& o) {
+  MeshSequence other = box_and_sheet(6, 4);
+  std::swap(other.faces[0], other.faces[1]);
+  const std::vector<uint8_t> intra = split_container(encode_mesh3d(other, o).stream).units[0].payload;
+  return edited(stream, [&](ContainerParts& p) {
+    ContainerUnit& unit = unit_of(p, UnitType::kFrame, 2);
+    unit.payload = intra;
+    put_field(unit.payload, unit_header_field("frame_index"), 2);
+  });
 }
 
 // Group hash units that cover frames not decoded, none, or past the end.

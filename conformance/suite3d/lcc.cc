@@ -46,20 +46,18 @@ std::vector<uint8_t> lcc_rho_unit(const std::vector<uint8_t>& stream, std::vecto
   return lcc_unit(header, predicted, std::move(residuals), limit, std::move(unit_header));
 }
 
-// An lcc stream (stream mode, temporal prediction with gop 2, b_θ 15,
-// b_rh 20, no hash units) of a strip of two quads, written symbol by
-// symbol: per pattern p of for_each_prefix_pattern(), the anchor at frame
-// 2p + 1 and the frame predicted at 2p + 2 take the pattern's values as
-// the residuals of their first two steps' θ, ρ and ζ.
-std::vector<uint8_t> lcc_written_stream() {
-  std::vector<std::pair<int32_t, int32_t>> patterns;
-  for_each_prefix_pattern(13, [&](int32_t first, int32_t second) { patterns.emplace_back(first, second); });
+// An lcc stream (stream mode, temporal prediction with gop 2: the even
+// frames but the last predicted, no hash units) of a strip of two quads at
+// rest over `frames` frames, every frame unit written symbol by symbol:
+// its residuals zero but where `fill(frame, predicted, residuals)` sets
+// them, written whatever their range.
+template <class Fill>
+std::vector<uint8_t> lcc_strip_stream(uint32_t frames, int theta_bits, int rh_bits, Fill fill) {
   MeshSequence strip;
   strip.faces = sheet_faces(2, 1);
   strip.vertex_count = 6;
-  for (size_t f = 0; f < 2 * patterns.size() + 2; ++f)
-    strip.frames.push_back({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 0, 1}, {1, 0.25, 1}, {2, 0, 1}});
-  Encode3dOptions o = lcc({{"theta-bits", "15"}, {"rh-bits", "20"}, {"temporal", "1"}, {"gop", "2"}});
+  for (uint32_t f = 0; f < frames; ++f) strip.frames.push_back({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 0, 1}, {1, 0.25, 1}, {2, 0, 1}});
+  Encode3dOptions o = lcc({{"theta-bits", std::to_string(theta_bits)}, {"rh-bits", std::to_string(rh_bits)}, {"temporal", "1"}, {"gop", "2"}});
   o.hashes = false;
   const std::vector<uint8_t> encoded = encode_mesh3d(strip, o).stream;
   const LccHeader header = read_headers<LccHeader>(split_container(encoded)).second;
@@ -69,54 +67,49 @@ std::vector<uint8_t> lcc_written_stream() {
       const UnitHeader unit_header = unit_header_of(unit.payload);
       if (unit_header.type() != UnitType::kFrame) continue;
       const uint32_t frame = unit_header.frame_index;
-      const bool predicted = frame % 2 == 0 && frame + 1 < strip.frames.size();
-      const size_t pattern = predicted ? frame / 2 - 1 : (frame - 1) / 2;
+      const bool predicted = frame % 2 == 0 && frame + 1 < frames;
       LccIndices residuals{std::vector<int32_t>(3 * order.direct.size()), std::vector<int32_t>(3 * order.steps.size())};
-      if (pattern < patterns.size())
-        for (size_t i = 0; i < 3; ++i) {
-          residuals.steps[i] = patterns[pattern].first;
-          residuals.steps[3 + i] = patterns[pattern].second;
-        }
-      unit.payload = lcc_unit(header, predicted, std::move(residuals), int32_t{1} << header.rh_bits, unit_header_bytes(unit.payload));
+      fill(frame, predicted, residuals);
+      // The writer's limits, four times the header's: the decoder checks.
+      unit.payload = lcc_unit(header, predicted, std::move(residuals), 4 << header.rh_bits, unit_header_bytes(unit.payload), 4 << header.theta_bits);
     }
   });
 }
 
-// An lcc stream (stream mode, temporal prediction with gop 2, b_θ 6,
-// b_rh 4, no hash units) of a strip of two quads over frames 0 … 3,
-// written symbol by symbol with its values at their limits: anchors 1 and
-// 3 alike, their first step's θ, ρ and ζ at the lowest (−2^b_θ, −2^b_rh),
-// their second's at the highest (2^b_θ − 1, 2^b_rh); frame 2, predicted
-// from them, moves ρ and ζ to the other end by residuals ±2^(b_rh+1) and
-// θ by the extreme residuals again. `edit` may change a frame's residuals
-// afterwards (and writes them whatever their range).
+// lcc_strip_stream() at b_θ 15, b_rh 20: per pattern p of
+// for_each_prefix_pattern(), the anchor at frame 2p + 1 and the frame
+// predicted at 2p + 2 take the pattern's values as the residuals of their
+// first two steps' θ, ρ and ζ.
+std::vector<uint8_t> lcc_written_stream() {
+  std::vector<std::pair<int32_t, int32_t>> patterns;
+  for_each_prefix_pattern(13, [&](int32_t first, int32_t second) { patterns.emplace_back(first, second); });
+  return lcc_strip_stream(static_cast<uint32_t>(2 * patterns.size() + 2), 15, 20, [&](uint32_t frame, bool predicted, LccIndices& residuals) {
+    const size_t pattern = predicted ? frame / 2 - 1 : (frame - 1) / 2;
+    if (pattern < patterns.size())
+      for (size_t i = 0; i < 3; ++i) {
+        residuals.steps[i] = patterns[pattern].first;
+        residuals.steps[3 + i] = patterns[pattern].second;
+      }
+  });
+}
+
+// lcc_strip_stream() at b_θ 6, b_rh 4 over frames 0 … 3 with its values at
+// their limits: anchors 1 and 3 alike, their first step's θ, ρ and ζ at
+// the lowest (−2^b_θ, −2^b_rh), their second's at the highest (2^b_θ − 1,
+// 2^b_rh); frame 2, predicted from them, moves ρ and ζ to the other end by
+// residuals ±2^(b_rh+1) and θ by the extreme residuals again. `edit` may
+// change a frame's residuals afterwards.
 template <class Edit>
 std::vector<uint8_t> lcc_limits_stream(Edit edit) {
   constexpr int kThetaBits = 6, kRhBits = 4;
   constexpr int32_t kTheta = 1 << kThetaBits, kRh = 1 << kRhBits;
-  MeshSequence strip;
-  strip.faces = sheet_faces(2, 1);
-  strip.vertex_count = 6;
-  for (int f = 0; f < 4; ++f) strip.frames.push_back({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 0, 1}, {1, 0.25, 1}, {2, 0, 1}});
-  Encode3dOptions o = lcc({{"theta-bits", std::to_string(kThetaBits)}, {"rh-bits", std::to_string(kRhBits)}, {"temporal", "1"}, {"gop", "2"}});
-  o.hashes = false;
-  const std::vector<uint8_t> encoded = encode_mesh3d(strip, o).stream;
-  const LccHeader header = read_headers<LccHeader>(split_container(encoded)).second;
-  const LccOrder order = lcc_order(strip.faces, strip.vertex_count);
-  return edited(encoded, [&](ContainerParts& p) {
-    for (ContainerUnit& unit : p.units) {
-      const UnitHeader unit_header = unit_header_of(unit.payload);
-      if (unit_header.type() != UnitType::kFrame) continue;
-      const bool predicted = unit_header.frame_index == 2;
-      LccIndices residuals{std::vector<int32_t>(3 * order.direct.size()), std::vector<int32_t>(3 * order.steps.size())};
-      const int32_t rh = predicted ? 2 * kRh : kRh;
-      for (size_t i = 0; i < 3; ++i) {
-        residuals.steps[i] = i == 0 ? -kTheta : predicted ? rh : -rh;
-        residuals.steps[3 + i] = i == 0 ? kTheta - 1 : predicted ? -rh : rh;
-      }
-      edit(unit_header.frame_index, residuals);
-      unit.payload = lcc_unit(header, predicted, std::move(residuals), 4 * kRh, unit_header_bytes(unit.payload), 4 * kTheta);
+  return lcc_strip_stream(4, kThetaBits, kRhBits, [&](uint32_t frame, bool predicted, LccIndices& residuals) {
+    const int32_t rh = predicted ? 2 * kRh : kRh;
+    for (size_t i = 0; i < 3; ++i) {
+      residuals.steps[i] = i == 0 ? -kTheta : predicted ? rh : -rh;
+      residuals.steps[3 + i] = i == 0 ? kTheta - 1 : predicted ? -rh : rh;
     }
+    edit(frame, residuals);
   });
 }
 
