@@ -80,6 +80,12 @@ int run_serve(const ServeOptions& options) {
       return sink.write(body->data() + offset, std::min(slice, body->size() - offset));
     });
   });
+  // SO_REUSEADDR only: httplib's default adds SO_REUSEPORT, with which a
+  // second server binds a port in use and the two share its requests.
+  server.set_socket_options([](socket_t socket) {
+    const int yes = 1;
+    setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
   const int port = options.port == 0 ? server.bind_to_any_port(options.host) : (server.bind_to_port(options.host, options.port) ? options.port : -1);
   if (port < 0)
     throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset,

@@ -378,6 +378,17 @@ status=0; "$m4mesh" track "$work/noise.mp4" -o "$work/from-video.m4m" 2> "$work/
 [ "$status" = 1 ] && grep -q "^error: $work/noise.mp4: not a video FFmpeg can read" "$work/err" || fail "track: not a video: exit $status, $(cat "$work/err")"
 [ ! -e "$work/from-video.m4m" ] || fail "track: a failed run left its output"
 
+# serve: a second server on a port in use fails at once, naming the port.
+mkdir "$work/site" && echo hello > "$work/site/index.html"
+"$m4mesh" serve "$work/site" --port 0 > "$work/serving" 2> /dev/null &
+server=$!
+for _ in $(seq 50); do grep -q "^serving" "$work/serving" && break; sleep 0.1; done
+port=$(sed -n 's|.*http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$work/serving")
+[ -n "$port" ] || fail "serve: no address printed"
+status=0; timeout 5 "$m4mesh" serve "$work/site" --port "$port" > /dev/null 2> "$work/err" || status=$?
+kill "$server"; wait "$server" 2> /dev/null || true
+[ "$status" = 1 ] && grep -q "cannot listen on 127.0.0.1:$port (in use?" "$work/err" || fail "serve: a port in use: exit $status, $(cat "$work/err")"
+
 "$m4mesh" demo --frames 12 > "$work/demo" || fail "demo failed"
 grep -q "bit-exact" "$work/demo" || fail "demo not bit-exact"
 echo "cli: all checks passed"
