@@ -10,6 +10,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "decoder/mesh3d/container_decoder.h"
+#include "encoder/mesh3d/base_mesh.h"
 #include "mesh3d/metrics.h"
 
 namespace m4mesh {

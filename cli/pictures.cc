@@ -10,6 +10,7 @@
 #include "common/error.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "decoder/mesh_object_decoder.h"
+#include "encoder/mesh3d/base_mesh.h"
 #include "render/shaded.h"
 #include "render/texture_warp.h"
 #include "syntax/mesh3d/container.h"

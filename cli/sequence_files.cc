@@ -10,7 +10,6 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "decoder/mesh3d/container_decoder.h"
-#include "encoder/mesh3d/base_mesh.h"
 #include "mesh3d/ply.h"
 
 namespace m4mesh {
@@ -110,16 +109,6 @@ MeshSequence load_sequence_or_stream(const std::string& path, StreamFacts* facts
     }
   }
   return load_sequence(path, !console::quiet());
-}
-
-MeshSequence original_as_decoded(const MeshSequence& original, const MeshSequence& decoded, bool coding_order, const std::string& decoded_name) {
-  if (!coding_order || original.vertex_count != decoded.vertex_count) return original;
-  // The faces alone fix the coding order: the encoder's plan gives the numbering back.
-  const MeshSequence renumbered = in_coding_order(original, plan_base_mesh(original.faces, original.vertex_count, true), true);
-  if (!same_faces(renumbered.faces, decoded.faces))
-    throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
-                decoded_name + " numbers its vertices in coding order, but its faces are not the original's in that order: not a stream of this original");
-  return renumbered;
 }
 
 void refuse_overwriting(const std::string& input, const std::string& output) {

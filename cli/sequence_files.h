@@ -50,10 +50,6 @@ struct StreamFacts {
 // with the stream's facts in `facts`.
 MeshSequence load_sequence_or_stream(const std::string& path, StreamFacts* facts = nullptr);
 
-// The original numbered as `decoded` numbers its vertices: when a stream
-// of encode3d --reorder was decoded, in coding order (the encoder's plan of
-// the original's faces); an input error when it is not this original's.
-MeshSequence original_as_decoded(const MeshSequence& original, const MeshSequence& decoded, bool coding_order, const std::string& decoded_name);
 
 // A usage error when the trace and the stream would share standard output.
 void refuse_trace_to_output(bool trace, const std::string& output);

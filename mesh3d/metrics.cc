@@ -15,7 +15,21 @@ double distance(const Vec3& a, const Vec3& b) {
   return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
+// A NaN or an infinity would turn every figure into nonsense (a KG error of
+// 0, a PSNR of inf): refused, naming where.
+void require_finite(const MeshSequence& s, const char* which) {
+  for (size_t f = 0; f < s.frames.size(); ++f)
+    for (size_t i = 0; i < s.frames[f].size(); ++i) {
+      const Vec3& v = s.frames[f][i];
+      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+        throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
+                    std::string(which) + ": frame " + std::to_string(f) + ", vertex " + std::to_string(i) + " is not a finite point");
+    }
+}
+
 void require_comparable(const MeshSequence& a, const MeshSequence& b) {
+  require_finite(a, "the original");
+  require_finite(b, "the decoded sequence");
   std::string differences;
   if (a.vertex_count != b.vertex_count) differences += ", " + std::to_string(a.vertex_count) + "/" + std::to_string(b.vertex_count) + " vertices";
   if (a.frames.size() != b.frames.size()) differences += ", " + std::to_string(a.frames.size()) + "/" + std::to_string(b.frames.size()) + " frames";

@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstring>
 #include <sstream>
 
@@ -14,6 +15,7 @@
 #include "conformance/runner.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "decoder/mesh_object_decoder.h"
+#include "encoder/mesh3d/base_mesh.h"
 #include "encoder/mesh3d/container_encoder.h"
 #include "encoder/mesh3d/quality_target.h"
 #include "mesh3d/metrics.h"
@@ -76,9 +78,35 @@ Faces faces_of(std::span<const Triangle> faces) {
   return out;
 }
 
-std::span<const uint8_t> bytes_view(const py::bytes& stream) {
-  const std::string_view view = stream;
-  return {reinterpret_cast<const uint8_t*>(view.data()), view.size()};
+// A stream from any bytes-like object (bytes, bytearray, memoryview, a
+// numpy uint8 array), copied: the decoder runs without the GIL, while
+// another thread could resize a bytearray.
+std::vector<uint8_t> stream_bytes(const py::handle& stream) {
+  if (!PyObject_CheckBuffer(stream.ptr()))
+    throw usage("stream: bytes or another bytes-like object (bytearray, memoryview, a numpy uint8 array), not " +
+                std::string(py::str(py::type::handle_of(stream).attr("__name__"))));
+  const py::buffer_info info = py::reinterpret_borrow<py::buffer>(stream).request();
+  if (info.itemsize != 1 || info.ndim != 1 || (info.size > 1 && info.strides[0] != 1))
+    throw usage("stream: a one-dimensional, contiguous buffer of bytes (its items are " + std::to_string(info.itemsize) + " bytes, " +
+                std::to_string(info.ndim) + " dimensions)");
+  const auto* data = static_cast<const uint8_t*>(info.ptr);
+  return {data, data + info.size};
+}
+
+// Option names in a message as keywords: "--intra-period" → "intra_period".
+std::string keyword_spelling(const std::string& message) {
+  std::string out;
+  for (size_t i = 0; i < message.size(); ++i) {
+    const bool option = message.compare(i, 2, "--") == 0 && i + 2 < message.size() && std::islower(static_cast<unsigned char>(message[i + 2]));
+    if (!option) {
+      out += message[i];
+      continue;
+    }
+    for (i += 2; i < message.size() && (std::isalnum(static_cast<unsigned char>(message[i])) || message[i] == '-'); ++i)
+      out += message[i] == '-' ? '_' : message[i];
+    --i;
+  }
+  return out;
 }
 
 py::bytes encode(const Frames& frames, const Faces& faces, const std::string& codec, bool hashes, uint32_t hash_group, bool reorder,
@@ -111,21 +139,29 @@ py::bytes encode(const Frames& frames, const Faces& faces, const std::string& co
   return py::bytes(reinterpret_cast<const char*>(result.stream.data()), result.stream.size());
 }
 
-py::tuple decode(const py::bytes& stream) {
+// Whether a stream numbers its vertices in coding order (encode3d --reorder).
+bool in_coding_order(std::span<const uint8_t> stream) { return Mesh3dDecoder(stream).vertex_order() == kVertexOrderCoding; }
+
+py::tuple decode(const py::handle& stream) {
+  const std::vector<uint8_t> bytes = stream_bytes(stream);
   MeshSequence s;
   {
-    const std::span<const uint8_t> bytes = bytes_view(stream);
     py::gil_scoped_release release;
     s = decode_mesh3d(bytes);
   }
+  if (in_coding_order(bytes) && s.vertex_count > 0)
+    PyErr_WarnEx(PyExc_UserWarning,
+                 "the stream numbers its vertices in coding order (reorder=True, or an input already in that order): compare "
+                 "it with its original through m4mesh.metrics(original, stream, faces), which maps them",
+                 1);
   return py::make_tuple(frames_of(s), faces_of(s.faces));
 }
 
 // A progressive stream's prefixes, unit by unit.
 class Progressive {
  public:
-  explicit Progressive(py::bytes stream)
-      : stream_(std::move(stream)), decoder_(bytes_view(stream_)), parts_(split_container(bytes_view(stream_))) {
+  explicit Progressive(const py::handle& stream)
+      : stream_(stream_bytes(stream)), decoder_(stream_), parts_(split_container(stream_)) {
     if (!decoder_.progressive())
       throw usage(decoder_.codec().name + " decodes frame by frame; progressive decoding needs a progressive codec (cpca-wpt)");
   }
@@ -138,19 +174,48 @@ class Progressive {
     for (uint32_t f = 0; f < h.frame_count; ++f)
       decoder_.frame(f, std::span<Float3>(reinterpret_cast<Float3*>(frames.mutable_data(f)), h.vertex_count));
     const size_t taken = decoder_.units_taken();
-    const uint64_t received = taken < parts_.units.size() ? parts_.units[taken].byte_offset : bytes_view(stream_).size();
+    const uint64_t received = taken < parts_.units.size() ? parts_.units[taken].byte_offset : stream_.size();
     return py::make_tuple(units_, received, frames);
   }
 
  private:
-  py::bytes stream_;
+  std::vector<uint8_t> stream_;
   Mesh3dDecoder decoder_;
   ContainerParts parts_;
   size_t units_ = 0;
 };
 
-py::dict metrics(const Frames& original, const Frames& decoded, const Faces& faces) {
-  const MeshSequence a = sequence_of(original, faces), b = sequence_of(decoded, faces);
+// Whether an argument is a stream: a bytes-like object other than a numpy
+// array of frames.
+bool is_stream(const py::handle& o) {
+  if (!PyObject_CheckBuffer(o.ptr())) return false;
+  if (!py::isinstance<py::array>(o)) return true;
+  const py::array array = py::reinterpret_borrow<py::array>(o);
+  return array.ndim() == 1 && array.itemsize() == 1;
+}
+
+// The decoded side of metrics(): frames with faces (`faces` when none are
+// given), or a stream, decoded; `coding_order` when its vertices are not
+// numbered as `original_faces` number them.
+MeshSequence decoded_of(const py::handle& decoded, const Faces& faces, const py::object& decoded_faces, std::span<const Triangle> original_faces,
+                        bool& coding_order) {
+  if (is_stream(decoded)) {
+    if (!decoded_faces.is_none()) throw usage("decoded_faces: the stream has its own faces");
+    const std::vector<uint8_t> bytes = stream_bytes(decoded);
+    coding_order = in_coding_order(bytes);
+    py::gil_scoped_release release;
+    return decode_mesh3d(bytes);
+  }
+  MeshSequence s = sequence_of(decoded.cast<Frames>(), decoded_faces.is_none() ? faces : decoded_faces.cast<Faces>());
+  coding_order = !same_faces(original_faces, s.faces);  // in coding order, if anything
+  return s;
+}
+
+py::dict metrics(const Frames& original, const py::handle& decoded, const Faces& faces, const py::object& decoded_faces) {
+  const MeshSequence given = sequence_of(original, faces);
+  bool coding_order = false;
+  const MeshSequence b = decoded_of(decoded, faces, decoded_faces, given.faces, coding_order);
+  const MeshSequence a = original_as_decoded(given, b, coding_order, "the decoded sequence");
   SequenceMetrics m;
   {
     py::gil_scoped_release release;
@@ -167,9 +232,10 @@ py::dict metrics(const Frames& original, const Frames& decoded, const Faces& fac
   return out;
 }
 
-py::list read_2d(const py::bytes& stream) {
+py::list read_2d(const py::handle& stream) {
   py::list planes;
-  Decoder decoder(bytes_view(stream));
+  const std::vector<uint8_t> bytes = stream_bytes(stream);
+  Decoder decoder(bytes);
   while (decoder.next()) {
     py::array_t<int32_t> nodes({static_cast<py::ssize_t>(decoder.nodes().size()), py::ssize_t{2}});
     auto n = nodes.mutable_unchecked<2>();
@@ -213,7 +279,10 @@ PYBIND11_MODULE(_native, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const Error& e) {
-      const py::object error = error_class(e.what(), to_string(e.kind()), e.element(), e.plane(), e.bit_offset(), e.message());
+      // Usage errors name options as the command line spells them; Python's are keywords.
+      auto spelled = [&e](const std::string& text) { return e.kind() == ErrorKind::kUsage ? keyword_spelling(text) : text; };
+      const py::object error =
+          error_class(spelled(e.what()), to_string(e.kind()), e.element(), e.plane(), e.bit_offset(), spelled(e.message()));
       PyErr_SetObject(error_class.ptr(), error.ptr());
     }
   });
@@ -233,13 +302,22 @@ or target_psnr=Y (a finite number above 0) searches the codec's quality
 for the smallest stream that reaches it. hashes, hash_group, reorder: as
 encode3d's.)");
   m.def("decode", &decode, py::arg("stream"),
-        "(frames float32[F, V, 3], faces int32[T, 3]) of a 3D stream, every frame checked against its hash units.");
+        "(frames float32[F, V, 3], faces int32[T, 3]) of a 3D stream (bytes or any bytes-like object), every frame checked "
+        "against its hash units. A stream of reorder=True numbers its vertices in coding order (a UserWarning says so): "
+        "compare it with metrics(original, stream, faces).");
   py::class_<Progressive>(m, "progressive", "Iterates over a progressive stream's prefixes: (units, bytes received, frames) after each unit.")
-      .def(py::init<py::bytes>(), py::arg("stream"))
+      .def(py::init<const py::handle&>(), py::arg("stream"))
       .def("__iter__", [](Progressive& self) -> Progressive& { return self; })
       .def("__next__", &Progressive::next);
-  m.def("metrics", &metrics, py::arg("original"), py::arg("decoded"), py::arg("faces"),
-        "KG error (%), RMSE, max error, PSNR (dB), STED spatial, temporal and combined, as `m4mesh metrics`.");
+  m.def("metrics", &metrics, py::arg("original"), py::arg("decoded"), py::arg("faces"), py::arg("decoded_faces") = py::none(),
+        R"(KG error (%), RMSE, max error, PSNR (dB), STED spatial, temporal and combined, as `m4mesh metrics`.
+
+original: frames float32[F, V, 3] with `faces`. decoded: frames with the
+same faces, or with `decoded_faces` when decode() gave others, or a stream
+(bytes-like), decoded here. Vertices a stream of reorder=True numbered in
+coding order are mapped back through the original's faces, as the command
+line does; faces that are not the original's in any order are an error.
+Coordinates that are not finite are an error.)");
   m.def("read_2d", &read_2d, py::arg("stream"),
         "A 2D stream's planes: a list of {'intra': bool, 'nodes': int32[N, 2] (half pixels), 'triangles': int32[T, 3]}.");
   m.def("conform", &conform, py::arg("suite"), py::arg("decoder") = "",

@@ -197,6 +197,16 @@ MeshSequence in_coding_order(const MeshSequence& sequence, const BaseMeshPlan& p
   return s;
 }
 
+MeshSequence original_as_decoded(const MeshSequence& original, const MeshSequence& decoded, bool coding_order, const std::string& decoded_name) {
+  if (!coding_order || original.vertex_count != decoded.vertex_count) return original;
+  // The faces alone fix the coding order: the encoder's plan gives the numbering back.
+  const MeshSequence renumbered = in_coding_order(original, plan_base_mesh(original.faces, original.vertex_count, true), true);
+  if (!same_faces(renumbered.faces, decoded.faces))
+    throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
+                decoded_name + " numbers its vertices in coding order, but its faces are not the original's in that order: not a stream of this original");
+  return renumbered;
+}
+
 MeshSequence renumbered(const MeshSequence& sequence, std::span<const uint32_t> input_of) {
   std::vector<uint32_t> coding_of(sequence.vertex_count);
   for (uint32_t i = 0; i < sequence.vertex_count; ++i) coding_of[input_of[i]] = i;

@@ -30,6 +30,12 @@ BaseMeshPlan plan_base_mesh(std::span<const Triangle> faces, uint32_t vertex_cou
 // when the plan renumbered them.
 MeshSequence in_coding_order(const MeshSequence& sequence, const BaseMeshPlan& plan, bool reorder);
 
+// The original numbered as `decoded` numbers its vertices: when a stream
+// of encode3d --reorder was decoded (`coding_order`), in coding order (the
+// encoder's plan of the original's faces); an input error when it is not
+// this original's.
+MeshSequence original_as_decoded(const MeshSequence& original, const MeshSequence& decoded, bool coding_order, const std::string& decoded_name);
+
 // The sequence with vertex i taken from input vertex input_of[i].
 MeshSequence renumbered(const MeshSequence& sequence, std::span<const uint32_t> input_of);
 

@@ -9,7 +9,6 @@ namespace m4mesh {
 
 namespace {
 
-
 std::string range_text(const CodecOption& o) {
   auto number = [](double v) {
     std::string s = std::to_string(v);
@@ -42,7 +41,11 @@ CodecSettings::CodecSettings(const std::string& codec, const std::vector<CodecOp
   for (const CodecOption& o : options) values_[o.name] = o.kind == OptionKind::kFlag ? "0" : o.default_value;
   for (const auto& [name, value] : values) {
     auto it = values_.find(name);
-    if (it == values_.end()) throw usage_error("--" + name + " is not an option of " + codec);
+    if (it == values_.end()) {
+      std::string known;
+      for (const CodecOption& o : options) known += (known.empty() ? "--" : ", --") + o.name;
+      throw usage_error("--" + name + " is not an option of " + codec + (known.empty() ? " (it has none)" : " (its options: " + known + ")"));
+    }
     for (const CodecOption& o : options)
       if (o.name == name) check(codec, o, value);
     it->second = value;

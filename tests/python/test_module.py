@@ -139,3 +139,68 @@ def test_auto_keeps_the_smallest_codec_at_the_target(tetra):
 
 def test_dir_lists_the_calls():
     assert {"encode", "decode", "metrics", "progressive", "conform", "plot"} <= set(dir(m4mesh))
+
+
+@pytest.fixture(scope="module")
+def shuffled_sheet():
+    """A 6 × 6 sheet of quads under a wave, its vertices numbered at random: no traversal's order."""
+    rng = np.random.default_rng(5)
+    n = 7
+    number = rng.permutation(n * n)
+    faces = []
+    for y in range(n - 1):
+        for x in range(n - 1):
+            a, b, c, d = (number[y * n + x], number[y * n + x + 1], number[(y + 1) * n + x + 1], number[(y + 1) * n + x])
+            faces += [(a, b, c), (a, c, d)]
+    frames = np.zeros((4, n * n, 3), np.float32)
+    for f in range(4):
+        for y in range(n):
+            for x in range(n):
+                frames[f, number[y * n + x]] = (x, y, 0.3 * np.sin(x + 0.7 * f))
+    return frames, np.array(faces, np.int32)
+
+
+def test_a_reordered_stream_is_compared_through_the_stream_or_its_faces(shuffled_sheet):
+    frames, faces = shuffled_sheet
+    plain = m4mesh.metrics(frames, m4mesh.encode(frames, faces, bits=10), faces)
+    stream = m4mesh.encode(frames, faces, bits=10, reorder=True)
+    with pytest.warns(UserWarning, match="coding order"):
+        decoded, decoded_faces = m4mesh.decode(stream)
+    assert not np.array_equal(decoded, m4mesh.decode(m4mesh.encode(frames, faces, bits=10))[0])
+    for measured in (m4mesh.metrics(frames, stream, faces), m4mesh.metrics(frames, bytearray(stream), faces),
+                     m4mesh.metrics(frames, decoded, faces, decoded_faces=decoded_faces)):
+        assert measured["kg_error"] == pytest.approx(plain["kg_error"]) and measured["kg_error"] < 1
+    with pytest.raises(m4mesh.Error, match="not a stream of this original"):
+        m4mesh.metrics(frames, decoded, faces, decoded_faces=decoded_faces[::-1, ::-1].copy())
+
+
+@pytest.mark.parametrize("where", ["original", "decoded"])
+def test_metrics_refuse_coordinates_that_are_not_finite(tetra, where):
+    frames, faces = tetra
+    spoiled = frames.copy()
+    spoiled[1, 2, 1] = float("nan") if where == "original" else float("inf")
+    with pytest.raises(m4mesh.Error) as caught:
+        m4mesh.metrics(spoiled, frames, faces) if where == "original" else m4mesh.metrics(frames, spoiled, faces)
+    assert caught.value.kind == "input" and "frame 1, vertex 2 is not a finite point" in str(caught.value)
+
+
+def test_streams_may_be_any_bytes_like_object(tetra):
+    frames, faces = tetra
+    stream = m4mesh.encode(frames, faces)
+    expected = m4mesh.decode(stream)[0]
+    for view in (bytearray(stream), memoryview(stream), np.frombuffer(stream, np.uint8)):
+        assert np.array_equal(m4mesh.decode(view)[0], expected)
+    for not_bytes in ("a string", 42, np.zeros(4, np.float32)):
+        with pytest.raises(m4mesh.Error) as caught:
+            m4mesh.decode(not_bytes)
+        assert caught.value.kind == "usage" and len(str(caught.value)) < 200 and "stream:" in str(caught.value)
+
+
+def test_errors_name_options_as_keywords(tetra):
+    frames, faces = tetra
+    with pytest.raises(m4mesh.Error) as caught:
+        m4mesh.encode(frames, faces, bitz=3)
+    assert "bitz is not an option of bfs3d (its options: bits, parallelogram, intra_period)" in str(caught.value)
+    with pytest.raises(m4mesh.Error) as caught:
+        m4mesh.encode(frames, faces, codec="affine-octree", matrix_bits=8, matrix_range_log2=8)
+    assert "--" not in str(caught.value) and "matrix_range_log2" in str(caught.value)
