@@ -49,8 +49,16 @@ void detail(const char* format, ...) {
 Progress::Progress(std::string what, size_t total)
     : Progress(std::move(what), total, stderr, isatty(fileno(stderr)) != 0, std::chrono::seconds(1)) {}
 
-Progress::Progress(std::string what, size_t total, std::FILE* out, bool interactive, std::chrono::milliseconds after)
-    : what_(std::move(what)), total_(total), out_(out), interactive_(interactive), after_(after), start_(std::chrono::steady_clock::now()) {}
+Progress::Progress(std::string what, size_t total, std::FILE* out, bool interactive, std::chrono::milliseconds after,
+                   std::chrono::milliseconds log_every)
+    : what_(std::move(what)),
+      total_(total),
+      out_(out),
+      interactive_(interactive),
+      after_(after),
+      log_every_(log_every),
+      start_(std::chrono::steady_clock::now()),
+      logged_(start_) {}
 
 Progress::~Progress() { finish(); }
 
@@ -65,7 +73,15 @@ void Progress::update(size_t done, size_t total) {
 }
 
 void Progress::update(size_t done) {
-  if (g_level == Level::kQuiet || !interactive_) return;
+  if (g_level == Level::kQuiet) return;
+  if (!interactive_) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - logged_ < log_every_) return;
+    logged_ = now;
+    std::fprintf(out_, "%s %zu/%zu\n", what_.c_str(), done, total_);
+    std::fflush(out_);
+    return;
+  }
   if (!shown_ && std::chrono::steady_clock::now() - start_ < after_) return;
   shown_ = true;
   std::fprintf(out_, "\r%s %zu/%zu", what_.c_str(), done, total_);

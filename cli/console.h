@@ -21,13 +21,16 @@ bool quiet();
 // Detail, with -v only.
 [[gnu::format(printf, 1, 2)]] void detail(const char* format, ...);
 
-// A job's progress: one line on standard error that rewrites itself, only
-// on a terminal, without -q, and once the job has run for a second.
+// A job's progress on standard error, without -q: on a terminal one line
+// that rewrites itself once the job has run for a second; elsewhere (a
+// log) a line of its own every ten seconds.
 class Progress {
  public:
   Progress(std::string what, size_t total);
-  // The same line on `out`, drawn only when `interactive`, once `after` has passed.
-  Progress(std::string what, size_t total, std::FILE* out, bool interactive, std::chrono::milliseconds after);
+  // The same on `out`: a line that rewrites itself when `interactive`, once
+  // `after` has passed; else a line of its own every `log_every`.
+  Progress(std::string what, size_t total, std::FILE* out, bool interactive, std::chrono::milliseconds after,
+           std::chrono::milliseconds log_every = std::chrono::seconds(10));
   ~Progress();
   Progress(const Progress&) = delete;
   Progress& operator=(const Progress&) = delete;
@@ -42,8 +45,8 @@ class Progress {
   size_t total_;
   std::FILE* out_;
   bool interactive_;
-  std::chrono::milliseconds after_;
-  std::chrono::steady_clock::time_point start_;
+  std::chrono::milliseconds after_, log_every_;
+  std::chrono::steady_clock::time_point start_, logged_;
   bool shown_ = false;
 };
 

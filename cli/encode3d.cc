@@ -136,7 +136,10 @@ int run_encode3d(const Encode3dArgs& args) {
     }
     say("%s", figures.c_str());
   }
-  say("encoded %zu frames of %u vertices in %.3f s (%.1f M vertices/s)", sequence.frames.size(), sequence.vertex_count, seconds, static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size()) / seconds / 1e6);
+  // In millions, thousands or units: a slow codec's rate is far below a million.
+  const double rate = static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size()) / seconds;
+  const auto [scaled, unit] = rate >= 1e6 ? std::pair{rate / 1e6, "M "} : rate >= 1e3 ? std::pair{rate / 1e3, "k "} : std::pair{rate, ""};
+  say("encoded %zu frames of %u vertices in %.3f s (%.1f %svertices/s)", sequence.frames.size(), sequence.vertex_count, seconds, scaled, unit);
   return 0;
 }
 

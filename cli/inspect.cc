@@ -114,9 +114,11 @@ int run_check(const std::string& input) {
   const bool mesh3d = is_mesh3d_stream(stream);
   const CheckReport report = mesh3d ? check_mesh3d(stream) : check_stream(stream);
   for (const Finding& f : report.findings) std::printf("%s\n", format_finding(f).c_str());
-  const size_t errors = report.errors();
-  std::printf("%s: %lld %s, %zu errors, %zu warnings: %s\n", input.c_str(), static_cast<long long>(report.planes), mesh3d ? "units" : "planes", errors,
-              report.findings.size() - errors, report.conformant() ? "conformant" : "NOT conformant");
+  const size_t errors = report.errors(), warnings = report.findings.size() - errors;
+  auto counted = [](long long n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); };
+  std::printf("%s: %s, %s, %s: %s\n", input.c_str(), counted(report.planes, mesh3d ? "unit" : "plane", mesh3d ? "units" : "planes").c_str(),
+              counted(static_cast<long long>(errors), "error", "errors").c_str(), counted(static_cast<long long>(warnings), "warning", "warnings").c_str(),
+              report.conformant() ? "conformant" : "NOT conformant");
   return report.conformant() ? 0 : 1;
 }
 

@@ -38,7 +38,6 @@ CheckReport check_mesh3d(std::span<const uint8_t> stream) {
     const size_t taken = decoder->units_taken();
     try {
       if (!decoder->next_unit()) break;
-      ++report.planes;
       after_error = report.errors() > 0;
       // After an error, later frames decode from a damaged state: their hashes tell nothing new.
       if (report.errors() == 0)
@@ -47,7 +46,6 @@ CheckReport check_mesh3d(std::span<const uint8_t> stream) {
             report.findings.push_back(mesh3d_finding(true, ErrorKind::kStructure, frame, "frame_md5", kNoOffset,
                                                      "the decoded frame does not match its hash unit", decoder->unit().index));
     } catch (const Error& e) {
-      ++report.planes;
       // An error that took no unit is the stream's end (frames missing).
       const bool in_unit = decoder->units_taken() != taken;
       report.findings.push_back(finding_of(e, in_unit ? std::optional<size_t>(decoder->units_taken() - 1) : std::nullopt));
@@ -58,6 +56,7 @@ CheckReport check_mesh3d(std::span<const uint8_t> stream) {
       decoder->resume();
     }
   }
+  report.planes = static_cast<int64_t>(decoder->units_taken());  // hash units too, as `info` counts them
   if (after_error)
     report.findings.push_back(mesh3d_finding(false, ErrorKind::kStructure, kNoPlane, "frame_md5", kNoOffset,
                                              "frames after the first error decode from a damaged state: their hashes were not compared",

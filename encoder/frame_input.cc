@@ -76,6 +76,14 @@ FrameInput planes_from_frames(const std::vector<ObjFrame>& frames, const std::ve
   const ObjFrame& first = frames[0];
   const size_t count = first.vertices.size();
   if (count < 3 || count > 1023 * 1023) throw input_error(names[0], 0, "a mesh needs 3 … 1046529 vertices");
+  // z is not coded: a mesh that is not flat is a 3D mesh, not one to drop z from.
+  for (size_t k = 0; k < frames.size(); ++k)
+    for (size_t i = 0; i < frames[k].vertices.size(); ++i)
+      if (frames[k].vertices[i][2] != first.vertices[0][2])
+        throw input_error(names[k], i < frames[k].vertex_lines.size() ? frames[k].vertex_lines[i] : 0,
+                          "vertex " + std::to_string(i + 1) + " has z " + std::to_string(frames[k].vertices[i][2]) + " where " + names[0] +
+                              "'s vertex 1 has " + std::to_string(first.vertices[0][2]) +
+                              ": a 3D mesh (the 2D mesh object codes flat meshes, x and y; m4mesh encode3d codes 3D sequences)");
   for (size_t k = 1; k < frames.size(); ++k) {
     if (frames[k].vertices.size() != count)
       throw input_error(names[k], 0, "has " + std::to_string(frames[k].vertices.size()) + " vertices where the first frame has " +

@@ -167,8 +167,24 @@ MeshFrame read_off(const std::string& path) {
   return frame;
 }
 
+namespace {
+
+// A mesh stream given where frames are read: named as what it is, not
+// parsed as a frame file.
+void refuse_mesh_stream(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char code[4] = {};
+  if (!in.read(reinterpret_cast<char*>(code), 4) || code[0] != 0 || code[1] != 0 || code[2] != 1) return;
+  if (code[3] == 0xBC)
+    throw input_error(path, 0, "a 2D mesh stream, not 3D frames (2D streams are for decode, render, check and trace)");
+  if (code[3] == 0xC4) throw input_error(path, 0, "a 3D stream, not frames: decode3d it first (-o frames.m4seq)");
+}
+
+}  // namespace
+
 MeshSequence load_sequence(const std::string& path, bool progress) {
   namespace fs = std::filesystem;
+  if (fs::is_regular_file(path)) refuse_mesh_stream(path);
   // Standard input holds a .m4seq file.
   if (path == "-" || (fs::is_regular_file(path) && fs::path(path).extension() == ".m4seq")) return read_binary_sequence(path);
   if (fs::is_regular_file(path) && fs::path(path).extension() == ".pc2") return read_pc2_sequence(path);

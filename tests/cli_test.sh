@@ -378,6 +378,28 @@ status=0; "$m4mesh" track "$work/noise.mp4" -o "$work/from-video.m4m" 2> "$work/
 [ "$status" = 1 ] && grep -q "^error: $work/noise.mp4: not a video FFmpeg can read" "$work/err" || fail "track: not a video: exit $status, $(cat "$work/err")"
 [ ! -e "$work/from-video.m4m" ] || fail "track: a failed run left its output"
 
+# check counts every unit as info does, in words that agree with the count.
+units=$(( $("$m4mesh" info conformance/mesh3d/streams/bfs3d-01-average.m4m | sed -n 's/.* units: \([0-9]*\),.*/\1/p' | paste -sd+) ))
+"$m4mesh" check conformance/mesh3d/streams/bfs3d-01-average.m4m | grep -q ": $units units, 0 errors, 0 warnings: conformant$" ||
+  fail "check: not the $units units info counts"
+status=0; "$m4mesh" check conformance/mesh3d/streams/x-10-bfs3d-lengths.m4m > "$work/out" || status=$?
+[ "$status" = 1 ] && grep -q ": $units units, 1 error, 1 warning: NOT conformant$" "$work/out" || fail "check of one error: $(tail -1 "$work/out")"
+
+# A 2D stream given where 3D frames are read is named as such, not parsed as OBJ.
+for command in encode3d:m4m render3d:png; do
+  status=0; "$m4mesh" "${command%:*}" conformance/streams/p01-hand-3x3.m4m -o "$work/from-2d.${command#*:}" 2> "$work/err" || status=$?
+  [ "$status" = 1 ] && grep -q "p01-hand-3x3.m4m: a 2D mesh stream, not 3D frames" "$work/err" || fail "$command of a 2D stream: exit $status, $(cat "$work/err")"
+done
+
+# encode (2D) of 3D frames says so and points to encode3d.
+status=0; "$m4mesh" encode tests/data/tetra-frames -o "$work/flat.m4m" 2> "$work/err" || status=$?
+[ "$status" = 1 ] && grep -q "1.obj:4: vertex 4 has z 1.000000 .*: a 3D mesh (.*m4mesh encode3d codes 3D sequences)" "$work/err" ||
+  fail "encode of 3D frames: exit $status, $(cat "$work/err")"
+
+# encode3d's rate in units that show it (a slow codec's is far below a million a second).
+"$m4mesh" encode3d tests/data/tetra-frames --codec cpca-wpt -o "$work/rate.m4m" 2> "$work/err"
+grep -Eq "\([1-9][0-9]*\.[0-9] (M |k )?vertices/s\)" "$work/err" || fail "encode3d rate: $(grep vertices/s "$work/err")"
+
 # serve: a second server on a port in use fails at once, naming the port.
 mkdir "$work/site" && echo hello > "$work/site/index.html"
 "$m4mesh" serve "$work/site" --port 0 > "$work/serving" 2> /dev/null &

@@ -39,16 +39,29 @@ TEST(Progress, CountsTheJobsOwnStepsAndClearsItsLineBeforeWhatFollows) {
   std::fclose(out);
 }
 
-TEST(Progress, NothingOffATerminalOrBeforeItsTime) {
+TEST(Progress, NothingBeforeItsTime) {
   std::FILE* out = std::tmpfile();
   ASSERT_NE(out, nullptr);
   {
-    console::Progress off_terminal("decoding frame", 10, out, false, std::chrono::milliseconds(0));
+    console::Progress off_terminal("decoding frame", 10, out, false, std::chrono::milliseconds(0), std::chrono::hours(1));
     off_terminal.update(5);
     console::Progress early("decoding frame", 10, out, true, std::chrono::hours(1));
     early.update(5);
   }
   EXPECT_EQ(text_of(out), "");
+  std::fclose(out);
+}
+
+// A log (no terminal) gets lines of their own, never carriage returns.
+TEST(Progress, OffATerminalALineNowAndThen) {
+  std::FILE* out = std::tmpfile();
+  ASSERT_NE(out, nullptr);
+  {
+    console::Progress log("tracking frame", 795, out, false, std::chrono::milliseconds(0), std::chrono::milliseconds(0));
+    log.update(100);
+    log.update(200);
+  }
+  EXPECT_EQ(text_of(out), "tracking frame 100/795\ntracking frame 200/795\n");
   std::fclose(out);
 }
 
