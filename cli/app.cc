@@ -135,10 +135,12 @@ int run_m4mesh(int argc, const char* const* argv) {
   CLI::App* render_cmd = app.add_subcommand("render", "Draw a 2D mesh stream: its texture warped by every plane, as an animated GIF or one plane's PNG");
   render_cmd->add_option("input", render_args.input, "2D mesh stream")->required();
   render_cmd->add_option("-o,--output", render_args.output, "anim.gif (every plane) or frame.png (one plane)")->required();
-  render_cmd->add_option("--texture", render_args.texture, "a PNG laid on the I-plane's bounding box (default: a checkerboard)");
+  render_cmd->add_option("--texture", render_args.texture,
+                         "a PNG laid on the I-plane's bounding box, one texel a pixel when they are the same size to a pixel (a texture from "
+                         "track); the pictures then take its size (default: a checkerboard, pictures over every plane)");
   render_cmd->add_option("--plane", render_args.plane, "the plane a .png shows")->capture_default_str();
   render_cmd->add_flag("--wireframe", render_args.wireframe, "draw the triangles' edges over the picture");
-  render_cmd->add_option("--fps", render_args.fps, "frames per second of a GIF")->capture_default_str();
+  render_cmd->add_option("--fps", render_args.fps, "frames per second of a GIF (default: the texture's, as track writes it, else 25)");
   render_cmd->add_option("--size", render_args.size, "the picture's longer side in pixels (default: one pixel per half pixel of the mesh)");
 
   TrackArgs track_args;

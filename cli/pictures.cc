@@ -41,19 +41,59 @@ std::string stream_label(const StreamFacts& facts, const MeshSequence& decoded) 
   return text;
 }
 
+// A file's size for people: "6.4 MB", "812 kB", "96 bytes".
+std::string size_text(const std::string& path) {
+  const double bytes = static_cast<double>(std::filesystem::file_size(path));
+  char text[32];
+  if (bytes >= 1e6)
+    std::snprintf(text, sizeof text, "%.1f MB", bytes / 1e6);
+  else if (bytes >= 1e3)
+    std::snprintf(text, sizeof text, "%.0f kB", bytes / 1e3);
+  else
+    std::snprintf(text, sizeof text, "%.0f bytes", bytes);
+  return text;
+}
+
+std::string fps_text(double fps) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", fps);
+  return text;
+}
+
+// Where a texture lies: over the I-plane's pixels, one texel a pixel when
+// they are the same size to a pixel (a mesh over a video frame reaches its
+// far edge, one pixel past the last pixel's centre).
+Canvas texture_box(const Canvas& plane, const Image& texture) {
+  auto near = [](uint32_t a, uint32_t b) { return a <= b + 1 && b <= a + 1; };
+  return near(plane.width, texture.width) && near(plane.height, texture.height) ? Canvas{plane.x0, plane.y0, texture.width, texture.height} : plane;
+}
+
 }  // namespace
 
 int run_render(const RenderArgs& args) {
   const bool to_gif = gif_output(args.output, "render");
-  const uint32_t delay = gif_delay(args.fps);
+  std::optional<Image> texture;
+  double fps = args.fps.value_or(25);
+  if (!args.texture.empty()) {
+    texture = read_png(args.texture);
+    if (const std::string rate = png_text(args.texture, kFrameRateText); !args.fps && !rate.empty()) fps = std::strtod(rate.c_str(), nullptr);
+  }
+  const uint32_t delay = gif_delay(fps);
   refuse_overwriting(args.input, args.output);
   const std::vector<uint8_t> stream = read_file(args.input);
   if (is_mesh3d_stream(stream))
     throw usage_error(args.input + ": a mesh3d stream; render draws 2D mesh streams");
-  // First pass: the rectangle every plane fits in, and the plane count.
-  Canvas canvas;
+  // First pass: the rectangle every plane fits in (the texture's, at the
+  // first I-plane's corner, when there is one: the video's frame), and the
+  // plane count.
+  Canvas canvas, first;
   uint32_t planes = 0;
-  for (Decoder decoder(stream); decoder.next(); ++planes) canvas = united(canvas, canvas_over(decoder.nodes()));
+  for (Decoder decoder(stream); decoder.next(); ++planes) {
+    const Canvas plane = canvas_over(decoder.nodes());
+    if (planes == 0) first = plane;
+    canvas = united(canvas, plane);
+  }
+  if (texture) canvas = {first.x0, first.y0, texture->width, texture->height};
   if (!to_gif && args.plane >= planes)
     throw usage_error("--plane " + std::to_string(args.plane) + ": the stream has planes 0 … " + std::to_string(planes - 1));
   if (canvas.width > 8192 || canvas.height > 8192)
@@ -65,8 +105,6 @@ int run_render(const RenderArgs& args) {
   const uint32_t height = std::max<uint32_t>(1, static_cast<uint32_t>(std::lround(canvas.height * zoom)));
   auto sized = [&](const Image& picture) { return args.size == 0 ? picture : resized(picture, width, height); };
   // Second pass: each plane drawn as it is decoded.
-  std::optional<Image> texture;
-  if (!args.texture.empty()) texture = read_png(args.texture);
   std::optional<TextureWarp> warp;
   std::optional<GifWriter> gif;
   if (to_gif) gif.emplace(args.output, width, height, delay);
@@ -79,7 +117,7 @@ int run_render(const RenderArgs& args) {
         const Canvas box = canvas_over(decoder.nodes());
         texture = checkerboard(box.width, box.height);
       }
-      warp.emplace(decoder.nodes(), decoder.triangles(), *texture, canvas);
+      warp.emplace(decoder.nodes(), decoder.triangles(), *texture, texture_box(canvas_over(decoder.nodes()), *texture), canvas);
     }
     if (gif) {
       gif->add(sized(warp->render(decoder.nodes(), args.wireframe)));
@@ -89,8 +127,9 @@ int run_render(const RenderArgs& args) {
     }
   }
   if (gif) gif->finish();
-  console::say("%s: %s, %u × %u pixels", args.output.c_str(), gif ? (std::to_string(planes) + " planes").c_str() : ("plane " + std::to_string(args.plane)).c_str(),
-               width, height);
+  console::say("%s: %s, %u × %u pixels%s, %s", args.output.c_str(),
+               gif ? (std::to_string(planes) + " planes").c_str() : ("plane " + std::to_string(args.plane)).c_str(), width, height,
+               gif ? (" at " + fps_text(fps) + " frames/s").c_str() : "", size_text(args.output).c_str());
   return 0;
 }
 
@@ -166,8 +205,9 @@ int run_render3d(const Render3dArgs& args) {
     }
     writer.finish();
   }
-  console::say("%s: %u × %u pixels%s", args.output.c_str(), width, args.size,
-               compare ? (", largest error " + std::to_string(max_error) + (args.max_error ? ", colours up to " + std::to_string(scale) : "")).c_str() : "");
+  console::say("%s: %u × %u pixels%s, %s", args.output.c_str(), width, args.size,
+               compare ? (", largest error " + std::to_string(max_error) + (args.max_error ? ", colours up to " + std::to_string(scale) : "")).c_str() : "",
+               size_text(args.output).c_str());
   return 0;
 }
 

@@ -18,7 +18,7 @@ struct RenderArgs {
   std::string texture;  // a PNG; empty: a checkerboard
   uint32_t plane = 0;   // the plane of a .png
   bool wireframe = false;
-  double fps = 25;
+  std::optional<double> fps;  // default: the texture's frame rate (a texture from track), else 25
   uint32_t size = 0;    // the picture's longer side in pixels (0: one pixel per half pixel of the mesh)
 };
 int run_render(const RenderArgs& args);

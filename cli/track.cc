@@ -75,7 +75,12 @@ int run_track(const TrackArgs& args) {
   progress.finish();
 
   write_file_atomically(args.output, std::string_view(reinterpret_cast<const char*>(result.stream.data()), result.stream.size()));
-  if (!args.texture.empty()) write_png(result.texture, args.texture);
+  if (!args.texture.empty()) {
+    char fps[32];
+    std::snprintf(fps, sizeof fps, "%.10g", result.video.fps);
+    write_png(result.texture, args.texture, result.video.fps > 0 ? std::vector<std::pair<std::string, std::string>>{{kFrameRateText, fps}}
+                                                                 : std::vector<std::pair<std::string, std::string>>{});
+  }
   if (!args.report.empty()) {
     std::string csv = "frame,bits,coverage,render_psnr,mesh_mc_psnr,block_mc_psnr\n";
     for (const TrackedFrame& f : result.frames) {

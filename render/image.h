@@ -1,10 +1,11 @@
 // RGB pictures and their files: PNG through libpng, animated GIF through
-// giflib (a palette of 256 colours per frame, by median cut).
+// giflib (a palette of 256 colours per frame, chosen by libimagequant).
 #pragma once
 
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace m4mesh {
@@ -32,9 +33,16 @@ Rgb bilinear(const Image& image, double u, double v);
 // it covers (the nearest one when enlarging).
 Image resized(const Image& image, uint32_t width, uint32_t height);
 
-// Errors are kIo errors that name the file.
-void write_png(const Image& image, const std::string& path);
+// Errors are kIo errors that name the file. A PNG may carry text
+// (tEXt chunks: keyword, text), as `track` gives its texture the video's
+// frame rate.
+void write_png(const Image& image, const std::string& path, const std::vector<std::pair<std::string, std::string>>& text = {});
 Image read_png(const std::string& path);
+// The text of `keyword` in a PNG's tEXt chunks, empty when it has none.
+std::string png_text(const std::string& path, const std::string& keyword);
+// The keyword of a texture's frames per second (a decimal number): `track`
+// writes the video's, `render` plays at it.
+inline constexpr const char* kFrameRateText = "Frame rate";
 
 // An animated GIF written frame by frame (memory: one frame), looping.
 class GifWriter {

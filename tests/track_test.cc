@@ -1,5 +1,6 @@
 // m4mesh track (video/track.h, video/tracking/): videos made here, with
 // known motion, compressed by FFmpeg; the tracked nodes against the truth.
+#include <gif_lib.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -79,10 +80,10 @@ void write_frames(const Workspace& folder, const std::vector<Image>& frames) {
 }
 
 // The frames as H.264 (yuv420p), as a camera's video would come.
-std::string h264_video(const Workspace& folder, const std::vector<Image>& frames) {
+std::string h264_video(const Workspace& folder, const std::vector<Image>& frames, int fps = 25) {
   write_frames(folder, frames);
   const std::string video = folder / "video.mp4";
-  const std::string command = "ffmpeg -nostdin -v error -y -framerate 25 -i '" + folder / "%03d.png" +
+  const std::string command = "ffmpeg -nostdin -v error -y -framerate " + std::to_string(fps) + " -i '" + folder / "%03d.png" +
                               "' -c:v libx264 -preset fast -crf 12 -pix_fmt yuv420p -movflags +faststart '" + video + "'";
   EXPECT_EQ(std::system(command.c_str()), 0) << command;
   return video;
@@ -186,11 +187,12 @@ TEST(Track, ContentBasedNodesFollowASmoothWarpThroughH264) {
 }
 
 // The stream decodes to the tracked nodes, and `m4mesh render` of it with
-// the written texture draws the frames the measurement compared.
+// the written texture draws the frames the measurement compared, at the
+// video's size and, as a GIF, at its frame rate (10 a second here).
 TEST(Track, RenderOfTheStreamIsWhatWasMeasured) {
   const Workspace folder("render");
   const WarpedVideo video(96, 80, 6, SmoothMotion{96, 80});
-  const std::string input = h264_video(folder, video.frames);
+  const std::string input = h264_video(folder, video.frames, 10);
   const std::string stream = folder / "out.m4m", texture = folder / "first.png", picture = folder / "plane5.png";
   std::vector<const char*> track{"m4mesh", "-q", "track", input.c_str(), "-o", stream.c_str(), "--texture", texture.c_str(), "--nodes", "40"};
   ASSERT_EQ(run_m4mesh(static_cast<int>(track.size()), track.data()), 0);
@@ -204,6 +206,24 @@ TEST(Track, RenderOfTheStreamIsWhatWasMeasured) {
   const Image drawn = read_png(picture);
   ASSERT_EQ(drawn.width, 96u);
   ASSERT_EQ(drawn.height, 80u);
+  // The texture is the first frame at the video's size, with the video's frame rate.
+  const Image first = read_png(texture);
+  EXPECT_EQ(first.width, 96u);
+  EXPECT_EQ(first.height, 80u);
+  EXPECT_EQ(png_text(texture, kFrameRateText), "10");
+  const std::string animation = folder / "all.gif";
+  std::vector<const char*> gif{"m4mesh", "-q", "render", stream.c_str(), "-o", animation.c_str(), "--texture", texture.c_str()};
+  ASSERT_EQ(run_m4mesh(static_cast<int>(gif.size()), gif.data()), 0);
+  int error = 0;
+  GifFileType* file = DGifOpenFileName(animation.c_str(), &error);
+  ASSERT_NE(file, nullptr);
+  ASSERT_EQ(DGifSlurp(file), GIF_OK);
+  GraphicsControlBlock control{};
+  DGifSavedExtensionToGCB(file, 0, &control);
+  EXPECT_EQ(control.DelayTime, 10);  // centiseconds
+  EXPECT_EQ(file->SWidth, 96);
+  EXPECT_EQ(file->SHeight, 80);
+  DGifCloseFile(file, &error);
   VideoReader reader(input);
   Image frame;
   for (int t = 0; t <= 5; ++t) ASSERT_TRUE(reader.next(frame));

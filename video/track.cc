@@ -18,17 +18,6 @@ namespace {
 
 [[noreturn]] void refuse(ErrorKind kind, const std::string& message) { throw Error(kind, "", kNoPlane, kNoOffset, message); }
 
-// The texture: the first frame over the mesh's rectangle, its edge pixels
-// repeated where the rectangle reaches past the frame.
-Image texture_over(const Image& frame, const Canvas& box) {
-  Image texture(box.width, box.height);
-  for (uint32_t y = 0; y < box.height; ++y)
-    for (uint32_t x = 0; x < box.width; ++x)
-      texture.at(x, y) = frame.at(static_cast<uint32_t>(std::clamp<int64_t>(box.x0 + x, 0, frame.width - 1)),
-                                  static_cast<uint32_t>(std::clamp<int64_t>(box.y0 + y, 0, frame.height - 1)));
-  return texture;
-}
-
 // Blocks of side × side pixels holding a covered pixel.
 uint32_t blocks_over(uint32_t side, const std::vector<uint8_t>& covered, uint32_t width, uint32_t height) {
   uint32_t count = 0;
@@ -96,9 +85,11 @@ TrackResult track_video(const std::string& path, const TrackSettings& settings) 
     result.mesh = uniform_frame_mesh(w, h, settings.cell_width, settings.cell_height);
   }
   const FrameMesh& mesh = result.mesh;
+  // The texture is the first frame, one texel a pixel (the mesh reaches one
+  // pixel past the last pixel's centre: render lays such a texture so too).
   const Canvas frame_canvas{0, 0, w, h};
-  result.texture = texture_over(frame, canvas_over(mesh.tracking.nodes));
-  const TextureWarp texture_warp(mesh.tracking.nodes, mesh.tracking.triangles, result.texture, frame_canvas);
+  result.texture = frame;
+  const TextureWarp texture_warp(mesh.tracking.nodes, mesh.tracking.triangles, result.texture, frame_canvas, frame_canvas);
   std::vector<uint8_t> covered;
 
   auto measure = [&](const std::vector<Point>& at, bool with_motion) {
