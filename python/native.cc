@@ -149,11 +149,12 @@ py::tuple decode(const py::handle& stream) {
     py::gil_scoped_release release;
     s = decode_mesh3d(bytes);
   }
-  if (in_coding_order(bytes) && s.vertex_count > 0)
-    PyErr_WarnEx(PyExc_UserWarning,
-                 "the stream numbers its vertices in coding order (reorder=True, or an input already in that order): compare "
-                 "it with its original through m4mesh.metrics(original, stream, faces), which maps them",
-                 1);
+  if (in_coding_order(bytes) && s.vertex_count > 0 &&
+      PyErr_WarnEx(PyExc_UserWarning,
+                   "the stream numbers its vertices in coding order (reorder=True, or an input already in that order): compare "
+                   "it with its original through m4mesh.metrics(original, stream, faces), which maps them",
+                   1) < 0)
+    throw py::error_already_set();  // warnings turned into errors
   return py::make_tuple(frames_of(s), faces_of(s.faces));
 }
 

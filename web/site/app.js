@@ -19,7 +19,8 @@ const SAMPLES = [
   ['2D uniform', 'conformance/streams/p04-uniform-split2.m4m'],
 ];
 
-// Parameters after the view name: "#player?stream=a.m4m&texture=t.png".
+// Parameters after the view name: "#player?stream=a.m4m&texture=t.png",
+// "&frame=K" (from 0) to start at frame K, "&pause" to hold it.
 function hashParameters() {
   const [view, query] = location.hash.slice(1).split('?');
   return { view: view || 'player', params: new URLSearchParams(query || '') };
@@ -90,6 +91,7 @@ async function main() {
     const { view, params } = hashParameters();
     showView(view);
     if (params.get('texture')) state.playerView.setTexture(params.get('texture')).catch(report);
+    if (params.has('frame') || params.has('pause')) state.playerView.start(Math.max(0, Number(params.get('frame')) || 0), params.has('pause'));
     if (params.get('stream') && params.get('stream') !== state.source) {
       document.getElementById('url').value = params.get('stream');
       openStream(params.get('stream')).catch(report);

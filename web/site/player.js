@@ -56,6 +56,8 @@ export class Player {
     this.camera = this.perspective;
     this.controls = new OrbitControls(this.perspective, this.renderer.domElement);
     this.controls.addEventListener('change', () => (this.dirty = true));
+    // Once the viewer turns or zooms, the camera stays where they put it.
+    this.controls.addEventListener('start', () => (this.cameraMoved = true));
     this.texture = checkerboard();
     this.playing = true;
     this.frame = 0;
@@ -116,6 +118,9 @@ export class Player {
     this.bounds2d = null;
     this.frame = 0;
     this.shown = null;
+    this.box = new THREE.Box3();
+    this.boxFrames = 0;
+    this.cameraMoved = false;
     this.status.classList.remove('error');
     this.state.player = {
       name, kind: null, codec: null, frames: 0, vertices: 0, progressive: false, bytesTotal: size, bytesReceived: 0,
@@ -160,6 +165,7 @@ export class Player {
         progressive: status.header.progressive, framesDecoded: status.framesDecoded,
       });
       if (!this.mesh && status.framesDecoded > 0) this.build3d(stream, status.header);
+      if (this.mesh) this.frameSequence(stream, status);
       if (this.fpsSession !== this.session) this.fps.value = Math.round(status.header.frameRate), (this.fpsSession = this.session);
     }
     this.changed = true;
@@ -179,14 +185,72 @@ export class Player {
     this.camera = this.perspective;
     this.controls.enabled = true;
     this.load3d(0);
-    geometry.computeBoundingSphere();
-    const { center, radius } = geometry.boundingSphere;
+  }
+
+  // The camera frames every frame decoded so far (a progressive stream's
+  // frames when the download ends): the box they fill, seen from the side
+  // across its longer horizontal extent (y is up; a walk or a gallop goes
+  // across the view), 20° above, as `m4mesh render3d` does.
+  frameSequence(stream, status) {
+    const progressive = status.header.progressive;
+    const frames = status.done || !progressive ? status.framesDecoded : 1;
+    if (frames <= this.boxFrames) return;
+    // A progressive stream's frames change with every unit: framed by the first until the last unit is in.
+    if (progressive) this.box.makeEmpty(), (this.boxFrames = 0);
+    const point = new THREE.Vector3();
+    for (let f = this.boxFrames; f < frames; ++f) {
+      const positions = stream.frame(f);
+      for (let k = 0; k < positions.length; k += 3) this.box.expandByPoint(point.set(positions[k], positions[k + 1], positions[k + 2]));
+    }
+    this.boxFrames = frames;
+    if (this.cameraMoved) return;
+    const center = this.box.getCenter(new THREE.Vector3()), size = this.box.getSize(new THREE.Vector3());
+    const across = size.x >= size.z ? new THREE.Vector3(0, 0, 1) : new THREE.Vector3(1, 0, 0);
+    const elevation = (20 * Math.PI) / 180, azimuth = (25 * Math.PI) / 180;
+    const direction = across.clone().applyAxisAngle(new THREE.Vector3(0, 1, 0), azimuth).multiplyScalar(Math.cos(elevation));
+    direction.y = Math.sin(elevation);
+    // Near enough that the box fills the view, far enough that each corner
+    // lies inside it (with 5 % to spare): per corner, its side offsets over
+    // the tangents of the half fields of view, plus its depth toward the camera.
+    const right = new THREE.Vector3().crossVectors(direction, new THREE.Vector3(0, 1, 0)).normalize().negate();
+    const up = new THREE.Vector3().crossVectors(right, direction).negate();
+    const tanV = Math.tan((this.perspective.fov * Math.PI) / 360) / 1.05, tanH = tanV * this.perspective.aspect;
+    let distance = 1e-6;
+    for (const corner of [0, 1, 2, 3, 4, 5, 6, 7]) {
+      const p = new THREE.Vector3(corner & 1 ? size.x : 0, corner & 2 ? size.y : 0, corner & 4 ? size.z : 0).add(this.box.min).sub(center);
+      const depth = p.dot(direction);
+      distance = Math.max(distance, depth + Math.abs(p.dot(right)) / tanH, depth + Math.abs(p.dot(up)) / tanV);
+    }
     this.controls.target.copy(center);
-    this.perspective.position.set(center.x, center.y + radius * 0.4, center.z + radius * 2.6);
-    this.perspective.near = radius / 100;
-    this.perspective.far = radius * 100;
+    this.perspective.position.copy(center).addScaledVector(direction, distance);
+    this.perspective.near = distance / 100;
+    this.perspective.far = distance * 100;
     this.perspective.updateProjectionMatrix();
     this.controls.update();
+    this.state.player.framedFrames = frames;
+    this.dirty = true;
+  }
+
+  // The share of every decoded frame's vertices the camera sees (for the tests).
+  visibleShare() {
+    if (!this.stream || !this.mesh) return 0;
+    this.perspective.updateMatrixWorld();
+    let seen = 0, total = 0;
+    const point = new THREE.Vector3();
+    for (let f = 0; f < (this.state.player.framesDecoded ?? 0); ++f) {
+      const positions = this.stream.frame(f);
+      for (let k = 0; k < positions.length; k += 3, ++total) {
+        point.set(positions[k], positions[k + 1], positions[k + 2]).project(this.perspective);
+        if (Math.abs(point.x) <= 1 && Math.abs(point.y) <= 1 && point.z <= 1) ++seen;
+      }
+    }
+    return total ? seen / total : 0;
+  }
+
+  // The frame to show first and whether to hold it (URL parameters frame and pause).
+  start(frame, paused) {
+    this.pendingFrame = frame;
+    if (paused) this.playing = false, (this.playButton.textContent = 'Play');
   }
 
   load3d(index) {
@@ -279,6 +343,7 @@ export class Player {
 
   tick(time) {
     const available = this.available();
+    if (this.pendingFrame !== undefined && available > this.pendingFrame) this.frame = this.pendingFrame, (this.pendingFrame = undefined), (this.changed = true);
     if (this.playing && available > 0 && time - this.lastTick >= 1000 / Math.max(1, Number(this.fps.value))) {
       this.lastTick = time;
       this.frame = (this.frame + 1) % available;

@@ -100,6 +100,20 @@ try {
   expect(shown.player.codec === 'bfs3d' && shown.player.error === null, `3D player: ${shown.player.codec}, ${shown.player.frames} frames, ${shown.player.framesDrawn} drawn`);
   await picture(page, 'player-3d');
   await page.close();
+  // The camera frames the whole sequence, not frame 0: a vertex that jumps 2^26 grid steps in frame 1 stays in view.
+  page = await openPage(browser, `${server.url}#player?stream=conformance/mesh3d/streams/bfs3d-08-position-limits.m4m`);
+  shown = await stateWhen(page, (s) => s.player?.done && s.player.framedFrames === 2);
+  const seen = await page.evaluate(() => window.m4mesh.playerView.visibleShare());
+  expect(seen === 1, `3D player: ${(100 * seen).toFixed(1)} % of every frame's vertices in view`);
+  await page.close();
+  // URL parameters: start at frame 3 and hold it.
+  page = await openPage(browser, `${server.url}#player?stream=conformance/mesh3d/streams/bfs3d-01-average.m4m&frame=3&pause`);
+  shown = await stateWhen(page, (s) => s.player?.done && s.player.frameShown === 3);
+  await new Promise((resolve) => setTimeout(resolve, 1000));
+  const held = await page.evaluate(() => window.m4mesh.player);
+  expect(held.frameShown === 3 && held.framesDrawn === shown.player.framesDrawn,
+    `3D player: &frame=3&pause holds frame ${held.frameShown} (${held.framesDrawn - shown.player.framesDrawn} frames drawn in a second)`);
+  await page.close();
   page = await openPage(browser, `${server.url}#player?stream=conformance/streams/p35-long-sequence.m4m`);
   shown = await stateWhen(page, (s) => s.player?.done && s.player.framesDrawn >= 3);
   expect(shown.player.kind === '2d' && shown.player.frames > 2, `2D player: ${shown.player.frames} planes, ${shown.player.framesDrawn} drawn`);
