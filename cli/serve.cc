@@ -2,6 +2,9 @@
 
 #include <httplib.h>
 
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -51,14 +54,53 @@ fs::path file_for(const fs::path& root, const std::string& request_path) {
   return file;
 }
 
+// The streams named (files, and the .m4m files of folders), by the name
+// they are served under (streams/NAME).
+std::map<std::string, fs::path> streams_of(const std::vector<std::string>& paths) {
+  std::map<std::string, fs::path> streams;
+  auto add = [&streams](const fs::path& file) {
+    const std::string name = file.filename().string();
+    if (!streams.emplace(name, fs::weakly_canonical(file)).second) throw usage_error("two streams named " + name + ": rename one");
+  };
+  for (const std::string& path : paths) {
+    if (fs::is_directory(path)) {
+      std::vector<fs::path> found;
+      for (const fs::directory_entry& entry : fs::directory_iterator(path))
+        if (entry.is_regular_file() && entry.path().extension() == ".m4m") found.push_back(entry.path());
+      if (found.empty()) throw usage_error(path + ": neither a site (no index.html) nor a folder of streams (no .m4m file)");
+      std::sort(found.begin(), found.end());
+      for (const fs::path& file : found) add(file);
+    } else if (fs::is_regular_file(path) && fs::path(path).extension() == ".m4m") {
+      add(path);
+    } else {
+      throw usage_error(path + ": not a folder or a .m4m stream");
+    }
+  }
+  return streams;
+}
+
+std::string streams_json(const std::map<std::string, fs::path>& streams) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& [name, file] : streams) list.push_back({{"name", name}, {"url", "streams/" + name}, {"bytes", fs::file_size(file)}});
+  return list.dump() + "\n";
+}
+
 }  // namespace
 
 int run_serve(const ServeOptions& options) {
-  const fs::path root = options.folder.empty() ? default_site() : fs::weakly_canonical(options.folder);
-  if (!fs::is_directory(root)) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, root.string() + ": not a folder");
+  // One folder with a page: that folder. Else the site, with the streams named.
+  const bool folder = options.paths.size() == 1 && fs::exists(fs::path(options.paths[0]) / "index.html");
+  const std::map<std::string, fs::path> streams = folder ? std::map<std::string, fs::path>{} : streams_of(options.paths);
+  const fs::path root = folder ? fs::weakly_canonical(options.paths[0]) : default_site();
   httplib::Server server;
   server.Get(R"(/.*)", [&](const httplib::Request& request, httplib::Response& response) {
-    const fs::path file = file_for(root, request.path);
+    if (!streams.empty() && request.path == "/streams.json") {
+      response.set_header("Cache-Control", "no-store");
+      response.set_content(streams_json(streams), "application/json");
+      return;
+    }
+    const auto stream = request.path.starts_with("/streams/") ? streams.find(request.path.substr(9)) : streams.end();
+    const fs::path file = stream != streams.end() ? stream->second : file_for(root, request.path);
     if (file.empty()) {
       response.status = 404;
       response.set_content("not found: " + request.path + "\n", "text/plain");
@@ -92,7 +134,8 @@ int run_serve(const ServeOptions& options) {
                 "cannot listen on " + options.host + ":" + std::to_string(options.port) + " (in use? --port N, or --port 0 for any free port)");
   // The address on standard output, first line, flushed: scripts read it.
   const std::string rate = options.rate ? " (streams, .m4m, at " + std::to_string(options.rate) + " bytes/s)" : "";
-  std::printf("serving %s at http://%s:%d/%s\n", root.c_str(), options.host.c_str(), port, rate.c_str());
+  const std::string listed = streams.empty() ? "" : " with " + std::to_string(streams.size()) + " stream" + (streams.size() == 1 ? "" : "s") + " listed";
+  std::printf("serving %s%s at http://%s:%d/%s\n", root.c_str(), listed.c_str(), options.host.c_str(), port, rate.c_str());
   std::fflush(stdout);
   if (!server.listen_after_bind()) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, "the server stopped");
   return 0;

@@ -410,6 +410,9 @@ port=$(sed -n 's|.*http://127.0.0.1:\([0-9]*\)/.*|\1|p' "$work/serving")
 status=0; timeout 5 "$m4mesh" serve "$work/site" --port "$port" > /dev/null 2> "$work/err" || status=$?
 kill "$server"; wait "$server" 2> /dev/null || true
 [ "$status" = 1 ] && grep -q "cannot listen on 127.0.0.1:$port (in use?" "$work/err" || fail "serve: a port in use: exit $status, $(cat "$work/err")"
+# serve: a file that is neither a folder nor a stream is a usage error.
+status=0; "$m4mesh" serve README.md --port 0 2> "$work/err" || status=$?
+[ "$status" = 2 ] && grep -q "README.md: not a folder or a .m4m stream" "$work/err" || fail "serve README.md: exit $status, $(cat "$work/err")"
 
 "$m4mesh" demo --frames 12 > "$work/demo" || fail "demo failed"
 grep -q "bit-exact" "$work/demo" || fail "demo not bit-exact"

@@ -36,8 +36,18 @@ function showView(view) {
 // The stream as a ReadableStream of Uint8Array chunks, from a URL or a File.
 async function openBody(source) {
   if (source instanceof File) return { body: source.stream(), size: source.size, name: source.name };
-  const response = await fetch(source);
-  if (!response.ok) throw new Error(`${source}: HTTP ${response.status}`);
+  let response;
+  try {
+    response = await fetch(source);
+  } catch (error) {
+    // The browser says only "Failed to fetch": name the URL and the usual reasons.
+    const url = new URL(source, location.href);
+    const reason = url.origin === location.origin
+      ? 'the server did not answer'
+      : `another server (${url.origin}) that does not allow this page (${location.origin}) to read it (no Access-Control-Allow-Origin), or does not answer`;
+    throw new Error(`${url.href}: cannot fetch (${error.message}): ${reason}. Serve your streams with the page: m4mesh serve STREAM.m4m …`);
+  }
+  if (!response.ok) throw new Error(`${new URL(source, location.href).href}: HTTP ${response.status} ${response.statusText}`);
   const length = Number(response.headers.get('Content-Length')) || 0;
   return { body: response.body, size: length, name: source };
 }
@@ -59,6 +69,16 @@ async function main() {
   state.ready = true;
 
   const samples = document.getElementById('samples');
+  // Streams `m4mesh serve STREAM.m4m …` was given come first.
+  const served = await fetch('streams.json').then((r) => (r.ok ? r.json() : [])).catch(() => []);
+  state.served = served.map((s) => s.name);
+  for (const { name, url } of served) {
+    const link = document.createElement('a');
+    link.href = `#player?stream=${url}`;
+    link.textContent = name;
+    link.className = 'served';
+    samples.append(link);
+  }
   for (const [label, url] of SAMPLES) {
     const link = document.createElement('a');
     link.href = `#player?stream=${url}`;

@@ -114,6 +114,23 @@ try {
   expect(held.frameShown === 3 && held.framesDrawn === shown.player.framesDrawn,
     `3D player: &frame=3&pause holds frame ${held.frameShown} (${held.framesDrawn - shown.player.framesDrawn} frames drawn in a second)`);
   await page.close();
+
+  // Your own streams: `m4mesh serve A.m4m B.m4m` lists them in the page and they play; a stream the page
+  // cannot fetch fails naming its URL and why.
+  const own = await serve(m4mesh, ['lcc-01-stream.m4m', 'ao-06-direct-root.m4m'].map((f) => join(site, 'conformance/mesh3d/streams', f)));
+  page = await openPage(browser, own.url);
+  shown = await stateWhen(page, (s) => s.ready && s.served?.length === 2);
+  expect(shown.served.join() === 'ao-06-direct-root.m4m,lcc-01-stream.m4m', `serve A B: the page lists ${shown.served.join(', ')}`);
+  await page.locator('a.served', { hasText: 'lcc-01-stream.m4m' }).click();
+  shown = await stateWhen(page, (s) => s.player?.done && s.player.framesDrawn > 0);
+  expect(shown.source === 'streams/lcc-01-stream.m4m' && shown.player.codec === 'lcc', `serve A B: ${shown.source} plays (${shown.player.codec})`);
+  await page.close();
+  page = await openPage(browser, `${own.url}#player?stream=http://127.0.0.1:9/elsewhere.m4m`);
+  const failure = await (await page.waitForFunction(() => window.m4mesh.failure, null, { timeout: 60000 })).jsonValue();
+  expect(failure.startsWith('http://127.0.0.1:9/elsewhere.m4m: cannot fetch') && failure.includes('Access-Control-Allow-Origin'),
+    `a stream elsewhere: ${failure}`);
+  await page.close();
+  own.stop();
   page = await openPage(browser, `${server.url}#player?stream=conformance/streams/p35-long-sequence.m4m`);
   shown = await stateWhen(page, (s) => s.player?.done && s.player.framesDrawn >= 3);
   expect(shown.player.kind === '2d' && shown.player.frames > 2, `2D player: ${shown.player.frames} planes, ${shown.player.framesDrawn} drawn`);

@@ -8,9 +8,10 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
 
-// `m4mesh serve FOLDER --port 0 [--rate R]`; resolves to { url, stop }.
+// `m4mesh serve FOLDER --port 0 [--rate R]` (or several paths: streams
+// served with the tool's own site); resolves to { url, stop }.
 export function serve(m4mesh, folder, rate = 0) {
-  const args = ['serve', folder, '--port', '0', ...(rate ? ['--rate', String(rate)] : [])];
+  const args = ['serve', ...[].concat(folder), '--port', '0', ...(rate ? ['--rate', String(rate)] : [])];
   const child = spawn(m4mesh, args, { stdio: ['ignore', 'pipe', 'inherit'] });
   return new Promise((resolve, reject) => {
     let out = '';
