@@ -191,7 +191,7 @@ int run_m4mesh(int argc, const char* const* argv) {
   demo_cmd->add_option("--gif", demo_options.gif, "also draw the decoded planes warping a checkerboard into this animated GIF");
 
   ServeOptions serve_options;
-  CLI::App* serve_cmd = app.add_subcommand("serve", "Serve the web player and analyzer (or any folder) over HTTP, on loopback unless --host says otherwise");
+  CLI::App* serve_cmd = app.add_subcommand("serve", "Serve the web player and analyzer (with your streams listed, or another site's folder) over HTTP, on loopback unless --host says otherwise");
   serve_cmd->add_option("paths", serve_options.paths,
                         "a folder to serve (default: the site the build made beside the tool), or streams (.m4m files, folders of them): the "
                         "site with those streams listed in its player");

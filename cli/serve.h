@@ -1,7 +1,7 @@
 // `m4mesh serve`: the web site (the player and the analyzer, docs/web.md)
-// or any folder of static files, over HTTP on loopback by default; given
-// streams (.m4m files, or folders of them without a page), the site with
-// those streams listed in its player.
+// or a folder with its own index.html, over HTTP on loopback by default;
+// given streams (.m4m files, or folders of them without a page), the site
+// with those streams listed in its player.
 #pragma once
 
 #include <cstdint>
