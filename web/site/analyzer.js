@@ -66,8 +66,12 @@ export class Analyzer {
       const field = (name) => own.find((l) => l[3] === name)?.[5];
       const type = { 0: 'base mesh', 1: 'frame', 2: 'refinement', 3: 'hash', 4: 'group hash' }[field('unit_type')] ?? `type ${field('unit_type') ?? '?'}`;
       const frame = field('frame_index');
+      // A refinement unit refines every frame (its frame_index is 0): named by its cluster and kind.
+      const kind = { 0: 'start', 1: 'component', 2: 'mesh component', 3: 'trajectory component' }[field('unit_kind')];
+      const what = String(field('unit_type')) === '2' ? (field('cluster') !== undefined ? `, cluster ${field('cluster')} ${kind ?? ''}` : '')
+        : frame !== undefined ? ', frame ' + frame : '';
       parts.push({
-        label: `unit ${index}: ${type}${frame !== undefined ? ', frame ' + frame : ''}`, unit: index, offset: unit.offset,
+        label: `unit ${index}: ${type}${what.trimEnd()}`, unit: index, offset: unit.offset,
         size: `${unit.bytes} B`, lines: own,
       });
     });

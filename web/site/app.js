@@ -28,6 +28,8 @@ function hashParameters() {
 
 function showView(view) {
   state.view = view;
+  // The analyzer traces and checks a whole stream: only when its view is open.
+  if (view === 'analyzer' && pendingAnalysis) analyze();
   for (const section of document.querySelectorAll('.view')) section.classList.toggle('active', section.id === view);
   for (const link of document.querySelectorAll('nav a')) link.classList.toggle('active', link.dataset.view === view);
   if (view === 'player') state.playerView?.resize();
@@ -52,12 +54,23 @@ async function openBody(source) {
   return { body: response.body, size: length, name: source };
 }
 
+// The stream the analyzer has yet to see: its bytes (a promise) and name.
+let pendingAnalysis = null;
+
+function analyze() {
+  const { bytes, name } = pendingAnalysis;
+  pendingAnalysis = null;
+  state.analyzerView.load(bytes, name).catch(report);
+}
+
 async function openStream(source) {
   state.source = source instanceof File ? source.name : source;
+  state.analyzer = null;
   const opened = await openBody(source);
-  // The analyzer needs every byte; the player takes them as they arrive.
+  // The analyzer needs every byte, when its view opens; the player takes them as they arrive.
   const tee = opened.body.tee();
-  state.analyzerView.load(new Response(tee[1]).arrayBuffer(), opened.name);
+  pendingAnalysis = { bytes: new Response(tee[1]).arrayBuffer(), name: opened.name };
+  if (state.view === 'analyzer') analyze();
   await state.playerView.play(tee[0], opened.size, opened.name);
 }
 

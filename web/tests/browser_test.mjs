@@ -151,6 +151,12 @@ try {
   expect(applied.every((units, k) => k === 0 || units > applied[k - 1]) && applied.length >= 3,
     `progressive: units applied when frames were drawn grow (${applied.length} steps, ${applied[0]} … ${applied[applied.length - 1]})`);
   expect(shown.player.framesDrawnDuringDownload > 0, `progressive: ${shown.player.framesDrawnDuringDownload} frames drawn during the download`);
+  // The analyzer has not traced the stream while only the player was open; it does once its view opens.
+  expect(shown.analyzer === null, 'player view: the analyzer waits for its view');
+  await page.evaluate(() => (location.hash = location.hash.replace('#player', '#analyzer')));
+  shown = await stateWhen(page, (s) => s.analyzer?.elementsShown > 0);
+  expect(shown.analyzer.parts.some((p) => /refinement, cluster \d+ (start|component)/.test(p.label)),
+    `analyzer opened later: ${shown.analyzer.parts.length} parts (${shown.analyzer.parts[2]?.label})`);
   await page.close();
 
   // 5. The analyzer: the units, the elements of one, the chart; a stream with an error located in the list.
