@@ -48,10 +48,8 @@ std::vector<std::pair<NodeIndex, NodeIndex>> edges_of(const MeshSequence& s) {
   return edges;
 }
 
-}  // namespace
-
-double kg_error(const MeshSequence& a, const MeshSequence& b) {
-  require_comparable(a, b);
+// KG error of sequences already found comparable.
+double kg_of(const MeshSequence& a, const MeshSequence& b) {
   double error = 0, spread = 0;
   for (size_t f = 0; f < a.frames.size(); ++f) {
     const std::vector<Vec3>& o = a.frames[f];
@@ -72,8 +70,6 @@ double kg_error(const MeshSequence& a, const MeshSequence& b) {
   return spread > 0 ? 100.0 * std::sqrt(error) / std::sqrt(spread) : 0.0;
 }
 
-namespace {
-
 // The diagonal of the largest per-frame bounding box (Eq. 5's dmax).
 double largest_box_diagonal(const MeshSequence& a) {
   double dmax = 0;
@@ -87,6 +83,11 @@ double largest_box_diagonal(const MeshSequence& a) {
 double psnr_of(double dmax, double mse) { return mse > 0 ? 10.0 * std::log10(dmax * dmax / mse) : INFINITY; }
 
 }  // namespace
+
+double kg_error(const MeshSequence& a, const MeshSequence& b) {
+  require_comparable(a, b);
+  return kg_of(a, b);
+}
 
 double psnr(const MeshSequence& a, const MeshSequence& b) {
   require_comparable(a, b);
@@ -300,15 +301,16 @@ SequenceMetrics MetricsReference::compare(const MeshSequence& b) const {
       squared += e * e;
       m.max_error = std::max(m.max_error, e);
     }
-  m.rmse = std::sqrt(squared / (static_cast<double>(a.frames.size()) * a.vertex_count));
-  m.kg_error = kg_error(a, b);
-  m.psnr = psnr(a, b);
+  const double mse = squared / (static_cast<double>(a.frames.size()) * a.vertex_count);
+  m.rmse = std::sqrt(mse);
+  m.kg_error = kg_of(a, b);
+  m.psnr = psnr_of(largest_box_diagonal(a), mse);
   sted(b, m.sted_spatial, m.sted_temporal, m.sted);
   return m;
 }
 
 SequenceMetrics compare_sequences(const MeshSequence& a, const MeshSequence& b, const StedParams& params) {
-  require_comparable(a, b);
+  require_comparable(a, b);  // before the reference's set-up: an error names what differs
   return MetricsReference(a, params).compare(b);
 }
 
