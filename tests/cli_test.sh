@@ -385,6 +385,10 @@ units=$(( $("$m4mesh" info conformance/mesh3d/streams/bfs3d-01-average.m4m | sed
 status=0; "$m4mesh" check conformance/mesh3d/streams/x-10-bfs3d-lengths.m4m > "$work/out" || status=$?
 [ "$status" = 1 ] && grep -q ": $units units, 1 error, 1 warning: NOT conformant$" "$work/out" || fail "check of one error: $(tail -1 "$work/out")"
 
+# An error in a refinement unit (it refines every frame) names its unit, no frame.
+status=0; "$m4mesh" check conformance/mesh3d/streams/x-62-cpca-beyond-trajectories.m4m > "$work/out" || status=$?
+[ "$status" = 1 ] && grep -q "^error: unit 6, cluster at bit 2952: " "$work/out" || fail "check of a refinement unit: $(head -1 "$work/out")"
+
 # A 2D stream given where 3D frames are read is named as such, not parsed as OBJ.
 for command in encode3d:m4m render3d:png; do
   status=0; "$m4mesh" "${command%:*}" conformance/streams/p01-hand-3x3.m4m -o "$work/from-2d.${command#*:}" 2> "$work/err" || status=$?

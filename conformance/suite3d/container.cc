@@ -213,7 +213,7 @@ std::vector<SuiteCase> container_rules_rejected(const std::vector<SuiteCase>& va
                                    put_field(refinement.payload, unit_header_field("unit_type"), static_cast<uint32_t>(UnitType::kRefinement));
                                    p.units.insert(p.units.begin() + 2, refinement);  // after the base mesh and its hash
                                  }),
-                          ErrorKind::kStructure, "unit_type", 1));
+                          ErrorKind::kStructure, "unit_type", kNoPlane));
   suite.push_back(invalid("x-77-frame-hash-ahead", "the frame hash unit after frame 1 labelled frame 2", {"container-hash"},
                           edited(base, [](ContainerParts& p) { put_field(unit_of(p, UnitType::kFrameHash, 1).payload, unit_header_field("frame_index"), 2); }),
                           ErrorKind::kStructure, "frame_index", 2));

@@ -372,11 +372,11 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                           ErrorKind::kStructure, "frame_count", kNoPlane));
   suite.push_back(invalid("x-31-cpca-cluster-beyond", "a refinement unit for cluster 4 of 4", {"cpca"},
                           edited(base, [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, refinement_field("cluster"), 4); }),
-                          ErrorKind::kOutOfRange, "cluster", 0));
+                          ErrorKind::kOutOfRange, "cluster", kNoPlane));
   suite.push_back(invalid("x-95-cpca-cluster-255", "a refinement unit for cluster 255, one past the most clusters", {"cpca"},
                           edited(stream_of(valid, "cpca-17-limits"),
                                  [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, refinement_field("cluster"), 255); }),
-                          ErrorKind::kOutOfRange, "cluster", 0));
+                          ErrorKind::kOutOfRange, "cluster", kNoPlane));
   {
     // cpca-17's clusters are one vertex each over 2 frames (at most 2
     // components of kinds 1 and 2, 1 of kind 3); cluster 254 has none, 0 one.
@@ -387,17 +387,17 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
     };
     suite.push_back(invalid("x-121-cpca-trajectory-coefficient-range", "a trajectory component whose first coefficient is 2^23 + 1", {"cpca"},
                             appended(crafted_refinement(kCpcaMaxClusters - 1, kCpcaTrajectory, {{1, 0}, {2, kBeyond}})), ErrorKind::kOutOfRange,
-                            "trajectory_coefficient", 0));
+                            "trajectory_coefficient", kNoPlane));
     suite.push_back(invalid("x-122-cpca-mesh-coefficient-range", "a unit_kind 2 component whose first coefficient is 2^23 + 1", {"cpca"},
                             appended(crafted_refinement(0, kCpcaMeshComponent, {{3, 0}, {4, 0}, {5, 0}, {6, kBeyond}})),
-                            ErrorKind::kOutOfRange, "coefficient", 0));
+                            ErrorKind::kOutOfRange, "coefficient", kNoPlane));
     const FieldBytes length = refinement_field("arithmetic_bytes");
     suite.push_back(invalid("x-120-cpca-arithmetic-bytes", "arithmetic_bytes longer than the unit", {"cpca"},
                             edited(limits, [&](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, length, 0x7F000000); }),
-                            ErrorKind::kOutOfRange, "arithmetic_bytes", 0));
+                            ErrorKind::kOutOfRange, "arithmetic_bytes", kNoPlane));
     suite.push_back(invalid("x-123-cpca-start-left-over", "a byte after a start's last bin, counted by arithmetic_bytes", {"cpca"},
                             edited(limits, [&](ContainerParts& p) { add_bins_byte(p.units[refinement_unit(p, 0)].payload, length); }),
-                            ErrorKind::kStructure, "translation", 0));
+                            ErrorKind::kStructure, "translation", kNoPlane));
     // cpca-17's units: 4 starts, then kinds 1, 2 and 3.
     const struct {
       const char* id;
@@ -410,11 +410,11 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
     for (const auto& c : raw_left_over)
       suite.push_back(invalid(c.id, c.purpose, {"cpca"},
                               edited(limits, [&](ContainerParts& p) { p.units[refinement_unit(p, c.unit)].payload.push_back(0x00); }),
-                              ErrorKind::kStructure, c.element, 0));
+                              ErrorKind::kStructure, c.element, kNoPlane));
   }
   suite.push_back(invalid("x-32-cpca-unit-kind", "unit_kind 4", {"cpca"},
                           edited(base, [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, refinement_field("unit_kind"), 4); }),
-                          ErrorKind::kOutOfRange, "unit_kind", 0));
+                          ErrorKind::kOutOfRange, "unit_kind", kNoPlane));
   // The first component unit of a kind moves before every refinement unit (they follow the base mesh).
   auto component_first = [](uint32_t kind) {
     return [kind](ContainerParts& p) {
@@ -426,25 +426,25 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
     };
   };
   suite.push_back(invalid("x-33-cpca-not-started", "a component of a cluster before the cluster's start", {"cpca"},
-                          edited(base, component_first(kCpcaComponent)), ErrorKind::kStructure, "unit_kind", 0));
+                          edited(base, component_first(kCpcaComponent)), ErrorKind::kStructure, "unit_kind", kNoPlane));
   suite.push_back(invalid("x-65-cpca-mesh-not-started", "a unit_kind 2 component of a cluster before the cluster's start", {"cpca"},
-                          edited(stream_of(valid, "cpca-11-mesh-basis"), component_first(kCpcaMeshComponent)), ErrorKind::kStructure, "unit_kind", 0));
+                          edited(stream_of(valid, "cpca-11-mesh-basis"), component_first(kCpcaMeshComponent)), ErrorKind::kStructure, "unit_kind", kNoPlane));
   suite.push_back(invalid("x-66-cpca-trajectory-not-started", "a trajectory component of a cluster before the cluster's start", {"cpca"},
                           edited(stream_of(valid, "cpca-12-trajectories"), component_first(kCpcaTrajectory)), ErrorKind::kStructure, "unit_kind",
-                          0));
+                          kNoPlane));
   suite.push_back(invalid("x-34-cpca-second-start", "a cluster's start sent twice", {"cpca"},
                           edited(base,
                                  [](ContainerParts& p) {
                                    const size_t first = refinement_unit(p, 0);
                                    p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(first) + 1, p.units[first]);
                                  }),
-                          ErrorKind::kStructure, "unit_kind", 0));
+                          ErrorKind::kStructure, "unit_kind", kNoPlane));
   suite.push_back(invalid("x-35-cpca-refinement-frame", "a refinement unit naming frame 1", {"cpca"},
                           edited(base, [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, unit_header_field("frame_index"), 1); }),
-                          ErrorKind::kStructure, "frame_index", 1));
+                          ErrorKind::kStructure, "frame_index", kNoPlane));
   suite.push_back(invalid("x-38-cpca-shift", "shift 64", {"cpca"},
                           edited(base, [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, refinement_field("shift"), 64); }),
-                          ErrorKind::kOutOfRange, "shift", 0));
+                          ErrorKind::kOutOfRange, "shift", kNoPlane));
   {
     // Values beyond their ranges, in the first refinement units: cluster
     // 0's start, then one of its components.
@@ -484,7 +484,7 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                                        else
                                          p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(start) + 1, ContainerUnit{0, 0, unit});
                                      }),
-                              ErrorKind::kOutOfRange, c.element, 0));
+                              ErrorKind::kOutOfRange, c.element, kNoPlane));
   }
   {
     // One cluster over 3 frames has 3 components: its fourth is one too many.
@@ -502,7 +502,7 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                                      for (size_t extra = components; extra < 4; ++extra)
                                        p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(last) + 1, copy);
                                    }),
-                            ErrorKind::kStructure, "cluster", 0));
+                            ErrorKind::kStructure, "cluster", kNoPlane));
   }
   {
     // One cluster of 4 vertices has at most 4 trajectory components: a fifth is one too many.
@@ -522,7 +522,7 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                                      for (size_t extra = components; extra < 5; ++extra)
                                        p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(last) + 1, copy);
                                    }),
-                            ErrorKind::kStructure, "cluster", 0));
+                            ErrorKind::kStructure, "cluster", kNoPlane));
   }
   return suite;
 }

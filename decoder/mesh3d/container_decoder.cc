@@ -134,7 +134,8 @@ void Mesh3dDecoder::decode_unit(size_t index) {
   unit_.frames.clear();
   unit_.verified.clear();
   const UnitHeader header = begin_unit(index);
-  const int64_t frame = header.frame_index;
+  // A refinement unit refines every frame: its errors name none.
+  const int64_t frame = header.type() == UnitType::kRefinement ? kNoPlane : int64_t{header.frame_index};
   if (index == 0 && (header.type() != UnitType::kBaseMesh || header.frame_index != 0))
     fail(ErrorKind::kStructure, index, frame, "unit_type", "the first unit must be the base mesh of frame 0");
   if (header.type() == UnitType::kFrameHash)
