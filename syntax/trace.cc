@@ -1,6 +1,5 @@
 #include "syntax/trace.h"
 
-
 #include <cstdio>
 #include <sstream>
 #include <string>
@@ -23,11 +22,13 @@ void Trace::prefix(uint64_t offset, std::string_view name, int bits) {
 }
 
 void Trace::element(uint64_t offset, std::string_view name, int bits, int64_t value) {
+  if (!shown()) return;
   prefix(offset, name, bits);
   out_ << value << '\n';
 }
 
 void Trace::binary32(uint64_t offset, std::string_view name, uint32_t bits) {
+  if (!shown()) return;
   prefix(offset, name, 32);
   char buffer[48];
   std::snprintf(buffer, sizeof buffer, " (%.9g)", static_cast<double>(bit_cast<float>(bits)));
@@ -35,6 +36,8 @@ void Trace::binary32(uint64_t offset, std::string_view name, uint32_t bits) {
 }
 
 void Trace::start_code(uint64_t offset, std::string_view name, uint32_t value) {
+  if (name == "mesh_object_plane_start_code") ++part_;  // a 2D plane begins
+  if (!shown()) return;
   prefix(offset, name, 32);
   char buffer[16];
   std::snprintf(buffer, sizeof buffer, "0x%08x", value);
@@ -42,6 +45,7 @@ void Trace::start_code(uint64_t offset, std::string_view name, uint32_t value) {
 }
 
 void Trace::bit_string(uint64_t offset, std::string_view name, int bits, uint32_t value) {
+  if (!shown()) return;
   prefix(offset, name, bits);
   std::string s;
   for (int i = bits - 1; i >= 0; --i) s += ((value >> i) & 1) ? '1' : '0';
@@ -49,6 +53,7 @@ void Trace::bit_string(uint64_t offset, std::string_view name, int bits, uint32_
 }
 
 void Trace::bytes(uint64_t offset, std::string_view name, std::span<const uint8_t> data) {
+  if (!shown()) return;
   prefix(std::to_string(offset + offset_base_), name, "B");
   out_ << data.size() << " bytes";
   if (data.size() <= 16) {
@@ -60,11 +65,13 @@ void Trace::bytes(uint64_t offset, std::string_view name, std::span<const uint8_
 }
 
 void Trace::bin(std::string_view section, uint64_t index, std::string_view name, int context, int value) {
+  if (!symbols_ || !shown()) return;
   prefix(std::string(section) + ":" + std::to_string(index), name, "b");
   out_ << value << "  ctx " << context << '\n';
 }
 
 void Trace::raw(std::string_view section, uint64_t bit, std::string_view name, int bits, int64_t value) {
+  if (!symbols_ || !shown()) return;
   prefix(std::string(section) + ":" + std::to_string(bit), name, std::to_string(bits));
   out_ << value << '\n';
 }

@@ -18,12 +18,29 @@ namespace m4mesh {
 class Trace {
  public:
   explicit Trace(std::ostream& out) : out_(out) {}
-  // A trace into `out` with the location of `like`.
-  Trace(std::ostream& out, const Trace& like) : out_(out), location_(like.location_), offset_base_(like.offset_base_) {}
+  // A trace into `out` with the location and selection of `like`.
+  Trace(std::ostream& out, const Trace& like)
+      : out_(out),
+        location_(like.location_),
+        offset_base_(like.offset_base_),
+        part_(like.part_),
+        only_part_(like.only_part_),
+        symbols_(like.symbols_) {}
 
-  // Starts a 3D payload (or the end code, with no payload): its location
-  // and its start code at offset 0; the payload's offsets count from bit 32.
-  void begin_payload(std::string location, std::string_view start_code_name, uint32_t code) {
+  // A stream's parts, traced one at a time: the 3D object header (−1) and
+  // unit k (k), the end code (kEndPart); the 2D mesh object (−1) and plane
+  // k, which runs to the next plane start code. Prints only part `part`.
+  static constexpr int64_t kEndPart = INT64_MAX;
+  void only_part(int64_t part) { only_part_ = part; }
+  // The part the decoder or encoder is in.
+  int64_t part() const { return part_; }
+  // Prints fixed fields and byte sections only, no bins and raw bits.
+  void without_symbols() { symbols_ = false; }
+
+  // Starts a 3D payload (or the end code, with no payload): its part, its
+  // location and its start code at offset 0; the payload's offsets count from bit 32.
+  void begin_payload(int64_t part, std::string location, std::string_view start_code_name, uint32_t code) {
+    part_ = part;
     location_ = std::move(location);
     offset_base_ = 0;
     start_code(0, start_code_name, code);
@@ -44,11 +61,15 @@ class Trace {
   void raw(std::string_view section, uint64_t bit, std::string_view name, int bits, int64_t value);
 
  private:
+  bool shown() const { return !only_part_ || *only_part_ == part_; }
   void prefix(std::string_view position, std::string_view name, std::string_view size);
   void prefix(uint64_t offset, std::string_view name, int bits);
   std::ostream& out_;
   std::string location_;
   uint64_t offset_base_ = 0;
+  int64_t part_ = -1;
+  std::optional<int64_t> only_part_;
+  bool symbols_ = true;
 };
 
 // One line of a trace read back (tools and tests): for a 3D line its unit

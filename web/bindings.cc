@@ -7,6 +7,8 @@
 #include <emscripten/val.h>
 
 #include <memory>
+#include <optional>
+#include <span>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -91,24 +93,36 @@ std::string check(const val& bytes) {
   });
 }
 
+// Traces a stream into `text`: its every part, or only `part` (Trace's
+// parts), whose decoding stops once that part is read.
+void trace_into(std::ostringstream& text, std::span<const uint8_t> stream, int method, std::optional<int64_t> part, bool symbols) {
+  Trace tracer(text);
+  if (part) tracer.only_part(*part);
+  if (!symbols) tracer.without_symbols();
+  if (is_mesh3d_stream(stream)) {
+    Decode3dOptions options;
+    options.trace = &tracer;
+    Mesh3dDecoder decoder(stream, options);
+    while ((!part || static_cast<int64_t>(decoder.units_taken()) <= *part) && decoder.next_unit()) {
+    }
+    return;
+  }
+  DecoderOptions options;
+  options.method = method_of(method);
+  options.trace = &tracer;
+  Decoder decoder(stream, options);
+  while ((!part || tracer.part() <= *part) && decoder.next()) {
+  }
+}
+
 // {"lines": [[unit, frame, position, name, size, value, context]], "error"?}:
 // `m4mesh trace`, parsed; the lines before an error are kept.
-std::string trace(const val& bytes, int method) {
+std::string traced_lines(const val& bytes, int method, std::optional<int64_t> part, bool symbols) {
   const std::vector<uint8_t> stream = bytes_of(bytes);
   std::ostringstream text;
   json out;
   try {
-    if (is_mesh3d_stream(stream)) {
-      trace_mesh3d(stream, text);
-    } else {
-      Trace tracer(text);
-      DecoderOptions options;
-      options.method = method_of(method);
-      options.trace = &tracer;
-      Decoder decoder(stream, options);
-      while (decoder.next()) {
-      }
-    }
+    trace_into(text, stream, method, part, symbols);
   } catch (const Error& e) {
     out["error"] = error_json(e);
   } catch (const std::exception& e) {
@@ -122,6 +136,14 @@ std::string trace(const val& bytes, int method) {
   out["lines"] = std::move(lines);
   return out.dump();
 }
+
+// The whole stream's fixed fields and byte sections (no bins, no raw bits):
+// enough to list its parts and chart their bits.
+std::string trace_fields(const val& bytes, int method) { return traced_lines(bytes, method, std::nullopt, false); }
+
+// Every element of one part (the 3D object header −1 or unit k, the 2D
+// mesh object −1 or plane k), its symbols included.
+std::string trace_part(const val& bytes, int method, double part) { return traced_lines(bytes, method, static_cast<int64_t>(part), true); }
 
 // {"units": [{offset, bytes}]}: where each unit of a 3D stream lies (its
 // start code's byte offset, its size with the start code).
@@ -280,7 +302,8 @@ EMSCRIPTEN_BINDINGS(m4mesh) {
   emscripten::function("streamKind", &stream_kind);
   emscripten::function("decodedMd5", &decoded_md5);
   emscripten::function("check", &check);
-  emscripten::function("trace", &trace);
+  emscripten::function("traceFields", &trace_fields);
+  emscripten::function("tracePart", &trace_part);
   emscripten::function("units3d", &units3d);
   emscripten::function("decode2d", &decode2d);
   emscripten::class_<Stream3d>("Stream3d")

@@ -26,7 +26,7 @@ Mesh3dDecoder::Mesh3dDecoder(std::span<const uint8_t> stream, const Decode3dOpti
     : parts_(split_container(stream)), options_(options) {
   BitReader reader(parts_.object_payload.data(), parts_.object_payload.size());
   syntax::ReadIO io(reader, options_.trace);
-  if (options_.trace) options_.trace->begin_payload("object", "mesh3d_object_start_code", kMesh3dObjectStartCode);
+  if (options_.trace) options_.trace->begin_payload(-1, "object", "mesh3d_object_start_code", kMesh3dObjectStartCode);
   try {
     syntax::describe(io, header_);
     codec_row_ = find_codec3d(header_.codec_id);
@@ -105,7 +105,7 @@ UnitHeader Mesh3dDecoder::begin_unit(size_t index) {
   const UnitHeader header = read_unit_header(index, false);
   if (options_.trace) {
     // The location names the frame, which the header gives: read it again, traced.
-    options_.trace->begin_payload("unit " + std::to_string(index) + " frame " + std::to_string(header.frame_index), "mesh3d_unit_start_code",
+    options_.trace->begin_payload(static_cast<int64_t>(index), "unit " + std::to_string(index) + " frame " + std::to_string(header.frame_index), "mesh3d_unit_start_code",
                                   kMesh3dUnitStartCode);
     read_unit_header(index, true);
   }
@@ -215,7 +215,7 @@ void Mesh3dDecoder::finish() {
       throw Error(ErrorKind::kTruncated, "mesh3d_unit_start_code", f, kNoOffset,
                   "the stream ends before frame " + std::to_string(f) + " of " + std::to_string(header_.frame_count) + " is decoded")
           .in_mesh3d(kNoUnit);
-  if (options_.trace && parts_.has_end_code) options_.trace->begin_payload("end", "mesh_object_end_code", kMeshObjectEndCode);
+  if (options_.trace && parts_.has_end_code) options_.trace->begin_payload(Trace::kEndPart, "end", "mesh_object_end_code", kMeshObjectEndCode);
 }
 
 bool Mesh3dDecoder::is_hash_unit(size_t index) const {

@@ -23,7 +23,7 @@ class ContainerSink final : public UnitSink {
 
   void unit(UnitType type, uint32_t frame, const std::function<void(syntax::WriteIO&)>& write) override {
     if (options_.trace)
-      options_.trace->begin_payload("unit " + std::to_string(units_) + " frame " + std::to_string(frame), "mesh3d_unit_start_code",
+      options_.trace->begin_payload(static_cast<int64_t>(units_), "unit " + std::to_string(units_) + " frame " + std::to_string(frame), "mesh3d_unit_start_code",
                                     kMesh3dUnitStartCode);
     BitWriter writer;
     syntax::WriteIO io(writer, options_.trace);
@@ -121,7 +121,7 @@ Encode3dResult encode_mesh3d(const MeshSequence& input, const Encode3dOptions& o
   Encode3dResult result;
   if (options.reorder) result.input_of = plan.input_of;
   {
-    if (options.trace) options.trace->begin_payload("object", "mesh3d_object_start_code", kMesh3dObjectStartCode);
+    if (options.trace) options.trace->begin_payload(-1, "object", "mesh3d_object_start_code", kMesh3dObjectStartCode);
     BitWriter writer;
     syntax::WriteIO io(writer, options.trace);
     ObjectHeader header{1, codec.id, s.vertex_count, static_cast<uint32_t>(s.faces.size()), static_cast<uint32_t>(s.frames.size()),
@@ -133,7 +133,7 @@ Encode3dResult encode_mesh3d(const MeshSequence& input, const Encode3dOptions& o
   if (options.keep_decoded) result.decoded = {s.vertex_count, s.faces, std::vector<std::vector<Vec3>>(s.frames.size())};
   ContainerSink sink(container, options, result, static_cast<uint32_t>(s.frames.size()));
   encoder->encode(s, sink);
-  if (options.trace) options.trace->begin_payload("end", "mesh_object_end_code", kMeshObjectEndCode);
+  if (options.trace) options.trace->begin_payload(Trace::kEndPart, "end", "mesh_object_end_code", kMeshObjectEndCode);
   result.stream = container.finish();
   result.other_bytes = result.stream.size();
   for (uint64_t bytes : result.unit_bytes) result.other_bytes -= bytes;

@@ -77,7 +77,7 @@ async function openStream(source) {
 async function main() {
   const module = await createM4mesh();
   state.playerView = new Player(module, document.getElementById('viewport'), state);
-  state.analyzerView = new Analyzer(module, state);
+  state.analyzerView = new Analyzer(state);
   state.module = module;
   state.ready = true;
 

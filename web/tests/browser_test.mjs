@@ -8,10 +8,13 @@
 //      texture (screenshots that are not blank);
 //   4. a progressive stream served slowly (`m4mesh serve --rate`) plays
 //      before its download ends, and the units applied grow while it plays;
-//   5. the analyzer lists a stream's units, their elements and its chart.
+//   5. the analyzer lists a stream's units, their elements and its chart;
+//   6. a real-size stream (the horse, from ../shared/data) loads, plays and
+//      is analysed without the page stopping to answer for over 1.5 s.
 // Usage: node browser_test.mjs M4MESH SITE [SCREENSHOT_FOLDER]
 import { execFileSync } from 'node:child_process';
-import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
 import http from 'node:http';
 import { join } from 'node:path';
 import { launch, pictureStatistics, serve, until } from './harness.mjs';
@@ -174,6 +177,56 @@ try {
     `analyzer: the error is listed and its unit selected (${shown.analyzer.findings[0]}; ${shown.analyzer.selected})`);
   await picture(page, 'analyzer-error', 'main');
   await page.close();
+
+  // 6. A real-size stream (the horse: 8,431 vertices, 48 frames, 3.65 M trace lines): the page keeps
+  // answering while it loads and plays, and while the analyzer lists it, traces its base mesh and pages through it.
+  const data = process.env.M4MESH_DATA;
+  if (!data || !existsSync(join(data, 'horse-gallop'))) {
+    console.log('skip: ../shared/data is absent: the real-size stream (the horse) is not tried');
+  } else {
+    const folder = mkdtempSync(join(tmpdir(), 'm4mesh-horse-'));
+    const horse = join(folder, 'horse.m4m');
+    execFileSync(m4mesh, ['--quiet', 'encode3d', join(data, 'horse-gallop'), '-o', horse]);
+    const own = await serve(m4mesh, [horse]);
+    page = await browser.newPage({ viewport: { width: 1100, height: 760 } });
+    page.on('pageerror', (error) => expect(false, `no error in the page (${error.message})`));
+    // The longest the page went without running a 50 ms timer: how long it stopped answering.
+    await page.addInitScript(() => {
+      const stall = (window.stall = { longest: 0, last: performance.now() });
+      setInterval(() => {
+        const now = performance.now();
+        stall.longest = Math.max(stall.longest, now - stall.last);
+        stall.last = now;
+      }, 50);
+    });
+    await page.goto(`${own.url}#player?stream=streams/horse.m4m`);
+    let started = Date.now();
+    shown = await stateWhen(page, (s) => s.player?.done && s.player.framesDrawn >= 60, 120000);
+    const playing = await page.evaluate(() => window.stall.longest);
+    expect(shown.player.frames === 48 && playing < 1500,
+      `horse: ${shown.player.framesDrawn} frames drawn in ${((Date.now() - started) / 1000).toFixed(1)} s, the page stopped answering at most ${playing.toFixed(0)} ms`);
+    await picture(page, 'horse');
+    started = Date.now();
+    await page.evaluate(() => (location.hash = location.hash.replace('#player', '#analyzer')));
+    shown = await stateWhen(page, (s) => s.analyzer?.rowsShown > 0, 120000);
+    const listed = Date.now() - started;
+    const baseMesh = shown.analyzer;
+    expect(/^unit 0: base mesh/.test(baseMesh.selected) && baseMesh.elementsShown > 100000 && baseMesh.rowsShown === 500,
+      `horse in the analyzer: ${baseMesh.selected} has ${baseMesh.elementsShown} elements, shown ${baseMesh.rowsShown} a page (${baseMesh.pages} pages)`);
+    await page.locator('#page-next').click();
+    shown = await stateWhen(page, (s) => s.analyzer.page === 1);
+    await page.locator('#unit-list tr').last().click();
+    shown = await stateWhen(page, (s) => /^unit \d+: group hash/.test(s.analyzer.selected) && s.analyzer.page === 0);
+    const analysing = await page.evaluate(() => window.stall.longest);
+    const horseUnits = [...execFileSync(m4mesh, ['info', horse], { encoding: 'utf8' }).matchAll(/units: (\d+)/g)].reduce((n, m) => n + Number(m[1]), 0);
+    expect(shown.analyzer.parts.length === horseUnits + 1 && shown.analyzer.pages === 1 && analysing < 1500,
+      `horse in the analyzer: ${shown.analyzer.parts.length - 1} units and the base mesh's first page in ${(listed / 1000).toFixed(1)} s, ` +
+      `paged and the last unit chosen; the page stopped answering at most ${analysing.toFixed(0)} ms`);
+    await picture(page, 'horse-analyzer', 'main');
+    await page.close();
+    own.stop();
+    rmSync(folder, { recursive: true, force: true });
+  }
 } finally {
   await browser.close();
   server.stop();
