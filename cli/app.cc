@@ -60,6 +60,11 @@ int run_m4mesh(int argc, const char* const* argv) {
   std::string trace_input;
   CLI::App* trace_cmd = app.add_subcommand("trace", "Print every syntax element of a 2D or 3D stream: bit offset, name, bit count, value");
   trace_cmd->add_option("input", trace_input, "mesh stream")->required();
+  TraceSelection trace_selection;
+  bool trace_fields_only = false;
+  trace_cmd->add_option("--part", trace_selection.part, "only part K: the 3D unit K or the 2D plane K (-1: the object header); reads no further")
+      ->check(CLI::Range(int64_t{-1}, int64_t{1} << 32));
+  trace_cmd->add_flag("--fields-only", trace_fields_only, "no bins and raw bits of arithmetic-coded sections: fixed fields and byte sections only");
 
   std::string info_input;
   CLI::App* info_cmd = app.add_subcommand("info", "Summarise a 2D mesh stream plane by plane, or a 3D stream unit by unit");
@@ -233,7 +238,10 @@ int run_m4mesh(int argc, const char* const* argv) {
   try {
     if (*encode_cmd) return console::set_input(encode_args.input), run_encode(encode_args);
     if (*decode_cmd) return console::set_input(decode_args.input), run_decode(decode_args);
-    if (*trace_cmd) return console::set_input(trace_input), run_trace(trace_input);
+    if (*trace_cmd) {
+      trace_selection.symbols = !trace_fields_only;
+      return console::set_input(trace_input), run_trace(trace_input, trace_selection);
+    }
     if (*info_cmd) return console::set_input(info_input), run_info(info_input);
     if (*check_cmd) return console::set_input(check_input), run_check(check_input);
     if (*conform_cmd) return run_conform(conform_options);

@@ -10,6 +10,7 @@
 #include "common/error.h"
 #include "conformance/checker.h"
 #include "decoder/mesh3d/container_decoder.h"
+#include "decoder/stream_trace.h"
 #include "syntax/mesh3d/base_mesh.h"
 #include "syntax/mesh3d/container.h"
 #include "syntax/mesh_object.h"
@@ -55,24 +56,10 @@ int run_info3d(const std::string& input) {
   return 0;
 }
 
-int run_trace3d(const std::string& input) {
-  const std::vector<uint8_t> stream = read_file(input);
-  Trace trace(std::cout);
-  Decode3dOptions options;
-  options.trace = &trace;
-  Mesh3dDecoder decoder(stream, options);
-  while (decoder.next_unit()) {
-  }
-  return 0;
-}
-
 }  // namespace
 
-int run_trace(const std::string& input) {
-  const std::vector<uint8_t> stream = read_file(input);
-  if (is_mesh3d_stream(stream)) return run_trace3d(input);
-  Trace trace(std::cout);
-  syntax::read_mesh_object(stream, &trace);
+int run_trace(const std::string& input, const TraceSelection& selection) {
+  trace_stream(read_file(input), std::cout, selection);
   return 0;
 }
 

@@ -4,10 +4,12 @@
 
 #include <string>
 
+#include "decoder/stream_trace.h"
+
 namespace m4mesh {
 
-// Every syntax element: bit offset, name, bits, value.
-int run_trace(const std::string& input);
+// Every syntax element (or those `selection` keeps): bit offset, name, bits, value.
+int run_trace(const std::string& input, const TraceSelection& selection);
 // Plane by plane (2D) or the headers and units (3D).
 int run_info(const std::string& input);
 // Every violation, with plane or frame, element and bit; 0 only if conformant.

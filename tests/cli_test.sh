@@ -385,6 +385,12 @@ units=$(( $("$m4mesh" info conformance/mesh3d/streams/bfs3d-01-average.m4m | sed
 status=0; "$m4mesh" check conformance/mesh3d/streams/x-10-bfs3d-lengths.m4m > "$work/out" || status=$?
 [ "$status" = 1 ] && grep -q ": $units units, 1 error, 1 warning: NOT conformant$" "$work/out" || fail "check of one error: $(tail -1 "$work/out")"
 
+# trace --part: that unit's lines alone; --fields-only: no bins or raw bits.
+"$m4mesh" trace conformance/mesh3d/streams/bfs3d-01-average.m4m --part 1 > "$work/out"
+[ -s "$work/out" ] && ! grep -v -q "^unit 1 " "$work/out" || fail "trace --part 1: $(grep -v "^unit 1 " "$work/out" | head -1)"
+"$m4mesh" trace conformance/mesh3d/streams/bfs3d-01-average.m4m --fields-only > "$work/out"
+grep -q "arithmetic_bytes_x" "$work/out" && ! grep -q "bins_x:" "$work/out" || fail "trace --fields-only: bins listed"
+
 # An error in a refinement unit (it refines every frame) names its unit, no frame.
 status=0; "$m4mesh" check conformance/mesh3d/streams/x-62-cpca-beyond-trajectories.m4m > "$work/out" || status=$?
 [ "$status" = 1 ] && grep -q "^error: unit 6, cluster at bit 2952: " "$work/out" || fail "check of a refinement unit: $(head -1 "$work/out")"

@@ -8,7 +8,6 @@
 
 #include <memory>
 #include <optional>
-#include <span>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -18,6 +17,7 @@
 #include "conformance/checker.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "decoder/mesh_object_decoder.h"
+#include "decoder/stream_trace.h"
 #include "mesh/topology.h"
 #include "syntax/mesh3d/container.h"
 #include "syntax/mesh_object.h"
@@ -93,36 +93,14 @@ std::string check(const val& bytes) {
   });
 }
 
-// Traces a stream into `text`: its every part, or only `part` (Trace's
-// parts), whose decoding stops once that part is read.
-void trace_into(std::ostringstream& text, std::span<const uint8_t> stream, int method, std::optional<int64_t> part, bool symbols) {
-  Trace tracer(text);
-  if (part) tracer.only_part(*part);
-  if (!symbols) tracer.without_symbols();
-  if (is_mesh3d_stream(stream)) {
-    Decode3dOptions options;
-    options.trace = &tracer;
-    Mesh3dDecoder decoder(stream, options);
-    while ((!part || static_cast<int64_t>(decoder.units_taken()) <= *part) && decoder.next_unit()) {
-    }
-    return;
-  }
-  DecoderOptions options;
-  options.method = method_of(method);
-  options.trace = &tracer;
-  Decoder decoder(stream, options);
-  while ((!part || tracer.part() <= *part) && decoder.next()) {
-  }
-}
-
 // {"lines": [[unit, frame, position, name, size, value, context]], "error"?}:
 // `m4mesh trace`, parsed; the lines before an error are kept.
-std::string traced_lines(const val& bytes, int method, std::optional<int64_t> part, bool symbols) {
+std::string traced_lines(const val& bytes, const TraceSelection& selection) {
   const std::vector<uint8_t> stream = bytes_of(bytes);
   std::ostringstream text;
   json out;
   try {
-    trace_into(text, stream, method, part, symbols);
+    trace_stream(stream, text, selection);
   } catch (const Error& e) {
     out["error"] = error_json(e);
   } catch (const std::exception& e) {
@@ -139,11 +117,11 @@ std::string traced_lines(const val& bytes, int method, std::optional<int64_t> pa
 
 // The whole stream's fixed fields and byte sections (no bins, no raw bits):
 // enough to list its parts and chart their bits.
-std::string trace_fields(const val& bytes, int method) { return traced_lines(bytes, method, std::nullopt, false); }
+std::string trace_fields(const val& bytes) { return traced_lines(bytes, {.part = std::nullopt, .symbols = false}); }
 
 // Every element of one part (the 3D object header −1 or unit k, the 2D
 // mesh object −1 or plane k), its symbols included.
-std::string trace_part(const val& bytes, int method, double part) { return traced_lines(bytes, method, static_cast<int64_t>(part), true); }
+std::string trace_part(const val& bytes, double part) { return traced_lines(bytes, {.part = static_cast<int64_t>(part), .symbols = true}); }
 
 // {"units": [{offset, bytes}]}: where each unit of a 3D stream lies (its
 // start code's byte offset, its size with the start code).

@@ -87,7 +87,7 @@ function open(module, bytes) {
   stream = { bytes, mesh3d };
   chosen = null;
   postMessage({ progress: 'tracing the fields' });
-  const trace = JSON.parse(module.traceFields(bytes, 2));
+  const trace = JSON.parse(module.traceFields(bytes));
   const parts = mesh3d ? units(module, bytes, trace.lines) : planes(trace.lines);
   postMessage({ progress: 'checking' });
   const check = JSON.parse(module.check(bytes));
@@ -108,7 +108,7 @@ function open(module, bytes) {
 
 // Traces one part whole and keeps its elements for rows().
 function choose(module, part) {
-  const trace = JSON.parse(module.tracePart(stream.bytes, 2, part));
+  const trace = JSON.parse(module.tracePart(stream.bytes, part));
   const lines = stream.mesh3d && part === -1 ? trace.lines.filter((l) => l[3] !== 'mesh_object_end_code') : trace.lines;
   chosen = { part, lines };
   return { part, count: lines.length, error: trace.error?.text ?? null };

@@ -1,0 +1,88 @@
+// Tracing a stream one part at a time (the web analyzer, `m4mesh trace
+// --part`) and its fixed fields alone (`--fields-only`) give exactly the
+// lines of the whole trace that belong there.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "conformance/suite.h"
+#include "conformance/suite3d/suite3d.h"
+#include "decoder/stream_trace.h"
+#include "syntax/mesh3d/container.h"
+#include "syntax/trace.h"
+
+namespace m4mesh {
+namespace {
+
+std::vector<std::string> trace_lines(std::span<const uint8_t> stream, const TraceSelection& selection = {}) {
+  std::ostringstream text;
+  trace_stream(stream, text, selection);
+  std::vector<std::string> lines;
+  std::istringstream in(text.str());
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// The whole trace's lines of part `part`, read from the text: a 3D line's
+// unit, or the 2D planes counted at their start codes; no end code.
+std::vector<std::string> lines_of_part(const std::vector<std::string>& whole, int64_t part) {
+  std::vector<std::string> kept;
+  int64_t plane = -1;
+  for (const std::string& line : whole) {
+    const std::optional<TraceLine> t = parse_trace_line(line);
+    if (!t || t->name == "mesh_object_end_code") continue;
+    if (t->name == "mesh_object_plane_start_code") ++plane;
+    const bool mesh3d = line.starts_with("unit ") || line.starts_with("object ");
+    if ((mesh3d ? t->unit : plane) == part) kept.push_back(line);
+  }
+  return kept;
+}
+
+// The parts to try: the header, the first two, one in the middle, the last, one past it.
+std::vector<int64_t> parts_to_try(int64_t parts) { return {-1, 0, 1, parts / 2, parts - 1, parts}; }
+
+void expect_parts_alike(const std::string& id, std::span<const uint8_t> stream, int64_t parts) {
+  const std::vector<std::string> whole = trace_lines(stream);
+  for (int64_t part : parts_to_try(parts)) {
+    std::vector<std::string> traced = trace_lines(stream, {.part = part, .symbols = true});
+    std::erase_if(traced, [](const std::string& line) { return line.find("mesh_object_end_code") != std::string::npos; });
+    EXPECT_EQ(traced, lines_of_part(whole, part)) << id << " part " << part;
+  }
+  std::vector<std::string> fields = whole;
+  std::erase_if(fields, [](const std::string& line) {
+    const std::optional<TraceLine> t = parse_trace_line(line);
+    return t && t->position.find(':') != std::string::npos;
+  });
+  EXPECT_EQ(trace_lines(stream, {.part = std::nullopt, .symbols = false}), fields) << id << " fields only";
+}
+
+TEST(StreamTrace, A3dPartIsItsUnitsLinesOfTheWholeTrace) {
+  size_t streams = 0, with_symbols = 0;
+  for (const SuiteCase& c : build_suite3d()) {
+    if (!c.valid) continue;
+    const ContainerParts container = split_container(c.stream);
+    expect_parts_alike(c.id, c.stream, static_cast<int64_t>(container.units.size()));
+    with_symbols += trace_lines(c.stream, {.part = std::nullopt, .symbols = false}).size() < trace_lines(c.stream).size();
+    ++streams;
+  }
+  EXPECT_GE(streams, 100u);
+  EXPECT_GE(with_symbols, 100u);  // the fields-only traces do leave lines out
+}
+
+TEST(StreamTrace, A2dPartIsItsPlanesLinesOfTheWholeTrace) {
+  size_t streams = 0;
+  for (const SuiteCase& c : build_suite()) {
+    if (!c.valid) continue;
+    const std::vector<std::string> whole = trace_lines(c.stream);
+    const int64_t planes = std::count_if(whole.begin(), whole.end(), [](const std::string& l) { return l.find("mesh_object_plane_start_code") != std::string::npos; });
+    expect_parts_alike(c.id, c.stream, planes);
+    ++streams;
+  }
+  EXPECT_GE(streams, 30u);
+}
+
+}  // namespace
+}  // namespace m4mesh
