@@ -162,6 +162,11 @@ int run_m4mesh(int argc, const char* const* argv) {
   track_cmd->add_option("--reference", track_args.reference, "match each frame against the first frame (the texture; no drift) or the previous one")
       ->check(CLI::IsMember({"first", "previous"}))
       ->capture_default_str();
+  track_cmd->add_option("--border", track_args.border,
+                        "border nodes follow the content under them (the mesh may uncover a strip at the frame's edge), or stay on the frame's edges "
+                        "(the mesh always covers the frame: motion compensation)")
+      ->check(CLI::IsMember({"follow", "frame"}))
+      ->capture_default_str();
   track_cmd->add_option("--block", track_args.block, "block matching's block side in pixels (default: as many blocks as mesh nodes)");
   track_cmd->add_option("--report", track_args.report, "a CSV of every frame: bits, mesh coverage, PSNR of the rendering, of mesh and of block motion compensation");
 

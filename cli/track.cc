@@ -55,6 +55,7 @@ int run_track(const TrackArgs& args) {
   settings.tracker.search = args.search;
   settings.tracker.levels = args.levels;
   settings.tracker.reference = args.reference == "previous" ? TrackingReference::kPrevious : TrackingReference::kFirst;
+  settings.tracker.border_on_frame = args.border == "frame";
   if (args.block != 0 && (args.block < 2 || args.block > 64)) usage("--block: 2 … 64 pixels");
   settings.block = args.block;
   const auto [first, last] = frame_range(args.frames);

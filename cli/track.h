@@ -17,6 +17,7 @@ struct TrackArgs {
   uint32_t search = 16;
   int levels = -1;
   std::string reference = "first";
+  std::string border = "follow";  // border nodes follow the content, or stay on the frame's edges
   uint32_t block = 0;
   std::string report;  // per-frame CSV
 };

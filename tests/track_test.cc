@@ -194,13 +194,15 @@ TEST(Track, RenderOfTheStreamIsWhatWasMeasured) {
   const WarpedVideo video(96, 80, 6, SmoothMotion{96, 80});
   const std::string input = h264_video(folder, video.frames, 10);
   const std::string stream = folder / "out.m4m", texture = folder / "first.png", picture = folder / "plane5.png";
-  std::vector<const char*> track{"m4mesh", "-q", "track", input.c_str(), "-o", stream.c_str(), "--texture", texture.c_str(), "--nodes", "40"};
+  // Border nodes held on the frame: the mesh covers it whole, so the picture compares pixel for pixel.
+  std::vector<const char*> track{"m4mesh", "-q", "track", input.c_str(), "-o", stream.c_str(), "--texture", texture.c_str(), "--nodes", "40", "--border", "frame"};
   ASSERT_EQ(run_m4mesh(static_cast<int>(track.size()), track.data()), 0);
   std::vector<const char*> render{"m4mesh", "-q", "render", stream.c_str(), "-o", picture.c_str(), "--texture", texture.c_str(), "--plane", "5"};
   ASSERT_EQ(run_m4mesh(static_cast<int>(render.size()), render.data()), 0);
 
   TrackSettings settings;
   settings.nodes = 40;
+  settings.tracker.border_on_frame = true;
   const TrackResult result = track_video(input, settings);
   EXPECT_EQ(result.stream, read_file(stream));
   const Image drawn = read_png(picture);
@@ -268,6 +270,52 @@ TEST(Track, MaskedObjectMovesOverAStillBackground) {
   std::printf("masked object (50 nodes), PNG sequence: mean node error %.3f px\n", error);
   EXPECT_LE(error, 0.5);
   EXPECT_LT(result.frames[1].coverage, 0.25);
+}
+
+// A camera pan of 24 pixels over 12 frames (the content moves 2 pixels
+// right and 1 down a frame), lossless: every node follows the content
+// under it, those of the frame's border too; held on the frame, the left
+// column stays on the frame's edge.
+TEST(Track, BorderNodesFollowAPan) {
+  const Workspace folder("pan");
+  const uint32_t w = 128, h = 96;
+  const int frames = 12, vx = 2, vy = 1;
+  const Image scene = pattern(w + 64, h + 32, 31);
+  std::vector<Image> video;
+  for (int t = 0; t < frames; ++t) {
+    Image frame(w, h);
+    for (uint32_t y = 0; y < h; ++y)
+      for (uint32_t x = 0; x < w; ++x) frame.at(x, y) = scene.at(static_cast<uint32_t>(static_cast<int>(x) + 40 - vx * t), static_cast<uint32_t>(static_cast<int>(y) + 20 - vy * t));
+    video.push_back(std::move(frame));
+  }
+  write_frames(folder, video);
+  for (const bool on_frame : {false, true}) {
+    TrackSettings settings;
+    settings.tracker.border_on_frame = on_frame;
+    const TrackResult result = track_video(folder / "%03d.png", settings);
+    ASSERT_EQ(result.positions.size(), static_cast<size_t>(frames));
+    expect_no_fold(result);
+    double sum = 0, left_edge = 0;
+    size_t count = 0, on_left = 0;
+    for (size_t n = 0; n < result.mesh.tracking.nodes.size(); ++n) {
+      const Point& p0 = result.mesh.tracking.nodes[n];
+      const Point& p = result.positions.back()[n];
+      const double tx = p0.x / 2.0 + vx * (frames - 1), ty = p0.y / 2.0 + vy * (frames - 1);
+      if (p0.x == 0) left_edge += p.x / 2.0, ++on_left;
+      if (tx > w || ty > h) continue;  // its content has left the frame
+      sum += std::hypot(p.x / 2.0 - tx, p.y / 2.0 - ty), ++count;
+    }
+    left_edge /= static_cast<double>(on_left);
+    std::printf("pan of (%d, %d) px a frame, border %s: mean node error %.3f px in the last frame, left column at x = %.1f\n", vx, vy,
+                on_frame ? "on the frame" : "following", sum / static_cast<double>(count), left_edge);
+    if (on_frame) {
+      EXPECT_EQ(left_edge, 0.0);
+    } else {
+      EXPECT_LE(sum / static_cast<double>(count), 0.25);
+      EXPECT_NEAR(left_edge, vx * (frames - 1), 0.5);
+      EXPECT_LT(result.frames.back().coverage, 0.9);
+    }
+  }
 }
 
 TEST(Track, OneFrameIsAStillTexture) {

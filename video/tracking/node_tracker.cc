@@ -21,10 +21,19 @@ double orientation(const std::array<double, 2>& a, const std::array<double, 2>& 
   return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
 }
 
+// What a reference sample costs where it lands: its absolute difference,
+// or, out of the frame (content that left it), a fixed price.
+constexpr float kOutsideCost = 12;
+
+float sample_cost(const Luma& picture, double x, double y, float value) {
+  if (x < 0 || y < 0 || x > picture.width || y > picture.height) return kOutsideCost;
+  return std::abs(picture.sample(x, y) - value);
+}
+
 }  // namespace
 
 NodeTracker::NodeTracker(TrackingMesh mesh, const Luma& first, const TrackerOptions& options)
-    : mesh_(std::move(mesh)), options_(options), positions_(mesh_.nodes), previous_(mesh_.nodes) {
+    : mesh_(std::move(mesh)), options_(options), positions_(mesh_.nodes) {
   if (mesh_.freedom.size() != mesh_.nodes.size()) throw usage_error("tracking: a freedom per node");
   if (options_.levels > 4 || options_.search > 63)
     throw usage_error("tracking: at most 4 pyramid levels and a search of 63 pixels");
@@ -81,7 +90,7 @@ double NodeTracker::triangle_cost(int level, uint32_t t, const std::vector<Posit
   for (const Sample& s : samples_[static_cast<size_t>(level)][t]) {
     const double b0 = 1.0 - s.b1 - s.b2;
     const double x = b0 * a[0] + s.b1 * b[0] + s.b2 * c[0], y = b0 * a[1] + s.b1 * b[1] + s.b2 * c[1];
-    sum += std::abs(picture.sample(x, y) - s.value);
+    sum += sample_cost(picture, x, y, s.value);
   }
   return sum;
 }
@@ -99,7 +108,7 @@ bool NodeTracker::allowed(uint32_t node, const Position& to, double scale) const
   const Point& from = positions_[node];
   const double limit = kMaxNodeMotion * 0.5 * scale;
   if (std::abs(to[0] - from.x * 0.5 * scale) > limit || std::abs(to[1] - from.y * 0.5 * scale) > limit) return false;
-  const NodeFreedom freedom = mesh_.freedom[node];
+  const NodeFreedom freedom = this->freedom(node);
   if (freedom == NodeFreedom::kAlongX) return to[0] >= x_lo_ * scale && to[0] <= x_hi_ * scale;
   if (freedom == NodeFreedom::kAlongY) return to[1] >= y_lo_ * scale && to[1] <= y_hi_ * scale;
   return true;
@@ -111,7 +120,7 @@ void NodeTracker::translate_polygons(int level, std::vector<Position>& p, double
   std::vector<Position> offsets(p.size(), Position{0, 0});
   std::vector<std::array<double, 3>> mapped;  // x, y, reference value of each polygon sample
   for (uint32_t n = 0; n < p.size(); ++n) {
-    const NodeFreedom freedom = mesh_.freedom[n];
+    const NodeFreedom freedom = this->freedom(n);
     if (freedom == NodeFreedom::kFixed) continue;
     mapped.clear();
     for (uint32_t t : node_triangles_[n]) {
@@ -130,7 +139,7 @@ void NodeTracker::translate_polygons(int level, std::vector<Position>& p, double
       for (int dx = -rx; dx <= rx; ++dx) {
         double sum = 0;
         for (const auto& [x, y, value] : mapped) {
-          sum += std::abs(picture.sample(x + dx, y + dy) - value);
+          sum += sample_cost(picture, x + dx, y + dy, static_cast<float>(value));
           if (sum > best) break;
         }
         const int norm = std::abs(dx) + std::abs(dy);
@@ -157,7 +166,7 @@ void NodeTracker::descend(int level, std::vector<Position>& p, double scale, dou
   for (int sweep = 0; sweep < options_.sweeps; ++sweep) {
     bool moved = false;
     for (uint32_t n = 0; n < p.size(); ++n) {
-      const NodeFreedom freedom = mesh_.freedom[n];
+      const NodeFreedom freedom = this->freedom(n);
       if (freedom == NodeFreedom::kFixed) continue;
       double current = 0;
       for (uint32_t t : node_triangles_[n]) current += costs_[t];
@@ -184,32 +193,50 @@ void NodeTracker::descend(int level, std::vector<Position>& p, double scale, dou
   }
 }
 
+// Each node where the global motion takes it, keeping its own displacement
+// from the global motion in the last frame; where that folds a triangle,
+// the last positions moved by the change of global motion alone (an
+// orientation-preserving map). A node held on the frame's edge keeps its
+// place across it.
+std::vector<NodeTracker::Position> NodeTracker::start(const Affine& global) const {
+  const bool from_first = options_.reference == TrackingReference::kFirst;
+  const Affine change = from_first ? global.after(global_.inverse()) : global;
+  std::vector<Position> carried(positions_.size()), moved(positions_.size());
+  for (size_t n = 0; n < positions_.size(); ++n) {
+    const Point& q = positions_[n];
+    const Point& origin = mesh_.nodes[n];
+    const std::array<double, 2> now = global(origin.x * 0.5, origin.y * 0.5), before = global_(origin.x * 0.5, origin.y * 0.5);
+    carried[n] = from_first ? Position{now[0] + q.x * 0.5 - before[0], now[1] + q.y * 0.5 - before[1]} : Position{0, 0};
+    moved[n] = change(q.x * 0.5, q.y * 0.5);
+    for (std::vector<Position>* p : {&carried, &moved}) {
+      const NodeFreedom f = freedom(static_cast<uint32_t>(n));
+      if (f == NodeFreedom::kFixed || f == NodeFreedom::kAlongY) (*p)[n][0] = q.x * 0.5;
+      if (f == NodeFreedom::kFixed || f == NodeFreedom::kAlongX) (*p)[n][1] = q.y * 0.5;
+    }
+  }
+  auto valid = [&](const std::vector<Position>& p) {
+    for (uint32_t n = 0; n < p.size(); ++n)
+      if (!allowed(n, p[n], 1.0) || !keeps_orientation(n, p[n], p)) return false;
+    return true;
+  };
+  if (from_first && valid(carried)) return carried;
+  if (valid(moved)) return moved;
+  std::vector<Position> still(positions_.size());
+  for (size_t n = 0; n < positions_.size(); ++n) still[n] = {positions_[n].x * 0.5, positions_[n].y * 0.5};
+  return still;
+}
+
 const std::vector<Point>& NodeTracker::track(const Luma& frame) {
   if (frame.width != previous_pyramid_[0].width || frame.height != previous_pyramid_[0].height)
     throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "tracking: every frame must have the first frame's size");
   frame_pyramid_ = pyramid(frame, levels_);
   if (options_.reference == TrackingReference::kPrevious) build_samples(previous_pyramid_, positions_);
 
-  // The start: constant velocity when that folds nothing, else where the nodes were.
-  std::vector<Position> p(positions_.size());
-  auto start_at = [&](bool with_velocity) {
-    for (size_t n = 0; n < p.size(); ++n) {
-      Point q = positions_[n];
-      if (with_velocity && mesh_.freedom[n] != NodeFreedom::kFixed) {
-        const int32_t vx = mesh_.freedom[n] == NodeFreedom::kAlongY ? 0 : positions_[n].x - previous_[n].x;
-        const int32_t vy = mesh_.freedom[n] == NodeFreedom::kAlongX ? 0 : positions_[n].y - previous_[n].y;
-        q = {q.x + vx, q.y + vy};
-      }
-      p[n] = {q.x * 0.5, q.y * 0.5};
-    }
-  };
-  start_at(has_velocity_);
-  if (has_velocity_) {
-    bool valid = true;
-    for (uint32_t n = 0; n < p.size() && valid; ++n) valid = allowed(n, p[n], 1.0) && keeps_orientation(n, p[n], p);
-    if (!valid) start_at(false);
-  }
-
+  // The global motion, from where the last frame's predicts it (constant velocity).
+  const bool from_first = options_.reference == TrackingReference::kFirst;
+  const Affine guess = from_first && has_velocity_ ? global_.after(global_before_.inverse()).after(global_) : global_;
+  const Affine global = global_motion(previous_pyramid_, frame_pyramid_, guess, options_.search);
+  std::vector<Position> p = start(global);
   for (int level = levels_; level >= 0; --level) {
     const double scale = 1.0 / static_cast<double>(1 << level);
     for (Position& q : p) q = {q[0] * scale, q[1] * scale};
@@ -221,7 +248,8 @@ const std::vector<Point>& NodeTracker::track(const Luma& frame) {
     for (Position& q : p) q = {q[0] / scale, q[1] / scale};
   }
 
-  previous_ = positions_;
+  global_before_ = global_;
+  global_ = global;
   for (size_t n = 0; n < p.size(); ++n) positions_[n] = {static_cast<int32_t>(std::lround(p[n][0] * 2)), static_cast<int32_t>(std::lround(p[n][1] * 2))};
   has_velocity_ = true;
   if (options_.reference == TrackingReference::kPrevious) previous_pyramid_ = std::move(frame_pyramid_);

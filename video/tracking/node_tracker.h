@@ -5,8 +5,10 @@
 // size, nodes then move one by one to the neighbouring position that
 // lowers the warp error of their polygon most (the hexagonal matching of
 // Nakaya & Harashima), ending on the half-pixel grid the syntax carries.
-// A move that would fold a triangle over (orient ≤ 0) is never taken, so
-// the topology of the first frame holds in every frame.
+// Every frame starts from the global motion (global_motion.h), so pans
+// and zooms of tens of pixels are followed. A move that would fold a
+// triangle over (orient ≤ 0) is never taken, so the topology of the first
+// frame holds in every frame.
 #pragma once
 
 #include <array>
@@ -15,12 +17,15 @@
 
 #include "mesh/geometry.h"
 #include "mesh/topology.h"
+#include "video/tracking/global_motion.h"
 #include "video/tracking/luma.h"
 
 namespace m4mesh {
 
-// How a node may move: freely, not at all (a frame corner), or along the
-// frame edge it lies on, inside the first frame's mesh rectangle.
+// How a node may move when the border is held on the frame
+// (TrackerOptions::border_on_frame): freely, not at all (a frame corner),
+// or along the frame edge it lies on, inside the first frame's mesh
+// rectangle. Otherwise every node moves with the content under it.
 enum class NodeFreedom : uint8_t { kFree, kFixed, kAlongX, kAlongY };
 
 struct TrackingMesh {
@@ -38,6 +43,9 @@ struct TrackerOptions {
   int levels = -1;       // pyramid levels above full size (0 … 4); −1 chooses
   TrackingReference reference = TrackingReference::kFirst;
   int sweeps = 4;  // most descent sweeps per level and step
+  // Border nodes held on the frame's edges (the mesh always covers the
+  // frame: motion compensation), instead of following the content.
+  bool border_on_frame = false;
 };
 
 // The most a node moves between frames, in half pixels: a P-plane's vectors
@@ -54,6 +62,9 @@ class NodeTracker {
   const std::vector<Point>& track(const Luma& frame);
   const std::vector<Point>& positions() const { return positions_; }
   int levels() const { return levels_; }
+  // The last frame's global motion: from the first frame (or, matching
+  // against the previous frame, from that one).
+  const Affine& global() const { return global_; }
 
  private:
   struct Sample {
@@ -62,7 +73,9 @@ class NodeTracker {
   };
   using Position = std::array<double, 2>;  // pixels of a pyramid level
 
+  NodeFreedom freedom(uint32_t node) const { return options_.border_on_frame ? mesh_.freedom[node] : NodeFreedom::kFree; }
   void build_samples(const std::vector<Luma>& reference, const std::vector<Point>& at);
+  std::vector<Position> start(const Affine& global) const;
   double triangle_cost(int level, uint32_t t, const std::vector<Position>& p, NodeIndex moved, const Position& to) const;
   bool keeps_orientation(uint32_t node, const Position& to, const std::vector<Position>& p) const;
   bool allowed(uint32_t node, const Position& to, double scale) const;
@@ -76,9 +89,10 @@ class NodeTracker {
   double x_lo_ = 0, x_hi_ = 0, y_lo_ = 0, y_hi_ = 0;  // the first frame's mesh rectangle, pixels
   std::vector<std::vector<std::vector<Sample>>> samples_;  // [level][triangle]
   std::vector<Luma> frame_pyramid_, previous_pyramid_;
-  std::vector<Point> positions_, previous_;
+  std::vector<Point> positions_;
   std::vector<double> costs_;  // per triangle, at the current level and positions
   bool has_velocity_ = false;
+  Affine global_, global_before_;
 };
 
 }  // namespace m4mesh
