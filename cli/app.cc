@@ -167,6 +167,11 @@ int run_m4mesh(int argc, const char* const* argv) {
                         "(the mesh always covers the frame: motion compensation)")
       ->check(CLI::IsMember({"follow", "frame"}))
       ->capture_default_str();
+  track_cmd->add_option("--remesh", track_args.remesh,
+                        "a new I-plane (the mesh laid out again) once over 2 % of the triangles have grown or shrunk past this factor of their area, or "
+                        "the mesh covers under 80 % of the frame; 0: never")
+      ->check(CLI::Range(0.0, 4.0))
+      ->capture_default_str();
   track_cmd->add_option("--block", track_args.block, "block matching's block side in pixels (default: as many blocks as mesh nodes)");
   track_cmd->add_option("--report", track_args.report, "a CSV of every frame: bits, mesh coverage, PSNR of the rendering, of mesh and of block motion compensation");
 

@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <optional>
+#include <sstream>
 
 #include "cli/console.h"
 #include "cli/sequence_files.h"
@@ -68,14 +70,42 @@ Canvas texture_box(const Canvas& plane, const Image& texture) {
   return near(plane.width, texture.width) && near(plane.height, texture.height) ? Canvas{plane.x0, plane.y0, texture.width, texture.height} : plane;
 }
 
+// Each I-plane's texture: a texture made for several (kIntraPlanesText)
+// cut into theirs, else the one texture for every I-plane.
+std::map<uint32_t, Image> textures_by_plane(const std::string& path, Image texture) {
+  const std::string list = png_text(path, kIntraPlanesText);
+  if (list.empty()) return {{0, std::move(texture)}};
+  std::vector<uint32_t> planes;
+  std::istringstream in(list);
+  for (uint32_t plane = 0; in >> plane;) {
+    if (!planes.empty() && plane <= planes.back()) break;
+    planes.push_back(plane);
+  }
+  if (!in.eof() || planes.empty() || planes.front() != 0 || texture.height % planes.size() != 0)
+    throw input_error(path, 0, "its '" + std::string(kIntraPlanesText) + "' text \"" + list + "\" does not list increasing planes from 0, one per equal part of its height");
+  const uint32_t height = texture.height / static_cast<uint32_t>(planes.size());
+  std::map<uint32_t, Image> out;
+  for (size_t k = 0; k < planes.size(); ++k) {
+    Image tile(texture.width, height);
+    const auto from = texture.pixels.begin() + static_cast<std::ptrdiff_t>(k * tile.pixels.size());
+    std::copy(from, from + static_cast<std::ptrdiff_t>(tile.pixels.size()), tile.pixels.begin());
+    out.emplace(planes[k], std::move(tile));
+  }
+  return out;
+}
+
 }  // namespace
 
 int run_render(const RenderArgs& args) {
   const bool to_gif = gif_output(args.output, "render");
   std::optional<Image> texture;
+  std::map<uint32_t, Image> textures;
+  bool per_plane = false;  // a texture for each I-plane
   double fps = args.fps.value_or(25);
   if (!args.texture.empty()) {
-    texture = read_png(args.texture);
+    textures = textures_by_plane(args.texture, read_png(args.texture));
+    per_plane = !png_text(args.texture, kIntraPlanesText).empty();
+    texture = textures.at(0);
     if (const std::string rate = png_text(args.texture, kFrameRateText); !args.fps && !rate.empty()) fps = std::strtod(rate.c_str(), nullptr);
   }
   const uint32_t delay = gif_delay(fps);
@@ -113,6 +143,13 @@ int run_render(const RenderArgs& args) {
   for (uint32_t k = 0; decoder.next(); ++k) {
     progress.update(k + 1);
     if (decoder.info().intra) {
+      if (per_plane) {
+        const auto own = textures.find(k);
+        if (own == textures.end())
+          throw input_error(args.texture, 0, "holds no texture for the I-plane at plane " + std::to_string(k) + " (its '" + kIntraPlanesText + "': " +
+                                                 png_text(args.texture, kIntraPlanesText) + ")");
+        texture = own->second;
+      }
       if (!texture) {
         const Canvas box = canvas_over(decoder.nodes());
         texture = checkerboard(box.width, box.height);

@@ -35,12 +35,14 @@ std::string decibels(double value) {
 }
 
 // A measure over frames 1 … (the first has no motion, and its rendering is
-// the texture itself): the PSNR of their mean squared error.
+// the texture itself), those that have it (an I-plane has no motion
+// compensation): the PSNR of their mean squared error.
 double later_psnr(const std::vector<TrackedFrame>& frames, double TrackedFrame::*measure) {
-  if (frames.size() < 2) return std::nan("");
   double error = 0;  // in units of 255²
-  for (size_t f = 1; f < frames.size(); ++f) error += std::pow(10.0, -(frames[f].*measure) / 10);
-  return -10 * std::log10(error / static_cast<double>(frames.size() - 1));
+  size_t count = 0;
+  for (size_t f = 1; f < frames.size(); ++f)
+    if (!std::isnan(frames[f].*measure)) error += std::pow(10.0, -(frames[f].*measure) / 10), ++count;
+  return count == 0 ? std::nan("") : -10 * std::log10(error / static_cast<double>(count));
 }
 
 }  // namespace
@@ -56,6 +58,8 @@ int run_track(const TrackArgs& args) {
   settings.tracker.levels = args.levels;
   settings.tracker.reference = args.reference == "previous" ? TrackingReference::kPrevious : TrackingReference::kFirst;
   settings.tracker.border_on_frame = args.border == "frame";
+  if (args.remesh != 0 && args.remesh <= 1) usage("--remesh: 0 (never) or a factor above 1 (up to 4, the most a triangle may change)");
+  settings.remesh_stretch = args.remesh;
   if (args.block != 0 && (args.block < 2 || args.block > 64)) usage("--block: 2 … 64 pixels");
   settings.block = args.block;
   const auto [first, last] = frame_range(args.frames);
@@ -79,15 +83,32 @@ int run_track(const TrackArgs& args) {
   if (!args.texture.empty()) {
     char fps[32];
     std::snprintf(fps, sizeof fps, "%.10g", result.video.fps);
-    write_png(result.texture, args.texture, result.video.fps > 0 ? std::vector<std::pair<std::string, std::string>>{{kFrameRateText, fps}}
-                                                                 : std::vector<std::pair<std::string, std::string>>{});
+    std::vector<std::pair<std::string, std::string>> text;
+    if (result.video.fps > 0) text.emplace_back(kFrameRateText, fps);
+    if (result.remeshes.empty()) {
+      write_png(result.texture, args.texture, text);
+    } else {
+      // Every I-plane's texture in the one file, one above the other.
+      Image stack(result.texture.width, result.texture.height * static_cast<uint32_t>(1 + result.remeshes.size()));
+      std::string planes = "0";
+      std::copy(result.texture.pixels.begin(), result.texture.pixels.end(), stack.pixels.begin());
+      for (size_t k = 0; k < result.remeshes.size(); ++k) {
+        const Image& tile = result.remeshes[k].texture;
+        std::copy(tile.pixels.begin(), tile.pixels.end(), stack.pixels.begin() + static_cast<std::ptrdiff_t>((k + 1) * tile.pixels.size()));
+        planes += " " + std::to_string(result.remeshes[k].plane);
+      }
+      text.emplace_back(kIntraPlanesText, planes);
+      write_png(stack, args.texture, text);
+    }
   }
   if (!args.report.empty()) {
-    std::string csv = "frame,bits,coverage,render_psnr,mesh_mc_psnr,block_mc_psnr\n";
-    for (const TrackedFrame& f : result.frames) {
-      char line[160];
-      std::snprintf(line, sizeof line, "%lld,%llu,%.4f,%s,%s,%s\n", static_cast<long long>(f.frame), static_cast<unsigned long long>(f.bits), f.coverage,
-                    decibels(f.render_psnr).c_str(), decibels(f.mesh_psnr).c_str(), decibels(f.block_psnr).c_str());
+    std::string csv = "frame,bits,intra,coverage,stretch,render_psnr,mesh_mc_psnr,block_mc_psnr\n";
+    for (size_t k = 0; k < result.frames.size(); ++k) {
+      const TrackedFrame& f = result.frames[k];
+      const bool intra = k == 0 || &mesh_at(result, k) != &mesh_at(result, k - 1);
+      char line[200];
+      std::snprintf(line, sizeof line, "%lld,%llu,%d,%.4f,%.3f,%s,%s,%s\n", static_cast<long long>(f.frame), static_cast<unsigned long long>(f.bits), intra,
+                    f.coverage, f.stretch, decibels(f.render_psnr).c_str(), decibels(f.mesh_psnr).c_str(), decibels(f.block_psnr).c_str());
       csv += line;
     }
     write_file_atomically(args.report, csv);
@@ -101,9 +122,18 @@ int run_track(const TrackArgs& args) {
                  video.height);
   const uint64_t later_bits = std::accumulate(result.frames.begin() + 1, result.frames.end(), uint64_t{0},
                                               [](uint64_t sum, const TrackedFrame& f) { return sum + f.bits; });
-  console::say("%s: %zu planes, %zu nodes (%s), %zu bytes; I-plane %llu bits, P-planes %.0f bits a frame", args.output.c_str(), frames, nodes,
+  console::say("%s: %zu planes, %zu nodes (%s), %zu bytes; I-plane %llu bits, later planes %.0f bits a frame", args.output.c_str(), frames, nodes,
                result.mesh.plane.info.kind == MeshKind::kUniform ? "uniform" : "content-based Delaunay", result.stream.size(),
                static_cast<unsigned long long>(result.frames.front().bits), frames > 1 ? static_cast<double>(later_bits) / static_cast<double>(frames - 1) : 0.0);
+  if (!result.remeshes.empty()) {
+    std::string at;
+    for (const Remesh& r : result.remeshes) at += (at.empty() ? "" : ", ") + std::to_string(result.frames[r.plane].frame);
+    console::say("%zu more I-planes, the mesh laid out again where it degraded: frames %s%s", result.remeshes.size(), at.c_str(),
+                 args.texture.empty() ? "" : " (their textures below the first in the texture's PNG)");
+  }
+  double stretch = 1;
+  for (const TrackedFrame& f : result.frames) stretch = std::max(stretch, f.stretch);
+  console::say("largest change of a triangle's area since its I-plane: %.2f×", stretch);
   if (frames > 1) {
     console::say("texture warped by the mesh against the video: %s dB (luma PSNR of the mean squared error of frames %lld … %lld)",
                  decibels(later_psnr(result.frames, &TrackedFrame::render_psnr)).c_str(), static_cast<long long>(result.frames[1].frame),

@@ -18,6 +18,7 @@ struct TrackArgs {
   int levels = -1;
   std::string reference = "first";
   std::string border = "follow";  // border nodes follow the content, or stay on the frame's edges
+  double remesh = 3;              // TrackSettings::remesh_stretch
   uint32_t block = 0;
   std::string report;  // per-frame CSV
 };

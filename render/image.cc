@@ -123,7 +123,7 @@ Image read_png(const std::string& path) {
   std::memset(&png, 0, sizeof png);
   png.version = PNG_IMAGE_VERSION;
   if (!png_image_begin_read_from_memory(&png, bytes.data(), bytes.size())) throw image_error(path, std::string("not a PNG: ") + png.message);
-  if (png.width == 0 || png.height == 0 || png.width > 16384 || png.height > 16384) {
+  if (png.width == 0 || png.height == 0 || png.width > kMostPictureSide || png.height > kMostPictureSide) {
     png_image_free(&png);
     throw image_error(path, "a PNG of " + std::to_string(png.width) + " × " + std::to_string(png.height) + ": textures go to 16384 × 16384");
   }

@@ -43,6 +43,13 @@ std::string png_text(const std::string& path, const std::string& keyword);
 // The keyword of a texture's frames per second (a decimal number): `track`
 // writes the video's, `render` plays at it.
 inline constexpr const char* kFrameRateText = "Frame rate";
+// The keyword of a texture for several I-planes: their plane numbers
+// ("0 42 87"); the picture holds their textures, of equal height, one
+// above the other in that order. `track` writes it, `render` lays each
+// I-plane's own.
+inline constexpr const char* kIntraPlanesText = "I-planes";
+// The largest side of a PNG read.
+inline constexpr uint32_t kMostPictureSide = 16384;
 
 // An animated GIF written frame by frame (memory: one frame), looping.
 class GifWriter {

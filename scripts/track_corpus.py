@@ -255,7 +255,7 @@ def area(nodes, triangles):
 
 def psnr_of_mean(rows, key):
     """The PSNR of the mean squared error of frames 1 … (as m4mesh track prints it)."""
-    errors = [10 ** (-float(r[key]) / 10) for r in rows[1:] if r[key] not in ("nan", "inf")]
+    errors = [10 ** (-float(r[key]) / 10) for r in rows[1:] if r[key] not in ("", "nan", "inf")]
     return -10 * math.log10(sum(errors) / len(errors)) if errors else float("nan")
 
 

@@ -151,10 +151,17 @@ double mean_error(const TrackResult& result, const std::function<std::pair<doubl
   return sum / static_cast<double>(count);
 }
 
+// No triangle folded, none grown or shrunk past kMaxStretch since its I-plane.
 void expect_no_fold(const TrackResult& result) {
-  for (size_t t = 0; t < result.positions.size(); ++t)
-    for (const Triangle& tri : result.mesh.tracking.triangles)
-      ASSERT_GT(orient(result.positions[t][tri.v[0]], result.positions[t][tri.v[1]], result.positions[t][tri.v[2]]), 0) << "frame " << t;
+  for (size_t t = 0; t < result.positions.size(); ++t) {
+    const TrackingMesh& mesh = mesh_at(result, t).tracking;
+    for (const Triangle& tri : mesh.triangles) {
+      const int64_t area = orient(result.positions[t][tri.v[0]], result.positions[t][tri.v[1]], result.positions[t][tri.v[2]]);
+      const int64_t design = orient(mesh.nodes[tri.v[0]], mesh.nodes[tri.v[1]], mesh.nodes[tri.v[2]]);
+      ASSERT_GT(area, 0) << "frame " << t;
+      ASSERT_LE(static_cast<double>(std::max(area, design)) / static_cast<double>(std::min(area, design)), kMaxStretch + 1e-9) << "frame " << t;
+    }
+  }
 }
 
 TEST(Track, UniformNodesFollowASmoothWarpThroughH264) {
@@ -292,6 +299,7 @@ TEST(Track, BorderNodesFollowAPan) {
   for (const bool on_frame : {false, true}) {
     TrackSettings settings;
     settings.tracker.border_on_frame = on_frame;
+    settings.remesh_stretch = 0;  // one mesh throughout, however little of the frame it covers
     const TrackResult result = track_video(folder / "%03d.png", settings);
     ASSERT_EQ(result.positions.size(), static_cast<size_t>(frames));
     expect_no_fold(result);
@@ -316,6 +324,39 @@ TEST(Track, BorderNodesFollowAPan) {
       EXPECT_LT(result.frames.back().coverage, 0.9);
     }
   }
+}
+
+// The same pan over 24 frames with the defaults: once the mesh covers less
+// than kLeastCoverage of the frame, a new I-plane lays a mesh on the frame,
+// whose texture (below the first in the texture's PNG) render draws there.
+TEST(Track, APanPastTheMeshGetsANewIPlane) {
+  const Workspace folder("pan-remesh");
+  const uint32_t w = 128, h = 96;
+  const int frames = 24, vx = 2, vy = 1;
+  const Image scene = pattern(w + 64, h + 32, 37);
+  std::vector<Image> video;
+  for (int t = 0; t < frames; ++t) {
+    Image frame(w, h);
+    for (uint32_t y = 0; y < h; ++y)
+      for (uint32_t x = 0; x < w; ++x) frame.at(x, y) = scene.at(static_cast<uint32_t>(static_cast<int>(x) + 56 - vx * t), static_cast<uint32_t>(static_cast<int>(y) + 26 - vy * t));
+    video.push_back(std::move(frame));
+  }
+  write_frames(folder, video);
+  const TrackResult result = track_video(folder / "%03d.png", {});
+  expect_no_fold(result);
+  ASSERT_FALSE(result.remeshes.empty());
+  for (const TrackedFrame& f : result.frames) EXPECT_GE(f.coverage, kLeastCoverage) << "frame " << f.frame;
+  const size_t plane = result.remeshes.front().plane;
+  const std::string frames_in = folder / "%03d.png", stream = folder / "out.m4m", texture = folder / "texture.png", picture = folder / "plane.png";
+  std::vector<const char*> track{"m4mesh", "-q", "track", frames_in.c_str(), "-o", stream.c_str(), "--texture", texture.c_str()};
+  ASSERT_EQ(run_m4mesh(static_cast<int>(track.size()), track.data()), 0);
+  EXPECT_EQ(read_file(stream), result.stream);
+  EXPECT_EQ(read_png(texture).height, h * (1 + result.remeshes.size()));
+  const std::string plane_text = std::to_string(plane);
+  std::vector<const char*> render{"m4mesh", "-q", "render", stream.c_str(), "-o", picture.c_str(), "--texture", texture.c_str(), "--plane", plane_text.c_str()};
+  ASSERT_EQ(run_m4mesh(static_cast<int>(render.size()), render.data()), 0);
+  const Image drawn = read_png(picture);
+  EXPECT_EQ(drawn.pixels, video[plane].pixels) << "plane " << plane << ": its I-plane draws its own texture, the frame";
 }
 
 TEST(Track, OneFrameIsAStillTexture) {

@@ -39,8 +39,11 @@ NodeTracker::NodeTracker(TrackingMesh mesh, const Luma& first, const TrackerOpti
     throw usage_error("tracking: at most 4 pyramid levels and a search of 63 pixels");
   levels_ = options_.levels >= 0 ? options_.levels : automatic_levels(first.width, first.height);
   node_triangles_.resize(mesh_.nodes.size());
-  for (uint32_t t = 0; t < mesh_.triangles.size(); ++t)
+  for (uint32_t t = 0; t < mesh_.triangles.size(); ++t) {
     for (NodeIndex n : mesh_.triangles[t].v) node_triangles_[n].push_back(t);
+    const Triangle& tri = mesh_.triangles[t];
+    design_area_.push_back(static_cast<double>(orient(mesh_.nodes[tri.v[0]], mesh_.nodes[tri.v[1]], mesh_.nodes[tri.v[2]])) / 4);
+  }
   x_lo_ = y_lo_ = std::numeric_limits<double>::max();
   x_hi_ = y_hi_ = std::numeric_limits<double>::lowest();
   for (const Point& p : mesh_.nodes) {
@@ -95,11 +98,13 @@ double NodeTracker::triangle_cost(int level, uint32_t t, const std::vector<Posit
   return sum;
 }
 
-bool NodeTracker::keeps_orientation(uint32_t node, const Position& to, const std::vector<Position>& p) const {
+bool NodeTracker::keeps_shape(uint32_t node, const Position& to, const std::vector<Position>& p, double scale) const {
+  const double unit = scale * scale;  // a pixel's area on this level
   for (uint32_t t : node_triangles_[node]) {
     const Triangle& tri = mesh_.triangles[t];
     auto at = [&](NodeIndex n) -> const Position& { return n == node ? to : p[n]; };
-    if (orientation(at(tri.v[0]), at(tri.v[1]), at(tri.v[2])) <= 0) return false;
+    const double area = orientation(at(tri.v[0]), at(tri.v[1]), at(tri.v[2])) / unit;
+    if (area <= 0 || area > design_area_[t] * kMaxStretch || area * kMaxStretch < design_area_[t]) return false;
   }
   return true;
 }
@@ -153,7 +158,7 @@ void NodeTracker::translate_polygons(int level, std::vector<Position>& p, double
     for (uint32_t n = 0; n < p.size(); ++n) {
       if (offsets[n][0] == 0 && offsets[n][1] == 0) continue;
       const Position to{p[n][0] + offsets[n][0], p[n][1] + offsets[n][1]};
-      if (!allowed(n, to, scale) || !keeps_orientation(n, to, p)) continue;
+      if (!allowed(n, to, scale) || !keeps_shape(n, to, p, scale)) continue;
       p[n] = to;
       offsets[n] = {0, 0};
       moved = true;
@@ -176,7 +181,7 @@ void NodeTracker::descend(int level, std::vector<Position>& p, double scale, dou
         for (int dx = -1; dx <= 1; ++dx) {
           if ((dx == 0 && dy == 0) || (freedom == NodeFreedom::kAlongX && dy != 0) || (freedom == NodeFreedom::kAlongY && dx != 0)) continue;
           const Position to{p[n][0] + dx * step, p[n][1] + dy * step};
-          if (!allowed(n, to, scale) || !keeps_orientation(n, to, p)) continue;
+          if (!allowed(n, to, scale) || !keeps_shape(n, to, p, scale)) continue;
           double cost = 0;
           for (uint32_t t : node_triangles_[n]) {
             cost += triangle_cost(level, t, p, n, to);
@@ -206,8 +211,11 @@ std::vector<NodeTracker::Position> NodeTracker::start(const Affine& global) cons
     const Point& q = positions_[n];
     const Point& origin = mesh_.nodes[n];
     const std::array<double, 2> now = global(origin.x * 0.5, origin.y * 0.5), before = global_(origin.x * 0.5, origin.y * 0.5);
-    carried[n] = from_first ? Position{now[0] + q.x * 0.5 - before[0], now[1] + q.y * 0.5 - before[1]} : Position{0, 0};
-    moved[n] = change(q.x * 0.5, q.y * 0.5);
+    // On the half-pixel grid the syntax carries: the moves keep them there, and no rounding at the end folds a triangle.
+    auto on_grid = [](double v) { return std::round(v * 2) * 0.5; };
+    carried[n] = from_first ? Position{on_grid(now[0] + q.x * 0.5 - before[0]), on_grid(now[1] + q.y * 0.5 - before[1])} : Position{0, 0};
+    const std::array<double, 2> changed = change(q.x * 0.5, q.y * 0.5);
+    moved[n] = {on_grid(changed[0]), on_grid(changed[1])};
     for (std::vector<Position>* p : {&carried, &moved}) {
       const NodeFreedom f = freedom(static_cast<uint32_t>(n));
       if (f == NodeFreedom::kFixed || f == NodeFreedom::kAlongY) (*p)[n][0] = q.x * 0.5;
@@ -216,7 +224,7 @@ std::vector<NodeTracker::Position> NodeTracker::start(const Affine& global) cons
   }
   auto valid = [&](const std::vector<Position>& p) {
     for (uint32_t n = 0; n < p.size(); ++n)
-      if (!allowed(n, p[n], 1.0) || !keeps_orientation(n, p[n], p)) return false;
+      if (!allowed(n, p[n], 1.0) || !keeps_shape(n, p[n], p, 1.0)) return false;
     return true;
   };
   if (from_first && valid(carried)) return carried;
@@ -224,6 +232,68 @@ std::vector<NodeTracker::Position> NodeTracker::start(const Affine& global) cons
   std::vector<Position> still(positions_.size());
   for (size_t n = 0; n < positions_.size(); ++n) still[n] = {positions_[n].x * 0.5, positions_[n].y * 0.5};
   return still;
+}
+
+// The polygons put a node where its triangles' warp fits best, which a
+// coarse mesh on a curved motion places off the node's own content. Each
+// node then matches a window of the reference around its own point,
+// shaped by the global motion's linear part, at its position and at the
+// half-pixel positions within a pixel of it; the best one is taken when
+// it folds nothing. A window too flat to say leaves the node.
+void NodeTracker::place_on_content(std::vector<Position>& p, const Affine& global) const {
+  constexpr int kRadius = 8;  // pixels
+  constexpr int kReach = 4;   // half pixels each way, a pass
+  constexpr int kPasses = 6;
+  const Luma &reference = previous_pyramid_[0], &picture = frame_pyramid_[0];
+  const bool from_first = options_.reference == TrackingReference::kFirst;
+  std::vector<std::array<double, 3>> window;  // mapped offset x, y and the reference's value
+  for (int pass = 0; pass < kPasses; ++pass) {
+  bool moved = false;
+  for (uint32_t n = 0; n < p.size(); ++n) {
+    const NodeFreedom f = freedom(n);
+    if (f == NodeFreedom::kFixed) continue;
+    const std::vector<Point>& at = from_first ? mesh_.nodes : positions_;
+    const double ox = at[n].x * 0.5, oy = at[n].y * 0.5;
+    // The node's own content: the pixels of its triangles (a masked object's, not the background's).
+    auto in_polygon = [&](uint32_t node, double x, double y) {
+      for (uint32_t t : node_triangles_[node]) {
+        const Triangle& tri = mesh_.triangles[t];
+        const Position a{at[tri.v[0]].x * 0.5, at[tri.v[0]].y * 0.5}, b{at[tri.v[1]].x * 0.5, at[tri.v[1]].y * 0.5},
+            c{at[tri.v[2]].x * 0.5, at[tri.v[2]].y * 0.5}, q{x, y};
+        if (orientation(a, b, q) >= 0 && orientation(b, c, q) >= 0 && orientation(c, a, q) >= 0) return true;
+      }
+      return false;
+    };
+    window.clear();
+    double gradient = 0;
+    for (int j = -kRadius; j <= kRadius; ++j)
+      for (int i = -kRadius; i <= kRadius; ++i) {
+        const double x = std::floor(ox) + i + 0.5, y = std::floor(oy) + j + 0.5;
+        if (x < 1 || y < 1 || x > reference.width - 1.0 || y > reference.height - 1.0 || !in_polygon(n, x, y)) continue;
+        const auto xi = static_cast<uint32_t>(x), yi = static_cast<uint32_t>(y);
+        gradient += std::abs(reference.at(xi + 1, yi) - reference.at(xi - 1, yi)) + std::abs(reference.at(xi, yi + 1) - reference.at(xi, yi - 1));
+        const double dx = x - ox, dy = y - oy;
+        window.push_back({global.a[0] * dx + global.a[1] * dy, global.a[2] * dx + global.a[3] * dy, reference.at(xi, yi)});
+      }
+    if (window.size() < 32 || gradient < 2.0 * static_cast<double>(window.size())) continue;
+    double best = std::numeric_limits<double>::max();
+    Position best_to = p[n];
+    for (int sy = -kReach; sy <= kReach; ++sy)
+      for (int sx = -kReach; sx <= kReach; ++sx) {
+        if ((f == NodeFreedom::kAlongX && sy != 0) || (f == NodeFreedom::kAlongY && sx != 0)) continue;
+        const Position to{p[n][0] + 0.5 * sx, p[n][1] + 0.5 * sy};
+        if ((sx != 0 || sy != 0) && !allowed(n, to, 1.0)) continue;
+        double cost = 0;
+        for (const auto& [dx, dy, value] : window) {
+          cost += sample_cost(picture, to[0] + dx, to[1] + dy, static_cast<float>(value));
+          if (cost >= best) break;
+        }
+        if (cost < best) best = cost, best_to = to;
+      }
+    if (best_to != p[n] && keeps_shape(n, best_to, p, 1.0)) p[n] = best_to, moved = true;
+  }
+  if (!moved) break;
+  }
 }
 
 const std::vector<Point>& NodeTracker::track(const Luma& frame) {
@@ -247,6 +317,7 @@ const std::vector<Point>& NodeTracker::track(const Luma& frame) {
     descend(level, p, scale, 0.5);
     for (Position& q : p) q = {q[0] / scale, q[1] / scale};
   }
+  place_on_content(p, global);
 
   global_before_ = global_;
   global_ = global;

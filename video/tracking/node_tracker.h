@@ -7,8 +7,9 @@
 // Nakaya & Harashima), ending on the half-pixel grid the syntax carries.
 // Every frame starts from the global motion (global_motion.h), so pans
 // and zooms of tens of pixels are followed. A move that would fold a
-// triangle over (orient ≤ 0) is never taken, so the topology of the first
-// frame holds in every frame.
+// triangle over (orient ≤ 0) or change its area more than kMaxStretch
+// times is never taken, so the topology of the first frame holds in every
+// frame and no triangle is drawn across an object moving past.
 #pragma once
 
 #include <array>
@@ -52,6 +53,10 @@ struct TrackerOptions {
 // fit motion_range_code 3 ([−128, 127]).
 inline constexpr int32_t kMaxNodeMotion = 127;
 
+// The most a triangle's area grows or shrinks from the first frame: a
+// node dragged further by an object moving past its neighbours stops.
+inline constexpr double kMaxStretch = 4;
+
 class NodeTracker {
  public:
   NodeTracker(TrackingMesh mesh, const Luma& first, const TrackerOptions& options);
@@ -76,8 +81,10 @@ class NodeTracker {
   NodeFreedom freedom(uint32_t node) const { return options_.border_on_frame ? mesh_.freedom[node] : NodeFreedom::kFree; }
   void build_samples(const std::vector<Luma>& reference, const std::vector<Point>& at);
   std::vector<Position> start(const Affine& global) const;
+  void place_on_content(std::vector<Position>& p, const Affine& global) const;
   double triangle_cost(int level, uint32_t t, const std::vector<Position>& p, NodeIndex moved, const Position& to) const;
-  bool keeps_orientation(uint32_t node, const Position& to, const std::vector<Position>& p) const;
+  // Whether every triangle around `node` at `to` (positions of a level of `scale`) keeps clockwise, within kMaxStretch of its first area.
+  bool keeps_shape(uint32_t node, const Position& to, const std::vector<Position>& p, double scale) const;
   bool allowed(uint32_t node, const Position& to, double scale) const;
   void translate_polygons(int level, std::vector<Position>& p, double scale);
   void descend(int level, std::vector<Position>& p, double scale, double step);
@@ -86,6 +93,7 @@ class NodeTracker {
   TrackerOptions options_;
   int levels_ = 0;
   std::vector<std::vector<uint32_t>> node_triangles_;
+  std::vector<double> design_area_;  // per triangle, on the first frame, pixels²
   double x_lo_ = 0, x_hi_ = 0, y_lo_ = 0, y_hi_ = 0;  // the first frame's mesh rectangle, pixels
   std::vector<std::vector<std::vector<Sample>>> samples_;  // [level][triangle]
   std::vector<Luma> frame_pyramid_, previous_pyramid_;
