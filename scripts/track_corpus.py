@@ -9,7 +9,7 @@ M_t from frame 0 to frame t, and coded by FFmpeg's libx264 at two
 qualities. Two sets draw from different seeds: `tune` (for whoever adjusts
 the tracker) and `eval` (the one the figures and targets are read on).
 
-    /usr/bin/python3 scripts/track_corpus.py [--set eval|tune|both] [--build build] [--work DIR] [--json OUT] [--only NAME]
+    /usr/bin/python3 scripts/track_corpus.py [--set eval|tune|both] [--build build] [--work DIR] [--json OUT] [--only NAME] [--figures DIR]
 
 For each clip and mesh (the default uniform 16 x 16 cells, and `--nodes 60`)
 it reports the mean and 95th-percentile node error in pixels (over nodes
@@ -47,6 +47,8 @@ KINDS = {
     "object": dict(pan=(0.5, 0.0), zoom=0.0, rotation=0.0, warp=0.0, object=True),
 }
 SEEDS = {"tune": (1, 2), "eval": (101, 102)}
+FIGURE_CLIP = "eval-warp-pan-101-crf18"
+VTEST_PICTURE_AFTER = 30  # the vtest picture: the first I-plane from this frame on, 4 frames later
 
 
 class Texture:
@@ -204,7 +206,7 @@ def decoded_planes(m4mesh, stream, work):
 
 
 def node_errors(motion, planes):
-    """Distances (pixels) between tracked and true node positions in frames 1 …, nodes in view only."""
+    """Per P-plane (frame, distances in pixels between tracked and true node positions), nodes in view only."""
     errors = []
     origin = None
     for t, (intra, nodes) in enumerate(planes):
@@ -217,8 +219,8 @@ def node_errors(motion, planes):
         seen = (tx >= 0) & (tx <= WIDTH) & (ty >= 0) & (ty <= HEIGHT)
         if motion.object is not None:
             seen &= motion.on_object(origin[0], origin[1]) | ~motion.covered(t, tx, ty)
-        errors.extend(np.hypot(at[seen, 0] - tx[seen], at[seen, 1] - ty[seen]))
-    return np.array(errors)
+        errors.append((t, np.hypot(at[seen, 0] - tx[seen], at[seen, 1] - ty[seen])))
+    return errors
 
 
 def triangles_of(m4mesh, stream, work):
@@ -260,8 +262,8 @@ def psnr_of_mean(rows, key):
 
 
 def track(m4mesh, video, options, work, name):
-    stream, report = os.path.join(work, name + ".m4m"), os.path.join(work, name + ".csv")
-    subprocess.run([m4mesh, "-q", "-y", "track", video, "-o", stream, "--report", report] + options, check=True)
+    stream, report, texture = os.path.join(work, name + ".m4m"), os.path.join(work, name + ".csv"), os.path.join(work, name + ".png")
+    subprocess.run([m4mesh, "-q", "-y", "track", video, "-o", stream, "--report", report, "--texture", texture] + options, check=True)
     with open(report) as f:
         rows = list(csv.DictReader(f))
     planes = decoded_planes(m4mesh, stream, work)
@@ -281,6 +283,7 @@ def main():
     parser.add_argument("--work", help="where the clips and streams go (kept); default a temporary folder")
     parser.add_argument("--json", help="write every figure here")
     parser.add_argument("--only", help="clips whose name holds this")
+    parser.add_argument("--figures", help="draw docs/tracking.md's figures into this folder")
     args = parser.parse_args()
     m4mesh = os.path.join(os.path.abspath(args.build), "cli", "m4mesh")
     work = args.work or tempfile.mkdtemp(prefix="m4mesh-track-corpus-")
@@ -302,9 +305,11 @@ def main():
                         write_clip(motion, crf, video)
                     for label, options in MESHES:
                         _, rows, planes = track(m4mesh, video, options, work, name + "-" + label.split()[0])
-                        errors = node_errors(motion, planes)
+                        per_frame = node_errors(motion, planes)
+                        errors = np.concatenate([e for _, e in per_frame])
                         r = dict(clip=name, kind=kind, set=which, crf=crf, mesh=label, mean_error=float(errors.mean()),
                                  p95_error=float(np.percentile(errors, 95)), worst_error=float(errors.max()), **summary(rows, planes))
+                        r["per_frame"] = dict(error=[[t, float(e.mean())] for t, e in per_frame], rows=rows)
                         results.append(r)
                         print(f"| {name} | {label} | {r['nodes']} | {r['mean_error']:.2f} | {r['p95_error']:.2f} | {r['render']:.2f} | {r['mesh_mc']:.2f} | "
                               f"{r['block_mc']:.2f} | {r['bits_per_p_plane']:.0f} | {r['i_planes']} |", flush=True)
@@ -316,13 +321,57 @@ def main():
         for label, options in MESHES:
             stream, rows, planes = track(m4mesh, path, options + ["--frames", frames], work, name + "-" + label.split()[0])
             stretch = largest_stretch(planes, triangles_of(m4mesh, stream, work))
-            r = dict(clip=f"{name} {frames}", mesh=label, stretch=stretch, **summary(rows, planes))
+            r = dict(clip=f"{name} {frames}", mesh=label, stretch=stretch, per_frame=dict(rows=rows), **summary(rows, planes))
             results.append(r)
             print(f"| {name} frames {frames} | {label} | {r['nodes']} | — | — | {r['render']:.2f} | {r['mesh_mc']:.2f} | {r['block_mc']:.2f} | "
                   f"{r['bits_per_p_plane']:.0f} | {r['i_planes']} (largest area growth {stretch:.2f}x) |", flush=True)
     if args.json:
         with open(args.json, "w") as f:
             json.dump(results, f, indent=1)
+    if args.figures:
+        figures(m4mesh, work, results, args.figures)
+
+
+def figures(m4mesh, work, results, folder):
+    """Per-frame plots of one synthetic and one natural clip, and the tracked mesh on vtest.avi."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    os.makedirs(folder, exist_ok=True)
+    for r in results:
+        synthetic = "error" in r["per_frame"]
+        if not ((synthetic and r["clip"] == FIGURE_CLIP and r["mesh"] == "60 nodes") or (r["clip"].startswith("vtest") and r["mesh"].startswith("uniform"))):
+            continue
+        rows = r["per_frame"]["rows"]
+        frames = [int(x["frame"]) for x in rows]
+        figure, axis = plt.subplots(figsize=(8, 3.6))
+        for key, label in (("render_psnr", "rendering"), ("mesh_mc_psnr", "mesh MC"), ("block_mc_psnr", "block MC")):
+            axis.plot(frames, [float(x[key]) if x[key] not in ("", "inf") else float("nan") for x in rows], label=label)
+        for x in rows[1:]:
+            if x["intra"] == "1":
+                axis.axvline(int(x["frame"]), color="grey", linewidth=0.6, linestyle=":")
+        axis.set_xlabel("frame (dotted: a new I-plane)")
+        axis.set_ylabel("luma PSNR (dB)")
+        if synthetic:
+            errors = axis.twinx()
+            errors.plot([t for t, _ in r["per_frame"]["error"]], [e for _, e in r["per_frame"]["error"]], color="black", linewidth=1, label="mean node error")
+            errors.set_ylabel("mean node error (px)")
+            errors.legend(loc="lower right")
+        axis.legend(loc="lower left")
+        axis.set_title(f"{r['clip']}, {r['mesh']}")
+        name = "track-corpus-synthetic.png" if synthetic else "track-corpus-vtest.png"
+        figure.tight_layout()
+        figure.savefig(os.path.join(folder, name), dpi=90)
+        plt.close(figure)
+        if not synthetic:
+            # The mesh over the rendering of a P-plane a few frames after an I-plane, walkers in view.
+            plane = next(k + 4 for k, x in enumerate(rows) if k >= VTEST_PICTURE_AFTER and x["intra"] == "1")
+            stream, texture = os.path.join(work, "vtest.avi-uniform.m4m"), os.path.join(work, "vtest.avi-uniform.png")
+            subprocess.run([m4mesh, "-q", "-y", "render", stream, "--texture", texture, "--plane", str(plane), "--wireframe", "-o",
+                            os.path.join(folder, "track-vtest-mesh.png")], check=True)
+            print(f"figures: {folder}/track-vtest-mesh.png is plane {plane}")
 
 
 if __name__ == "__main__":

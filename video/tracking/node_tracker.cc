@@ -126,7 +126,7 @@ void NodeTracker::translate_polygons(int level, std::vector<Position>& p, double
   std::vector<std::array<double, 3>> mapped;  // x, y, reference value of each polygon sample
   for (uint32_t n = 0; n < p.size(); ++n) {
     const NodeFreedom freedom = this->freedom(n);
-    if (freedom == NodeFreedom::kFixed) continue;
+    if (freedom == NodeFreedom::kFixed || outside_[n]) continue;
     mapped.clear();
     for (uint32_t t : node_triangles_[n]) {
       const Triangle& tri = mesh_.triangles[t];
@@ -172,7 +172,7 @@ void NodeTracker::descend(int level, std::vector<Position>& p, double scale, dou
     bool moved = false;
     for (uint32_t n = 0; n < p.size(); ++n) {
       const NodeFreedom freedom = this->freedom(n);
-      if (freedom == NodeFreedom::kFixed) continue;
+      if (freedom == NodeFreedom::kFixed || outside_[n]) continue;
       double current = 0;
       for (uint32_t t : node_triangles_[n]) current += costs_[t];
       double best = current;
@@ -251,7 +251,7 @@ void NodeTracker::place_on_content(std::vector<Position>& p, const Affine& globa
   bool moved = false;
   for (uint32_t n = 0; n < p.size(); ++n) {
     const NodeFreedom f = freedom(n);
-    if (f == NodeFreedom::kFixed) continue;
+    if (f == NodeFreedom::kFixed || outside_[n]) continue;
     const std::vector<Point>& at = from_first ? mesh_.nodes : positions_;
     const double ox = at[n].x * 0.5, oy = at[n].y * 0.5;
     // The node's own content: the pixels of its triangles (a masked object's, not the background's).
@@ -307,6 +307,11 @@ const std::vector<Point>& NodeTracker::track(const Luma& frame) {
   const Affine guess = from_first && has_velocity_ ? global_.after(global_before_.inverse()).after(global_) : global_;
   const Affine global = global_motion(previous_pyramid_, frame_pyramid_, guess, options_.search);
   std::vector<Position> p = start(global);
+  // A node whose start lies out of the frame (by over a 2-pixel margin) has little content to match: it keeps the global motion.
+  constexpr double kMargin = 2;
+  outside_.resize(p.size());
+  for (size_t n = 0; n < p.size(); ++n)
+    outside_[n] = p[n][0] < -kMargin || p[n][1] < -kMargin || p[n][0] > frame.width + kMargin || p[n][1] > frame.height + kMargin;
   for (int level = levels_; level >= 0; --level) {
     const double scale = 1.0 / static_cast<double>(1 << level);
     for (Position& q : p) q = {q[0] * scale, q[1] * scale};

@@ -99,6 +99,7 @@ class NodeTracker {
   std::vector<Luma> frame_pyramid_, previous_pyramid_;
   std::vector<Point> positions_;
   std::vector<double> costs_;  // per triangle, at the current level and positions
+  std::vector<bool> outside_;  // per node: its start lies out of the frame
   bool has_velocity_ = false;
   Affine global_, global_before_;
 };
