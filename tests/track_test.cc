@@ -279,23 +279,32 @@ TEST(Track, MaskedObjectMovesOverAStillBackground) {
   EXPECT_LT(result.frames[1].coverage, 0.25);
 }
 
+// A camera pan over a still scene, lossless: frame t is a window of a
+// larger picture whose content moves kPanX right and kPanY down a frame.
+constexpr uint32_t kPanWidth = 128, kPanHeight = 96;
+constexpr int kPanX = 2, kPanY = 1;
+std::vector<Image> panned_video(int frames, uint64_t seed) {
+  const Image scene = pattern(kPanWidth + 64, kPanHeight + 32, seed);
+  std::vector<Image> video;
+  for (int t = 0; t < frames; ++t) {
+    Image frame(kPanWidth, kPanHeight);
+    const int left = kPanX * (frames - 1 - t), top = kPanY * (frames - 1 - t);
+    for (uint32_t y = 0; y < kPanHeight; ++y)
+      for (uint32_t x = 0; x < kPanWidth; ++x) frame.at(x, y) = scene.at(x + static_cast<uint32_t>(left), y + static_cast<uint32_t>(top));
+    video.push_back(std::move(frame));
+  }
+  return video;
+}
+
 // A camera pan of 24 pixels over 12 frames (the content moves 2 pixels
 // right and 1 down a frame), lossless: every node follows the content
 // under it, those of the frame's border too; held on the frame, the left
 // column stays on the frame's edge.
 TEST(Track, BorderNodesFollowAPan) {
   const Workspace folder("pan");
-  const uint32_t w = 128, h = 96;
-  const int frames = 12, vx = 2, vy = 1;
-  const Image scene = pattern(w + 64, h + 32, 31);
-  std::vector<Image> video;
-  for (int t = 0; t < frames; ++t) {
-    Image frame(w, h);
-    for (uint32_t y = 0; y < h; ++y)
-      for (uint32_t x = 0; x < w; ++x) frame.at(x, y) = scene.at(static_cast<uint32_t>(static_cast<int>(x) + 40 - vx * t), static_cast<uint32_t>(static_cast<int>(y) + 20 - vy * t));
-    video.push_back(std::move(frame));
-  }
-  write_frames(folder, video);
+  const uint32_t w = kPanWidth, h = kPanHeight;
+  const int frames = 12, vx = kPanX, vy = kPanY;
+  write_frames(folder, panned_video(frames, 31));
   for (const bool on_frame : {false, true}) {
     TrackSettings settings;
     settings.tracker.border_on_frame = on_frame;
@@ -331,16 +340,7 @@ TEST(Track, BorderNodesFollowAPan) {
 // whose texture (below the first in the texture's PNG) render draws there.
 TEST(Track, APanPastTheMeshGetsANewIPlane) {
   const Workspace folder("pan-remesh");
-  const uint32_t w = 128, h = 96;
-  const int frames = 24, vx = 2, vy = 1;
-  const Image scene = pattern(w + 64, h + 32, 37);
-  std::vector<Image> video;
-  for (int t = 0; t < frames; ++t) {
-    Image frame(w, h);
-    for (uint32_t y = 0; y < h; ++y)
-      for (uint32_t x = 0; x < w; ++x) frame.at(x, y) = scene.at(static_cast<uint32_t>(static_cast<int>(x) + 56 - vx * t), static_cast<uint32_t>(static_cast<int>(y) + 26 - vy * t));
-    video.push_back(std::move(frame));
-  }
+  const std::vector<Image> video = panned_video(24, 37);
   write_frames(folder, video);
   const TrackResult result = track_video(folder / "%03d.png", {});
   expect_no_fold(result);
@@ -351,7 +351,7 @@ TEST(Track, APanPastTheMeshGetsANewIPlane) {
   std::vector<const char*> track{"m4mesh", "-q", "track", frames_in.c_str(), "-o", stream.c_str(), "--texture", texture.c_str()};
   ASSERT_EQ(run_m4mesh(static_cast<int>(track.size()), track.data()), 0);
   EXPECT_EQ(read_file(stream), result.stream);
-  EXPECT_EQ(read_png(texture).height, h * (1 + result.remeshes.size()));
+  EXPECT_EQ(read_png(texture).height, kPanHeight * (1 + result.remeshes.size()));
   const std::string plane_text = std::to_string(plane);
   std::vector<const char*> render{"m4mesh", "-q", "render", stream.c_str(), "-o", picture.c_str(), "--texture", texture.c_str(), "--plane", plane_text.c_str()};
   ASSERT_EQ(run_m4mesh(static_cast<int>(render.size()), render.data()), 0);
