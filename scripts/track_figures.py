@@ -7,7 +7,6 @@ per-frame PSNRs and bits to docs/figures/track-*.png.
     /usr/bin/python3 scripts/track_figures.py [BUILD]   (default build/)
 """
 import csv
-import math
 import os
 import re
 import subprocess
@@ -15,6 +14,8 @@ import sys
 import tempfile
 
 import matplotlib
+
+from track_corpus import psnr_of_mean as mean  # noqa: E402 (this folder)
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -33,10 +34,6 @@ def track(work, name, video, options):
     return rows
 
 
-def mean(rows, key):
-    """The PSNR of the mean squared error of frames 1 … (as m4mesh track prints it)."""
-    errors = [10 ** (-float(r[key]) / 10) for r in rows[1:]]
-    return -10 * math.log10(sum(errors) / len(errors))
 
 
 def main():
@@ -53,8 +50,8 @@ def main():
         ("tree.avi (natural), frames 0–59", "tree-delaunay", TREE, ["--frames", "0:59", "--nodes", "300"]),
         ("tree.avi (natural), frames 0–59", "tree-previous", TREE, ["--frames", "0:59", "--reference", "previous"]),
     ]
-    print("| video | mesh | nodes | bits / P-plane | rendering (dB) | mesh MC (dB) | block MC (dB) |")
-    print("|---|---|---|---|---|---|---|")
+    print("| video | mesh | nodes | bits / later plane | rendering (dB) | mesh MC (dB) | block MC (dB) | I-planes |")
+    print("|---|---|---|---|---|---|---|---|")
     results = {}
     for label, name, video, options in cases:
         rows = track(work, name, video, options)
@@ -66,15 +63,17 @@ def main():
             mesh += ", `--reference previous`"
         bits = sum(int(r["bits"]) for r in rows[1:]) / (len(rows) - 1)
         print(f"| {label} | {mesh} | {nodes} | {bits:.0f} | {mean(rows, 'render_psnr'):.2f} | {mean(rows, 'mesh_mc_psnr'):.2f} | "
-              f"{mean(rows, 'block_mc_psnr'):.2f} |")
+              f"{mean(rows, 'block_mc_psnr'):.2f} | {sum(r['intra'] == '1' for r in rows)} |")
 
     for name, title in (("tree-uniform", "tree.avi, uniform 16 × 16 mesh"), ("smooth-uniform", "smooth warp (H.264), uniform 16 × 16 mesh")):
         rows = results[name]
         frames = [int(r["frame"]) for r in rows[1:]]
         fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 5), sharex=True, gridspec_kw={"height_ratios": [3, 1]})
-        top.plot(frames, [float(r["render_psnr"]) for r in rows[1:]], label="texture warped by the mesh vs frame")
-        top.plot(frames, [float(r["mesh_mc_psnr"]) for r in rows[1:]], label="mesh motion compensation")
-        top.plot(frames, [float(r["block_mc_psnr"]) for r in rows[1:]], label="block matching, as many vectors")
+        def column(key):
+            return [float(r[key]) if r[key] not in ("", "inf") else float("nan") for r in rows[1:]]  # an I-plane has no motion compensation
+        top.plot(frames, column("render_psnr"), label="texture warped by the mesh vs frame")
+        top.plot(frames, column("mesh_mc_psnr"), label="mesh motion compensation")
+        top.plot(frames, column("block_mc_psnr"), label="block matching, as many vectors")
         top.set_ylabel("luma PSNR (dB)")
         top.set_title(title)
         top.legend(fontsize=8)

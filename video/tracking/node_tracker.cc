@@ -242,29 +242,25 @@ std::vector<NodeTracker::Position> NodeTracker::start(const Affine& global) cons
 // it folds nothing. A window too flat to say leaves the node.
 void NodeTracker::place_on_content(std::vector<Position>& p, const Affine& global) const {
   constexpr int kRadius = 8;  // pixels
-  constexpr int kReach = 4;   // half pixels each way, a pass
-  constexpr int kPasses = 6;
+  constexpr int kPasses = 4;
   const Luma &reference = previous_pyramid_[0], &picture = frame_pyramid_[0];
-  const bool from_first = options_.reference == TrackingReference::kFirst;
-  std::vector<std::array<double, 3>> window;  // mapped offset x, y and the reference's value
-  for (int pass = 0; pass < kPasses; ++pass) {
-  bool moved = false;
+  const std::vector<Point>& origin = options_.reference == TrackingReference::kFirst ? mesh_.nodes : positions_;
+  // The node's own content: the pixels of its triangles (a masked object's, not the background's).
+  auto in_polygon = [&](uint32_t node, double x, double y) {
+    for (uint32_t t : node_triangles_[node]) {
+      const Triangle& tri = mesh_.triangles[t];
+      const Position a{origin[tri.v[0]].x * 0.5, origin[tri.v[0]].y * 0.5}, b{origin[tri.v[1]].x * 0.5, origin[tri.v[1]].y * 0.5},
+          c{origin[tri.v[2]].x * 0.5, origin[tri.v[2]].y * 0.5}, q{x, y};
+      if (orientation(a, b, q) >= 0 && orientation(b, c, q) >= 0 && orientation(c, a, q) >= 0) return true;
+    }
+    return false;
+  };
+  // Each node's window: offsets mapped by the global motion's linear part, and the reference's values.
+  std::vector<std::vector<std::array<double, 3>>> windows(p.size());
   for (uint32_t n = 0; n < p.size(); ++n) {
-    const NodeFreedom f = freedom(n);
-    if (f == NodeFreedom::kFixed || outside_[n]) continue;
-    const std::vector<Point>& at = from_first ? mesh_.nodes : positions_;
-    const double ox = at[n].x * 0.5, oy = at[n].y * 0.5;
-    // The node's own content: the pixels of its triangles (a masked object's, not the background's).
-    auto in_polygon = [&](uint32_t node, double x, double y) {
-      for (uint32_t t : node_triangles_[node]) {
-        const Triangle& tri = mesh_.triangles[t];
-        const Position a{at[tri.v[0]].x * 0.5, at[tri.v[0]].y * 0.5}, b{at[tri.v[1]].x * 0.5, at[tri.v[1]].y * 0.5},
-            c{at[tri.v[2]].x * 0.5, at[tri.v[2]].y * 0.5}, q{x, y};
-        if (orientation(a, b, q) >= 0 && orientation(b, c, q) >= 0 && orientation(c, a, q) >= 0) return true;
-      }
-      return false;
-    };
-    window.clear();
+    if (freedom(n) == NodeFreedom::kFixed || outside_[n]) continue;
+    const double ox = origin[n].x * 0.5, oy = origin[n].y * 0.5;
+    std::vector<std::array<double, 3>>& window = windows[n];
     double gradient = 0;
     for (int j = -kRadius; j <= kRadius; ++j)
       for (int i = -kRadius; i <= kRadius; ++i) {
@@ -275,24 +271,39 @@ void NodeTracker::place_on_content(std::vector<Position>& p, const Affine& globa
         const double dx = x - ox, dy = y - oy;
         window.push_back({global.a[0] * dx + global.a[1] * dy, global.a[2] * dx + global.a[3] * dy, reference.at(xi, yi)});
       }
-    if (window.size() < 32 || gradient < 2.0 * static_cast<double>(window.size())) continue;
-    double best = std::numeric_limits<double>::max();
-    Position best_to = p[n];
-    for (int sy = -kReach; sy <= kReach; ++sy)
-      for (int sx = -kReach; sx <= kReach; ++sx) {
-        if ((f == NodeFreedom::kAlongX && sy != 0) || (f == NodeFreedom::kAlongY && sx != 0)) continue;
-        const Position to{p[n][0] + 0.5 * sx, p[n][1] + 0.5 * sy};
-        if ((sx != 0 || sy != 0) && !allowed(n, to, 1.0)) continue;
-        double cost = 0;
-        for (const auto& [dx, dy, value] : window) {
-          cost += sample_cost(picture, to[0] + dx, to[1] + dy, static_cast<float>(value));
-          if (cost >= best) break;
-        }
-        if (cost < best) best = cost, best_to = to;
-      }
-    if (best_to != p[n] && keeps_shape(n, best_to, p, 1.0)) p[n] = best_to, moved = true;
+    if (window.size() < 32 || gradient < 2.0 * static_cast<double>(window.size())) window.clear();
   }
-  if (!moved) break;
+  auto cost_at = [&](const std::vector<std::array<double, 3>>& window, const Position& to, double bound) {
+    double cost = 0;
+    for (const auto& [dx, dy, value] : window) {
+      cost += sample_cost(picture, to[0] + dx, to[1] + dy, static_cast<float>(value));
+      if (cost >= bound) break;
+    }
+    return cost;
+  };
+  // A descent for each node: to the best of its eight neighbours a pixel away, then half a pixel away, while that lowers the cost.
+  for (int pass = 0; pass < kPasses; ++pass) {
+    bool moved = false;
+    for (uint32_t n = 0; n < p.size(); ++n) {
+      if (windows[n].empty()) continue;
+      const NodeFreedom f = freedom(n);
+      double current = cost_at(windows[n], p[n], std::numeric_limits<double>::max());
+      for (const double step : {1.0, 0.5})
+        for (bool improved = true; improved;) {
+          improved = false;
+          Position best_to = p[n];
+          double best = current;
+          for (int sy = -1; sy <= 1; ++sy)
+            for (int sx = -1; sx <= 1; ++sx) {
+              if ((sx == 0 && sy == 0) || (f == NodeFreedom::kAlongX && sy != 0) || (f == NodeFreedom::kAlongY && sx != 0)) continue;
+              const Position to{p[n][0] + step * sx, p[n][1] + step * sy};
+              if (!allowed(n, to, 1.0)) continue;
+              if (const double cost = cost_at(windows[n], to, best); cost < best) best = cost, best_to = to;
+            }
+          if (best_to != p[n] && keeps_shape(n, best_to, p, 1.0)) p[n] = best_to, current = best, improved = moved = true;
+        }
+    }
+    if (!moved) break;
   }
 }
 
