@@ -77,11 +77,12 @@ std::map<uint32_t, Image> textures_by_plane(const std::string& path, Image textu
   if (list.empty()) return {{0, std::move(texture)}};
   std::vector<uint32_t> planes;
   std::istringstream in(list);
+  bool increasing = true;
   for (uint32_t plane = 0; in >> plane;) {
-    if (!planes.empty() && plane <= planes.back()) break;
+    increasing = increasing && (planes.empty() || plane > planes.back());
     planes.push_back(plane);
   }
-  if (!in.eof() || planes.empty() || planes.front() != 0 || texture.height % planes.size() != 0)
+  if (!in.eof() || !increasing || planes.empty() || planes.front() != 0 || texture.height % planes.size() != 0)
     throw input_error(path, 0, "its '" + std::string(kIntraPlanesText) + "' text \"" + list + "\" does not list increasing planes from 0, one per equal part of its height");
   const uint32_t height = texture.height / static_cast<uint32_t>(planes.size());
   std::map<uint32_t, Image> out;

@@ -391,6 +391,15 @@ status=0; "$m4mesh" check conformance/mesh3d/streams/x-10-bfs3d-lengths.m4m > "$
 "$m4mesh" trace conformance/mesh3d/streams/bfs3d-01-average.m4m --fields-only > "$work/out"
 grep -q "arithmetic_bytes_x" "$work/out" && ! grep -q "bins_x:" "$work/out" || fail "trace --fields-only: bins listed"
 
+# render: a texture for several I-planes whose 'I-planes' text is not one it can cut is refused, naming it.
+/usr/bin/python3 -c "
+from PIL import Image, PngImagePlugin
+info = PngImagePlugin.PngInfo(); info.add_text('I-planes', '0 5 3')
+Image.new('RGB', (8, 12)).save('$work/stacked.png', pnginfo=info)"
+status=0; "$m4mesh" render conformance/streams/p04-uniform-split2.m4m --texture "$work/stacked.png" -o "$work/stacked-out.png" 2> "$work/err" || status=$?
+[ "$status" = 1 ] && grep -q "stacked.png: its 'I-planes' text \"0 5 3\" does not list increasing planes" "$work/err" && [ ! -e "$work/stacked-out.png" ] ||
+  fail "render with a bad I-planes text: exit $status, $(cat "$work/err")"
+
 # An error in a refinement unit (it refines every frame) names its unit, no frame.
 status=0; "$m4mesh" check conformance/mesh3d/streams/x-62-cpca-beyond-trajectories.m4m > "$work/out" || status=$?
 [ "$status" = 1 ] && grep -q "^error: unit 6, cluster at bit 2952: " "$work/out" || fail "check of a refinement unit: $(head -1 "$work/out")"

@@ -236,10 +236,10 @@ std::vector<NodeTracker::Position> NodeTracker::start(const Affine& global) cons
 
 // The polygons put a node where its triangles' warp fits best, which a
 // coarse mesh on a curved motion places off the node's own content. Each
-// node then matches a window of the reference around its own point,
-// shaped by the global motion's linear part, at its position and at the
-// half-pixel positions within a pixel of it; the best one is taken when
-// it folds nothing. A window too flat to say leaves the node.
+// node then matches a window of the reference around its own point
+// (within its triangles, shaped by the global motion's linear part) by a
+// descent on the half-pixel grid, taking only moves that keep the
+// triangles' shapes. A window too flat to say leaves the node.
 void NodeTracker::place_on_content(std::vector<Position>& p, const Affine& global) const {
   constexpr int kRadius = 8;  // pixels
   constexpr int kPasses = 4;
