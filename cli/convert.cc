@@ -17,7 +17,7 @@ using console::say;
 
 }  // namespace
 
-int run_convert(const std::string& input, const std::string& output) {
+int run_convert(const std::string& input, const std::string& output, double fps) {
   refuse_overwriting(input, output);
   const SequenceOutput form = sequence_output(output, false);
   const MeshSequence sequence = load_sequence(input, !console::quiet());
@@ -31,7 +31,7 @@ int run_convert(const std::string& input, const std::string& output) {
       throw;
     }
   } else
-    write_sequence_file(form, sequence, output);
+    write_sequence_file(form, sequence, output, fps);
   say("%s: %zu frames of %u vertices", output.c_str(), sequence.frames.size(), sequence.vertex_count);
   return 0;
 }

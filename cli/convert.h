@@ -5,6 +5,7 @@
 
 namespace m4mesh {
 
-int run_convert(const std::string& input, const std::string& output);
+// `fps`: a glTF animation's frames per second.
+int run_convert(const std::string& input, const std::string& output, double fps);
 
 }  // namespace m4mesh

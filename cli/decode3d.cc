@@ -107,7 +107,7 @@ int run_decode3d(const Decode3dArgs& args) {
     write_file_atomically(args.output, bytes);
   } else if (writes) {
     sequence.faces = decoder.faces();
-    write_sequence_file(form, sequence, args.output);
+    write_sequence_file(form, sequence, args.output, static_cast<double>(decoder.header().frame_rate_num) / decoder.header().frame_rate_den);
   }
   if (failed) {
     std::fprintf(stderr, "%s: decoded %zu frames before the error; %s holds them\n", args.input.c_str(), written.size(), args.output.c_str());

@@ -6,6 +6,7 @@
 #include <charconv>
 
 #include "cli/console.h"
+#include "cli/gltf.h"
 #include "codecs3d/registry.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
@@ -61,13 +62,16 @@ SequenceOutput sequence_output(const std::string& output, bool f32_allowed, cons
   if (extension == ".m4seq") return SequenceOutput::kM4seq;
   if (extension == ".pc2") return SequenceOutput::kPc2;
   if (extension == ".ply") return SequenceOutput::kPly;
+  if (extension == ".glb" || extension == ".gltf") return SequenceOutput::kGltf;
   if (extension == ".f32" && f32_allowed) return SequenceOutput::kF32;
-  throw usage_error(output + ": unknown output format '" + extension + "' (a folder of OBJ frames, .m4seq, .pc2, .ply" + (f32_allowed ? ", .f32" : "") +
+  throw usage_error(output + ": unknown output format '" + extension + "' (a folder of OBJ frames, .m4seq, .pc2, .ply, .glb, .gltf" + (f32_allowed ? ", .f32" : "") +
                   "; a folder whose name holds a dot takes a trailing '/')");
 }
 
-void write_sequence_file(SequenceOutput form, const MeshSequence& sequence, const std::string& output) {
-  if (form == SequenceOutput::kPc2)
+void write_sequence_file(SequenceOutput form, const MeshSequence& sequence, const std::string& output, double fps) {
+  if (form == SequenceOutput::kGltf)
+    write_gltf(sequence, fps, output);
+  else if (form == SequenceOutput::kPc2)
     write_pc2_sequence(sequence, output);
   else if (form == SequenceOutput::kPly)
     write_ply_frames(sequence, output);

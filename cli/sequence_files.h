@@ -15,14 +15,15 @@ namespace m4mesh {
 
 // A sequence output's form from its name: a folder of OBJ frames (no
 // extension, or a trailing '/'), .m4seq, .pc2 (with its .obj), PLY frames
-// (a .ply name, with a '*' for the frame number when there are several) or
+// (a .ply name, with a '*' for the frame number when there are several),
+// a glTF animation (.glb, or .gltf with its buffer inside: cli/gltf.h) or
 // .f32; anything else is a usage error, not a folder. Standard output ("-")
 // takes `format`: m4seq (the default) or f32.
-enum class SequenceOutput { kObjFolder, kM4seq, kPc2, kPly, kF32 };
+enum class SequenceOutput { kObjFolder, kM4seq, kPc2, kPly, kGltf, kF32 };
 SequenceOutput sequence_output(const std::string& output, bool f32_allowed, const std::string& format = "");
 
-// A whole sequence to a .m4seq, .pc2 or PLY output.
-void write_sequence_file(SequenceOutput form, const MeshSequence& sequence, const std::string& output);
+// A whole sequence to a .m4seq, .pc2, PLY or glTF output (a glTF animation plays at `fps`).
+void write_sequence_file(SequenceOutput form, const MeshSequence& sequence, const std::string& output, double fps);
 
 // The OBJ frames written into `staging` become the frames of `folder`:
 // its earlier frame files (0001.obj, …) go, its other files stay.
