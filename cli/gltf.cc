@@ -53,6 +53,13 @@ void write_gltf(const MeshSequence& sequence, double fps, const std::string& pat
   if (sequence.frames.empty()) throw usage_error(path + ": no frame to write");
   if (!(fps > 0)) throw usage_error(path + ": a frame rate above 0 is needed for the animation");
   const size_t frames = sequence.frames.size(), vertices = sequence.vertex_count;
+  // A GLB counts its bytes in 32 bits; the weights grow as frames².
+  const double bytes = 12.0 * static_cast<double>(sequence.faces.size()) + 12.0 * static_cast<double>(vertices) * static_cast<double>(frames + 1) +
+                       4.0 * static_cast<double>(frames) * static_cast<double>(frames + 1);
+  if (bytes > kMostGltfBytes)
+    throw usage_error(path + ": " + std::to_string(frames) + " frames of " + std::to_string(vertices) + (vertices == 1 ? " vertex" : " vertices") + " take " +
+                      std::to_string(static_cast<uint64_t>(bytes)) + " bytes, past a glTF buffer's " + std::to_string(kMostGltfBytes) +
+                      ": write fewer frames (--frames A:B)");
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "m4mesh";

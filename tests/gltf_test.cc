@@ -9,7 +9,9 @@
 #include <filesystem>
 
 #include "cli/app.h"
+#include "cli/gltf.h"
 #include "common/atomic_file.h"
+#include "common/error.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
 #include "tests/test_util.h"
@@ -86,6 +88,22 @@ TEST(Gltf, DecodedFramesPlayExactlyAsMorphTargets) {
     }
   }
   fs::remove_all(folder);
+}
+
+// 33,000 frames of one vertex: their weights alone pass GLB's 4 GB. Refused
+// before anything is allocated or written.
+TEST(Gltf, AnAnimationPastFourGigabytesIsRefused) {
+  MeshSequence sequence;
+  sequence.vertex_count = 1;
+  sequence.frames.assign(33000, {Vec3{0, 0, 0}});
+  const fs::path output = fs::temp_directory_path() / ("m4mesh-gltf-big-" + std::to_string(::getpid()) + ".glb");
+  try {
+    write_gltf(sequence, 25, output.string());
+    ADD_FAILURE() << "written";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("33000 frames of 1 vertex take 4356"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(output));
 }
 
 }  // namespace
