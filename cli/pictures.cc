@@ -70,10 +70,9 @@ Canvas texture_box(const Canvas& plane, const Image& texture) {
   return near(plane.width, texture.width) && near(plane.height, texture.height) ? Canvas{plane.x0, plane.y0, texture.width, texture.height} : plane;
 }
 
-// Each I-plane's texture: a texture made for several (kIntraPlanesText)
-// cut into theirs, else the one texture for every I-plane.
-std::map<uint32_t, Image> textures_by_plane(const std::string& path, Image texture) {
-  const std::string list = png_text(path, kIntraPlanesText);
+// Each I-plane's texture: a texture made for several (its kIntraPlanesText
+// `list`) cut into theirs, else the one texture for every I-plane.
+std::map<uint32_t, Image> textures_by_plane(const std::string& path, const std::string& list, Image texture) {
   if (list.empty()) return {{0, std::move(texture)}};
   std::vector<uint32_t> planes;
   std::istringstream in(list);
@@ -101,11 +100,11 @@ int run_render(const RenderArgs& args) {
   const bool to_gif = gif_output(args.output, "render");
   std::optional<Image> texture;
   std::map<uint32_t, Image> textures;
-  bool per_plane = false;  // a texture for each I-plane
+  std::string intra_planes;  // the texture's kIntraPlanesText: a texture for each I-plane
   double fps = args.fps.value_or(25);
   if (!args.texture.empty()) {
-    textures = textures_by_plane(args.texture, read_png(args.texture));
-    per_plane = !png_text(args.texture, kIntraPlanesText).empty();
+    intra_planes = png_text(args.texture, kIntraPlanesText);
+    textures = textures_by_plane(args.texture, intra_planes, read_png(args.texture));
     texture = textures.at(0);
     if (const std::string rate = png_text(args.texture, kFrameRateText); !args.fps && !rate.empty()) fps = std::strtod(rate.c_str(), nullptr);
   }
@@ -144,11 +143,11 @@ int run_render(const RenderArgs& args) {
   for (uint32_t k = 0; decoder.next(); ++k) {
     progress.update(k + 1);
     if (decoder.info().intra) {
-      if (per_plane) {
+      if (!intra_planes.empty()) {
         const auto own = textures.find(k);
         if (own == textures.end())
           throw input_error(args.texture, 0, "holds no texture for the I-plane at plane " + std::to_string(k) + " (its '" + kIntraPlanesText + "': " +
-                                                 png_text(args.texture, kIntraPlanesText) + ")");
+                                                 intra_planes + ")");
         texture = own->second;
       }
       if (!texture) {

@@ -103,11 +103,9 @@ int run_track(const TrackArgs& args) {
   }
   if (!args.report.empty()) {
     std::string csv = "frame,bits,intra,coverage,stretch,render_psnr,mesh_mc_psnr,block_mc_psnr\n";
-    for (size_t k = 0; k < result.frames.size(); ++k) {
-      const TrackedFrame& f = result.frames[k];
-      const bool intra = k == 0 || &mesh_at(result, k) != &mesh_at(result, k - 1);
+    for (const TrackedFrame& f : result.frames) {
       char line[200];
-      std::snprintf(line, sizeof line, "%lld,%llu,%d,%.4f,%.3f,%s,%s,%s\n", static_cast<long long>(f.frame), static_cast<unsigned long long>(f.bits), intra,
+      std::snprintf(line, sizeof line, "%lld,%llu,%d,%.4f,%.3f,%s,%s,%s\n", static_cast<long long>(f.frame), static_cast<unsigned long long>(f.bits), f.intra,
                     f.coverage, f.stretch, decibels(f.render_psnr).c_str(), decibels(f.mesh_psnr).c_str(), decibels(f.block_psnr).c_str());
       csv += line;
     }

@@ -188,7 +188,7 @@ def write_clip(motion, crf, path):
 
 
 def decoded_planes(m4mesh, stream, work):
-    """Every plane's nodes (half pixels) and whether it is an I-plane, from `m4mesh decode`'s text."""
+    """Every plane's (intra, nodes in half pixels, triangles of an I-plane), from `m4mesh decode`'s text."""
     text = os.path.join(work, "decoded.txt")
     subprocess.run([m4mesh, "-q", "-y", "decode", stream, "-o", text], check=True, stdout=subprocess.DEVNULL)
     planes, lines = [], open(text).read().split("\n")
@@ -198,8 +198,13 @@ def decoded_planes(m4mesh, stream, work):
             intra = lines[k].split()[2] == "I"
             count = int(lines[k + 1].split()[1])
             nodes = np.array([[float(v) for v in lines[k + 2 + n].split()] for n in range(count)])
-            planes.append((intra, nodes))
             k += 2 + count
+            triangles = None
+            if intra:
+                faces = int(lines[k].split()[1])
+                triangles = np.array([[int(v) for v in lines[k + 1 + n].split()] for n in range(faces)])
+                k += 1 + faces
+            planes.append((intra, nodes, triangles))
         else:
             k += 1
     return planes
@@ -209,7 +214,7 @@ def node_errors(motion, planes):
     """Per P-plane (frame, distances in pixels between tracked and true node positions), nodes in view only."""
     errors = []
     origin = None
-    for t, (intra, nodes) in enumerate(planes):
+    for t, (intra, nodes, _) in enumerate(planes):
         at = nodes / 2.0
         if intra:
             # A new mesh: its nodes' frame-0 points.
@@ -223,27 +228,12 @@ def node_errors(motion, planes):
     return errors
 
 
-def triangles_of(m4mesh, stream, work):
-    """Each I-plane's triangles, from `m4mesh decode`'s text."""
-    text = open(os.path.join(work, "decoded.txt")).read().split("\n")
-    meshes, k = [], 0
-    while k < len(text):
-        if text[k].startswith("triangles "):
-            count = int(text[k].split()[1])
-            meshes.append(np.array([[int(v) for v in text[k + 1 + n].split()] for n in range(count)]))
-            k += 1 + count
-        else:
-            k += 1
-    return meshes
-
-
-def largest_stretch(planes, meshes):
+def largest_stretch(planes):
     """The largest ratio of a triangle's area to its area in the I-plane that laid it out."""
     largest, mesh, design = 1.0, None, None
-    for intra, nodes in planes:
+    for intra, nodes, triangles in planes:
         if intra:
-            mesh = meshes.pop(0)
-            design = area(nodes, mesh)
+            mesh, design = triangles, area(nodes, triangles)
             continue
         ratio = area(nodes, mesh) / np.maximum(design, 1e-9)
         largest = max(largest, float(ratio.max()))
@@ -267,13 +257,13 @@ def track(m4mesh, video, options, work, name):
     with open(report) as f:
         rows = list(csv.DictReader(f))
     planes = decoded_planes(m4mesh, stream, work)
-    return stream, rows, planes
+    return rows, planes
 
 
 def summary(rows, planes):
-    bits = [int(r["bits"]) for r, (intra, _) in zip(rows, planes) if not intra]
+    bits = [int(r["bits"]) for r, (intra, _, _) in zip(rows, planes) if not intra]
     return dict(render=psnr_of_mean(rows, "render_psnr"), mesh_mc=psnr_of_mean(rows, "mesh_mc_psnr"), block_mc=psnr_of_mean(rows, "block_mc_psnr"),
-                bits_per_p_plane=sum(bits) / max(1, len(bits)), i_planes=sum(intra for intra, _ in planes), nodes=len(planes[0][1]))
+                bits_per_p_plane=sum(bits) / max(1, len(bits)), i_planes=sum(intra for intra, _, _ in planes), nodes=len(planes[0][1]))
 
 
 def main():
@@ -304,7 +294,7 @@ def main():
                     if not os.path.exists(video):
                         write_clip(motion, crf, video)
                     for label, options in MESHES:
-                        _, rows, planes = track(m4mesh, video, options, work, name + "-" + label.split()[0])
+                        rows, planes = track(m4mesh, video, options, work, name + "-" + label.split()[0])
                         per_frame = node_errors(motion, planes)
                         errors = np.concatenate([e for _, e in per_frame])
                         r = dict(clip=name, kind=kind, set=which, crf=crf, mesh=label, mean_error=float(errors.mean()),
@@ -319,8 +309,8 @@ def main():
                 print(f"skip: {path} is absent (Debian's opencv-doc)")
             continue
         for label, options in MESHES:
-            stream, rows, planes = track(m4mesh, path, options + ["--frames", frames], work, name + "-" + label.split()[0])
-            stretch = largest_stretch(planes, triangles_of(m4mesh, stream, work))
+            rows, planes = track(m4mesh, path, options + ["--frames", frames], work, name + "-" + label.split()[0])
+            stretch = largest_stretch(planes)
             r = dict(clip=f"{name} {frames}", mesh=label, stretch=stretch, per_frame=dict(rows=rows), **summary(rows, planes))
             results.append(r)
             print(f"| {name} frames {frames} | {label} | {r['nodes']} | — | — | {r['render']:.2f} | {r['mesh_mc']:.2f} | {r['block_mc']:.2f} | "

@@ -110,6 +110,7 @@ TrackResult track_video(const std::string& path, const TrackSettings& settings) 
   auto measure = [&](const std::vector<Point>& at, bool intra) {
     TrackedFrame report;
     report.frame = settings.first_frame + static_cast<int64_t>(result.positions.size());
+    report.intra = intra;
     const Image rendered = texture_warp->render(at, false, &covered);
     report.coverage = static_cast<double>(std::count(covered.begin(), covered.end(), 1)) / static_cast<double>(covered.size());
     report.render_psnr = psnr(luma, luma_of(rendered), covered);

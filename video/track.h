@@ -43,6 +43,7 @@ struct TrackedFrame {
   double render_psnr = 0;  // the texture warped by this plane (what `m4mesh render` draws) against the frame
   double mesh_psnr = 0;    // the previous frame warped by the mesh's motion to this frame (NaN at an I-plane)
   double block_psnr = 0;   // block matching with as many vectors (NaN at an I-plane)
+  bool intra = false;      // an I-plane: a mesh laid out on this frame
   double stretch = 1;      // the largest growth or shrinking of a triangle's area since its I-plane (≥ 1)
   double strained = 0;     // the share of triangles grown or shrunk past TrackSettings::remesh_stretch
 };

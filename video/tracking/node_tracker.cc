@@ -209,11 +209,13 @@ std::vector<NodeTracker::Position> NodeTracker::start(const Affine& global) cons
   std::vector<Position> carried(positions_.size()), moved(positions_.size());
   for (size_t n = 0; n < positions_.size(); ++n) {
     const Point& q = positions_[n];
-    const Point& origin = mesh_.nodes[n];
-    const std::array<double, 2> now = global(origin.x * 0.5, origin.y * 0.5), before = global_(origin.x * 0.5, origin.y * 0.5);
     // On the half-pixel grid the syntax carries: the moves keep them there, and no rounding at the end folds a triangle.
     auto on_grid = [](double v) { return std::round(v * 2) * 0.5; };
-    carried[n] = from_first ? Position{on_grid(now[0] + q.x * 0.5 - before[0]), on_grid(now[1] + q.y * 0.5 - before[1])} : Position{0, 0};
+    if (from_first) {
+      const Point& origin = mesh_.nodes[n];
+      const std::array<double, 2> now = global(origin.x * 0.5, origin.y * 0.5), before = global_(origin.x * 0.5, origin.y * 0.5);
+      carried[n] = {on_grid(now[0] + q.x * 0.5 - before[0]), on_grid(now[1] + q.y * 0.5 - before[1])};
+    }
     const std::array<double, 2> changed = change(q.x * 0.5, q.y * 0.5);
     moved[n] = {on_grid(changed[0]), on_grid(changed[1])};
     for (std::vector<Position>* p : {&carried, &moved}) {
