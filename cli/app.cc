@@ -88,8 +88,8 @@ int run_m4mesh(int argc, const char* const* argv) {
   generate_cmd->add_option("folder", suite_folder, "output folder")->required();
 
   Encode3dArgs encode3d_args;
-  CLI::App* encode3d_cmd = app.add_subcommand("encode3d", "Encode an animated 3D mesh (OBJ, OFF or PLY frames, .m4seq or .pc2) into a mesh3d stream");
-  encode3d_cmd->add_option("input", encode3d_args.input, "a folder of OBJ, OFF or PLY frames (one kind, numbered), a pattern with '*' (quoted), a .m4seq file (- : from standard input) or a .pc2 file with its .obj")->required();
+  CLI::App* encode3d_cmd = app.add_subcommand("encode3d", "Encode an animated 3D mesh (OBJ, OFF or PLY frames, .m4seq, .pc2 or a glTF animation) into a mesh3d stream");
+  encode3d_cmd->add_option("input", encode3d_args.input, "a folder of OBJ, OFF or PLY frames (one kind, numbered), a pattern with '*' (quoted), a .m4seq file (- : from standard input), a .pc2 file with its .obj, or a .glb or .gltf animation (morph targets or a skin)")->required();
   encode3d_cmd->add_option("-o,--output", encode3d_args.output, "output stream (.m4m)")->required();
   add_codec_options(*encode3d_cmd, encode3d_args);
   encode3d_cmd->add_flag("--no-hash", encode3d_args.no_hash, "leave out the decoded-frame hash units");
@@ -98,7 +98,10 @@ int run_m4mesh(int argc, const char* const* argv) {
   encode3d_cmd->add_option("--hash-group", encode3d_args.hash_group, "frames per group hash unit (1: an MD5 hash unit per frame)")
       ->check(CLI::Range(1, 65535))
       ->capture_default_str();
-  encode3d_cmd->add_option("--fps", encode3d_args.fps, "frame rate")->check(CLI::Range(1, 65535))->capture_default_str();
+  encode3d_cmd->add_option("--fps", encode3d_args.fps, "frame rate (default 25); a glTF animation is sampled at it (default: at its keyframes, evenly spaced)")
+      ->check(CLI::Range(0.001, 65535.0));
+  encode3d_cmd->add_option("--mesh", encode3d_args.gltf_mesh, "glTF: the node or mesh to code, when the asset has several");
+  encode3d_cmd->add_option("--animation", encode3d_args.gltf_animation, "glTF: the animation to bake, when the asset has several");
   encode3d_cmd->add_flag("--trace", encode3d_args.trace, "print every syntax element written, as `m4mesh trace` prints them");
 
   Decode3dArgs decode3d_args;

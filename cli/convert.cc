@@ -20,7 +20,7 @@ using console::say;
 int run_convert(const std::string& input, const std::string& output, double fps) {
   refuse_overwriting(input, output);
   const SequenceOutput form = sequence_output(output, false);
-  const MeshSequence sequence = load_sequence(input, !console::quiet());
+  const MeshSequence sequence = load_frames(input);
   if (form == SequenceOutput::kObjFolder) {
     const fs::path staging = staging_folder(output);
     try {

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "cli/console.h"
+#include "cli/gltf.h"
 #include "cli/sequence_files.h"
 #include "codecs3d/registry.h"
 #include "common/atomic_file.h"
@@ -23,6 +24,28 @@ namespace fs = std::filesystem;
 namespace {
 
 using console::say;
+
+// A frame rate as the container's fraction num / den (each 1 … 65535): the
+// smallest power-of-ten den that holds it exactly, else the largest that fits.
+std::pair<uint32_t, uint32_t> frame_rate_fraction(double fps) {
+  uint32_t fitting = 1;
+  for (uint32_t den = 1; den <= 1000 && fps * den <= 65535; den *= 10) {
+    fitting = den;
+    if (std::abs(fps * den - std::round(fps * den)) < 1e-6 * fps * den) break;
+  }
+  return {static_cast<uint32_t>(std::max(1L, std::lround(fps * fitting))), fitting};
+}
+
+// The frames to code and their rate: a glTF animation baked, or a sequence.
+std::pair<MeshSequence, double> read_input(const Encode3dArgs& args) {
+  if (is_gltf_path(args.input)) {
+    GltfAnimation animation = read_gltf(args.input, {.mesh = args.gltf_mesh, .animation = args.gltf_animation, .fps = args.fps});
+    console::detail("%s: animation baked at %.6g frames a second%s", args.input.c_str(), animation.fps, args.fps ? "" : " (its keyframes)");
+    return {std::move(animation.sequence), animation.fps};
+  }
+  if (!args.gltf_mesh.empty() || !args.gltf_animation.empty()) throw usage_error("--mesh and --animation choose in a glTF input (.glb or .gltf)");
+  return {load_sequence(args.input, !console::quiet()), args.fps.value_or(25)};
+}
 
 }  // namespace
 
@@ -60,7 +83,7 @@ int run_encode3d(const Encode3dArgs& args) {
   if (fs::is_regular_file(args.input) && is_mesh3d_stream(read_file(args.input)))
     throw usage_error(args.input + ": a mesh3d stream; encode3d takes frames (m4mesh decode3d turns a stream into frames)");
   const auto reading = std::chrono::steady_clock::now();
-  const MeshSequence sequence = load_sequence(args.input, !console::quiet());
+  const auto [sequence, fps] = read_input(args);
   console::detail("%s: %zu frames of %u vertices and %zu faces read in %.3f s", args.input.c_str(), sequence.frames.size(),
                   sequence.vertex_count, sequence.faces.size(),
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - reading).count());
@@ -71,7 +94,7 @@ int run_encode3d(const Encode3dArgs& args) {
   options.hashes = !args.no_hash;
   options.hash_group = args.hash_group;
   options.reorder = args.reorder;
-  options.frame_rate_num = static_cast<uint32_t>(args.fps);
+  std::tie(options.frame_rate_num, options.frame_rate_den) = frame_rate_fraction(fps);
   options.trace = args.trace ? &trace : nullptr;
   options.threads = args.threads;
   // Codecs count their own steps: frames, or cpca-wpt's units.

@@ -22,7 +22,10 @@ struct Encode3dArgs {
   bool no_hash = false;
   bool reorder = false;      // vertices renumbered in coding order
   uint32_t hash_group = 16;  // frames per group hash unit; 1: a frame hash unit per frame
-  int fps = 25;
+  // The stream's frame rate (default 25); a glTF input is sampled at it
+  // (default: at its keyframes, whose rate the stream takes).
+  std::optional<double> fps;
+  std::string gltf_mesh, gltf_animation;  // glTF: --mesh, --animation
   bool trace = false;
   unsigned threads = 0;  // --codec auto: codecs searched at once; 0: every core
 };

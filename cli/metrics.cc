@@ -24,7 +24,7 @@ using console::say;
 int run_metrics(const MetricsArgs& args) {
   if (args.json && args.csv) throw usage_error("--json or --csv, not both");
   console::set_input(args.original);
-  const MeshSequence given_original = load_sequence(args.original, !console::quiet());
+  const MeshSequence given_original = load_frames(args.original);
   // The stream is checked against the sequence before anything is printed.
   struct Rate {
     const char* key;
@@ -113,7 +113,7 @@ int run_metrics(const MetricsArgs& args) {
 
 int run_progressive(const ProgressiveArgs& args) {
   console::set_input(args.original);
-  const MeshSequence given_original = load_sequence(args.original, !console::quiet());
+  const MeshSequence given_original = load_frames(args.original);
   console::set_input(args.stream);
   const std::vector<uint8_t> stream = read_file(args.stream);
   const bool coding_order = Mesh3dDecoder(stream).vertex_order() == kVertexOrderCoding;

@@ -127,7 +127,7 @@ int run_rd(const RdArgs& args) {
     throw usage_error(args.output + ": rd writes .csv or .json (or - for CSV on standard output)");
   const bool json = args.json || extension == ".json";
   refuse_overwriting(args.input, args.output);
-  const MeshSequence sequence = load_sequence(args.input, !console::quiet());
+  const MeshSequence sequence = load_frames(args.input);
   size_t total = 0;
   for (const Codec3d* codec : codec_rows(args.codecs)) total += codec_encoding(*codec).quality.coarse_to_fine.size();
   console::Progress progress("rate-distortion point", total);

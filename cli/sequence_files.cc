@@ -112,6 +112,11 @@ MeshSequence load_sequence_or_stream(const std::string& path, StreamFacts* facts
       return decode_mesh3d(bytes);
     }
   }
+  return load_frames(path);
+}
+
+MeshSequence load_frames(const std::string& path) {
+  if (is_gltf_path(path) && fs::is_regular_file(path)) return read_gltf(path, {}).sequence;
   return load_sequence(path, !console::quiet());
 }
 

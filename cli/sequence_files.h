@@ -47,7 +47,11 @@ struct StreamFacts {
   bool coding_order = false;  // its vertices numbered in coding order (encode3d --reorder)
 };
 
-// A sequence's frames, or a mesh3d stream's decoded frames (read once),
+// A sequence's frames in any form load_sequence reads, or a glTF animation
+// (cli/gltf.h) baked at its keyframes.
+MeshSequence load_frames(const std::string& path);
+
+// A sequence's frames (load_frames), or a mesh3d stream's decoded frames (read once),
 // with the stream's facts in `facts`.
 MeshSequence load_sequence_or_stream(const std::string& path, StreamFacts* facts = nullptr);
 

@@ -1,6 +1,8 @@
 #!/bin/sh
-# Blender's glTF importer on decode3d's glTF animation (ctest blender_gltf):
-# a small sequence, and the horse when ../shared/data is there.
+# Blender and m4mesh's glTF both ways (ctest blender_gltf): Blender's
+# importer on decode3d's glTF animation (a small sequence, and the horse when
+# ../shared/data is there); then encode3d on a skin and on morph targets
+# Blender made and its exporter wrote.
 # Usage: test.sh M4MESH DATA_FOLDER
 set -eu
 m4mesh="$1"
@@ -24,3 +26,11 @@ if [ -d "$data/horse-gallop" ]; then
 else
   echo "blender_gltf: ../shared/data is absent: the horse is skipped"
 fi
+blender -b --factory-startup --python "$here/export_gltf.py" -- "$work" > "$work/out" 2>&1 || { tail -20 "$work/out"; exit 1; }
+for name in skin sheet; do
+  echo "$name.glb (Blender's exporter):"
+  "$m4mesh" -q -y convert "$work/$name.glb" "$work/$name.m4seq"
+  python3 "$here/compare_frames.py" "$work/$name.m4seq" "$work/$name.f32"
+  "$m4mesh" -q -y encode3d "$work/$name.glb" -o "$work/$name.m4m"
+  "$m4mesh" -q metrics "$work/$name.m4seq" "$work/$name.m4m" | grep -i kg
+done

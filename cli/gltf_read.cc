@@ -1,0 +1,504 @@
+#include <tiny_gltf.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "cli/gltf.h"
+#include "common/error.h"
+
+namespace m4mesh {
+
+namespace {
+
+// The most vertices × frames an animation is baked to (positions in doubles: 6 GB).
+constexpr uint64_t kMostBakedPositions = uint64_t{1} << 28;
+constexpr uint64_t kMostVertices = uint64_t{1} << 24;
+
+using Matrix = Eigen::Matrix4d;
+
+class Asset {
+ public:
+  Asset(const std::string& path, tinygltf::Model model) : path_(path), model_(std::move(model)) {}
+
+  Error error(const std::string& message) const { return Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, path_ + ": " + message); }
+  const tinygltf::Model& model() const { return model_; }
+
+  // Accessor `index` as `components` numbers per element (floats, or
+  // integers, normalized when the accessor says so), sparse values applied.
+  std::vector<double> numbers(int index, int components, const std::string& what) const {
+    const tinygltf::Accessor& a = accessor(index, what);
+    if (tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type)) != components)
+      throw error(what + ": accessor " + std::to_string(index) + " has " + std::to_string(tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type))) +
+                  " components an element, not " + std::to_string(components));
+    std::vector<double> out(a.count * static_cast<size_t>(components), 0.0);
+    if (a.bufferView >= 0) read_elements(a.bufferView, a.byteOffset, a.count, a.componentType, components, a.normalized, what, out.data());
+    if (a.sparse.isSparse) {
+      const auto count = static_cast<size_t>(a.sparse.count);
+      if (a.sparse.count < 1 || count > a.count) throw error(what + ": a sparse accessor of " + std::to_string(a.sparse.count) + " values");
+      std::vector<double> at(count), values(count * static_cast<size_t>(components));
+      read_elements(a.sparse.indices.bufferView, static_cast<size_t>(a.sparse.indices.byteOffset), count, a.sparse.indices.componentType, 1, false,
+                    what + " (sparse indices)", at.data());
+      read_elements(a.sparse.values.bufferView, static_cast<size_t>(a.sparse.values.byteOffset), count, a.componentType, components, a.normalized,
+                    what + " (sparse values)", values.data());
+      for (size_t k = 0; k < count; ++k) {
+        if (at[k] >= static_cast<double>(a.count)) throw error(what + ": a sparse index past the accessor's " + std::to_string(a.count) + " elements");
+        std::copy_n(values.begin() + static_cast<ptrdiff_t>(k) * components, components, out.begin() + static_cast<ptrdiff_t>(at[k]) * components);
+      }
+    }
+    return out;
+  }
+
+  // Accessor `index` as whole numbers (indices, joints).
+  std::vector<uint32_t> integers(int index, int components, const std::string& what) const {
+    const tinygltf::Accessor& a = accessor(index, what);
+    if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+      throw error(what + ": accessor " + std::to_string(index) + " is not of unsigned integers");
+    const std::vector<double> values = numbers(index, components, what);
+    return {values.begin(), values.end()};
+  }
+
+  size_t count(int index, const std::string& what) const { return accessor(index, what).count; }
+
+ private:
+  const tinygltf::Accessor& accessor(int index, const std::string& what) const {
+    if (index < 0 || static_cast<size_t>(index) >= model_.accessors.size()) throw error(what + ": no accessor " + std::to_string(index));
+    const tinygltf::Accessor& a = model_.accessors[static_cast<size_t>(index)];
+    if (a.count > (size_t{1} << 32)) throw error(what + ": an accessor of " + std::to_string(a.count) + " elements");
+    return a;
+  }
+
+  // `count` elements of `components` numbers from a buffer view, bounds checked.
+  void read_elements(int view_index, size_t offset, size_t count, int type, int components, bool normalized, const std::string& what, double* out) const {
+    if (view_index < 0 || static_cast<size_t>(view_index) >= model_.bufferViews.size()) throw error(what + ": no buffer view " + std::to_string(view_index));
+    const tinygltf::BufferView& view = model_.bufferViews[static_cast<size_t>(view_index)];
+    if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model_.buffers.size()) throw error(what + ": no buffer " + std::to_string(view.buffer));
+    const std::vector<unsigned char>& data = model_.buffers[static_cast<size_t>(view.buffer)].data;
+    const int size = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(type));
+    if (size <= 0) throw error(what + ": component type " + std::to_string(type) + " is not glTF's");
+    const uint64_t element = uint64_t{static_cast<uint32_t>(size)} * static_cast<uint32_t>(components);
+    const uint64_t stride = view.byteStride != 0 ? view.byteStride : element;
+    const uint64_t needed = count == 0 ? 0 : offset + (count - 1) * stride + element;
+    if (stride < element || view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset || needed > view.byteLength)
+      throw error(what + ": " + std::to_string(count) + " elements past the end of buffer view " + std::to_string(view_index));
+    const unsigned char* base = data.data() + view.byteOffset + offset;
+    for (size_t k = 0; k < count; ++k)
+      for (int c = 0; c < components; ++c) {
+        const unsigned char* at = base + k * stride + static_cast<size_t>(c * size);
+        out[k * static_cast<size_t>(components) + static_cast<size_t>(c)] = component(at, type, normalized);
+      }
+  }
+
+  static double component(const unsigned char* at, int type, bool normalized) {
+    auto load = [at]<class T>(T) {
+      T value;
+      std::memcpy(&value, at, sizeof value);
+      return value;
+    };
+    switch (type) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT:
+        return load(float{});
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return normalized ? load(uint8_t{}) / 255.0 : load(uint8_t{});
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+        return normalized ? load(uint16_t{}) / 65535.0 : load(uint16_t{});
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        return load(uint32_t{});
+      case TINYGLTF_COMPONENT_TYPE_BYTE:
+        return normalized ? std::max(load(int8_t{}) / 127.0, -1.0) : load(int8_t{});
+      case TINYGLTF_COMPONENT_TYPE_SHORT:
+        return normalized ? std::max(load(int16_t{}) / 32767.0, -1.0) : load(int16_t{});
+      default:
+        return load(double{});
+    }
+  }
+
+  std::string path_;
+  tinygltf::Model model_;
+};
+
+// One animation sampler: its key times and values (`width` numbers a key).
+struct Sampler {
+  std::vector<double> times;
+  std::vector<double> values;  // CUBICSPLINE: in-tangent, value, out-tangent per key
+  std::string interpolation;
+  size_t width = 0;
+
+  // The value at time t: held before the first key and after the last.
+  std::vector<double> at(double t) const {
+    const size_t keys = times.size();
+    const size_t after = static_cast<size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin());
+    const bool cubic = interpolation == "CUBICSPLINE";
+    auto key = [&](size_t k, size_t part) {
+      const size_t start = cubic ? (3 * k + part) * width : k * width;
+      return std::vector<double>(values.begin() + static_cast<ptrdiff_t>(start), values.begin() + static_cast<ptrdiff_t>(start + width));
+    };
+    if (after == 0) return key(0, 1);
+    if (after == keys || interpolation == "STEP" || times[after - 1] == t) return key(after - 1, 1);
+    const size_t k = after - 1;
+    const double span = times[k + 1] - times[k], u = (t - times[k]) / span;
+    std::vector<double> a = key(k, 1), b = key(k + 1, 1), out(width);
+    if (!cubic) {
+      for (size_t i = 0; i < width; ++i) out[i] = a[i] + u * (b[i] - a[i]);
+      return out;
+    }
+    const std::vector<double> out_tangent = key(k, 2), in_tangent = key(k + 1, 0);
+    const double u2 = u * u, u3 = u2 * u;
+    for (size_t i = 0; i < width; ++i)
+      out[i] = (2 * u3 - 3 * u2 + 1) * a[i] + (u3 - 2 * u2 + u) * span * out_tangent[i] + (-2 * u3 + 3 * u2) * b[i] + (u3 - u2) * span * in_tangent[i];
+    return out;
+  }
+};
+
+// The animated parts of the scene at one time: per node, its animated
+// translation, rotation, scale and morph weights.
+struct Channels {
+  std::map<std::pair<int, std::string>, Sampler> samplers;  // (node, path)
+
+  const Sampler* find(int node, const std::string& path) const {
+    const auto it = samplers.find({node, path});
+    return it == samplers.end() ? nullptr : &it->second;
+  }
+};
+
+Channels channels_of(const Asset& asset, const tinygltf::Animation& animation) {
+  Channels channels;
+  const tinygltf::Model& model = asset.model();
+  for (const tinygltf::AnimationChannel& channel : animation.channels) {
+    if (channel.sampler < 0 || static_cast<size_t>(channel.sampler) >= animation.samplers.size())
+      throw asset.error("animation '" + animation.name + "': a channel's sampler " + std::to_string(channel.sampler) + " does not exist");
+    if (channel.target_node < 0 || static_cast<size_t>(channel.target_node) >= model.nodes.size()) continue;  // no node: nothing to move
+    const tinygltf::AnimationSampler& s = animation.samplers[static_cast<size_t>(channel.sampler)];
+    const std::string& path = channel.target_path;
+    size_t width = path == "translation" || path == "scale" ? 3 : path == "rotation" ? 4 : 0;
+    if (path == "weights") {
+      const tinygltf::Node& node = model.nodes[static_cast<size_t>(channel.target_node)];
+      if (node.mesh < 0 || static_cast<size_t>(node.mesh) >= model.meshes.size()) continue;
+      const tinygltf::Mesh& mesh = model.meshes[static_cast<size_t>(node.mesh)];
+      width = mesh.primitives.empty() ? 0 : mesh.primitives.front().targets.size();
+    }
+    if (width == 0) continue;
+    const std::string what = "animation '" + animation.name + "', " + path + " of node " + std::to_string(channel.target_node);
+    Sampler sampler;
+    sampler.interpolation = s.interpolation.empty() ? "LINEAR" : s.interpolation;
+    if (sampler.interpolation != "LINEAR" && sampler.interpolation != "STEP" && sampler.interpolation != "CUBICSPLINE")
+      throw asset.error(what + ": unknown interpolation " + sampler.interpolation);
+    sampler.times = asset.numbers(s.input, 1, what + " (times)");
+    sampler.width = width;
+    if (sampler.times.empty()) throw asset.error(what + ": no keyframe");
+    for (size_t k = 0; k < sampler.times.size(); ++k)
+      if (!std::isfinite(sampler.times[k]) || (k > 0 && sampler.times[k] <= sampler.times[k - 1]))
+        throw asset.error(what + ": key times must increase");
+    const size_t per_key = sampler.interpolation == "CUBICSPLINE" ? 3 : 1;
+    const size_t output = asset.count(s.output, what);
+    const size_t elements_per_key = path == "weights" ? width : 1;
+    if (output != sampler.times.size() * per_key * elements_per_key)
+      throw asset.error(what + ": " + std::to_string(output) + " output values for " + std::to_string(sampler.times.size()) + " keys");
+    sampler.values = asset.numbers(s.output, path == "weights" ? 1 : static_cast<int>(width), what + " (values)");
+    channels.samplers[{channel.target_node, path}] = std::move(sampler);
+  }
+  return channels;
+}
+
+// A node's own transform at time t, its animated parts sampled.
+Matrix local_transform(const tinygltf::Node& node, int index, const Channels& channels, double t) {
+  if (node.matrix.size() == 16) return Eigen::Map<const Matrix>(node.matrix.data());
+  Eigen::Vector3d translation = node.translation.size() == 3 ? Eigen::Vector3d(node.translation[0], node.translation[1], node.translation[2]) : Eigen::Vector3d::Zero();
+  Eigen::Vector3d scale = node.scale.size() == 3 ? Eigen::Vector3d(node.scale[0], node.scale[1], node.scale[2]) : Eigen::Vector3d::Ones();
+  Eigen::Quaterniond rotation = node.rotation.size() == 4 ? Eigen::Quaterniond(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2])
+                                                          : Eigen::Quaterniond::Identity();
+  if (const Sampler* s = channels.find(index, "translation")) {
+    const std::vector<double> v = s->at(t);
+    translation = {v[0], v[1], v[2]};
+  }
+  if (const Sampler* s = channels.find(index, "scale")) {
+    const std::vector<double> v = s->at(t);
+    scale = {v[0], v[1], v[2]};
+  }
+  if (const Sampler* s = channels.find(index, "rotation")) {
+    if (s->interpolation == "LINEAR") {
+      // Spherical between the two keys around t.
+      const size_t after = static_cast<size_t>(std::upper_bound(s->times.begin(), s->times.end(), t) - s->times.begin());
+      auto key = [&](size_t k) { return Eigen::Quaterniond(s->values[4 * k + 3], s->values[4 * k], s->values[4 * k + 1], s->values[4 * k + 2]); };
+      if (after == 0) rotation = key(0);
+      else if (after == s->times.size() || s->times[after - 1] == t) rotation = key(after - 1);
+      else rotation = key(after - 1).slerp((t - s->times[after - 1]) / (s->times[after] - s->times[after - 1]), key(after));
+    } else {
+      const std::vector<double> v = s->at(t);
+      rotation = Eigen::Quaterniond(v[3], v[0], v[1], v[2]);
+    }
+  }
+  Matrix m = Matrix::Identity();
+  m.topLeftCorner<3, 3>() = rotation.normalized().toRotationMatrix() * scale.asDiagonal();
+  m.topRightCorner<3, 1>() = translation;
+  return m;
+}
+
+// Every node's transform in the scene at time t (parents first).
+std::vector<Matrix> world_transforms(const tinygltf::Model& model, const std::vector<int>& parent, const Channels& channels, double t) {
+  std::vector<Matrix> world(model.nodes.size());
+  std::vector<bool> done(model.nodes.size(), false);
+  for (size_t n = 0; n < model.nodes.size(); ++n) {
+    std::vector<size_t> chain;  // n and its ancestors not yet placed
+    for (int at = static_cast<int>(n); at >= 0 && !done[static_cast<size_t>(at)]; at = parent[static_cast<size_t>(at)]) chain.push_back(static_cast<size_t>(at));
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+      const Matrix local = local_transform(model.nodes[*it], static_cast<int>(*it), channels, t);
+      world[*it] = parent[*it] >= 0 ? Matrix(world[static_cast<size_t>(parent[*it])] * local) : local;
+      done[*it] = true;
+    }
+  }
+  return world;
+}
+
+// The mesh's geometry gathered over its primitives.
+struct Geometry {
+  std::vector<Vec3> base;
+  std::vector<std::vector<Vec3>> targets;  // per morph target, per vertex
+  std::vector<Triangle> faces;
+  std::vector<std::array<uint32_t, 4>> joints;  // per vertex and influence set
+  std::vector<std::array<double, 4>> weights;
+  size_t influence_sets = 0;
+};
+
+std::vector<Vec3> vec3s(const std::vector<double>& xyz) {
+  std::vector<Vec3> out(xyz.size() / 3);
+  for (size_t v = 0; v < out.size(); ++v) out[v] = {xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]};
+  return out;
+}
+
+Geometry geometry_of(const Asset& asset, const tinygltf::Mesh& mesh, bool skinned) {
+  Geometry g;
+  const std::string name = "mesh '" + mesh.name + "'";
+  if (mesh.primitives.empty()) throw asset.error(name + " has no primitive");
+  const size_t targets = mesh.primitives.front().targets.size();
+  g.targets.resize(targets);
+  for (size_t k = 0; k < mesh.primitives.size(); ++k) {
+    const tinygltf::Primitive& p = mesh.primitives[k];
+    const std::string what = name + ", primitive " + std::to_string(k);
+    if (p.mode != -1 && p.mode != TINYGLTF_MODE_TRIANGLES)
+      throw asset.error(what + " is not of triangles (mode " + std::to_string(p.mode) + "): m4mesh codes triangle meshes");
+    if (p.targets.size() != targets) throw asset.error(what + " has " + std::to_string(p.targets.size()) + " morph targets, primitive 0 " + std::to_string(targets));
+    const auto position = p.attributes.find("POSITION");
+    if (position == p.attributes.end()) throw asset.error(what + " has no POSITION");
+    const std::vector<Vec3> base = vec3s(asset.numbers(position->second, 3, what + ", POSITION"));
+    const auto first = static_cast<uint32_t>(g.base.size());
+    if (g.base.size() + base.size() > kMostVertices) throw asset.error(name + ": over " + std::to_string(kMostVertices) + " vertices");
+    g.base.insert(g.base.end(), base.begin(), base.end());
+    for (size_t t = 0; t < targets; ++t) {
+      const auto target = p.targets[t].find("POSITION");
+      std::vector<Vec3> moves(base.size());
+      if (target != p.targets[t].end()) {
+        moves = vec3s(asset.numbers(target->second, 3, what + ", morph target " + std::to_string(t)));
+        if (moves.size() != base.size()) throw asset.error(what + ", morph target " + std::to_string(t) + ": not one position per vertex");
+      }
+      g.targets[t].insert(g.targets[t].end(), moves.begin(), moves.end());
+    }
+    std::vector<uint32_t> indices;
+    if (p.indices >= 0) {
+      indices = asset.integers(p.indices, 1, what + ", indices");
+    } else {
+      indices.resize(base.size());
+      for (uint32_t v = 0; v < indices.size(); ++v) indices[v] = v;
+    }
+    if (indices.size() % 3 != 0) throw asset.error(what + ": " + std::to_string(indices.size()) + " indices are not whole triangles");
+    for (size_t i = 0; i < indices.size(); i += 3) {
+      for (size_t c = 0; c < 3; ++c)
+        if (indices[i + c] >= base.size()) throw asset.error(what + ": index " + std::to_string(indices[i + c]) + " past its " + std::to_string(base.size()) + " vertices");
+      g.faces.push_back({{NodeIndex{first + indices[i]}, NodeIndex{first + indices[i + 1]}, NodeIndex{first + indices[i + 2]}}});
+    }
+    if (!skinned) continue;
+    size_t sets = 0;
+    while (p.attributes.count("JOINTS_" + std::to_string(sets)) && p.attributes.count("WEIGHTS_" + std::to_string(sets))) ++sets;
+    if (sets == 0) throw asset.error(what + " belongs to a skin and has no JOINTS_0 and WEIGHTS_0");
+    if (k == 0) g.influence_sets = sets;
+    if (sets != g.influence_sets) throw asset.error(what + ": " + std::to_string(sets) + " sets of joints, primitive 0 " + std::to_string(g.influence_sets));
+    for (size_t s = 0; s < sets; ++s) {
+      const std::string set = std::to_string(s);
+      const std::vector<uint32_t> joints = asset.integers(p.attributes.at("JOINTS_" + set), 4, what + ", JOINTS_" + set);
+      const std::vector<double> weights = asset.numbers(p.attributes.at("WEIGHTS_" + set), 4, what + ", WEIGHTS_" + set);
+      if (joints.size() != 4 * base.size() || weights.size() != 4 * base.size()) throw asset.error(what + ": not one set of joints and weights per vertex");
+      for (size_t v = 0; v < base.size(); ++v) {
+        g.joints.push_back({joints[4 * v], joints[4 * v + 1], joints[4 * v + 2], joints[4 * v + 3]});
+        g.weights.push_back({weights[4 * v], weights[4 * v + 1], weights[4 * v + 2], weights[4 * v + 3]});
+      }
+    }
+  }
+  // Influence sets were gathered primitive by primitive: reorder to vertex-major.
+  if (skinned && g.influence_sets > 1) {
+    std::vector<std::array<uint32_t, 4>> joints(g.joints.size());
+    std::vector<std::array<double, 4>> weights(g.weights.size());
+    size_t at = 0, first = 0;
+    for (const tinygltf::Primitive& p : mesh.primitives) {
+      const size_t count = asset.count(p.attributes.at("POSITION"), "POSITION");
+      for (size_t s = 0; s < g.influence_sets; ++s)
+        for (size_t v = 0; v < count; ++v, ++at) joints[(first + v) * g.influence_sets + s] = g.joints[at], weights[(first + v) * g.influence_sets + s] = g.weights[at];
+      first += count;
+    }
+    g.joints = std::move(joints), g.weights = std::move(weights);
+  }
+  return g;
+}
+
+struct Choice {
+  int node = -1;
+  std::string name;
+};
+
+// The nodes that carry a mesh; the one the user named, or the only one.
+Choice choose_mesh(const Asset& asset, const std::string& wanted) {
+  const tinygltf::Model& model = asset.model();
+  std::vector<Choice> found;
+  for (size_t n = 0; n < model.nodes.size(); ++n) {
+    const tinygltf::Node& node = model.nodes[n];
+    if (node.mesh < 0) continue;
+    if (static_cast<size_t>(node.mesh) >= model.meshes.size()) throw asset.error("node " + std::to_string(n) + ": no mesh " + std::to_string(node.mesh));
+    const std::string& mesh_name = model.meshes[static_cast<size_t>(node.mesh)].name;
+    const std::string name = !node.name.empty() ? node.name : !mesh_name.empty() ? mesh_name : "node " + std::to_string(n);
+    if (!wanted.empty() && wanted != node.name && wanted != mesh_name) continue;
+    found.push_back({static_cast<int>(n), name});
+  }
+  if (found.size() == 1) return found.front();
+  if (found.empty() && !wanted.empty()) throw asset.error("no node or mesh is named '" + wanted + "'");
+  if (found.empty()) throw asset.error("no mesh");
+  std::string names;
+  for (const Choice& c : found) names += (names.empty() ? "'" : ", '") + c.name + "'";
+  throw asset.error(std::to_string(found.size()) + " meshes (" + names + "): choose one with --mesh NAME");
+}
+
+const tinygltf::Animation& choose_animation(const Asset& asset, const std::string& wanted) {
+  const std::vector<tinygltf::Animation>& animations = asset.model().animations;
+  if (animations.empty()) throw asset.error("no animation: nothing moves, so there is no sequence to code");
+  std::string names;
+  for (const tinygltf::Animation& a : animations) {
+    if (!wanted.empty() && a.name == wanted) return a;
+    names += (names.empty() ? "'" : ", '") + a.name + "'";
+  }
+  if (!wanted.empty()) throw asset.error("no animation is named '" + wanted + "' (it has " + names + ")");
+  if (animations.size() > 1) throw asset.error(std::to_string(animations.size()) + " animations (" + names + "): choose one with --animation NAME");
+  return animations.front();
+}
+
+// The times frames are taken at: every key of the channels, or `fps` over their span.
+std::pair<std::vector<double>, double> sample_times(const Asset& asset, const Channels& channels, std::optional<double> fps) {
+  std::set<double> keys;
+  for (const auto& [target, sampler] : channels.samplers) keys.insert(sampler.times.begin(), sampler.times.end());
+  if (keys.empty()) throw asset.error("the animation moves nothing of the scene");
+  const double start = *keys.begin(), end = *keys.rbegin();
+  std::vector<double> times;
+  if (fps) {
+    const double frames = std::floor((end - start) * *fps + 1e-6) + 1;
+    if (frames > static_cast<double>(kMostBakedPositions)) throw asset.error("too many frames at --fps " + std::to_string(*fps));
+    for (double k = 0; k < frames; ++k) times.push_back(start + k / *fps);
+    return {times, *fps};
+  }
+  times.assign(keys.begin(), keys.end());
+  if (times.size() == 1) return {times, 25};
+  // Evenly spaced keys (within float32's precision) give the rate; others need --fps.
+  const double step = (end - start) / static_cast<double>(times.size() - 1);
+  for (size_t k = 1; k < times.size(); ++k)
+    if (std::abs(times[k] - times[k - 1] - step) > 1e-4 * step + 1e-6)
+      throw asset.error("its keyframes are not evenly spaced (" + std::to_string(times[k - 1]) + " s, then " + std::to_string(times[k]) +
+                        " s): give --fps F to sample the animation at F frames a second");
+  return {times, 1 / step};
+}
+
+}  // namespace
+
+bool is_gltf_path(const std::string& path) { return path.ends_with(".glb") || path.ends_with(".gltf"); }
+
+GltfAnimation read_gltf(const std::string& path, const GltfSelection& selection) {
+  if (selection.fps && !(*selection.fps > 0 && *selection.fps <= 1000)) throw usage_error("--fps: a rate above 0 and at most 1000");
+  tinygltf::TinyGLTF loader;
+  // Images are not needed: left undecoded.
+  loader.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) { return true; }, nullptr);
+  tinygltf::Model model;
+  std::string error, warning;
+  if (!std::filesystem::is_regular_file(path)) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, path + ": no such file");
+  const bool loaded = path.ends_with(".glb") ? loader.LoadBinaryFromFile(&model, &error, &warning, path) : loader.LoadASCIIFromFile(&model, &error, &warning, path);
+  if (!loaded) throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, path + ": not a glTF 2.0 asset m4mesh can read: " + (error.empty() ? warning : error));
+  const Asset asset(path, std::move(model));
+  const tinygltf::Model& m = asset.model();
+
+  const Choice choice = choose_mesh(asset, selection.mesh);
+  const tinygltf::Node& node = m.nodes[static_cast<size_t>(choice.node)];
+  const bool skinned = node.skin >= 0;
+  if (skinned && static_cast<size_t>(node.skin) >= m.skins.size()) throw asset.error("node '" + choice.name + "': no skin " + std::to_string(node.skin));
+  const tinygltf::Mesh& mesh = m.meshes[static_cast<size_t>(node.mesh)];
+  const Geometry g = geometry_of(asset, mesh, skinned);
+  const Channels channels = channels_of(asset, choose_animation(asset, selection.animation));
+
+  std::vector<int> parent(m.nodes.size(), -1);
+  for (size_t n = 0; n < m.nodes.size(); ++n)
+    for (int child : m.nodes[n].children) {
+      if (child < 0 || static_cast<size_t>(child) >= m.nodes.size() || parent[static_cast<size_t>(child)] >= 0 || static_cast<size_t>(child) == n)
+        throw asset.error("node " + std::to_string(n) + ": child " + std::to_string(child) + " is not a node of one parent");
+      parent[static_cast<size_t>(child)] = static_cast<int>(n);
+    }
+  for (size_t n = 0; n < m.nodes.size(); ++n) {  // a cycle would never reach a root
+    size_t steps = 0;
+    for (int at = parent[n]; at >= 0; at = parent[static_cast<size_t>(at)])
+      if (++steps > m.nodes.size()) throw asset.error("node " + std::to_string(n) + " is its own ancestor");
+  }
+
+  std::vector<Matrix> inverse_bind;
+  std::vector<int> joints;
+  if (skinned) {
+    const tinygltf::Skin& skin = m.skins[static_cast<size_t>(node.skin)];
+    joints = skin.joints;
+    for (int j : joints)
+      if (j < 0 || static_cast<size_t>(j) >= m.nodes.size()) throw asset.error("skin '" + skin.name + "': joint " + std::to_string(j) + " is not a node");
+    inverse_bind.assign(joints.size(), Matrix::Identity());
+    if (skin.inverseBindMatrices >= 0) {
+      const std::vector<double> values = asset.numbers(skin.inverseBindMatrices, 16, "skin '" + skin.name + "', inverseBindMatrices");
+      if (values.size() != 16 * joints.size()) throw asset.error("skin '" + skin.name + "': not one inverse bind matrix per joint");
+      for (size_t j = 0; j < joints.size(); ++j) inverse_bind[j] = Eigen::Map<const Matrix>(values.data() + 16 * j);
+    }
+    for (const std::array<uint32_t, 4>& set : g.joints)
+      for (uint32_t j : set)
+        if (j >= joints.size()) throw asset.error("mesh '" + mesh.name + "': joint " + std::to_string(j) + " past the skin's " + std::to_string(joints.size()));
+  }
+
+  const auto [times, fps] = sample_times(asset, channels, selection.fps);
+  if (static_cast<double>(times.size()) * static_cast<double>(g.base.size()) > static_cast<double>(kMostBakedPositions))
+    throw asset.error(std::to_string(times.size()) + " frames of " + std::to_string(g.base.size()) + " vertices are too many to bake: give a lower --fps");
+
+  GltfAnimation out;
+  out.fps = fps;
+  out.sequence.vertex_count = static_cast<uint32_t>(g.base.size());
+  out.sequence.faces = g.faces;
+  const std::vector<double> rest_weights(mesh.weights.begin(), mesh.weights.end());
+  for (const double t : times) {
+    std::vector<double> weights = rest_weights;
+    if (const Sampler* s = channels.find(choice.node, "weights")) weights = s->at(t);
+    weights.resize(g.targets.size(), 0.0);
+    const std::vector<Matrix> world = world_transforms(m, parent, channels, t);
+    std::vector<Matrix> skinning;
+    for (size_t j = 0; j < joints.size(); ++j) skinning.push_back(world[static_cast<size_t>(joints[j])] * inverse_bind[j]);
+    std::vector<Vec3> frame(g.base.size());
+    for (size_t v = 0; v < g.base.size(); ++v) {
+      Eigen::Vector4d p(g.base[v].x, g.base[v].y, g.base[v].z, 1);
+      for (size_t k = 0; k < g.targets.size(); ++k)
+        if (weights[k] != 0) p.head<3>() += weights[k] * Eigen::Vector3d(g.targets[k][v].x, g.targets[k][v].y, g.targets[k][v].z);
+      Eigen::Vector4d q = Eigen::Vector4d::Zero();
+      if (skinned) {
+        for (size_t s = 0; s < g.influence_sets; ++s) {
+          const size_t at = v * g.influence_sets + s;
+          for (size_t i = 0; i < 4; ++i)
+            if (g.weights[at][i] != 0) q += g.weights[at][i] * (skinning[g.joints[at][i]] * p);
+        }
+      } else {
+        q = world[static_cast<size_t>(choice.node)] * p;
+      }
+      frame[v] = {static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z())};
+    }
+    out.sequence.frames.push_back(std::move(frame));
+  }
+  return out;
+}
+
+}  // namespace m4mesh

@@ -1,0 +1,293 @@
+// glTF animations in (encode3d anim.glb): assets built here with
+// tinygltf, morph targets and a skin, baked to the positions worked out by
+// hand; m4mesh's own glTF read back bit for bit; and the errors for what
+// cannot be taken.
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+
+#include "cli/app.h"
+#include "cli/gltf.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "decoder/mesh3d/container_decoder.h"
+#include "encoder/mesh3d/container_encoder.h"
+#include "tests/test_util.h"
+
+namespace m4mesh {
+namespace {
+
+namespace fs = std::filesystem;
+
+class GltfInput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = fs::temp_directory_path() / ("m4mesh-gltf-in-" + std::to_string(::getpid()));
+    fs::create_directories(folder_);
+    model_.asset.version = "2.0";
+    model_.buffers.resize(1);
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+
+  int accessor(const std::vector<float>& values, int type) {
+    return add(values.data(), values.size() * sizeof(float), values.size() / static_cast<size_t>(tinygltf::GetNumComponentsInType(static_cast<uint32_t>(type))), type,
+               TINYGLTF_COMPONENT_TYPE_FLOAT);
+  }
+  int accessor(const std::vector<uint16_t>& values, int type) {
+    return add(values.data(), values.size() * sizeof(uint16_t), values.size() / static_cast<size_t>(tinygltf::GetNumComponentsInType(static_cast<uint32_t>(type))), type,
+               TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  }
+
+  // A tetrahedron's primitive: positions (x y z per vertex) and its four faces.
+  tinygltf::Primitive tetrahedron(const std::vector<float>& positions) {
+    tinygltf::Primitive p;
+    p.mode = TINYGLTF_MODE_TRIANGLES;
+    p.attributes["POSITION"] = accessor(positions, TINYGLTF_TYPE_VEC3);
+    p.indices = accessor(std::vector<uint16_t>{0, 1, 2, 0, 3, 1, 0, 2, 3, 1, 3, 2}, TINYGLTF_TYPE_SCALAR);
+    return p;
+  }
+
+  int add_node(tinygltf::Node node) {
+    model_.nodes.push_back(std::move(node));
+    return static_cast<int>(model_.nodes.size() - 1);
+  }
+
+  void animate(int node, const std::string& path, const std::vector<float>& times, const std::vector<float>& values, const std::string& interpolation = "LINEAR") {
+    if (model_.animations.empty()) model_.animations.emplace_back().name = "move";
+    tinygltf::Animation& a = model_.animations.back();
+    tinygltf::AnimationSampler s;
+    s.input = accessor(times, TINYGLTF_TYPE_SCALAR);
+    const int width = path == "rotation" ? TINYGLTF_TYPE_VEC4 : path == "weights" ? TINYGLTF_TYPE_SCALAR : TINYGLTF_TYPE_VEC3;
+    s.output = accessor(values, width);
+    s.interpolation = interpolation;
+    a.samplers.push_back(s);
+    tinygltf::AnimationChannel c;
+    c.sampler = static_cast<int>(a.samplers.size() - 1);
+    c.target_node = node;
+    c.target_path = path;
+    a.channels.push_back(c);
+  }
+
+  std::string save(const std::string& name) {
+    tinygltf::Scene scene;
+    for (size_t n = 0; n < model_.nodes.size(); ++n) {
+      bool child = false;
+      for (const tinygltf::Node& other : model_.nodes) child |= std::count(other.children.begin(), other.children.end(), static_cast<int>(n)) > 0;
+      if (!child) scene.nodes.push_back(static_cast<int>(n));
+    }
+    model_.scenes = {scene};
+    model_.defaultScene = 0;
+    const std::string path = (folder_ / name).string();
+    std::ostringstream out;
+    tinygltf::TinyGLTF writer;
+    EXPECT_TRUE(writer.WriteGltfSceneToStream(&model_, out, false, name.ends_with(".glb")));
+    write_file_atomically(path, out.str());
+    return path;
+  }
+
+  // The error reading `path` gives, or "" when it reads.
+  static std::string error_of(const std::string& path, const GltfSelection& selection = {}) {
+    try {
+      read_gltf(path, selection);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  }
+
+  static void expect_near(const Vec3& p, double x, double y, double z, const std::string& where) {
+    EXPECT_NEAR(p.x, x, 1e-6) << where;
+    EXPECT_NEAR(p.y, y, 1e-6) << where;
+    EXPECT_NEAR(p.z, z, 1e-6) << where;
+  }
+
+  fs::path folder_;
+  tinygltf::Model model_;
+
+ private:
+  int add(const void* data, size_t bytes, size_t count, int type, int component) {
+    std::vector<unsigned char>& buffer = model_.buffers[0].data;
+    const size_t offset = buffer.size();
+    buffer.resize(offset + bytes + (4 - bytes % 4) % 4);
+    std::memcpy(buffer.data() + offset, data, bytes);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = offset;
+    view.byteLength = bytes;
+    model_.bufferViews.push_back(view);
+    tinygltf::Accessor a;
+    a.bufferView = static_cast<int>(model_.bufferViews.size() - 1);
+    a.componentType = component;
+    a.count = count;
+    a.type = type;
+    if (type == TINYGLTF_TYPE_SCALAR && component == TINYGLTF_COMPONENT_TYPE_FLOAT && count > 0) {
+      const auto* f = static_cast<const float*>(data);
+      a.minValues = {*std::min_element(f, f + count)};
+      a.maxValues = {*std::max_element(f, f + count)};
+    }
+    model_.accessors.push_back(a);
+    return static_cast<int>(model_.accessors.size() - 1);
+  }
+};
+
+GltfSelection pick(const std::string& mesh, std::optional<double> fps = std::nullopt) { return {.mesh = mesh, .animation = "", .fps = fps}; }
+
+const std::vector<float> kTetrahedron{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+
+// Two morph targets weighted 0, 1 then ½ each (LINEAR), on a node moved by
+// (1, 2, 3): at 2 frames a second, every frame is base + Σ wₖ targetₖ + (1, 2, 3).
+TEST_F(GltfInput, MorphTargetsBakeAsTheirWeightsSay) {
+  tinygltf::Mesh mesh;
+  mesh.name = "blob";
+  tinygltf::Primitive p = tetrahedron(kTetrahedron);
+  const std::vector<float> up{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, out{1, 0, 0, 2, 0, 0, 3, 0, 0, 4, 0, 0};
+  p.targets = {{{"POSITION", accessor(up, TINYGLTF_TYPE_VEC3)}}, {{"POSITION", accessor(out, TINYGLTF_TYPE_VEC3)}}};
+  mesh.primitives.push_back(p);
+  model_.meshes.push_back(mesh);
+  tinygltf::Node node;
+  node.mesh = 0;
+  node.translation = {1, 2, 3};
+  const int n = add_node(node);
+  animate(n, "weights", {0, 1, 2}, {0, 0, 1, 0, 0.5f, 0.5f});
+  const std::string path = save("morph.glb");
+
+  const GltfAnimation baked = read_gltf(path, pick("", 2.0));
+  EXPECT_EQ(baked.fps, 2.0);
+  ASSERT_EQ(baked.sequence.frames.size(), 5u);  // 0, 0.5, 1, 1.5, 2 s
+  EXPECT_EQ(baked.sequence.faces.size(), 4u);
+  const double w_up[] = {0, 0.5, 1, 0.75, 0.5}, w_out[] = {0, 0, 0, 0.25, 0.5};
+  for (size_t f = 0; f < 5; ++f)
+    for (size_t v = 0; v < 4; ++v)
+      expect_near(baked.sequence.frames[f][v], kTetrahedron[3 * v] + w_out[f] * out[3 * v] + 1, kTetrahedron[3 * v + 1] + 2,
+                  kTetrahedron[3 * v + 2] + w_up[f] + 3, "frame " + std::to_string(f) + " vertex " + std::to_string(v));
+  // At its keyframes (evenly spaced, one a second): three frames at 1 fps.
+  const GltfAnimation keys = read_gltf(path, {});
+  EXPECT_EQ(keys.fps, 1.0);
+  EXPECT_EQ(keys.sequence.frames.size(), 3u);
+}
+
+// Two joints: the root slides by (2, 0, 0) over a second, its child (bound
+// one up) turns 90° about z. Vertex 0 follows the root, 1 and 3 the child,
+// 2 half each; at t = 1 the child's vertex (1, 1, 0) is at (2, 2, 0).
+TEST_F(GltfInput, ASkinBakesByLinearBlendSkinning) {
+  tinygltf::Mesh mesh;
+  mesh.name = "arm";
+  tinygltf::Primitive p = tetrahedron({0, 0, 0, 1, 1, 0, 0, 1, 0, 0, 2, 1});
+  p.attributes["JOINTS_0"] = accessor(std::vector<uint16_t>{0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0}, TINYGLTF_TYPE_VEC4);
+  p.attributes["WEIGHTS_0"] = accessor(std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 0.5f, 0.5f, 0, 0, 1, 0, 0, 0}, TINYGLTF_TYPE_VEC4);
+  mesh.primitives.push_back(p);
+  model_.meshes.push_back(mesh);
+  tinygltf::Node root, child, skinned;
+  root.name = "root";
+  child.name = "child";
+  child.translation = {0, 1, 0};
+  const int c = add_node(child);
+  root.children = {c};
+  const int r = add_node(root);
+  skinned.mesh = 0;
+  skinned.skin = 0;
+  skinned.translation = {100, 100, 100};  // a skinned mesh's own node transform is ignored (glTF 2.0, 3.7.3)
+  add_node(skinned);
+  tinygltf::Skin skin;
+  skin.joints = {r, c};
+  const std::vector<float> inverse_bind{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,   // root: bound at the origin
+                                        1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1};  // child: bound one up
+  skin.inverseBindMatrices = accessor(inverse_bind, TINYGLTF_TYPE_MAT4);
+  model_.skins.push_back(skin);
+  animate(r, "translation", {0, 1}, {0, 0, 0, 2, 0, 0});
+  const float s = static_cast<float>(std::sqrt(0.5));
+  animate(c, "rotation", {0, 1}, {0, 0, 0, 1, 0, 0, s, s});
+  const std::string path = save("skin.gltf");
+
+  const GltfAnimation baked = read_gltf(path, {});
+  ASSERT_EQ(baked.sequence.frames.size(), 2u);
+  const std::vector<Vec3>& rest = baked.sequence.frames[0];
+  expect_near(rest[0], 0, 0, 0, "rest 0");
+  expect_near(rest[1], 1, 1, 0, "rest 1");
+  expect_near(rest[3], 0, 2, 1, "rest 3");
+  const std::vector<Vec3>& moved = baked.sequence.frames[1];
+  expect_near(moved[0], 2, 0, 0, "moved 0");
+  expect_near(moved[1], 2, 2, 0, "moved 1");  // (1, 0, 0) from the joint turned to (0, 1, 0), plus (2, 1, 0)
+  expect_near(moved[3], 1, 1, 1, "moved 3");  // (0, 1, 1) from the joint turned to (−1, 0, 1), plus (2, 1, 0)
+  // Half on each: the root takes (0, 1, 0) to (2, 1, 0); the child to (2 − 0, 1 + 0, 0) = (2, 1, 0) too: (0, 1, 0) is the joint itself.
+  expect_near(moved[2], 2, 1, 0, "moved 2");
+  // Between the keys: half the slide, the turn by 45° (spherical).
+  const GltfAnimation half = read_gltf(path, pick("", 2.0));
+  ASSERT_EQ(half.sequence.frames.size(), 3u);
+  expect_near(half.sequence.frames[1][1], 1 + s, 1 + s, 0, "half-way 1");
+}
+
+// decode3d's glTF read back: the decoded frames bit for bit, at the stream's rate.
+TEST_F(GltfInput, M4meshsOwnAnimationReadsBackExactly) {
+  const MeshSequence original = test::test_sequence(6, 9);
+  Encode3dOptions options;
+  options.frame_rate_num = 30000;
+  options.frame_rate_den = 1001;
+  const std::vector<uint8_t> stream = encode_mesh3d(original, options).stream;
+  const MeshSequence decoded = decode_mesh3d(stream);
+  const std::string input = (folder_ / "s.m4m").string(), glb = (folder_ / "anim.glb").string(), again = (folder_ / "again.m4m").string();
+  write_file_atomically(input, std::string(stream.begin(), stream.end()));
+  std::vector<const char*> decode{"m4mesh", "-q", "decode3d", input.c_str(), "-o", glb.c_str()};
+  ASSERT_EQ(run_m4mesh(static_cast<int>(decode.size()), decode.data()), 0);
+  const GltfAnimation read = read_gltf(glb, {});
+  EXPECT_NEAR(read.fps, 30000.0 / 1001.0, 1e-3);
+  EXPECT_EQ(read.sequence.faces, decoded.faces);
+  ASSERT_EQ(read.sequence.frames.size(), decoded.frames.size());
+  for (size_t f = 0; f < decoded.frames.size(); ++f) ASSERT_EQ(read.sequence.frames[f], decoded.frames[f]) << "frame " << f;
+  // And coded again: the frames, at the keyframes' rate.
+  std::vector<const char*> encode{"m4mesh", "-q", "encode3d", glb.c_str(), "-o", again.c_str()};
+  ASSERT_EQ(run_m4mesh(static_cast<int>(encode.size()), encode.data()), 0);
+  const std::vector<uint8_t> coded = read_file(again);
+  const Mesh3dDecoder header(coded);
+  EXPECT_EQ(header.header().frame_count, decoded.frames.size());
+  EXPECT_EQ(header.header().frame_rate_num, 29970u);
+  EXPECT_EQ(header.header().frame_rate_den, 1000u);
+}
+
+TEST_F(GltfInput, WhatCannotBeTakenIsNamed) {
+  tinygltf::Mesh a, b;
+  a.name = "left";
+  b.name = "right";
+  a.primitives.push_back(tetrahedron(kTetrahedron));
+  b.primitives.push_back(tetrahedron(kTetrahedron));
+  model_.meshes = {a, b};
+  tinygltf::Node left, right;
+  left.mesh = 0;
+  right.mesh = 1;
+  right.name = "right node";
+  const int l = add_node(left);
+  add_node(right);
+  const std::string still = save("still.glb");
+  EXPECT_NE(error_of(still).find("2 meshes ('left', 'right node'): choose one with --mesh NAME"), std::string::npos) << error_of(still);
+  EXPECT_NE(error_of(still, pick("left")).find("no animation"), std::string::npos) << error_of(still, pick("left"));
+  EXPECT_NE(error_of(still, pick("middle")).find("no node or mesh is named 'middle'"), std::string::npos);
+
+  animate(l, "translation", {0, 1, 3}, {0, 0, 0, 1, 0, 0, 2, 0, 0});
+  const std::string uneven = save("uneven.glb");
+  EXPECT_NE(error_of(uneven, pick("right")).find("keyframes are not evenly spaced"), std::string::npos) << error_of(uneven, pick("right"));
+  EXPECT_EQ(error_of(uneven, pick("right", 10.0)), "");
+  EXPECT_EQ(read_gltf(uneven, pick("left", 10.0)).sequence.frames.size(), 31u);
+
+  model_.meshes[1].primitives[0].mode = TINYGLTF_MODE_LINE;
+  const std::string lines = save("lines.glb");
+  EXPECT_NE(error_of(lines, pick("right", 10.0)).find("mesh 'right', primitive 0 is not of triangles (mode 1)"), std::string::npos);
+
+  model_.meshes[1].primitives[0].mode = TINYGLTF_MODE_TRIANGLES;
+  model_.accessors[static_cast<size_t>(model_.meshes[1].primitives[0].attributes["POSITION"])].count = 1000;
+  const std::string short_buffer = save("short.gltf");
+  const std::string message = error_of(short_buffer, pick("right", 10.0));
+  EXPECT_TRUE(message.find("past the end") != std::string::npos || message.find("not a glTF 2.0 asset m4mesh can read") != std::string::npos) << message;
+
+  EXPECT_NE(error_of((folder_ / "none.glb").string()).find("no such file"), std::string::npos);
+  write_file_atomically((folder_ / "text.glb").string(), std::string("not a glb"));
+  EXPECT_NE(error_of((folder_ / "text.glb").string()).find("not a glTF 2.0 asset"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace m4mesh
