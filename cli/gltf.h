@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 
 #include "mesh3d/sequence.h"
@@ -32,6 +33,14 @@ struct GltfSelection {
   std::optional<double> fps;  // sample at this rate; none: at the animation's keyframes
 };
 
+// What baking may take: vertex positions kept (frames × vertices), and
+// vertex operations (per frame and vertex: 1, its weighted morph targets
+// and its joints).
+struct GltfLimits {
+  uint64_t most_positions = uint64_t{1} << 26;
+  uint64_t most_work = uint64_t{1} << 33;
+};
+
 struct GltfAnimation {
   MeshSequence sequence;
   double fps = 0;  // the rate of the frames: `fps`, or the keyframes' (evenly spaced)
@@ -41,6 +50,8 @@ struct GltfAnimation {
 // sample time, its vertices after morph targets, skin (linear blend) and
 // its node's transform, as float32 values. Errors name the file and what
 // it holds that cannot be taken.
-GltfAnimation read_gltf(const std::string& path, const GltfSelection& selection);
+GltfAnimation read_gltf(const std::string& path, const GltfSelection& selection, const GltfLimits& limits = {});
+// The same of a GLB in memory (no file beside it); `name` for the errors.
+GltfAnimation read_glb(std::span<const uint8_t> bytes, const std::string& name, const GltfSelection& selection, const GltfLimits& limits = {});
 
 }  // namespace m4mesh

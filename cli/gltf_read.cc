@@ -15,9 +15,9 @@ namespace m4mesh {
 
 namespace {
 
-// The most vertices × frames an animation is baked to (positions in doubles: 6 GB).
-constexpr uint64_t kMostBakedPositions = uint64_t{1} << 28;
 constexpr uint64_t kMostVertices = uint64_t{1} << 24;
+// The most numbers an accessor without a buffer view (all zeros) may stand for.
+constexpr size_t kMostUnbackedNumbers = size_t{1} << 24;
 
 using Matrix = Eigen::Matrix4d;
 
@@ -35,11 +35,17 @@ class Asset {
     if (tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type)) != components)
       throw error(what + ": accessor " + std::to_string(index) + " has " + std::to_string(tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type))) +
                   " components an element, not " + std::to_string(components));
+    // Memory only for what the buffers hold: elements without a buffer view (zeros) are capped.
+    if (a.bufferView >= 0) check_elements(a.bufferView, a.byteOffset, a.count, a.componentType, components, what);
+    else if (a.count * static_cast<size_t>(components) > kMostUnbackedNumbers)
+      throw error(what + ": accessor " + std::to_string(index) + " holds " + std::to_string(a.count) + " elements and no buffer view");
     std::vector<double> out(a.count * static_cast<size_t>(components), 0.0);
     if (a.bufferView >= 0) read_elements(a.bufferView, a.byteOffset, a.count, a.componentType, components, a.normalized, what, out.data());
     if (a.sparse.isSparse) {
       const auto count = static_cast<size_t>(a.sparse.count);
       if (a.sparse.count < 1 || count > a.count) throw error(what + ": a sparse accessor of " + std::to_string(a.sparse.count) + " values");
+      check_elements(a.sparse.indices.bufferView, static_cast<size_t>(a.sparse.indices.byteOffset), count, a.sparse.indices.componentType, 1, what);
+      check_elements(a.sparse.values.bufferView, static_cast<size_t>(a.sparse.values.byteOffset), count, a.componentType, components, what);
       std::vector<double> at(count), values(count * static_cast<size_t>(components));
       read_elements(a.sparse.indices.bufferView, static_cast<size_t>(a.sparse.indices.byteOffset), count, a.sparse.indices.componentType, 1, false,
                     what + " (sparse indices)", at.data());
@@ -73,19 +79,32 @@ class Asset {
     return a;
   }
 
-  // `count` elements of `components` numbers from a buffer view, bounds checked.
-  void read_elements(int view_index, size_t offset, size_t count, int type, int components, bool normalized, const std::string& what, double* out) const {
+  // That `count` elements of `components` numbers lie inside a buffer view inside its buffer.
+  void check_elements(int view_index, size_t offset, size_t count, int type, int components, const std::string& what) const {
     if (view_index < 0 || static_cast<size_t>(view_index) >= model_.bufferViews.size()) throw error(what + ": no buffer view " + std::to_string(view_index));
     const tinygltf::BufferView& view = model_.bufferViews[static_cast<size_t>(view_index)];
     if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model_.buffers.size()) throw error(what + ": no buffer " + std::to_string(view.buffer));
-    const std::vector<unsigned char>& data = model_.buffers[static_cast<size_t>(view.buffer)].data;
+    const size_t data = model_.buffers[static_cast<size_t>(view.buffer)].data.size();
+    if (type != TINYGLTF_COMPONENT_TYPE_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_SHORT &&
+        type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT && type != TINYGLTF_COMPONENT_TYPE_FLOAT)
+      throw error(what + ": component type " + std::to_string(type) + " is not glTF's");
     const int size = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(type));
-    if (size <= 0) throw error(what + ": component type " + std::to_string(type) + " is not glTF's");
     const uint64_t element = uint64_t{static_cast<uint32_t>(size)} * static_cast<uint32_t>(components);
     const uint64_t stride = view.byteStride != 0 ? view.byteStride : element;
-    const uint64_t needed = count == 0 ? 0 : offset + (count - 1) * stride + element;
-    if (stride < element || view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset || needed > view.byteLength)
+    // count ≤ 2³² and stride < 2⁸ (glTF caps it at 252): no overflow.
+    const uint64_t needed = count == 0 ? 0 : std::min<uint64_t>(offset, uint64_t{1} << 48) + (count - 1) * std::min<uint64_t>(stride, 256) + element;
+    if (stride < element || stride > 252 || view.byteOffset > data || view.byteLength > data - view.byteOffset || needed > view.byteLength)
       throw error(what + ": " + std::to_string(count) + " elements past the end of buffer view " + std::to_string(view_index));
+  }
+
+  // `count` elements of `components` numbers from a buffer view (check_elements first).
+  void read_elements(int view_index, size_t offset, size_t count, int type, int components, bool normalized, const std::string& what, double* out) const {
+    check_elements(view_index, offset, count, type, components, what);
+    const tinygltf::BufferView& view = model_.bufferViews[static_cast<size_t>(view_index)];
+    const std::vector<unsigned char>& data = model_.buffers[static_cast<size_t>(view.buffer)].data;
+    const int size = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(type));
+    const size_t element = static_cast<size_t>(size) * static_cast<size_t>(components);
+    const size_t stride = view.byteStride != 0 ? view.byteStride : element;
     const unsigned char* base = data.data() + view.byteOffset + offset;
     for (size_t k = 0; k < count; ++k)
       for (int c = 0; c < components; ++c) {
@@ -111,10 +130,8 @@ class Asset {
         return load(uint32_t{});
       case TINYGLTF_COMPONENT_TYPE_BYTE:
         return normalized ? std::max(load(int8_t{}) / 127.0, -1.0) : load(int8_t{});
-      case TINYGLTF_COMPONENT_TYPE_SHORT:
+      default:  // TINYGLTF_COMPONENT_TYPE_SHORT (check_elements let no other in)
         return normalized ? std::max(load(int16_t{}) / 32767.0, -1.0) : load(int16_t{});
-      default:
-        return load(double{});
     }
   }
 
@@ -384,7 +401,7 @@ const tinygltf::Animation& choose_animation(const Asset& asset, const std::strin
 }
 
 // The times frames are taken at: every key of the channels, or `fps` over their span.
-std::pair<std::vector<double>, double> sample_times(const Asset& asset, const Channels& channels, std::optional<double> fps) {
+std::pair<std::vector<double>, double> sample_times(const Asset& asset, const Channels& channels, std::optional<double> fps, uint64_t most) {
   std::set<double> keys;
   for (const auto& [target, sampler] : channels.samplers) keys.insert(sampler.times.begin(), sampler.times.end());
   if (keys.empty()) throw asset.error("the animation moves nothing of the scene");
@@ -392,7 +409,7 @@ std::pair<std::vector<double>, double> sample_times(const Asset& asset, const Ch
   std::vector<double> times;
   if (fps) {
     const double frames = std::floor((end - start) * *fps + 1e-6) + 1;
-    if (frames > static_cast<double>(kMostBakedPositions)) throw asset.error("too many frames at --fps " + std::to_string(*fps));
+    if (frames > static_cast<double>(most)) throw asset.error("over " + std::to_string(most) + " frames at --fps " + std::to_string(*fps) + ": too many to bake");
     for (double k = 0; k < frames; ++k) times.push_back(start + k / *fps);
     return {times, *fps};
   }
@@ -407,21 +424,9 @@ std::pair<std::vector<double>, double> sample_times(const Asset& asset, const Ch
   return {times, 1 / step};
 }
 
-}  // namespace
-
-bool is_gltf_path(const std::string& path) { return path.ends_with(".glb") || path.ends_with(".gltf"); }
-
-GltfAnimation read_gltf(const std::string& path, const GltfSelection& selection) {
+// The chosen mesh baked at every sample time.
+GltfAnimation bake(const Asset& asset, const GltfSelection& selection, const GltfLimits& limits) {
   if (selection.fps && !(*selection.fps > 0 && *selection.fps <= 1000)) throw usage_error("--fps: a rate above 0 and at most 1000");
-  tinygltf::TinyGLTF loader;
-  // Images are not needed: left undecoded.
-  loader.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) { return true; }, nullptr);
-  tinygltf::Model model;
-  std::string error, warning;
-  if (!std::filesystem::is_regular_file(path)) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, path + ": no such file");
-  const bool loaded = path.ends_with(".glb") ? loader.LoadBinaryFromFile(&model, &error, &warning, path) : loader.LoadASCIIFromFile(&model, &error, &warning, path);
-  if (!loaded) throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, path + ": not a glTF 2.0 asset m4mesh can read: " + (error.empty() ? warning : error));
-  const Asset asset(path, std::move(model));
   const tinygltf::Model& m = asset.model();
 
   const Choice choice = choose_mesh(asset, selection.mesh);
@@ -463,9 +468,10 @@ GltfAnimation read_gltf(const std::string& path, const GltfSelection& selection)
         if (j >= joints.size()) throw asset.error("mesh '" + mesh.name + "': joint " + std::to_string(j) + " past the skin's " + std::to_string(joints.size()));
   }
 
-  const auto [times, fps] = sample_times(asset, channels, selection.fps);
-  if (static_cast<double>(times.size()) * static_cast<double>(g.base.size()) > static_cast<double>(kMostBakedPositions))
+  const auto [times, fps] = sample_times(asset, channels, selection.fps, limits.most_positions);
+  if (static_cast<double>(times.size()) * static_cast<double>(g.base.size()) > static_cast<double>(limits.most_positions))
     throw asset.error(std::to_string(times.size()) + " frames of " + std::to_string(g.base.size()) + " vertices are too many to bake: give a lower --fps");
+  uint64_t work = 0;
 
   GltfAnimation out;
   out.fps = fps;
@@ -476,6 +482,9 @@ GltfAnimation read_gltf(const std::string& path, const GltfSelection& selection)
     std::vector<double> weights = rest_weights;
     if (const Sampler* s = channels.find(choice.node, "weights")) weights = s->at(t);
     weights.resize(g.targets.size(), 0.0);
+    // Per vertex: its morph targets of weight ≠ 0 and its joints.
+    work += g.base.size() * (1 + static_cast<uint64_t>(std::count_if(weights.begin(), weights.end(), [](double w) { return w != 0; })) + 4 * g.influence_sets);
+    if (work > limits.most_work) throw asset.error("the animation takes over " + std::to_string(limits.most_work) + " vertex operations to bake: give a lower --fps");
     const std::vector<Matrix> world = world_transforms(m, parent, channels, t);
     std::vector<Matrix> skinning;
     for (size_t j = 0; j < joints.size(); ++j) skinning.push_back(world[static_cast<size_t>(joints[j])] * inverse_bind[j]);
@@ -499,6 +508,42 @@ GltfAnimation read_gltf(const std::string& path, const GltfSelection& selection)
     out.sequence.frames.push_back(std::move(frame));
   }
   return out;
+}
+
+// Images are not needed: left undecoded.
+tinygltf::TinyGLTF loader() {
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) { return true; }, nullptr);
+  return loader;
+}
+
+Error unreadable(const std::string& path, const std::string& error, const std::string& warning) {
+  return Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, path + ": not a glTF 2.0 asset m4mesh can read: " + (error.empty() ? warning : error));
+}
+
+}  // namespace
+
+bool is_gltf_path(const std::string& path) { return path.ends_with(".glb") || path.ends_with(".gltf"); }
+
+GltfAnimation read_gltf(const std::string& path, const GltfSelection& selection, const GltfLimits& limits) {
+  if (!std::filesystem::is_regular_file(path)) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, path + ": no such file");
+  tinygltf::Model model;
+  std::string error, warning;
+  tinygltf::TinyGLTF reader = loader();
+  const bool loaded = path.ends_with(".glb") ? reader.LoadBinaryFromFile(&model, &error, &warning, path) : reader.LoadASCIIFromFile(&model, &error, &warning, path);
+  if (!loaded) throw unreadable(path, error, warning);
+  return bake(Asset(path, std::move(model)), selection, limits);
+}
+
+GltfAnimation read_glb(std::span<const uint8_t> bytes, const std::string& name, const GltfSelection& selection, const GltfLimits& limits) {
+  if (bytes.size() > UINT32_MAX) throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, name + ": over 4 GB, past GLB's own limit");
+  tinygltf::Model model;
+  std::string error, warning;
+  tinygltf::TinyGLTF reader = loader();
+  // No base folder: a GLB read from memory takes no file beside it.
+  if (!reader.LoadBinaryFromMemory(&model, &error, &warning, bytes.data(), static_cast<unsigned int>(bytes.size()), "/nonexistent"))
+    throw unreadable(name, error, warning);
+  return bake(Asset(name, std::move(model)), selection, limits);
 }
 
 }  // namespace m4mesh

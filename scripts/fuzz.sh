@@ -18,7 +18,7 @@ echo "clang build: both conformance suites decode to the manifests' MD5s"
 
 work=build-fuzz/run
 rm -rf "$work"
-mkdir -p "$work/seeds-stream" "$work/seeds-text" "$work/seeds-mesh3d" build-fuzz/findings
+mkdir -p "$work/seeds-stream" "$work/seeds-text" "$work/seeds-mesh3d" "$work/seeds-gltf" build-fuzz/findings
 # Seeds no longer than the inputs the fuzzers make (-max_len).
 find conformance/streams tests/fuzz_regressions -name '*.m4m' -size -8193c -exec cp {} "$work/seeds-stream/" \;
 cp tests/fuzz_regressions/*.txt "$work/seeds-text/" 2> /dev/null || true
@@ -34,11 +34,17 @@ for bits in 6 10; do
   build-fuzz/cli/m4mesh encode3d tests/data/tetra-frames -o "$work/seeds-mesh3d/tetra-$bits-p.m4m" --bits "$bits" --parallelogram > /dev/null 2>&1 || true
 done
 
+# glTF: a small animation as GLB (morph targets and a STEP weights animation), at two rates.
+for fps in 25 7; do
+  build-fuzz/cli/m4mesh -y convert tests/data/tetra-frames "$work/seeds-gltf/tetra-$fps.glb" --fps "$fps" > /dev/null 2>&1 || true
+done
+
 total=0
-for target in decoder checker text mesh3d; do
+for target in decoder checker text mesh3d gltf; do
   seeds="$work/seeds-stream"
   [ "$target" = text ] && seeds="$work/seeds-text"
   [ "$target" = mesh3d ] && seeds="$work/seeds-mesh3d"
+  [ "$target" = gltf ] && seeds="$work/seeds-gltf"
   mkdir -p "$work/corpus-$target"
   log="$work/$target.log"
   echo "== ${target}_fuzzer for ${seconds}s"

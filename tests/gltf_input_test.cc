@@ -170,6 +170,15 @@ TEST_F(GltfInput, MorphTargetsBakeAsTheirWeightsSay) {
   const GltfAnimation keys = read_gltf(path, {});
   EXPECT_EQ(keys.fps, 1.0);
   EXPECT_EQ(keys.sequence.frames.size(), 3u);
+  // Within limits: 5 frames of 4 vertices are 20 positions; the weights make 4 × (1 + 0, 1, 1, 2, 2) vertex operations.
+  EXPECT_NO_THROW(read_gltf(path, pick("", 2.0), {.most_positions = 20, .most_work = 4 * 11}));
+  EXPECT_THROW(read_gltf(path, pick("", 2.0), {.most_positions = 19, .most_work = 4 * 11}), Error);
+  try {
+    read_gltf(path, pick("", 2.0), {.most_positions = 20, .most_work = 4 * 11 - 1});
+    ADD_FAILURE() << "baked past the limit";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("over 43 vertex operations to bake"), std::string::npos) << e.what();
+  }
 }
 
 // Two joints: the root slides by (2, 0, 0) over a second, its child (bound
@@ -283,6 +292,12 @@ TEST_F(GltfInput, WhatCannotBeTakenIsNamed) {
   const std::string short_buffer = save("short.gltf");
   const std::string message = error_of(short_buffer, pick("right", 10.0));
   EXPECT_TRUE(message.find("past the end") != std::string::npos || message.find("not a glTF 2.0 asset m4mesh can read") != std::string::npos) << message;
+
+  // A component type glTF does not have (INT, 4 bytes): refused, not read as another's size (found by fuzzing).
+  model_.accessors[static_cast<size_t>(model_.meshes[1].primitives[0].attributes["POSITION"])].count = 4;
+  model_.accessors[static_cast<size_t>(model_.meshes[1].primitives[0].attributes["POSITION"])].componentType = 5124;
+  const std::string int_positions = save("int.glb");
+  EXPECT_NE(error_of(int_positions, pick("right", 10.0)).find("component type 5124 is not glTF's"), std::string::npos) << error_of(int_positions, pick("right", 10.0));
 
   EXPECT_NE(error_of((folder_ / "none.glb").string()).find("no such file"), std::string::npos);
   write_file_atomically((folder_ / "text.glb").string(), std::string("not a glb"));
