@@ -25,6 +25,7 @@ import csv
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -36,7 +37,14 @@ WIDTH, HEIGHT, FRAMES, FPS = 320, 240, 30, 25
 QUALITIES = (18, 28)  # libx264 CRF
 NATURAL = [("vtest.avi", "/usr/share/doc/opencv-doc/examples/data/vtest.avi", "0:99"),
            ("tree.avi", "/usr/share/doc/opencv-doc/examples/data/tree.avi", "0:59")]
-MESHES = [("uniform 16x16", []), ("60 nodes", ["--nodes", "60"])]
+# Default options, then the motion-compensation use (docs/tracking.md): each frame matched against the one before.
+MESHES = [("uniform 16x16", []), ("60 nodes", ["--nodes", "60"]),
+          ("uniform 16x16, previous", ["--reference", "previous"]), ("60 nodes, previous", ["--nodes", "60", "--reference", "previous"])]
+
+
+def tag(label):
+    """A mesh label as part of a file name."""
+    return re.sub(r"[^0-9a-z]+", "-", label.lower()).strip("-")
 # kind: (global pan px/frame, zoom over the clip, rotation over the clip (rad), warp amplitude px, object)
 KINDS = {
     "warp": dict(pan=(0.0, 0.0), zoom=0.0, rotation=0.0, warp=5.0, object=False),
@@ -294,7 +302,7 @@ def main():
                     if not os.path.exists(video):
                         write_clip(motion, crf, video)
                     for label, options in MESHES:
-                        rows, planes = track(m4mesh, video, options, work, name + "-" + label.split()[0])
+                        rows, planes = track(m4mesh, video, options, work, name + "-" + tag(label))
                         per_frame = node_errors(motion, planes)
                         errors = np.concatenate([e for _, e in per_frame])
                         r = dict(clip=name, kind=kind, set=which, crf=crf, mesh=label, mean_error=float(errors.mean()),
@@ -309,7 +317,7 @@ def main():
                 print(f"skip: {path} is absent (Debian's opencv-doc)")
             continue
         for label, options in MESHES:
-            rows, planes = track(m4mesh, path, options + ["--frames", frames], work, name + "-" + label.split()[0])
+            rows, planes = track(m4mesh, path, options + ["--frames", frames], work, name + "-" + tag(label))
             stretch = largest_stretch(planes)
             r = dict(clip=f"{name} {frames}", mesh=label, stretch=stretch, per_frame=dict(rows=rows), **summary(rows, planes))
             results.append(r)
@@ -332,7 +340,7 @@ def figures(m4mesh, work, results, folder):
     os.makedirs(folder, exist_ok=True)
     for r in results:
         synthetic = "error" in r["per_frame"]
-        if not ((synthetic and r["clip"] == FIGURE_CLIP and r["mesh"] == "60 nodes") or (r["clip"].startswith("vtest") and r["mesh"].startswith("uniform"))):
+        if not ((synthetic and r["clip"] == FIGURE_CLIP and r["mesh"] == "60 nodes") or (r["clip"].startswith("vtest") and r["mesh"] == MESHES[0][0])):
             continue
         rows = r["per_frame"]["rows"]
         frames = [int(x["frame"]) for x in rows]
@@ -358,7 +366,7 @@ def figures(m4mesh, work, results, folder):
         if not synthetic:
             # The mesh over the rendering of a P-plane a few frames after an I-plane, walkers in view.
             plane = next(k + 4 for k, x in enumerate(rows) if k >= VTEST_PICTURE_AFTER and x["intra"] == "1")
-            stream, texture = os.path.join(work, "vtest.avi-uniform.m4m"), os.path.join(work, "vtest.avi-uniform.png")
+            stream, texture = os.path.join(work, "vtest.avi-" + tag(MESHES[0][0]) + ".m4m"), os.path.join(work, "vtest.avi-" + tag(MESHES[0][0]) + ".png")
             subprocess.run([m4mesh, "-q", "-y", "render", stream, "--texture", texture, "--plane", str(plane), "--wireframe", "-o",
                             os.path.join(folder, "track-vtest-mesh.png")], check=True)
             print(f"figures: {folder}/track-vtest-mesh.png is plane {plane}")

@@ -335,7 +335,7 @@ const std::vector<Point>& NodeTracker::track(const Luma& frame) {
     descend(level, p, scale, 0.5);
     for (Position& q : p) q = {q[0] / scale, q[1] / scale};
   }
-  place_on_content(p, global);
+  if (from_first) place_on_content(p, global);
 
   global_before_ = global_;
   global_ = global;
