@@ -5,7 +5,7 @@
 
 #include "cli/console.h"
 #include "common/error.h"
-#include "conformance/manifest.h"
+#include "conformance/suite_files.h"
 
 namespace m4mesh {
 

@@ -35,7 +35,8 @@ const char* content_type(const fs::path& file) {
   static const std::map<std::string, const char*> kTypes = {
       {".html", "text/html; charset=utf-8"}, {".js", "text/javascript"},  {".mjs", "text/javascript"},   {".css", "text/css"},
       {".json", "application/json"},         {".wasm", "application/wasm"}, {".png", "image/png"},       {".jpg", "image/jpeg"},
-      {".gif", "image/gif"},                 {".svg", "image/svg+xml"},   {".txt", "text/plain; charset=utf-8"}, {".md", "text/plain; charset=utf-8"}};
+      {".gif", "image/gif"},                 {".svg", "image/svg+xml"},   {".txt", "text/plain; charset=utf-8"}, {".md", "text/plain; charset=utf-8"},
+      {".glb", "model/gltf-binary"},         {".gltf", "model/gltf+json"}};
   const auto it = kTypes.find(file.extension().string());
   return it == kTypes.end() ? "application/octet-stream" : it->second;
 }
@@ -54,8 +55,11 @@ fs::path file_for(const fs::path& root, const std::string& request_path) {
   return file;
 }
 
-// The streams named (files, and the .m4m files of folders), by the name
-// they are served under (streams/NAME).
+// What `serve` lists beside the site: streams, and glTF animations the player shows beside them.
+bool servable(const fs::path& file) { return file.extension() == ".m4m" || file.extension() == ".glb" || file.extension() == ".gltf"; }
+
+// The streams and glTF files named (files, and those of folders), by the
+// name they are served under (streams/NAME).
 std::map<std::string, fs::path> streams_of(const std::vector<std::string>& paths) {
   std::map<std::string, fs::path> streams;
   auto add = [&streams](const fs::path& file) {
@@ -66,14 +70,14 @@ std::map<std::string, fs::path> streams_of(const std::vector<std::string>& paths
     if (fs::is_directory(path)) {
       std::vector<fs::path> found;
       for (const fs::directory_entry& entry : fs::directory_iterator(path))
-        if (entry.is_regular_file() && entry.path().extension() == ".m4m") found.push_back(entry.path());
-      if (found.empty()) throw usage_error(path + ": neither a site (no index.html) nor a folder of streams (no .m4m file)");
+        if (entry.is_regular_file() && servable(entry.path())) found.push_back(entry.path());
+      if (found.empty()) throw usage_error(path + ": neither a site (no index.html) nor a folder of streams (no .m4m, .glb or .gltf file)");
       std::sort(found.begin(), found.end());
       for (const fs::path& file : found) add(file);
-    } else if (fs::is_regular_file(path) && fs::path(path).extension() == ".m4m") {
+    } else if (fs::is_regular_file(path) && servable(path)) {
       add(path);
     } else {
-      throw usage_error(path + ": not a folder or a .m4m stream");
+      throw usage_error(path + ": not a folder, a .m4m stream or a .glb or .gltf animation");
     }
   }
   return streams;

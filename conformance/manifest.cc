@@ -1,14 +1,10 @@
 #include "conformance/manifest.h"
 
-#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/md5.h"
-#include "conformance/checker.h"
-#include "conformance/coverage.h"
-#include "conformance/suite3d/suite3d.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "decoder/mesh_object_decoder.h"
 #include "syntax/mesh3d/container.h"
@@ -67,35 +63,23 @@ ManifestEntry from_json(const ordered_json& j, SuiteKind kind) {
   return e;
 }
 
-std::string md5_of(const std::vector<uint8_t>& bytes) {
-  return md5_hex(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
-}
-
-// Where m4mesh's decoder places the error of a stream to reject; the
-// generator refuses a case whose error is not the one it claims.
-int64_t rejection_offset(SuiteKind kind, const SuiteCase& c, int method) {
-  try {
-    decoded_output_md5(kind, c.stream, method);
-  } catch (const Error& error) {
-    if (error.kind() == c.error_kind && error.element() == c.error_element && error.plane() == c.error_plane) return error.bit_offset();
-    throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, c.id + ": the decoder reports " + error.what() + ", not the case's error");
-  }
-  throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, c.id + ": a stream to reject decodes");
-}
-
 }  // namespace
 
 Manifest read_manifest(const std::string& path) {
   const std::vector<uint8_t> bytes = read_file(path);
+  return parse_manifest(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path);
+}
+
+Manifest parse_manifest(std::string_view text, const std::string& name) {
   Manifest manifest;
   try {
-    const ordered_json j = ordered_json::parse(bytes.begin(), bytes.end());
+    const ordered_json j = ordered_json::parse(text);
     const std::string kind = j.at("kind").get<std::string>();
-    if (kind != "mesh2d" && kind != "mesh3d") throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, path + ": unknown kind " + kind);
+    if (kind != "mesh2d" && kind != "mesh3d") throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, name + ": unknown kind " + kind);
     manifest.kind = kind == "mesh3d" ? SuiteKind::kMesh3d : SuiteKind::kMesh2d;
     for (const ordered_json& entry : j.at("streams")) manifest.entries.push_back(from_json(entry, manifest.kind));
   } catch (const nlohmann::json::exception& e) {
-    throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, path + ": " + e.what());
+    throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, name + ": " + e.what());
   }
   return manifest;
 }
@@ -114,56 +98,13 @@ std::string manifest_json(const Manifest& manifest) {
 }
 
 std::string decoded_output_md5(SuiteKind kind, const std::vector<uint8_t>& stream, int method) {
-  if (kind == SuiteKind::kMesh3d) return md5_of(decoded_frames3d(stream));
+  if (kind == SuiteKind::kMesh3d) {
+    const std::vector<uint8_t> frames = decoded_frames3d(stream);
+    return md5_hex(std::string_view(reinterpret_cast<const char*>(frames.data()), frames.size()));
+  }
   DecoderOptions options;
   options.method = method_of(method);
   return decode_to_text(stream, options, {});
-}
-
-Manifest write_suite(const std::string& folder, SuiteKind kind, const std::vector<SuiteCase>& cases) {
-  namespace fs = std::filesystem;
-  fs::create_directories(fs::path(folder) / "streams");
-  Manifest manifest;
-  manifest.kind = kind;
-  for (const SuiteCase& c : cases) {
-    ManifestEntry e;
-    e.id = c.id;
-    e.file = "streams/" + c.id + ".m4m";
-    e.purpose = c.purpose;
-    e.clauses = c.clauses;
-    e.stream_md5 = md5_of(c.stream);
-    e.method = c.method == MotionMethod::kMethod1 ? 1 : 2;
-    e.valid = c.valid;
-    if (c.valid) {
-      e.decoded_md5 = decoded_output_md5(kind, c.stream, e.method);
-      const CheckReport report = kind == SuiteKind::kMesh3d ? check_mesh3d(c.stream) : check_stream(c.stream);
-      for (const Finding& f : report.findings) e.warnings.push_back(format_finding(f));
-      if (kind == SuiteKind::kMesh3d) {
-        Mesh3dDecoder decoder(c.stream);
-        while (decoder.next_frame()) ++e.planes;
-      } else {
-        DecoderOptions options;
-        options.method = c.method;
-        Decoder decoder(c.stream, options);
-        while (decoder.next()) ++e.planes;
-        for (const std::string& value_class : value_classes(c.stream, c.method)) e.classes.push_back(value_class);
-      }
-    } else {
-      e.error_kind = to_string(c.error_kind);
-      e.error_element = c.error_element;
-      e.error_plane = c.error_plane;
-      e.error_offset = rejection_offset(kind, c, e.method);
-    }
-    write_file_atomically((fs::path(folder) / e.file).string(), std::string_view(reinterpret_cast<const char*>(c.stream.data()), c.stream.size()));
-    manifest.entries.push_back(std::move(e));
-  }
-  write_file_atomically((fs::path(folder) / "manifest.json").string(), manifest_json(manifest));
-  return manifest;
-}
-
-void generate_suites(const std::string& folder) {
-  write_suite(folder, SuiteKind::kMesh2d, build_suite());
-  write_suite(folder + "/mesh3d", SuiteKind::kMesh3d, build_suite3d());
 }
 
 }  // namespace m4mesh

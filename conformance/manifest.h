@@ -5,9 +5,8 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
-
-#include "conformance/suite.h"
 
 namespace m4mesh {
 
@@ -39,15 +38,12 @@ struct Manifest {
 };
 
 Manifest read_manifest(const std::string& path);
+// A manifest's text; `name` for the errors.
+Manifest parse_manifest(std::string_view text, const std::string& name);
 std::string manifest_json(const Manifest& manifest);
 
 // The MD5 of a stream's decoded output: the §9 text (2D), or every frame's
 // binary32 bytes (3D); an Error when the stream does not decode.
 std::string decoded_output_md5(SuiteKind kind, const std::vector<uint8_t>& stream, int method);
-
-// Writes the cases as FOLDER/streams/*.m4m and FOLDER/manifest.json.
-Manifest write_suite(const std::string& folder, SuiteKind kind, const std::vector<SuiteCase>& cases);
-// Both suites: FOLDER (2D) and FOLDER/mesh3d (3D).
-void generate_suites(const std::string& folder);
 
 }  // namespace m4mesh

@@ -16,6 +16,7 @@
 #include "common/md5.h"
 #include "conformance/coverage.h"
 #include "conformance/coverage3d.h"
+#include "conformance/judge.h"
 #include "conformance/manifest.h"
 
 namespace m4mesh {
@@ -35,27 +36,6 @@ std::string replace_all(std::string text, const std::string& from, const std::st
 }
 
 std::string quoted(const std::string& path) { return "'" + replace_all(path, "'", "'\\''") + "'"; }
-
-std::string md5_of(const std::vector<uint8_t>& bytes) {
-  return md5_hex(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
-}
-
-Outcome run_ours(SuiteKind kind, const ManifestEntry& e, const std::vector<uint8_t>& stream) {
-  const char* unit = kind == SuiteKind::kMesh3d ? "frame " : "plane ";
-  try {
-    const std::string md5 = decoded_output_md5(kind, stream, e.method);
-    if (!e.valid) return {Outcome::kFail, "decoded, expected " + e.error_kind + " at " + e.error_element};
-    if (md5 != e.decoded_md5) return {Outcome::kFail, "decoded MD5 " + md5 + ", expected " + e.decoded_md5};
-    return {Outcome::kPass, md5};
-  } catch (const Error& error) {
-    if (e.valid) return {Outcome::kFail, error.what()};
-    if (to_string(error.kind()) != e.error_kind || error.element() != e.error_element || error.plane() != e.error_plane ||
-        error.bit_offset() != e.error_offset)
-      return {Outcome::kFail, std::string(to_string(error.kind())) + ": " + error.what() + "; expected " + e.error_kind + " at " + unit +
-                                  std::to_string(e.error_plane) + ", " + e.error_element + " at bit " + std::to_string(e.error_offset)};
-    return {Outcome::kPass, std::string(to_string(error.kind())) + ": " + error.what()};
-  }
-}
 
 // A folder of the run's own for the external decoder's outputs, removed at the end.
 class TemporaryFolder {
@@ -109,7 +89,8 @@ Outcome run_external(SuiteKind kind, const ManifestEntry& e, const std::string& 
                      : Outcome{Outcome::kPass, "rejected (exit " + std::to_string(code) + ")"};
   if (code != 0) return {Outcome::kFail, "the decoder failed (exit " + std::to_string(code) + ")" + stderr_of(err)};
   if (!fs::exists(out)) return {Outcome::kFail, "the decoder wrote no output" + stderr_of(err)};
-  const std::string md5 = md5_of(read_file(out.string()));
+  const std::vector<uint8_t> decoded = read_file(out.string());
+  const std::string md5 = md5_hex(std::string_view(reinterpret_cast<const char*>(decoded.data()), decoded.size()));
   if (md5 != e.decoded_md5) return {Outcome::kFail, "decoded MD5 " + md5 + ", expected " + e.decoded_md5};
   return {Outcome::kPass, md5};
 }
@@ -163,13 +144,14 @@ ConformResult run_conformance(const ConformOptions& options, std::ostream& out) 
     Outcome outcome;
     try {
       const std::vector<uint8_t> stream = read_file(path);
-      const std::string md5 = md5_of(stream);
-      if (md5 != e.stream_md5)
-        outcome = {Outcome::kFail, "the stream file's MD5 is " + md5 + ", the manifest says " + e.stream_md5};
-      else if (folder)
+      if (const std::string mismatch = stream_md5_mismatch(e, stream); !mismatch.empty()) {
+        outcome = {Outcome::kFail, mismatch};
+      } else if (folder) {
         outcome = run_external(manifest.kind, e, path, options.decoder_command, folder->path());
-      else
-        outcome = run_ours(manifest.kind, e, stream);
+      } else {
+        const Verdict verdict = judge_stream(manifest.kind, e, stream);
+        outcome = {verdict.pass ? Outcome::kPass : Outcome::kFail, verdict.detail};
+      }
     } catch (const std::exception& error) {
       outcome = {Outcome::kFail, error.what()};
     }

@@ -321,7 +321,7 @@ grep -q "236 × 300 pixels" "$work/err" || fail "render --size: $(cat "$work/err
 mkdir "$work/suite" && touch "$work/suite/mine.txt"
 status=0; "$m4mesh" generate-suite "$work/suite" 2> /dev/null || status=$?
 [ "$status" = 2 ] && [ ! -e "$work/suite/manifest.json" ] || fail "generate-suite into a folder that is not empty, without -y: exit $status"
-"$m4mesh" encode3d --help > "$work/help" && grep -q "OBJ, OFF or PLY frames, .m4seq or .pc2" "$work/help" || fail "encode3d --help does not list its inputs"
+"$m4mesh" encode3d --help > "$work/help" && grep -q "OBJ, OFF or PLY frames, .m4seq, .pc2 or a glTF animation" "$work/help" || fail "encode3d --help does not list its inputs"
 "$m4mesh" trace "$work/plain.m4m" > "$work/plain.trace"
 grep -Eq "step_x +32 +[0-9]+ \(0\.[0-9]+\)$" "$work/plain.trace" || fail "trace does not print a binary32 field's value"
 "$m4mesh" encode3d tests/data/tetra-frames --intra-period 2 -o "$work/intra-summary.m4m" 2> "$work/err"
@@ -431,7 +431,7 @@ kill "$server"; wait "$server" 2> /dev/null || true
 [ "$status" = 1 ] && grep -q "cannot listen on 127.0.0.1:$port (in use?" "$work/err" || fail "serve: a port in use: exit $status, $(cat "$work/err")"
 # serve: a file that is neither a folder nor a stream is a usage error.
 status=0; "$m4mesh" serve README.md --port 0 2> "$work/err" || status=$?
-[ "$status" = 2 ] && grep -q "README.md: not a folder or a .m4m stream" "$work/err" || fail "serve README.md: exit $status, $(cat "$work/err")"
+[ "$status" = 2 ] && grep -q "README.md: not a folder, a .m4m stream or a .glb or .gltf animation" "$work/err" || fail "serve README.md: exit $status, $(cat "$work/err")"
 
 "$m4mesh" demo --frames 12 > "$work/demo" || fail "demo failed"
 grep -q "bit-exact" "$work/demo" || fail "demo not bit-exact"

@@ -12,7 +12,7 @@
 #include "common/atomic_file.h"
 #include "conformance/checker.h"
 #include "conformance/coverage.h"
-#include "conformance/manifest.h"
+#include "conformance/suite_files.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "decoder/mesh_object_decoder.h"
 #include "mesh3d/frame_hash.h"

@@ -11,7 +11,7 @@
 #include "cli/app.h"
 #include "codecs3d/registry.h"
 #include "common/atomic_file.h"
-#include "conformance/manifest.h"
+#include "conformance/suite_files.h"
 #include "conformance/runner.h"
 #include "decoder/mesh3d/codec_decoders.h"
 #include "decoder/mesh3d/container_decoder.h"

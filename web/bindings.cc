@@ -15,11 +15,13 @@
 #include "common/error.h"
 #include "common/md5.h"
 #include "conformance/checker.h"
+#include "conformance/judge.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "decoder/mesh_object_decoder.h"
 #include "decoder/stream_trace.h"
 #include "mesh/topology.h"
 #include "syntax/mesh3d/container.h"
+#include "syntax/mesh3d/cpca_wpt.h"
 #include "syntax/mesh_object.h"
 #include "syntax/trace.h"
 
@@ -57,6 +59,47 @@ std::string stream_kind(const val& bytes) {
   const std::vector<uint8_t> stream = bytes_of(bytes);
   return json{{"kind", is_mesh3d_stream(stream) ? "3d" : "2d"}}.dump();
 }
+
+// {"unitTypes": [name per unit_type], "refinementKinds": [name per cpca
+// unit_kind]}: the names the analyzer shows, as the CLI shows them.
+std::string names() {
+  json unit_types = json::array(), refinement_kinds = json::array();
+  for (uint32_t t = 0; t < kUnitTypes; ++t) unit_types.push_back(unit_type_name(static_cast<UnitType>(t)));
+  for (uint32_t k = kCpcaStart; k <= kCpcaTrajectory; ++k) refinement_kinds.push_back(cpca_unit_kind_name(k));
+  return json{{"unitTypes", unit_types}, {"refinementKinds", refinement_kinds}}.dump();
+}
+
+// A conformance suite's manifest: its streams, and m4mesh's judgement of
+// each (conformance/judge.h), as `m4mesh conform` gives it.
+class Suite {
+ public:
+  Suite(const std::string& manifest_text, const std::string& name) {
+    try {
+      manifest_ = parse_manifest(manifest_text, name);
+    } catch (const Error& e) {
+      error_ = e.what();
+    }
+  }
+  // {"entries": [{id, file, expect}]} or {"error"}.
+  std::string entries() const {
+    if (!error_.empty()) return json{{"error", {{"text", error_}}}}.dump();
+    json list = json::array();
+    for (const ManifestEntry& e : manifest_.entries) list.push_back({{"id", e.id}, {"file", e.file}, {"expect", e.valid ? "decode" : "error"}});
+    return json{{"entries", list}}.dump();
+  }
+  // {"pass", "detail"}: entry `index` judged on the stream's bytes.
+  std::string judge(int index, const val& bytes) const {
+    return guarded([&] {
+      if (index < 0 || static_cast<size_t>(index) >= manifest_.entries.size()) throw std::out_of_range("no entry " + std::to_string(index));
+      const Verdict verdict = judge_stream(manifest_.kind, manifest_.entries[static_cast<size_t>(index)], bytes_of(bytes));
+      return json{{"pass", verdict.pass}, {"detail", verdict.detail}};
+    });
+  }
+
+ private:
+  Manifest manifest_;
+  std::string error_;
+};
 
 // {"md5"}: the MD5 of the decoded output the conformance manifests hold
 // (§9 text for 2D, every frame's binary32 bytes for 3D).
@@ -278,12 +321,17 @@ class Stream3d {
 EMSCRIPTEN_BINDINGS(m4mesh) {
   using namespace m4mesh;
   emscripten::function("streamKind", &stream_kind);
+  emscripten::function("names", &names);
   emscripten::function("decodedMd5", &decoded_md5);
   emscripten::function("check", &check);
   emscripten::function("traceFields", &trace_fields);
   emscripten::function("tracePart", &trace_part);
   emscripten::function("units3d", &units3d);
   emscripten::function("decode2d", &decode2d);
+  emscripten::class_<Suite>("Suite")
+      .constructor<std::string, std::string>()
+      .function("entries", &Suite::entries)
+      .function("judge", &Suite::judge);
   emscripten::class_<Stream3d>("Stream3d")
       .constructor<>()
       .function("push", &Stream3d::push)

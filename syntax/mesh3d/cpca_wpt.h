@@ -31,6 +31,11 @@ inline constexpr uint32_t kCpcaStart = 0;      // unit_kind: the cluster's mean 
 inline constexpr uint32_t kCpcaComponent = 1;  // unit_kind: one principal component
 inline constexpr uint32_t kCpcaMeshComponent = 2;  // unit_kind: one, its basis predicted over the base mesh
 inline constexpr uint32_t kCpcaTrajectory = 3;     // unit_kind: one of the members' trajectories, predicted over the base mesh
+// A unit_kind as tools name it.
+inline const char* cpca_unit_kind_name(uint32_t kind) {
+  static constexpr const char* kNames[] = {"start", "component", "mesh component", "trajectory component"};
+  return kind <= kCpcaTrajectory ? kNames[kind] : "unknown";
+}
 // The decoder holds 36 bytes per vertex and frame: at most 2^22 of them.
 inline constexpr uint64_t kCpcaMaxVertexFrames = uint64_t{1} << 22;
 

@@ -7,8 +7,6 @@
 import createM4mesh from './m4mesh.mjs';
 
 const CHART_KINDS = 9;  // the costliest kinds; the rest are summed as "other"
-const UNIT_TYPES = { 0: 'base mesh', 1: 'frame', 2: 'refinement', 3: 'hash', 4: 'group hash' };
-const REFINEMENT_KINDS = { 0: 'start', 1: 'component', 2: 'mesh component', 3: 'trajectory component' };
 
 const modulePromise = createM4mesh();
 let stream = null;  // { bytes, mesh3d }
@@ -24,16 +22,18 @@ function lineBits([, , position, , size, value]) {
 // 3D: the object header, every unit with its type, frame (or cluster) and bytes.
 function units(module, bytes, lines) {
   const layout = JSON.parse(module.units3d(bytes));
+  // The names the CLI shows, from the C++: unit types, and cpca-wpt's refinement unit kinds.
+  const { unitTypes, refinementKinds } = JSON.parse(module.names());
   const byUnit = new Map();
   for (const line of lines) byUnit.get(line[0])?.push(line) ?? byUnit.set(line[0], [line]);
   const parts = [{ label: 'object header', part: -1, lines: (byUnit.get(-1) ?? []).filter((l) => l[3] !== 'mesh_object_end_code') }];
   (layout.units ?? []).forEach((unit, index) => {
     const own = byUnit.get(index) ?? [];
     const field = (name) => own.find((l) => l[3] === name)?.[5];
-    const type = UNIT_TYPES[field('unit_type')] ?? `type ${field('unit_type') ?? '?'}`;
+    const type = unitTypes[field('unit_type')] ?? `type ${field('unit_type') ?? '?'}`;
     // A refinement unit refines every frame: named by its cluster and kind.
-    const what = String(field('unit_type')) === '2'
-      ? (field('cluster') !== undefined ? `, cluster ${field('cluster')} ${REFINEMENT_KINDS[field('unit_kind')] ?? ''}` : '')
+    const what = unitTypes[field('unit_type')] === 'refinement'
+      ? (field('cluster') !== undefined ? `, cluster ${field('cluster')} ${refinementKinds[field('unit_kind')] ?? ''}` : '')
       : field('frame_index') !== undefined ? `, frame ${field('frame_index')}` : '';
     parts.push({ label: `unit ${index}: ${type}${what.trimEnd()}`, part: index, size: `${unit.bytes} B`, lines: own });
   });

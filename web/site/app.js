@@ -8,7 +8,7 @@ import { Analyzer } from './analyzer.js';
 import { runConformance } from './conformance.js';
 import { runBench } from './bench.js';
 
-const state = { ready: false, view: 'player', source: null, player: null, analyzer: null, conformance: null, bench: null };
+const state = { ready: false, view: 'player', source: null, player: null, gltf: null, analyzer: null, conformance: null, bench: null };
 window.m4mesh = state;
 
 const SAMPLES = [
@@ -20,7 +20,8 @@ const SAMPLES = [
 ];
 
 // Parameters after the view name: "#player?stream=a.m4m&texture=t.png",
-// "&frame=K" (from 0) to start at frame K, "&pause" to hold it.
+// "&frame=K" (from 0) to start at frame K, "&pause" to hold it,
+// "&gltf=a.glb" to play a glTF animation beside the stream.
 function hashParameters() {
   const [view, query] = location.hash.slice(1).split('?');
   return { view: view || 'player', params: new URLSearchParams(query || '') };
@@ -76,7 +77,7 @@ async function openStream(source) {
 
 async function main() {
   const module = await createM4mesh();
-  state.playerView = new Player(module, document.getElementById('viewport'), state);
+  state.playerView = new Player(document.getElementById('viewport'), state);
   state.analyzerView = new Analyzer(state);
   state.module = module;
   state.ready = true;
@@ -87,7 +88,7 @@ async function main() {
   state.served = served.map((s) => s.name);
   for (const { name, url } of served) {
     const link = document.createElement('a');
-    link.href = `#player?stream=${url}`;
+    link.href = /\.(glb|gltf)$/.test(url) ? `#player?gltf=${url}` : `#player?stream=${url}`;
     link.textContent = name;
     link.className = 'served';
     samples.append(link);
@@ -129,6 +130,8 @@ async function main() {
       document.getElementById('url').value = params.get('stream');
       openStream(params.get('stream')).catch(report);
     }
+    if (params.get('gltf') && params.get('gltf') !== state.gltf?.url) state.playerView.openGltf(params.get('gltf')).catch(report);
+    if (!params.get('gltf')) state.playerView.closeGltf();
     if (view === 'conformance' && params.get('run') !== null && !state.conformance) runConformance(module, state).catch(report);
     if (view === 'bench' && params.get('run') !== null && !state.bench) runBench(module, state, params).catch(report);
   };

@@ -1,12 +1,12 @@
 // The player: a 3D stream shaded under an orbit camera, decoded as it
 // downloads (a progressive stream plays from its base mesh on and refines
 // at every unit); a 2D stream as the texture warped by every plane.
-// What it shows is recorded in state.player for the tests.
+// Decoding runs in a Web Worker (decoder-worker.js): the page asks it for
+// the frames it shows. What it shows is recorded in state.player for the
+// tests.
 import * as THREE from 'three';
-import { OrbitControls } from 'three/addons/OrbitControls.js';
-
-const MESH3D_START = 0xc4;  // 0x000001c4: mesh3d_object_start_code
-const MESH2D_START = 0xbc;  // 0x000001bc: mesh_object_start_code
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 
 // A checkerboard texture for 2D streams opened without one (as `m4mesh render`).
 function checkerboard(size = 256, square = 16) {
@@ -38,9 +38,11 @@ function bounds(nodeLists, whole = false) {
 }
 
 export class Player {
-  constructor(module, container, state) {
-    this.module = module;
+  constructor(container, state) {
     this.container = container;
+    this.worker = new Worker(new URL('./decoder-worker.js', import.meta.url), { type: 'module' });
+    this.worker.onmessage = ({ data }) => this.receive(data);
+    this.waiting = new Map();  // frame index → resolvers of fetchFrame
     this.state = state;
     this.renderer = new THREE.WebGLRenderer({ antialias: true });
     this.renderer.setPixelRatio(window.devicePixelRatio);
@@ -112,12 +114,15 @@ export class Player {
       this.mesh.geometry.dispose();
     }
     this.mesh = null;
-    this.stream?.delete();
-    this.stream = null;
+    this.frames = new Map();  // index → {version, positions}, as the worker sent them
+    this.requested = new Set();  // "index version" asked for
+    this.version = 0;  // a progressive stream's units applied (its frames change with each); 0 otherwise
+    this.waiting.clear();
+    this.worker.postMessage({ type: 'open', session: this.session });
     this.planes = null;
     this.bounds2d = null;
     this.frame = 0;
-    this.shown = null;
+    this.shownFrame = null;
     this.box = new THREE.Box3();
     this.boxFrames = 0;
     this.cameraMoved = false;
@@ -130,32 +135,38 @@ export class Player {
     return this.session;
   }
 
-  // Plays `body` (a ReadableStream) while it arrives.
+  // Plays `body` (a ReadableStream) while it arrives: its bytes go to the worker (copies: a tee's other branch reads the same chunks).
   async play(body, size, name) {
     const session = this.reset(name, size);
     const player = this.state.player;
     const reader = body.getReader();
-    const chunks = [];
     for (;;) {
       const { value, done } = await reader.read();
       if (session !== this.session) return reader.cancel();
       if (done) break;
       player.bytesReceived += value.length;
-      if (!player.kind) player.kind = value[3] === MESH3D_START ? '3d' : '2d';
-      if (player.kind === '3d') this.take(this.stream ??= new this.module.Stream3d(), (s) => s.push(value));
-      else chunks.push(value);
+      const chunk = value.slice();
+      this.worker.postMessage({ type: 'push', session, chunk: chunk.buffer }, [chunk.buffer]);
       this.describe();
     }
     player.downloadDone = true;
-    if (player.kind === '3d') this.take(this.stream, (s) => s.end());
-    else this.open2d(chunks);
+    this.worker.postMessage({ type: 'end', session });
     this.describe();
   }
 
-  // Runs one Stream3d call and takes its status; builds the mesh once faces are known.
-  take(stream, call) {
-    const status = JSON.parse(call(stream));
+  // What the worker sends: a status (with the faces once, the box when it grows), the 2D planes, a frame.
+  receive(message) {
+    if (message.session !== this.session) return;
+    if (message.type === 'status') this.take(message);
+    else if (message.type === 'planes') this.open2d(message.result);
+    else if (message.type === 'frame') this.store(message);
+    else if (message.type === 'failure') this.state.player.error = { text: message.text }, this.describe();
+  }
+
+  take({ kind, status, faces, box }) {
     const player = this.state.player;
+    player.kind = kind;
+    if (!status) return;
     Object.assign(player, {
       bytesDecoded: status.bytesDecoded, unitsApplied: status.unitsApplied, done: status.done, error: status.error ?? null,
     });
@@ -164,17 +175,43 @@ export class Player {
         codec: status.header.codec, frames: status.header.frames, vertices: status.header.vertices,
         progressive: status.header.progressive, framesDecoded: status.framesDecoded,
       });
-      if (!this.mesh && status.framesDecoded > 0) this.build3d(stream, status.header);
-      if (this.mesh) this.frameSequence(stream, status);
+      this.version = status.version;
+      if (faces) this.build3d(faces, status.header);
+      if (box) this.frameSequence(box);
       if (this.fpsSession !== this.session) this.fps.value = Math.round(status.header.frameRate), (this.fpsSession = this.session);
     }
     this.changed = true;
+    this.describe();
   }
 
-  build3d(stream, header) {
+  store({ index, version, positions }) {
+    this.requested.delete(`${index} ${version}`);
+    if (positions.length > 0) this.frames.set(index, { version, positions });
+    for (const resolve of this.waiting.get(index) ?? []) resolve(positions);
+    this.waiting.delete(index);
+    if (index === this.frame) this.changed = true;
+  }
+
+  // Asks the worker for frame `index` as the stream stands now (once per version).
+  request(index) {
+    const key = `${index} ${this.version}`;
+    if (this.frames.get(index)?.version === this.version || this.requested.has(key)) return;
+    this.requested.add(key);
+    this.worker.postMessage({ type: 'frame', session: this.session, index });
+  }
+
+  // Frame `index` as the stream stands now (for the tests).
+  fetchFrame(index) {
+    return new Promise((resolve) => {
+      this.waiting.set(index, [...(this.waiting.get(index) ?? []), resolve]);
+      this.worker.postMessage({ type: 'frame', session: this.session, index });
+    });
+  }
+
+  build3d(faces, header) {
     const geometry = new THREE.BufferGeometry();
     geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(header.vertices * 3), 3));
-    geometry.setIndex(new THREE.BufferAttribute(stream.faces(), 1));
+    geometry.setIndex(new THREE.BufferAttribute(faces, 1));
     const material = new THREE.MeshStandardMaterial({
       color: 0xc8b8a0, roughness: 0.65, metalness: 0.05, side: THREE.DoubleSide,
       wireframe: document.getElementById('wireframe').checked,
@@ -188,23 +225,23 @@ export class Player {
   }
 
   // The camera frames every frame decoded so far (a progressive stream's
-  // frames when the download ends): the box they fill, seen from the side
-  // across its longer horizontal extent (y is up; a walk or a gallop goes
-  // across the view), 20° above, as `m4mesh render3d` does.
-  frameSequence(stream, status) {
-    const progressive = status.header.progressive;
-    const frames = status.done || !progressive ? status.framesDecoded : 1;
-    if (frames <= this.boxFrames) return;
-    // A progressive stream's frames change with every unit: framed by the first until the last unit is in.
-    if (progressive) this.box.makeEmpty(), (this.boxFrames = 0);
-    const point = new THREE.Vector3();
-    for (let f = this.boxFrames; f < frames; ++f) {
-      const positions = stream.frame(f);
-      for (let k = 0; k < positions.length; k += 3) this.box.expandByPoint(point.set(positions[k], positions[k + 1], positions[k + 2]));
-    }
+  // frames when the download ends): the box they fill (the worker's), seen
+  // from the side across its longer horizontal extent (y is up; a walk or
+  // a gallop goes across the view), 20° above, as `m4mesh render3d` does.
+  frameSequence({ min, max, frames }) {
+    this.box.set(new THREE.Vector3(...min), new THREE.Vector3(...max));
     this.boxFrames = frames;
-    if (this.cameraMoved) return;
-    const center = this.box.getCenter(new THREE.Vector3()), size = this.box.getSize(new THREE.Vector3());
+    this.state.player.framedFrames = frames;
+    this.placeGltf();
+    this.frameCamera();
+  }
+
+  frameCamera() {
+    if (this.cameraMoved || (this.box.isEmpty() && !this.gltf)) return;
+    // A glTF beside the stream: framed with it; alone, its first frame.
+    const box = this.box.isEmpty() ? new THREE.Box3().setFromObject(this.gltf.scene, true) : this.box.clone();
+    if (this.gltf && !this.box.isEmpty()) box.union(this.box.clone().translate(this.gltf.scene.position));
+    const center = box.getCenter(new THREE.Vector3()), size = box.getSize(new THREE.Vector3());
     const across = size.x >= size.z ? new THREE.Vector3(0, 0, 1) : new THREE.Vector3(1, 0, 0);
     const elevation = (20 * Math.PI) / 180, azimuth = (25 * Math.PI) / 180;
     const direction = across.clone().applyAxisAngle(new THREE.Vector3(0, 1, 0), azimuth).multiplyScalar(Math.cos(elevation));
@@ -217,7 +254,7 @@ export class Player {
     const tanV = Math.tan((this.perspective.fov * Math.PI) / 360) / 1.05, tanH = tanV * this.perspective.aspect;
     let distance = 1e-6;
     for (const corner of [0, 1, 2, 3, 4, 5, 6, 7]) {
-      const p = new THREE.Vector3(corner & 1 ? size.x : 0, corner & 2 ? size.y : 0, corner & 4 ? size.z : 0).add(this.box.min).sub(center);
+      const p = new THREE.Vector3(corner & 1 ? size.x : 0, corner & 2 ? size.y : 0, corner & 4 ? size.z : 0).add(box.min).sub(center);
       const depth = p.dot(direction);
       distance = Math.max(distance, depth + Math.abs(p.dot(right)) / tanH, depth + Math.abs(p.dot(up)) / tanV);
     }
@@ -227,18 +264,90 @@ export class Player {
     this.perspective.far = distance * 100;
     this.perspective.updateProjectionMatrix();
     this.controls.update();
-    this.state.player.framedFrames = frames;
     this.dirty = true;
   }
 
+  // A glTF animation (URL parameter gltf) played by three.js's own loader
+  // and mixer beside the stream, at the frame the player shows: the
+  // stream's glTF (decode3d -o anim.glb) shows the same positions.
+  async openGltf(url) {
+    const loaded = await new GLTFLoader().loadAsync(url);
+    if (!this.state.player) this.reset(url, 0);
+    if (this.gltf) this.scene.remove(this.gltf.scene);
+    let mesh = null;
+    loaded.scene.traverse((o) => (mesh ??= o.isMesh ? o : null));
+    if (!mesh) throw new Error(`${url}: no mesh in the glTF`);
+    // Tinted apart from the stream; faceted, as a glTF without normals is.
+    mesh.material = new THREE.MeshStandardMaterial({ color: 0xa8bccc, roughness: 0.65, metalness: 0.05, side: THREE.DoubleSide, flatShading: true });
+    const clip = loaded.animations[0] ?? null;
+    const mixer = new THREE.AnimationMixer(loaded.scene);
+    const action = clip ? mixer.clipAction(clip).setLoop(THREE.LoopOnce, 1).play() : null;
+    // Frame k at its keyframe time (STEP: that key's weights exactly).
+    const times = clip?.tracks[0]?.times ?? new Float32Array([0]);
+    this.gltf = { scene: loaded.scene, mesh, mixer, action, times };
+    this.scene.add(loaded.scene);
+    this.state.gltf = { url, frames: times.length, vertices: mesh.geometry.getAttribute('position').count, animated: Boolean(clip) };
+    this.describe();
+    this.placeGltf();
+    this.showGltf(this.frame);
+    this.frameCamera();
+  }
+
+  closeGltf() {
+    if (!this.gltf) return;
+    this.scene.remove(this.gltf.scene);
+    this.gltf = null;
+    this.state.gltf = null;
+    this.frameCamera();
+  }
+
+  // Beside the stream across the view (to its right): along the box's longer horizontal extent.
+  placeGltf() {
+    if (!this.gltf || this.box.isEmpty()) return;
+    const size = this.box.getSize(new THREE.Vector3());
+    this.gltf.scene.position.set(size.x >= size.z ? -1.15 * size.x : 0, 0, size.x >= size.z ? 0 : -1.15 * size.z);
+    this.dirty = true;
+  }
+
+  // The glTF at frame `index`: the action placed at that key's time and the mixer applied.
+  showGltf(index) {
+    if (!this.gltf?.action) return;
+    const { times, mixer, action } = this.gltf;
+    action.time = times[Math.min(index, times.length - 1)];
+    mixer.update(0);
+    this.dirty = true;
+  }
+
+  // Frames `indices` of the stream (from the worker) against the glTF's
+  // vertices as three.js evaluates them at the same frame (morph targets,
+  // skin): how many coordinates differ, compared as float32, and the first.
+  async compareGltf(indices) {
+    const { mesh } = this.gltf;
+    const vertex = new THREE.Vector3();
+    let compared = 0, differing = 0, first = null;
+    for (const index of indices) {
+      const decoded = await this.fetchFrame(index);
+      this.showGltf(index);
+      for (let v = 0; v < decoded.length / 3; ++v) {
+        mesh.getVertexPosition(v, vertex);
+        for (const [c, value] of [vertex.x, vertex.y, vertex.z].entries()) {
+          ++compared;
+          if (Math.fround(value) !== decoded[3 * v + c] && differing++ === 0) first = { frame: index, vertex: v, glTF: value, decoded: decoded[3 * v + c] };
+        }
+      }
+    }
+    this.showGltf(this.state.player.frameShown);
+    return { compared, differing, first };
+  }
+
   // The share of every decoded frame's vertices the camera sees (for the tests).
-  visibleShare() {
-    if (!this.stream || !this.mesh) return 0;
+  async visibleShare() {
+    if (!this.mesh) return 0;
     this.perspective.updateMatrixWorld();
     let seen = 0, total = 0;
     const point = new THREE.Vector3();
     for (let f = 0; f < (this.state.player.framesDecoded ?? 0); ++f) {
-      const positions = this.stream.frame(f);
+      const positions = await this.fetchFrame(f);
       for (let k = 0; k < positions.length; k += 3, ++total) {
         point.set(positions[k], positions[k + 1], positions[k + 2]).project(this.perspective);
         if (Math.abs(point.x) <= 1 && Math.abs(point.y) <= 1 && point.z <= 1) ++seen;
@@ -253,21 +362,24 @@ export class Player {
     if (paused) this.playing = false, (this.playButton.textContent = 'Play');
   }
 
+  // Shows frame `index` if the worker has sent it (an older refinement
+  // meanwhile), asking for it as the stream stands now and for the next.
   load3d(index) {
-    const positions = this.stream.frame(index);
-    if (positions.length === 0) return false;
+    this.request(index);
+    const available = this.available();
+    if (available > 1) this.request((index + 1) % available);
+    const frame = this.frames.get(index);
+    if (!frame || frame === this.shownFrame) return false;
+    this.shownFrame = frame;
     const attribute = this.mesh.geometry.getAttribute('position');
-    attribute.array.set(positions);
+    attribute.array.set(frame.positions);
     attribute.needsUpdate = true;
     this.mesh.geometry.computeVertexNormals();
+    this.shownVersion = frame.version;
     return true;
   }
 
-  open2d(chunks) {
-    const bytes = new Uint8Array(chunks.reduce((n, c) => n + c.length, 0));
-    let at = 0;
-    for (const chunk of chunks) bytes.set(chunk, at), (at += chunk.length);
-    const result = JSON.parse(this.module.decode2d(bytes, 2));
+  open2d(result) {
     const player = this.state.player;
     player.error = result.error ?? null;
     player.done = !result.error;
@@ -333,7 +445,8 @@ export class Player {
   available() {
     const player = this.state.player;
     if (!player) return 0;
-    return player.kind === '2d' ? this.planes?.length ?? 0 : player.framesDecoded ?? 0;
+    if (player.kind === '2d') return this.planes?.length ?? 0;
+    return player.kind === '3d' ? player.framesDecoded ?? 0 : this.gltf?.times.length ?? 0;
   }
 
   show(index) {
@@ -350,16 +463,20 @@ export class Player {
       this.changed = true;
     }
     const player = this.state.player;
-    if (this.changed && available > 0 && (this.mesh || this.kind === '2d')) {
+    if (this.changed && available > 0 && (this.mesh || this.kind === '2d' || this.gltf)) {
       this.changed = false;
       this.frame = Math.min(this.frame, available - 1);
-      if (this.kind === '2d' ? this.load2d(this.frame) : this.load3d(this.frame)) {
+      // A glTF alone is shown by showGltf below.
+      if (this.kind === '2d' ? this.load2d(this.frame) : this.mesh ? this.load3d(this.frame) : true) {
         this.dirty = true;
+        this.showGltf(this.frame);
         player.frameShown = this.frame;
         player.framesDrawn += 1;
         if (!player.downloadDone) player.framesDrawnDuringDownload += 1;
+        // A progressive stream's frame is as the units applied when the worker sent it.
+        const applied = this.kind === '3d' && player.progressive ? this.shownVersion : player.unitsApplied;
         const units = player.unitsAppliedWhenDrawn;
-        if (units[units.length - 1] !== player.unitsApplied) units.push(player.unitsApplied);
+        if (units[units.length - 1] !== applied) units.push(applied);
       }
       this.slider.max = String(Math.max(0, (player.frames || available) - 1));
       this.slider.value = String(this.frame);
@@ -379,6 +496,7 @@ export class Player {
     parts.push(`${p.bytesReceived.toLocaleString()}${p.bytesTotal ? ' / ' + p.bytesTotal.toLocaleString() : ''} bytes received`);
     if (p.kind === '3d') parts.push(`${p.unitsApplied} units applied`);
     parts.push(p.error ? 'stopped at an error' : p.done ? 'complete' : p.downloadDone ? 'downloaded' : 'downloading…');
+    if (this.state.gltf) parts.push(`right: ${this.state.gltf.url} (three.js GLTFLoader)`);
     this.status.textContent = parts.join(' · ') + (p.error ? `\nerror: ${p.error.text}` : '');
     this.status.classList.toggle('error', Boolean(p.error));
   }

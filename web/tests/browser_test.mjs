@@ -9,8 +9,12 @@
 //   4. a progressive stream served slowly (`m4mesh serve --rate`) plays
 //      before its download ends, and the units applied grow while it plays;
 //   5. the analyzer lists a stream's units, their elements and its chart;
-//   6. a real-size stream (the horse, from ../shared/data) loads, plays and
-//      is analysed without the page stopping to answer for over 1.5 s.
+//   6. a stream's glTF (decode3d -o anim.glb) played by three.js's
+//      GLTFLoader beside the stream shows the same positions, bit for bit;
+//   7. real-size streams (from ../shared/data): the horse loads, plays
+//      beside its glTF and is analysed without the page stopping to answer
+//      for over 1.5 s; a progressive cpca-wpt cow served slowly draws
+//      frames before its download ends.
 // Usage: node browser_test.mjs M4MESH SITE [SCREENSHOT_FOLDER]
 import { execFileSync } from 'node:child_process';
 import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
@@ -178,7 +182,25 @@ try {
   await picture(page, 'analyzer-error', 'main');
   await page.close();
 
-  // 6. A real-size stream (the horse: 8,431 vertices, 48 frames, 3.65 M trace lines): the page keeps
+  // 6. A stream and its glTF side by side: three.js's evaluation of the glTF equals the decoded frames.
+  {
+    const folder = mkdtempSync(join(tmpdir(), 'm4mesh-gltf-'));
+    const glb = join(folder, 'bfs3d-01-average.glb');
+    execFileSync(m4mesh, ['--quiet', 'decode3d', join(site, 'conformance/mesh3d/streams/bfs3d-01-average.m4m'), '-o', glb]);
+    const own = await serve(m4mesh, [join(site, 'conformance/mesh3d/streams/bfs3d-01-average.m4m'), glb]);
+    page = await openPage(browser, `${own.url}#player?stream=streams/bfs3d-01-average.m4m&gltf=streams/bfs3d-01-average.glb`);
+    shown = await stateWhen(page, (s) => s.player?.done && s.gltf?.animated && s.player.framesDrawn >= 3);
+    const same = await page.evaluate(() => window.m4mesh.playerView.compareGltf([0, 2, 5]));
+    expect(shown.gltf.frames === 6 && same.compared === 3 * 3 * shown.player.vertices && same.differing === 0,
+      `glTF beside the stream: ${shown.gltf.frames} frames; at frames 0, 2 and 5 ${same.compared - same.differing} of ${same.compared} coordinates equal the decoded ones` +
+      (same.first ? ` (first difference: ${JSON.stringify(same.first)})` : ''));
+    await picture(page, 'player-gltf');
+    await page.close();
+    own.stop();
+    rmSync(folder, { recursive: true, force: true });
+  }
+
+  // 7. A real-size stream (the horse: 8,431 vertices, 48 frames, 3.65 M trace lines): the page keeps
   // answering while it loads and plays, and while the analyzer lists it, traces its base mesh and pages through it.
   const data = process.env.M4MESH_DATA;
   if (!data || !existsSync(join(data, 'horse-gallop'))) {
@@ -187,7 +209,8 @@ try {
     const folder = mkdtempSync(join(tmpdir(), 'm4mesh-horse-'));
     const horse = join(folder, 'horse.m4m');
     execFileSync(m4mesh, ['--quiet', 'encode3d', join(data, 'horse-gallop'), '-o', horse]);
-    const own = await serve(m4mesh, [horse]);
+    execFileSync(m4mesh, ['--quiet', 'decode3d', horse, '-o', join(folder, 'horse.glb')]);
+    const own = await serve(m4mesh, [horse, join(folder, 'horse.glb')]);
     page = await browser.newPage({ viewport: { width: 1100, height: 760 } });
     page.on('pageerror', (error) => expect(false, `no error in the page (${error.message})`));
     // The longest the page went without running a 50 ms timer: how long it stopped answering.
@@ -206,6 +229,16 @@ try {
     expect(shown.player.frames === 48 && playing < 1500,
       `horse: ${shown.player.framesDrawn} frames drawn in ${((Date.now() - started) / 1000).toFixed(1)} s, the page stopped answering at most ${playing.toFixed(0)} ms`);
     await picture(page, 'horse');
+    // Its glTF beside it: the same positions in three.js, the page still answering.
+    await page.evaluate(() => (location.hash = `${location.hash}&gltf=streams/horse.glb`));
+    shown = await stateWhen(page, (s) => s.gltf?.animated, 120000);
+    const horseSame = await page.evaluate(() => window.m4mesh.playerView.compareGltf([0, 24, 47]));
+    const withGltf = await page.evaluate(() => window.stall.longest);
+    expect(horseSame.compared === 3 * 3 * 8431 && horseSame.differing === 0 && withGltf < 1500,
+      `horse beside its glTF (${shown.gltf.frames} frames): ${horseSame.compared - horseSame.differing} of ${horseSame.compared} coordinates equal at frames 0, 24, 47; ` +
+      `the page stopped answering at most ${withGltf.toFixed(0)} ms`);
+    await picture(page, 'horse-gltf');
+    await page.evaluate(() => (location.hash = location.hash.replace('&gltf=streams/horse.glb', '')));
     started = Date.now();
     await page.evaluate(() => (location.hash = location.hash.replace('#player', '#analyzer')));
     shown = await stateWhen(page, (s) => s.analyzer?.rowsShown > 0, 120000);
@@ -225,6 +258,22 @@ try {
     await picture(page, 'horse-analyzer', 'main');
     await page.close();
     own.stop();
+
+    // The cow (2,904 vertices, 204 frames) in cpca-wpt, progressive, arriving at 40,000 bytes/s: frames drawn and refined before its end.
+    const cow = join(folder, 'cow.m4m');
+    execFileSync(m4mesh, ['--quiet', 'encode3d', join(data, 'pcow'), '--codec', 'cpca-wpt', '-o', cow]);
+    const slowCow = await serve(m4mesh, [cow], 40000);
+    page = await openPage(browser, `${slowCow.url}#player?stream=streams/cow.m4m`);
+    shown = await stateWhen(page, (s) => s.player?.framesDrawn > 0);
+    const firstAt = shown.player.bytesReceived, total = shown.player.bytesTotal;
+    shown = await stateWhen(page, (s) => s.player.done, 120000);
+    const cowApplied = shown.player.unitsAppliedWhenDrawn;
+    expect(firstAt < total / 4 && shown.player.framesDrawnDuringDownload > 10 && cowApplied.length >= 3 && shown.player.frames === 204,
+      `cow, progressive at 40,000 bytes/s: first frame drawn at ${firstAt} of ${total} bytes, ${shown.player.framesDrawnDuringDownload} frames drawn during the download, ` +
+      `refined ${cowApplied.length} times (units ${cowApplied[0]} … ${cowApplied[cowApplied.length - 1]})`);
+    await picture(page, 'cow-progressive');
+    await page.close();
+    slowCow.stop();
     rmSync(folder, { recursive: true, force: true });
   }
 } finally {
