@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -503,6 +504,9 @@ GltfAnimation bake(const Asset& asset, const GltfSelection& selection, const Glt
       } else {
         q = world[static_cast<size_t>(choice.node)] * p;
       }
+      for (int c = 0; c < 3; ++c)
+        if (!(std::abs(q[c]) <= std::numeric_limits<float>::max()))
+          throw asset.error("vertex " + std::to_string(v) + " at " + std::to_string(t) + " s is not a finite float32 position");
       frame[v] = {static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z())};
     }
     out.sequence.frames.push_back(std::move(frame));

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -298,6 +299,14 @@ TEST_F(GltfInput, WhatCannotBeTakenIsNamed) {
   model_.accessors[static_cast<size_t>(model_.meshes[1].primitives[0].attributes["POSITION"])].componentType = 5124;
   const std::string int_positions = save("int.glb");
   EXPECT_NE(error_of(int_positions, pick("right", 10.0)).find("component type 5124 is not glTF's"), std::string::npos) << error_of(int_positions, pick("right", 10.0));
+
+  // A position that is not a number: refused, not coded.
+  model_.accessors[static_cast<size_t>(model_.meshes[1].primitives[0].attributes["POSITION"])].componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  const float not_a_number = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(model_.buffers[0].data.data() + model_.bufferViews[static_cast<size_t>(model_.accessors[static_cast<size_t>(
+      model_.meshes[1].primitives[0].attributes["POSITION"])].bufferView)].byteOffset, &not_a_number, sizeof not_a_number);
+  const std::string nan = save("nan.glb");
+  EXPECT_NE(error_of(nan, pick("right", 10.0)).find("vertex 0 at 0.000000 s is not a finite float32 position"), std::string::npos) << error_of(nan, pick("right", 10.0));
 
   EXPECT_NE(error_of((folder_ / "none.glb").string()).find("no such file"), std::string::npos);
   write_file_atomically((folder_ / "text.glb").string(), std::string("not a glb"));
