@@ -1,7 +1,7 @@
 // glTF animations in (encode3d anim.glb): assets built here with
 // tinygltf, morph targets and a skin, baked to the positions worked out by
-// hand; m4mesh's own glTF read back bit for bit; and the errors for what
-// cannot be taken.
+// hand, and the errors for what cannot be taken. (m4mesh's own glTF read
+// back: gltf_test.cc.)
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 #include <unistd.h>
@@ -231,33 +231,6 @@ TEST_F(GltfInput, ASkinBakesByLinearBlendSkinning) {
   const GltfAnimation half = read_gltf(path, pick("", 2.0));
   ASSERT_EQ(half.sequence.frames.size(), 3u);
   expect_near(half.sequence.frames[1][1], 1 + s, 1 + s, 0, "half-way 1");
-}
-
-// decode3d's glTF read back: the decoded frames bit for bit, at the stream's rate.
-TEST_F(GltfInput, M4meshsOwnAnimationReadsBackExactly) {
-  const MeshSequence original = test::test_sequence(6, 9);
-  Encode3dOptions options;
-  options.frame_rate_num = 30000;
-  options.frame_rate_den = 1001;
-  const std::vector<uint8_t> stream = encode_mesh3d(original, options).stream;
-  const MeshSequence decoded = decode_mesh3d(stream);
-  const std::string input = (folder_ / "s.m4m").string(), glb = (folder_ / "anim.glb").string(), again = (folder_ / "again.m4m").string();
-  write_file_atomically(input, std::string(stream.begin(), stream.end()));
-  std::vector<const char*> decode{"m4mesh", "-q", "decode3d", input.c_str(), "-o", glb.c_str()};
-  ASSERT_EQ(run_m4mesh(static_cast<int>(decode.size()), decode.data()), 0);
-  const GltfAnimation read = read_gltf(glb, {});
-  EXPECT_NEAR(read.fps, 30000.0 / 1001.0, 1e-3);
-  EXPECT_EQ(read.sequence.faces, decoded.faces);
-  ASSERT_EQ(read.sequence.frames.size(), decoded.frames.size());
-  for (size_t f = 0; f < decoded.frames.size(); ++f) ASSERT_EQ(read.sequence.frames[f], decoded.frames[f]) << "frame " << f;
-  // And coded again: the frames, at the keyframes' rate.
-  std::vector<const char*> encode{"m4mesh", "-q", "encode3d", glb.c_str(), "-o", again.c_str()};
-  ASSERT_EQ(run_m4mesh(static_cast<int>(encode.size()), encode.data()), 0);
-  const std::vector<uint8_t> coded = read_file(again);
-  const Mesh3dDecoder header(coded);
-  EXPECT_EQ(header.header().frame_count, decoded.frames.size());
-  EXPECT_EQ(header.header().frame_rate_num, 29970u);
-  EXPECT_EQ(header.header().frame_rate_den, 1000u);
 }
 
 TEST_F(GltfInput, WhatCannotBeTakenIsNamed) {

@@ -1,7 +1,7 @@
 // A decoded stream as a glTF animation (decode3d -o anim.glb / .gltf),
 // read back by tinygltf: every frame's positions bit for bit, in the
 // stream's vertex order, the faces, and a STEP weights animation at the
-// stream's frame rate.
+// stream's frame rate; and by m4mesh's own glTF input, the same frames.
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
@@ -86,7 +86,23 @@ TEST(Gltf, DecodedFramesPlayExactlyAsMorphTargets) {
       EXPECT_FLOAT_EQ(times[k], static_cast<float>(static_cast<double>(k) * 1001.0 / 30000.0));
       for (size_t j = 0; j < frames; ++j) EXPECT_EQ(weights[k * frames + j], j == k ? 1.0f : 0.0f);
     }
+    // Read back as an input (encode3d anim.glb): the decoded frames bit for bit, at the stream's rate.
+    const GltfAnimation read = read_gltf(output, {});
+    EXPECT_NEAR(read.fps, 30000.0 / 1001.0, 1e-3) << name;
+    EXPECT_EQ(read.sequence.faces, decoded.faces) << name;
+    ASSERT_EQ(read.sequence.frames.size(), frames) << name;
+    for (size_t k = 0; k < frames; ++k) ASSERT_EQ(read.sequence.frames[k], decoded.frames[k]) << name << " frame " << k;
   }
+  // And coded again: the stream takes the keyframes' rate.
+  const std::string glb = (folder / "anim.glb").string(), again = (folder / "again.m4m").string();
+  std::vector<const char*> encode{"m4mesh", "-q", "encode3d", glb.c_str(), "-o", again.c_str()};
+  ASSERT_EQ(run_m4mesh(static_cast<int>(encode.size()), encode.data()), 0);
+  const std::vector<uint8_t> coded = read_file(again);
+  const Mesh3dDecoder header(coded);
+  EXPECT_EQ(header.header().frame_count, decoded.frames.size());
+  // 30000/1001 through float32 key times: 29.97, the smallest power-of-ten fraction that holds it.
+  EXPECT_EQ(header.header().frame_rate_num, 2997u);
+  EXPECT_EQ(header.header().frame_rate_den, 100u);
   fs::remove_all(folder);
 }
 
