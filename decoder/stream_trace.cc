@@ -1,7 +1,9 @@
 #include "decoder/stream_trace.h"
 
+#include "codecs3d/registry.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "syntax/mesh3d/container.h"
+#include "syntax/mesh3d/cpca_wpt.h"
 #include "syntax/mesh_object.h"
 
 namespace m4mesh {
@@ -23,6 +25,37 @@ void trace_stream(std::span<const uint8_t> stream, std::ostream& out, const Trac
   MeshObjectPlane plane;
   while (before_part(reader.planes_read()) && reader.next(plane)) {
   }
+}
+
+std::vector<std::string> unit_labels3d(std::span<const uint8_t> stream) {
+  const ContainerParts parts = split_container(stream);
+  ObjectHeader object;
+  {
+    BitReader reader(parts.object_payload.data(), parts.object_payload.size());
+    syntax::ReadIO io(reader);
+    syntax::describe(io, object);
+  }
+  std::vector<std::string> labels;
+  for (const ContainerUnit& unit : parts.units) {
+    BitReader reader(unit.payload.data(), unit.payload.size());
+    syntax::ReadIO io(reader);
+    try {
+      UnitHeader header;
+      syntax::describe(io, header);
+      std::string label = unit_type_name(header.type());
+      if (header.type() == UnitType::kRefinement && object.codec_id == kCpcaWptId) {
+        CpcaRefinement refinement;
+        syntax::describe(io, refinement);
+        label += ", cluster " + std::to_string(refinement.cluster) + " " + cpca_unit_kind_name(refinement.kind);
+      } else if (header.type() != UnitType::kRefinement) {
+        label += ", frame " + std::to_string(header.frame_index);
+      }
+      labels.push_back(std::move(label));
+    } catch (const Error&) {
+      labels.push_back("unreadable");
+    }
+  }
+  return labels;
 }
 
 }  // namespace m4mesh

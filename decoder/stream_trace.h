@@ -6,6 +6,8 @@
 #include <optional>
 #include <ostream>
 #include <span>
+#include <string>
+#include <vector>
 
 namespace m4mesh {
 
@@ -20,5 +22,11 @@ struct TraceSelection {
 // Reads the stream's syntax as the decoder does, printing its elements to
 // `out`; an error in the stream is thrown after the lines before it.
 void trace_stream(std::span<const uint8_t> stream, std::ostream& out, const TraceSelection& selection = {});
+
+// What each unit of a 3D stream is, as tools list it: its unit type, then
+// its frame ("frame 3"), or for a cpca-wpt refinement unit its cluster and
+// kind ("refinement, cluster 2 start"). A unit whose header cannot be
+// read is "unreadable"; an error in the container is thrown.
+std::vector<std::string> unit_labels3d(std::span<const uint8_t> stream);
 
 }  // namespace m4mesh

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "conformance/suite3d/suite3d.h"
 #include "decoder/stream_trace.h"
 #include "syntax/mesh3d/container.h"
+#include "syntax/mesh3d/cpca_wpt.h"
 #include "syntax/trace.h"
 
 namespace m4mesh {
@@ -70,6 +72,34 @@ TEST(StreamTrace, A3dPartIsItsUnitsLinesOfTheWholeTrace) {
   }
   EXPECT_GE(streams, 100u);
   EXPECT_GE(with_symbols, 100u);  // the fields-only traces do leave lines out
+}
+
+// The analyzer's unit names (unit_labels3d) against what the trace reads of
+// each unit: its unit_type, frame_index, and a cpca-wpt refinement's cluster
+// and unit_kind.
+TEST(StreamTrace, UnitLabelsNameWhatEachUnitsHeaderSays) {
+  size_t refinements = 0;
+  for (const SuiteCase& c : build_suite3d()) {
+    if (!c.valid) continue;
+    const std::vector<std::string> labels = unit_labels3d(c.stream);
+    ASSERT_EQ(labels.size(), split_container(c.stream).units.size()) << c.id;
+    std::vector<std::map<std::string, std::string>> fields(labels.size());
+    for (const std::string& line : trace_lines(c.stream))
+      if (const std::optional<TraceLine> t = parse_trace_line(line); t && t->unit >= 0 && !fields[static_cast<size_t>(t->unit)].count(t->name))
+        fields[static_cast<size_t>(t->unit)][t->name] = t->value;
+    for (size_t k = 0; k < labels.size(); ++k) {
+      const UnitType type = static_cast<UnitType>(std::stoul(fields[k].at("unit_type")));
+      std::string expected = unit_type_name(type);
+      if (type != UnitType::kRefinement) {
+        expected += ", frame " + fields[k].at("frame_index");
+      } else if (fields[k].count("unit_kind")) {
+        expected += ", cluster " + fields[k].at("cluster") + " " + cpca_unit_kind_name(static_cast<uint32_t>(std::stoul(fields[k].at("unit_kind"))));
+        ++refinements;
+      }
+      EXPECT_EQ(labels[k], expected) << c.id << " unit " << k;
+    }
+  }
+  EXPECT_GT(refinements, 100u);
 }
 
 TEST(StreamTrace, A2dPartIsItsPlanesLinesOfTheWholeTrace) {

@@ -21,7 +21,6 @@
 #include "decoder/stream_trace.h"
 #include "mesh/topology.h"
 #include "syntax/mesh3d/container.h"
-#include "syntax/mesh3d/cpca_wpt.h"
 #include "syntax/mesh_object.h"
 #include "syntax/trace.h"
 
@@ -58,15 +57,6 @@ MotionMethod method_of(int method) { return method == 1 ? MotionMethod::kMethod1
 std::string stream_kind(const val& bytes) {
   const std::vector<uint8_t> stream = bytes_of(bytes);
   return json{{"kind", is_mesh3d_stream(stream) ? "3d" : "2d"}}.dump();
-}
-
-// {"unitTypes": [name per unit_type], "refinementKinds": [name per cpca
-// unit_kind]}: the names the analyzer shows, as the CLI shows them.
-std::string names() {
-  json unit_types = json::array(), refinement_kinds = json::array();
-  for (uint32_t t = 0; t < kUnitTypes; ++t) unit_types.push_back(unit_type_name(static_cast<UnitType>(t)));
-  for (uint32_t k = kCpcaStart; k <= kCpcaTrajectory; ++k) refinement_kinds.push_back(cpca_unit_kind_name(k));
-  return json{{"unitTypes", unit_types}, {"refinementKinds", refinement_kinds}}.dump();
 }
 
 // A conformance suite's manifest: its streams, and m4mesh's judgement of
@@ -166,16 +156,18 @@ std::string trace_fields(const val& bytes) { return traced_lines(bytes, {.part =
 // mesh object −1 or plane k), its symbols included.
 std::string trace_part(const val& bytes, double part) { return traced_lines(bytes, {.part = static_cast<int64_t>(part), .symbols = true}); }
 
-// {"units": [{offset, bytes}]}: where each unit of a 3D stream lies (its
-// start code's byte offset, its size with the start code).
+// {"units": [{offset, bytes, label}]}: where each unit of a 3D stream lies
+// (its start code's byte offset, its size with the start code) and what it
+// is (unit_labels3d: "frame 3", "refinement, cluster 2 start").
 std::string units3d(const val& bytes) {
   return guarded([&] {
     const std::vector<uint8_t> stream = bytes_of(bytes);
     const ContainerParts parts = split_container(stream);
+    const std::vector<std::string> labels = unit_labels3d(stream);
     json units = json::array();
     for (size_t k = 0; k < parts.units.size(); ++k) {
       const uint64_t end = k + 1 < parts.units.size() ? parts.units[k + 1].byte_offset : stream.size() - (parts.has_end_code ? 4 : 0);
-      units.push_back({{"offset", parts.units[k].byte_offset}, {"bytes", end - parts.units[k].byte_offset}});
+      units.push_back({{"offset", parts.units[k].byte_offset}, {"bytes", end - parts.units[k].byte_offset}, {"label", labels[k]}});
     }
     return json{{"units", units}, {"endCode", parts.has_end_code}};
   });
@@ -321,7 +313,6 @@ class Stream3d {
 EMSCRIPTEN_BINDINGS(m4mesh) {
   using namespace m4mesh;
   emscripten::function("streamKind", &stream_kind);
-  emscripten::function("names", &names);
   emscripten::function("decodedMd5", &decoded_md5);
   emscripten::function("check", &check);
   emscripten::function("traceFields", &trace_fields);

@@ -19,24 +19,14 @@ function lineBits([, , position, , size, value]) {
   return Number(size) || 0;
 }
 
-// 3D: the object header, every unit with its type, frame (or cluster) and bytes.
+// 3D: the object header, every unit as the C++ names it (unit_labels3d), with its bytes.
 function units(module, bytes, lines) {
   const layout = JSON.parse(module.units3d(bytes));
-  // The names the CLI shows, from the C++: unit types, and cpca-wpt's refinement unit kinds.
-  const { unitTypes, refinementKinds } = JSON.parse(module.names());
   const byUnit = new Map();
   for (const line of lines) byUnit.get(line[0])?.push(line) ?? byUnit.set(line[0], [line]);
   const parts = [{ label: 'object header', part: -1, lines: (byUnit.get(-1) ?? []).filter((l) => l[3] !== 'mesh_object_end_code') }];
-  (layout.units ?? []).forEach((unit, index) => {
-    const own = byUnit.get(index) ?? [];
-    const field = (name) => own.find((l) => l[3] === name)?.[5];
-    const type = unitTypes[field('unit_type')] ?? `type ${field('unit_type') ?? '?'}`;
-    // A refinement unit refines every frame: named by its cluster and kind.
-    const what = unitTypes[field('unit_type')] === 'refinement'
-      ? (field('cluster') !== undefined ? `, cluster ${field('cluster')} ${refinementKinds[field('unit_kind')] ?? ''}` : '')
-      : field('frame_index') !== undefined ? `, frame ${field('frame_index')}` : '';
-    parts.push({ label: `unit ${index}: ${type}${what.trimEnd()}`, part: index, size: `${unit.bytes} B`, lines: own });
-  });
+  (layout.units ?? []).forEach((unit, index) =>
+    parts.push({ label: `unit ${index}: ${unit.label}`, part: index, size: `${unit.bytes} B`, lines: byUnit.get(index) ?? [] }));
   return parts;
 }
 
