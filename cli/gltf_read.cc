@@ -147,26 +147,32 @@ struct Sampler {
   std::string interpolation;
   size_t width = 0;
 
-  // The value at time t: held before the first key and after the last.
-  std::vector<double> at(double t) const {
-    const size_t keys = times.size();
+  // Where t falls: key k, and how far towards key k + 1 (0: at k; held before the first key and after the last).
+  std::pair<size_t, double> segment(double t) const {
     const size_t after = static_cast<size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin());
-    const bool cubic = interpolation == "CUBICSPLINE";
-    auto key = [&](size_t k, size_t part) {
-      const size_t start = cubic ? (3 * k + part) * width : k * width;
-      return std::vector<double>(values.begin() + static_cast<ptrdiff_t>(start), values.begin() + static_cast<ptrdiff_t>(start + width));
-    };
-    if (after == 0) return key(0, 1);
-    if (after == keys || interpolation == "STEP" || times[after - 1] == t) return key(after - 1, 1);
-    const size_t k = after - 1;
-    const double span = times[k + 1] - times[k], u = (t - times[k]) / span;
-    std::vector<double> a = key(k, 1), b = key(k + 1, 1), out(width);
-    if (!cubic) {
+    if (after == 0) return {0, 0.0};
+    if (after == times.size() || interpolation == "STEP" || times[after - 1] == t) return {after - 1, 0.0};
+    return {after - 1, (t - times[after - 1]) / (times[after] - times[after - 1])};
+  }
+
+  // Key k's value (CUBICSPLINE: part 0 the in-tangent, 1 the value, 2 the out-tangent).
+  std::vector<double> key(size_t k, size_t part = 1) const {
+    const size_t start = interpolation == "CUBICSPLINE" ? (3 * k + part) * width : k * width;
+    return std::vector<double>(values.begin() + static_cast<ptrdiff_t>(start), values.begin() + static_cast<ptrdiff_t>(start + width));
+  }
+
+  // The value at time t.
+  std::vector<double> at(double t) const {
+    const auto [k, u] = segment(t);
+    if (u == 0) return key(k);
+    const std::vector<double> a = key(k), b = key(k + 1);
+    std::vector<double> out(width);
+    if (interpolation != "CUBICSPLINE") {
       for (size_t i = 0; i < width; ++i) out[i] = a[i] + u * (b[i] - a[i]);
       return out;
     }
+    const double span = times[k + 1] - times[k], u2 = u * u, u3 = u2 * u;
     const std::vector<double> out_tangent = key(k, 2), in_tangent = key(k + 1, 0);
-    const double u2 = u * u, u3 = u2 * u;
     for (size_t i = 0; i < width; ++i)
       out[i] = (2 * u3 - 3 * u2 + 1) * a[i] + (u3 - 2 * u2 + u) * span * out_tangent[i] + (-2 * u3 + 3 * u2) * b[i] + (u3 - u2) * span * in_tangent[i];
     return out;
@@ -239,17 +245,10 @@ Matrix local_transform(const tinygltf::Node& node, int index, const Channels& ch
     scale = {v[0], v[1], v[2]};
   }
   if (const Sampler* s = channels.find(index, "rotation")) {
-    if (s->interpolation == "LINEAR") {
-      // Spherical between the two keys around t.
-      const size_t after = static_cast<size_t>(std::upper_bound(s->times.begin(), s->times.end(), t) - s->times.begin());
-      auto key = [&](size_t k) { return Eigen::Quaterniond(s->values[4 * k + 3], s->values[4 * k], s->values[4 * k + 1], s->values[4 * k + 2]); };
-      if (after == 0) rotation = key(0);
-      else if (after == s->times.size() || s->times[after - 1] == t) rotation = key(after - 1);
-      else rotation = key(after - 1).slerp((t - s->times[after - 1]) / (s->times[after] - s->times[after - 1]), key(after));
-    } else {
-      const std::vector<double> v = s->at(t);
-      rotation = Eigen::Quaterniond(v[3], v[0], v[1], v[2]);
-    }
+    auto quaternion = [](const std::vector<double>& v) { return Eigen::Quaterniond(v[3], v[0], v[1], v[2]); };
+    const auto [k, u] = s->segment(t);
+    // LINEAR rotations are spherical between the keys.
+    rotation = s->interpolation == "LINEAR" && u != 0 ? quaternion(s->key(k)).slerp(u, quaternion(s->key(k + 1))) : quaternion(s->at(t));
   }
   Matrix m = Matrix::Identity();
   m.topLeftCorner<3, 3>() = rotation.normalized().toRotationMatrix() * scale.asDiagonal();
@@ -335,29 +334,20 @@ Geometry geometry_of(const Asset& asset, const tinygltf::Mesh& mesh, bool skinne
     if (sets == 0) throw asset.error(what + " belongs to a skin and has no JOINTS_0 and WEIGHTS_0");
     if (k == 0) g.influence_sets = sets;
     if (sets != g.influence_sets) throw asset.error(what + ": " + std::to_string(sets) + " sets of joints, primitive 0 " + std::to_string(g.influence_sets));
+    // Vertex-major: vertex v's sets at v × sets … v × sets + sets − 1.
+    g.joints.resize(g.base.size() * sets);
+    g.weights.resize(g.base.size() * sets);
     for (size_t s = 0; s < sets; ++s) {
       const std::string set = std::to_string(s);
       const std::vector<uint32_t> joints = asset.integers(p.attributes.at("JOINTS_" + set), 4, what + ", JOINTS_" + set);
       const std::vector<double> weights = asset.numbers(p.attributes.at("WEIGHTS_" + set), 4, what + ", WEIGHTS_" + set);
       if (joints.size() != 4 * base.size() || weights.size() != 4 * base.size()) throw asset.error(what + ": not one set of joints and weights per vertex");
       for (size_t v = 0; v < base.size(); ++v) {
-        g.joints.push_back({joints[4 * v], joints[4 * v + 1], joints[4 * v + 2], joints[4 * v + 3]});
-        g.weights.push_back({weights[4 * v], weights[4 * v + 1], weights[4 * v + 2], weights[4 * v + 3]});
+        const size_t at = (first + v) * sets + s;
+        g.joints[at] = {joints[4 * v], joints[4 * v + 1], joints[4 * v + 2], joints[4 * v + 3]};
+        g.weights[at] = {weights[4 * v], weights[4 * v + 1], weights[4 * v + 2], weights[4 * v + 3]};
       }
     }
-  }
-  // Influence sets were gathered primitive by primitive: reorder to vertex-major.
-  if (skinned && g.influence_sets > 1) {
-    std::vector<std::array<uint32_t, 4>> joints(g.joints.size());
-    std::vector<std::array<double, 4>> weights(g.weights.size());
-    size_t at = 0, first = 0;
-    for (const tinygltf::Primitive& p : mesh.primitives) {
-      const size_t count = asset.count(p.attributes.at("POSITION"), "POSITION");
-      for (size_t s = 0; s < g.influence_sets; ++s)
-        for (size_t v = 0; v < count; ++v, ++at) joints[(first + v) * g.influence_sets + s] = g.joints[at], weights[(first + v) * g.influence_sets + s] = g.weights[at];
-      first += count;
-    }
-    g.joints = std::move(joints), g.weights = std::move(weights);
   }
   return g;
 }

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -30,5 +31,8 @@ class Md5 {
 };
 
 std::string md5_hex(std::string_view data);
+inline std::string md5_hex(std::span<const uint8_t> bytes) {
+  return md5_hex(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
 
 }  // namespace m4mesh

@@ -6,7 +6,7 @@
 namespace m4mesh {
 
 std::string stream_md5_mismatch(const ManifestEntry& entry, const std::vector<uint8_t>& stream) {
-  const std::string md5 = md5_hex(std::string_view(reinterpret_cast<const char*>(stream.data()), stream.size()));
+  const std::string md5 = md5_hex(stream);
   return md5 == entry.stream_md5 ? "" : "the stream file's MD5 is " + md5 + ", the manifest says " + entry.stream_md5;
 }
 

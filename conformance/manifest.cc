@@ -98,10 +98,7 @@ std::string manifest_json(const Manifest& manifest) {
 }
 
 std::string decoded_output_md5(SuiteKind kind, const std::vector<uint8_t>& stream, int method) {
-  if (kind == SuiteKind::kMesh3d) {
-    const std::vector<uint8_t> frames = decoded_frames3d(stream);
-    return md5_hex(std::string_view(reinterpret_cast<const char*>(frames.data()), frames.size()));
-  }
+  if (kind == SuiteKind::kMesh3d) return md5_hex(decoded_frames3d(stream));
   DecoderOptions options;
   options.method = method_of(method);
   return decode_to_text(stream, options, {});

@@ -89,8 +89,7 @@ Outcome run_external(SuiteKind kind, const ManifestEntry& e, const std::string& 
                      : Outcome{Outcome::kPass, "rejected (exit " + std::to_string(code) + ")"};
   if (code != 0) return {Outcome::kFail, "the decoder failed (exit " + std::to_string(code) + ")" + stderr_of(err)};
   if (!fs::exists(out)) return {Outcome::kFail, "the decoder wrote no output" + stderr_of(err)};
-  const std::vector<uint8_t> decoded = read_file(out.string());
-  const std::string md5 = md5_hex(std::string_view(reinterpret_cast<const char*>(decoded.data()), decoded.size()));
+  const std::string md5 = md5_hex(read_file(out.string()));
   if (md5 != e.decoded_md5) return {Outcome::kFail, "decoded MD5 " + md5 + ", expected " + e.decoded_md5};
   return {Outcome::kPass, md5};
 }

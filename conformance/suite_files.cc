@@ -15,10 +15,6 @@ namespace m4mesh {
 
 namespace {
 
-std::string md5_of(const std::vector<uint8_t>& bytes) {
-  return md5_hex(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
-}
-
 // Where m4mesh's decoder places the error of a stream to reject; the
 // generator refuses a case whose error is not the one it claims.
 int64_t rejection_offset(SuiteKind kind, const SuiteCase& c, int method) {
@@ -44,7 +40,7 @@ Manifest write_suite(const std::string& folder, SuiteKind kind, const std::vecto
     e.file = "streams/" + c.id + ".m4m";
     e.purpose = c.purpose;
     e.clauses = c.clauses;
-    e.stream_md5 = md5_of(c.stream);
+    e.stream_md5 = md5_hex(c.stream);
     e.method = c.method == MotionMethod::kMethod1 ? 1 : 2;
     e.valid = c.valid;
     if (c.valid) {

@@ -13,7 +13,6 @@
 
 #include "codecs3d/registry.h"
 #include "common/error.h"
-#include "common/md5.h"
 #include "conformance/checker.h"
 #include "conformance/judge.h"
 #include "decoder/mesh3d/container_decoder.h"
@@ -96,13 +95,7 @@ class Suite {
 std::string decoded_md5(const val& bytes, int method) {
   return guarded([&] {
     const std::vector<uint8_t> stream = bytes_of(bytes);
-    if (is_mesh3d_stream(stream)) {
-      const std::vector<uint8_t> frames = decoded_frames3d(stream);
-      return json{{"md5", md5_hex(std::string_view(reinterpret_cast<const char*>(frames.data()), frames.size()))}};
-    }
-    DecoderOptions options;
-    options.method = method_of(method);
-    return json{{"md5", decode_to_text(stream, options, {})}};
+    return json{{"md5", decoded_output_md5(is_mesh3d_stream(stream) ? SuiteKind::kMesh3d : SuiteKind::kMesh2d, stream, method)}};
   });
 }
 
