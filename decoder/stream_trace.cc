@@ -46,7 +46,9 @@ std::vector<std::string> unit_labels3d(std::span<const uint8_t> stream) {
       if (header.type() == UnitType::kRefinement && object.codec_id == kCpcaWptId) {
         CpcaRefinement refinement;
         syntax::describe(io, refinement);
-        label += ", cluster " + std::to_string(refinement.cluster) + " " + cpca_unit_kind_name(refinement.kind);
+        label += refinement.kind == kCpcaGroup
+                     ? ", group of " + std::to_string(refinement.group.size())
+                     : ", cluster " + std::to_string(refinement.cluster) + " " + cpca_unit_kind_name(refinement.kind);
       } else if (header.type() != UnitType::kRefinement) {
         label += ", frame " + std::to_string(header.frame_index);
       }

@@ -47,11 +47,11 @@ class CpcaMeshPrediction {
   // Then the coefficients (3/D per frame) as the differences to the same
   // lane the frame before, on channels 2D + lane; |coefficient| ≤ 2^23.
   template <size_t D, class IO>
-  void describe_operator(IO& io, uint32_t cluster, std::span<int32_t> basis, std::span<int32_t> coefficients) const {
+  void describe_operator(IO& io, syntax::ResidualCoder<2 * D + 3 / D>& coder, uint32_t cluster, std::span<int32_t> basis,
+                         std::span<int32_t> coefficients) const {
     static_assert(D == 1 || D == 3);
     const syntax::ResidualNames& basis_names = D == 3 ? syntax::kCpcaMeshBasis : syntax::kCpcaTrajectoryBasis;
     const syntax::ResidualNames& coefficient_names = D == 3 ? syntax::kCpcaCoefficient : syntax::kCpcaTrajectoryCoefficient;
-    syntax::ResidualCoder<2 * D + 3 / D> coder;
     std::array<int64_t, D> p{}, previous{};
     for (const uint32_t v : in_coding_order_[cluster]) {
       const uint32_t rank = rank_[v];
@@ -86,6 +86,22 @@ class CpcaMeshPrediction {
   std::vector<uint32_t> cluster_of_;
   std::vector<std::vector<uint32_t>> in_coding_order_;  // per cluster: its members in coding order
 };
+
+// One refinement's symbols with the unit's coders: a start's translation
+// (3N values), or a component's basis (3 or, for unit_kind 3, 1 per member
+// of its cluster) and coefficients (N or 3N), each span of that size.
+template <class IO>
+void describe_refinement(IO& io, syntax::CpcaCoders& coders, const CpcaMeshPrediction& mesh, const CpcaRefinementHeader& h,
+                         std::span<int32_t> translation, std::span<int32_t> basis, std::span<int32_t> coefficients) {
+  if (h.kind == kCpcaStart)
+    syntax::describe_start(io, coders.start, translation);
+  else if (h.kind == kCpcaMeshComponent)
+    mesh.describe_operator<3>(io, coders.mesh_component, h.cluster, basis, coefficients);
+  else if (h.kind == kCpcaTrajectory)
+    mesh.describe_operator<1>(io, coders.trajectory, h.cluster, basis, coefficients);
+  else
+    syntax::describe_operator(io, coders.component, basis, coefficients);
+}
 
 // The animation as decoded so far: per frame, vertex and axis a 64-bit
 // integer in steps of 2^−F grid units, starting at the mean shape's grid

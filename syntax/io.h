@@ -23,6 +23,11 @@
 
 namespace m4mesh::syntax {
 
+// Whether IO writes a syntax table (syntax/table_io.h): a description
+// prints its conditional and repeated parts for it.
+template <class IO>
+inline constexpr bool kTableOf = requires { IO::kTable; };
+
 // What every policy shares: the plane number, the offset of the element in
 // hand, and the error it raises.
 class IOBase {

@@ -18,6 +18,7 @@ namespace m4mesh::syntax {
 class TableIO : public IOBase {
  public:
   static constexpr bool kReading = false;
+  static constexpr bool kTable = true;
 
   // A field with its allowed range, as the table prints it.
   struct Range {
@@ -53,6 +54,16 @@ class TableIO : public IOBase {
   void require_remaining_bytes(const char*, uint64_t) const {}
   void require_length(const char*, uint64_t) const {}
 
+  // A conditional or repeated part: "head {", its rows indented, "}".
+  void open(const std::string& head) {
+    rows_ += std::string(indent_, ' ') + "    " + head + " {\n";
+    indent_ += 4;
+  }
+  void close() {
+    indent_ -= 4;
+    rows_ += std::string(indent_, ' ') + "    }\n";
+  }
+
   // "title() {", the rows, "}".
   std::string table(const std::string& title) const { return title + "() {\n" + rows_ + "}\n"; }
   const std::vector<Range>& ranges() const { return ranges_; }
@@ -60,13 +71,16 @@ class TableIO : public IOBase {
  private:
   void row(const char* name, const std::string& descriptor, const std::string& range) {
     char line[160];
-    std::snprintf(line, sizeof line, "    %-28s %-8s %s", name, descriptor.c_str(), range.c_str());
+    // Nested rows keep the descriptor column: the name's column narrows.
+    std::snprintf(line, sizeof line, "    %*s%-*s %-8s %s", static_cast<int>(indent_), "", static_cast<int>(28 - indent_), name,
+                  descriptor.c_str(), range.c_str());
     std::string text(line);
     text.erase(text.find_last_not_of(' ') + 1);
     rows_ += text + "\n";
   }
   std::string rows_;
   std::vector<Range> ranges_;
+  size_t indent_ = 0;
 };
 
 }  // namespace m4mesh::syntax

@@ -12,6 +12,7 @@
 #include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/cpca_wpt.h"
 #include "mesh3d/metrics.h"
+#include "syntax/mesh3d/cpca_wpt.h"
 #include "syntax/mesh3d/container.h"
 #include "tests/test_util.h"
 
@@ -48,11 +49,9 @@ double bytes_to_reach(const std::vector<std::pair<uint64_t, double>>& points, do
   return INFINITY;
 }
 
-TEST(CpcaWpt, EveryPrefixDecodesAndTheErrorNeverGrows) {
-  const MeshSequence s = test::test_sequence(12, 7);
-  const std::vector<uint8_t> stream = encode_mesh3d(s, cpca({{"clusters", "4"}})).stream;
-  const ContainerParts parts = split_container(stream);
-  ASSERT_GT(parts.units.size(), 10u);
+// Every prefix of `stream` cut at a unit boundary decodes every frame, each
+// no worse than the one before.
+void expect_prefixes_decode_and_improve(const MeshSequence& s, const std::vector<uint8_t>& stream, const ContainerParts& parts) {
   double previous = INFINITY;
   for (size_t k = 1; k < parts.units.size(); ++k) {
     if (parts.units[k].payload[0] == static_cast<uint8_t>(UnitType::kFrameHash)) continue;
@@ -65,6 +64,17 @@ TEST(CpcaWpt, EveryPrefixDecodesAndTheErrorNeverGrows) {
     previous = kg;
   }
   EXPECT_EQ(container_prefix(parts, stream.size(), 3).units, 0u);
+}
+
+// With a unit per refinement and with groups.
+TEST(CpcaWpt, EveryPrefixDecodesAndTheErrorNeverGrows) {
+  const MeshSequence s = test::test_sequence(12, 7);
+  for (const auto& [group_bytes, least_units] : {std::pair{"0", 10u}, std::pair{"60", 5u}}) {
+    const std::vector<uint8_t> stream = encode_mesh3d(s, cpca({{"clusters", "4"}, {"group-bytes", group_bytes}})).stream;
+    const ContainerParts parts = split_container(stream);
+    ASSERT_GT(parts.units.size(), least_units);
+    expect_prefixes_decode_and_improve(s, stream, parts);
+  }
 }
 
 TEST(CpcaWpt, AllComponentsAtFineQuantizationReconstructTheOriginal) {
@@ -124,11 +134,27 @@ TEST(CpcaWpt, ATargetChoosesTheClusterCount) {
   EXPECT_THROW(encode_mesh3d(s, cpca({{"components", "many"}})), Error);
 }
 
-// The unit_kind of every refinement unit but starts, counted.
+// The refinements of a stream's refinement units, in order.
+std::vector<CpcaRefinementHeader> refinements(const std::vector<uint8_t>& stream) {
+  std::vector<CpcaRefinementHeader> all;
+  for (const ContainerUnit& unit : split_container(stream).units) {
+    BitReader reader(unit.payload.data(), unit.payload.size());
+    syntax::ReadIO io(reader);
+    UnitHeader header;
+    syntax::describe(io, header);
+    if (header.type() != UnitType::kRefinement) continue;
+    CpcaRefinement r;
+    syntax::describe(io, r);
+    for (const CpcaRefinementHeader& h : r.refinements()) all.push_back(h);
+  }
+  return all;
+}
+
+// The unit_kind of every refinement but starts, counted.
 std::map<uint32_t, size_t> component_kinds(const std::vector<uint8_t>& stream) {
   std::map<uint32_t, size_t> kinds;
-  for (const ContainerUnit& unit : split_container(stream).units)
-    if (unit.payload[0] == static_cast<uint8_t>(UnitType::kRefinement) && unit.payload[6] != kCpcaStart) ++kinds[unit.payload[6]];
+  for (const CpcaRefinementHeader& h : refinements(stream))
+    if (h.kind != kCpcaStart) ++kinds[h.kind];
   return kinds;
 }
 
@@ -154,6 +180,29 @@ TEST(CpcaWpt, EveryComponentKindDecodesAsTheEncoderReconstructs) {
     EXPECT_EQ(kinds, c.kinds) << c.values.at("model");
     const MeshSequence decoded = decode_mesh3d(stream);  // throws on a hash mismatch
     EXPECT_LT(kg_error(s, decoded), 5.0);
+  }
+}
+
+// Groups (unit_kind 4) carry the refinements that units of their own
+// carry: the same ones, decoding to the same animation bit for bit (the
+// decoder's sums do not depend on their order), in fewer bytes, for every
+// component kind.
+TEST(CpcaWpt, GroupsDecodeAsTheirRefinementsAloneInFewerBytes) {
+  const MeshSequence s = test::test_sequence(12, 8);
+  for (const CodecOptionValues& model : {CodecOptionValues{{"model", "shape"}, {"basis", "index"}},
+                                         CodecOptionValues{{"model", "shape"}, {"basis", "mesh"}}, CodecOptionValues{{"model", "trajectory"}}}) {
+    auto encoded = [&](const char* group_bytes) {
+      CodecOptionValues values = model;
+      values["clusters"] = "3";
+      values["group-bytes"] = group_bytes;
+      return encode_mesh3d(s, cpca(values)).stream;
+    };
+    const std::vector<uint8_t> alone = encoded("0"), grouped = encoded("1000000");
+    EXPECT_EQ(split_container(grouped).units.size(), 3u) << "the base mesh, one group, a group hash";
+    EXPECT_EQ(component_kinds(grouped), component_kinds(alone));
+    EXPECT_EQ(refinements(grouped).size(), refinements(alone).size());
+    EXPECT_LT(grouped.size(), alone.size());
+    EXPECT_EQ(decode_mesh3d(grouped).frames, decode_mesh3d(alone).frames) << model.at("model");
   }
 }
 
@@ -260,9 +309,9 @@ TEST(CpcaWptRealData, WptNeverNeedsMoreBytesThanRpt) {
   for (const char* name : {"pcow", "horse-gallop"}) {
     if (!fs::exists(kData / name)) GTEST_SKIP() << "../shared/data/" << name << " is absent";
     const MeshSequence s = load_sequence((kData / name).string());
-    // The report's operators (shape components, basis in index order).
-    const auto wpt = curve(encode_mesh3d(s, cpca({{"model", "shape"}, {"basis", "index"}})).stream, s);
-    const auto rpt = curve(encode_mesh3d(s, cpca({{"model", "shape"}, {"basis", "index"}, {"order", "rpt"}})).stream, s);
+    // The report's operators (shape components, basis in index order), a unit each.
+    const auto wpt = curve(encode_mesh3d(s, cpca({{"model", "shape"}, {"basis", "index"}, {"group-bytes", "0"}})).stream, s);
+    const auto rpt = curve(encode_mesh3d(s, cpca({{"model", "shape"}, {"basis", "index"}, {"group-bytes", "0"}, {"order", "rpt"}})).stream, s);
     for (size_t k = 1; k < wpt.size(); ++k) EXPECT_LE(wpt[k].second, wpt[k - 1].second) << name << " unit " << k;
     for (int checkpoint = 1; checkpoint <= 10; ++checkpoint) {
       const double kg = rpt[(rpt.size() - 1) * static_cast<size_t>(checkpoint) / 10].second;

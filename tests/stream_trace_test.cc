@@ -76,9 +76,9 @@ TEST(StreamTrace, A3dPartIsItsUnitsLinesOfTheWholeTrace) {
 
 // The analyzer's unit names (unit_labels3d) against what the trace reads of
 // each unit: its unit_type, frame_index, and a cpca-wpt refinement's cluster
-// and unit_kind.
+// and unit_kind, or a group's size.
 TEST(StreamTrace, UnitLabelsNameWhatEachUnitsHeaderSays) {
-  size_t refinements = 0;
+  size_t refinements = 0, groups = 0;
   for (const SuiteCase& c : build_suite3d()) {
     if (!c.valid) continue;
     const std::vector<std::string> labels = unit_labels3d(c.stream);
@@ -92,6 +92,9 @@ TEST(StreamTrace, UnitLabelsNameWhatEachUnitsHeaderSays) {
       std::string expected = unit_type_name(type);
       if (type != UnitType::kRefinement) {
         expected += ", frame " + fields[k].at("frame_index");
+      } else if (fields[k].count("group_size")) {
+        expected += ", group of " + fields[k].at("group_size");
+        ++groups;
       } else if (fields[k].count("unit_kind")) {
         expected += ", cluster " + fields[k].at("cluster") + " " + cpca_unit_kind_name(static_cast<uint32_t>(std::stoul(fields[k].at("unit_kind"))));
         ++refinements;
@@ -100,6 +103,7 @@ TEST(StreamTrace, UnitLabelsNameWhatEachUnitsHeaderSays) {
     }
   }
   EXPECT_GT(refinements, 100u);
+  EXPECT_GT(groups, 8u);
 }
 
 TEST(StreamTrace, A2dPartIsItsPlanesLinesOfTheWholeTrace) {

@@ -43,7 +43,7 @@ Encode3dOptions affine(const std::string& me, int k) {
 }
 
 Encode3dOptions cpca(CodecOptionValues values) {
-  for (const auto& [option, value] : CodecOptionValues{{"model", "shape"}, {"basis", "index"}})
+  for (const auto& [option, value] : CodecOptionValues{{"model", "shape"}, {"basis", "index"}, {"group-bytes", "0"}})
     if (!values.contains(option)) values[option] = value;
   return codec_with("cpca-wpt", std::move(values));
 }

@@ -38,7 +38,7 @@ Encode3dOptions lcc(CodecOptionValues values);
 // Affine-Octree at ME `me` percent and k bits per matrix element.
 Encode3dOptions affine(const std::string& me, int k = 16);
 // cpca-wpt with the paper's tools (shape components, basis predicted in
-// index order) unless `values` name others.
+// index order, a unit per refinement) unless `values` name others.
 Encode3dOptions cpca(CodecOptionValues values);
 
 // A clustered-PCA stream of `s` written symbol by symbol (no hash units):

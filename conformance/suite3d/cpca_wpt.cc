@@ -27,17 +27,49 @@ FieldBytes refinement_field(const char* name) { return unit_field<CpcaRefinement
 uint32_t unit_kind(const ContainerUnit& unit) { return static_cast<uint32_t>(field_value(unit.payload, refinement_field("unit_kind"))); }
 bool is_refinement(const ContainerUnit& unit) { return unit_header_of(unit.payload).type() == UnitType::kRefinement; }
 
-// A refinement unit (frame 0) of cluster `cluster` with the bins and raw
-// bits of its symbols.
-std::vector<uint8_t> refinement_bytes(uint32_t cluster, uint32_t kind, uint32_t shift, syntax::EntropyWriteIO<false>& symbols) {
+// A refinement unit (frame 0) whose data is `r` with the bins and raw bits
+// of its symbols.
+std::vector<uint8_t> refinement_unit_bytes(CpcaRefinement r, syntax::EntropyWriteIO<false>& symbols) {
   const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
+  r.arithmetic_bytes = static_cast<uint32_t>(bins.size());
+  r.bins = bins;
+  r.raw = raw;
   BitWriter writer;
   syntax::WriteIO io(writer);
   UnitHeader header{static_cast<uint32_t>(UnitType::kRefinement), 0};
   syntax::describe(io, header);
-  CpcaRefinement r{cluster, kind, shift, static_cast<uint32_t>(bins.size()), bins, raw};
   syntax::describe(io, r);
   return writer.take_bytes();
+}
+
+// A refinement unit of one refinement of cluster `cluster`.
+std::vector<uint8_t> refinement_bytes(uint32_t cluster, uint32_t kind, uint32_t shift, syntax::EntropyWriteIO<false>& symbols) {
+  return refinement_unit_bytes(CpcaRefinement{cluster, kind, shift, {}, 0, {}, {}}, symbols);
+}
+
+// A group unit (unit_kind 4) of these refinements.
+std::vector<uint8_t> group_bytes(std::vector<CpcaRefinementHeader> group, syntax::EntropyWriteIO<false>& symbols) {
+  return refinement_unit_bytes(CpcaRefinement{0, kCpcaGroup, 0, std::move(group), 0, {}, {}}, symbols);
+}
+
+// A group unit's field: `group_size`, or the `entry`-th refinement's
+// `group_cluster`, `group_kind` or `group_shift`.
+FieldBytes group_field(const char* name, size_t entry = 0) {
+  UnitHeader header;
+  CpcaRefinement group{0, kCpcaGroup, 0, std::vector<CpcaRefinementHeader>(1), 0, {}, {}};
+  FieldBytes field = field_bytes(name, header, group);
+  if (std::string_view(name) != "group_size") field.first += 3 * entry;
+  return field;
+}
+
+// The refinements a group unit lists.
+std::vector<CpcaRefinementHeader> group_entries(const ContainerUnit& unit) {
+  std::vector<CpcaRefinementHeader> entries(field_value(unit.payload, group_field("group_size")));
+  for (size_t j = 0; j < entries.size(); ++j)
+    entries[j] = {static_cast<uint32_t>(field_value(unit.payload, group_field("group_cluster", j))),
+                  static_cast<uint32_t>(field_value(unit.payload, group_field("group_kind", j))),
+                  static_cast<uint32_t>(field_value(unit.payload, group_field("group_shift", j)))};
+  return entries;
 }
 
 // A refinement unit (frame 0, shift 16) whose symbols are the residuals
@@ -102,13 +134,15 @@ std::vector<uint8_t> cpca_written_stream() {
   const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, kClusters);
   auto start = [&](uint32_t cluster, std::vector<int32_t> translation) {
     syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
-    syntax::describe_start(symbols, translation);
+    syntax::CpcaCoders coders;
+    syntax::describe_start(symbols, coders.start, translation);
     writer.unit(refinement_bytes(cluster, kCpcaStart, kCpcaShiftBias + 1, symbols));
   };
   auto component = [&](uint32_t cluster, std::vector<int32_t> basis, std::vector<int32_t> coefficients) {
     basis.resize(3 * members[cluster].size());
     syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
-    syntax::describe_operator(symbols, basis, coefficients);
+    syntax::CpcaCoders coders;
+    syntax::describe_operator(symbols, coders.component, basis, coefficients);
     writer.unit(refinement_bytes(cluster, kCpcaComponent, kCpcaShiftBias, symbols));
   };
   std::vector<std::pair<int32_t, int32_t>> patterns;
@@ -171,16 +205,18 @@ std::vector<uint8_t> cpca_mesh_written_stream() {
     coefficients.insert(coefficients.end(), 3 / per_member, frames.first);
     coefficients.insert(coefficients.end(), 3 / per_member, frames.second);
     syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    syntax::CpcaCoders coders;
     if (kind == kCpcaTrajectory)
-      mesh.describe_operator<1>(symbols, cluster, basis, coefficients);
+      mesh.describe_operator<1>(symbols, coders.trajectory, cluster, basis, coefficients);
     else
-      mesh.describe_operator<3>(symbols, cluster, basis, coefficients);
+      mesh.describe_operator<3>(symbols, coders.mesh_component, cluster, basis, coefficients);
     writer.unit(refinement_bytes(cluster, kind, kCpcaShiftBias, symbols));
   };
   for (uint32_t c = 0; c < clusters; ++c) {
     syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    syntax::CpcaCoders coders;
     std::vector<int32_t> translation(6);
-    syntax::describe_start(symbols, translation);
+    syntax::describe_start(symbols, coders.start, translation);
     writer.unit(refinement_bytes(c, kCpcaStart, kCpcaShiftBias, symbols));
   }
   std::vector<int32_t> quads(members[0].size(), 0);
@@ -237,7 +273,8 @@ std::vector<uint8_t> cpca_limits_stream() {
   const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, kCpcaMaxClusters);
   auto start = [&](uint32_t cluster, uint32_t shift, std::vector<int32_t> translation) {
     syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
-    syntax::describe_start(symbols, translation);
+    syntax::CpcaCoders coders;
+    syntax::describe_start(symbols, coders.start, translation);
     writer.unit(refinement_bytes(cluster, kCpcaStart, shift, symbols));
   };
   start(kCpcaMaxClusters - 1, 0, {kTranslation, kTranslation, kTranslation, -kTranslation, -kTranslation, -kTranslation});
@@ -245,21 +282,63 @@ std::vector<uint8_t> cpca_limits_stream() {
   {
     std::vector<int32_t> basis{kBasis, -kBasis, kBasis}, coefficients{kCoefficient, -kCoefficient};
     syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
-    syntax::describe_operator(symbols, basis, coefficients);
+    syntax::CpcaCoders coders;
+    syntax::describe_operator(symbols, coders.component, basis, coefficients);
     writer.unit(refinement_bytes(0, kCpcaComponent, kCpcaMaxShift, symbols));
   }
   {
     std::vector<int32_t> basis{-kBasis, kBasis, -kBasis}, coefficients{-kCoefficient, kCoefficient};
     syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
-    mesh.describe_operator<3>(symbols, 1, basis, coefficients);
+    syntax::CpcaCoders coders;
+    mesh.describe_operator<3>(symbols, coders.mesh_component, 1, basis, coefficients);
     writer.unit(refinement_bytes(1, kCpcaMeshComponent, kCpcaShiftBias + 24, symbols));
   }
   {
     std::vector<int32_t> basis{-kBasis}, coefficients{kCoefficient, -kCoefficient, kCoefficient, -kCoefficient, kCoefficient, -kCoefficient};
     syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
-    mesh.describe_operator<1>(symbols, 2, basis, coefficients);
+    syntax::CpcaCoders coders;
+    mesh.describe_operator<1>(symbols, coders.trajectory, 2, basis, coefficients);
     writer.unit(refinement_bytes(2, kCpcaTrajectory, kCpcaShiftBias + 24, symbols));
   }
+  return writer.finish();
+}
+
+// A clustered-PCA stream of 2 frames written symbol by symbol (no hash
+// units) of groups at their limits, over 255 vertices, one per cluster:
+// - a group of 255: every cluster's start in cluster order, cluster 0's at
+//   group_shift 0 and cluster 254's at 63, translations −2 … 2 (one start
+//   coder through all 255);
+// - a group of 1: cluster 0's component (unit_kind 1);
+// - a group of 3: cluster 1's components of unit_kind 1 and 2 (its limit,
+//   min(3M, N) = 2), then cluster 254's trajectory component (unit_kind 3)
+//   at group_shift 63: a coder of each kind in one unit.
+std::vector<uint8_t> cpca_group_limits_stream() {
+  const MeshSequence s = designed_loose(2, static_cast<int>(kCpcaMaxClusters) - 11, [](int, int) { return 0; });  // its sheet and box hold 11
+  std::vector<uint32_t> cluster_of(s.vertex_count);
+  for (uint32_t v = 0; v < s.vertex_count; ++v) cluster_of[v] = v;
+  ContainerWriter writer = cpca_written_start(s, cluster_of, kCpcaMaxClusters, std::nullopt);
+  const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false);
+  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, kCpcaMaxClusters);
+  // values(i): the i-th value of a refinement, −2 … 2.
+  auto group = [&](const std::vector<CpcaRefinementHeader>& refinements) {
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    syntax::CpcaCoders coders;
+    for (const CpcaRefinementHeader& h : refinements) {
+      const size_t per_member = h.kind == kCpcaTrajectory ? 1 : 3;
+      std::vector<int32_t> translation(h.kind == kCpcaStart ? 6 : 0), basis(h.kind == kCpcaStart ? 0 : per_member),
+          coefficients(h.kind == kCpcaStart ? 0 : 6 / per_member);
+      for (std::vector<int32_t>* values : {&translation, &basis, &coefficients})
+        for (size_t i = 0; i < values->size(); ++i) (*values)[i] = static_cast<int32_t>((h.cluster + 3 * i) % 5) - 2;
+      describe_refinement(symbols, coders, mesh, h, translation, basis, coefficients);
+    }
+    writer.unit(group_bytes(refinements, symbols));
+  };
+  std::vector<CpcaRefinementHeader> starts;
+  for (uint32_t c = 0; c < kCpcaMaxClusters; ++c)
+    starts.push_back({c, kCpcaStart, c == 0 ? 0 : c == kCpcaMaxClusters - 1 ? kCpcaMaxShift : kCpcaShiftBias});
+  group(starts);
+  group({{0, kCpcaComponent, kCpcaShiftBias}});
+  group({{1, kCpcaComponent, kCpcaShiftBias}, {1, kCpcaMeshComponent, kCpcaShiftBias}, {kCpcaMaxClusters - 1, kCpcaTrajectory, kCpcaMaxShift}});
   return writer.finish();
 }
 
@@ -275,9 +354,10 @@ std::vector<uint8_t> cpca_over_mesh_stream(const MeshSequence& s, uint32_t kind,
   const size_t per_member = kind == kCpcaTrajectory ? 1 : 3, frames = s.frames.size();
   for (uint32_t c = 0; c < 2; ++c) {
     syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    syntax::CpcaCoders coders;
     std::vector<int32_t> translation(3 * frames);
     for (size_t i = 0; i < translation.size(); ++i) translation[i] = static_cast<int32_t>(i % 5) - 2;
-    syntax::describe_start(symbols, translation);
+    syntax::describe_start(symbols, coders.start, translation);
     writer.unit(refinement_bytes(c, kCpcaStart, kCpcaShiftBias, symbols));
   }
   for (uint32_t c = 0; c < 2; ++c) {
@@ -285,10 +365,11 @@ std::vector<uint8_t> cpca_over_mesh_stream(const MeshSequence& s, uint32_t kind,
     for (size_t i = 0; i < basis.size(); ++i) basis[i] = static_cast<int32_t>((7 * i + c) % 23) - 11;
     for (size_t i = 0; i < coefficients.size(); ++i) coefficients[i] = static_cast<int32_t>((3 * i) % 7) - 3;
     syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    syntax::CpcaCoders coders;
     if (kind == kCpcaTrajectory)
-      mesh.describe_operator<1>(symbols, c, basis, coefficients);
+      mesh.describe_operator<1>(symbols, coders.trajectory, c, basis, coefficients);
     else
-      mesh.describe_operator<3>(symbols, c, basis, coefficients);
+      mesh.describe_operator<3>(symbols, coders.mesh_component, c, basis, coefficients);
     writer.unit(refinement_bytes(c, kind, kCpcaShiftBias, symbols));
   }
   return untraversed.empty() ? writer.finish() : with_untraversed_order(writer.finish(), untraversed);
@@ -340,6 +421,15 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
                         traced));
   suite.push_back(written_case("cpca-17-limits", "values at their limits, written symbol by symbol: translations ±2^29, basis values ±2^15 and "
                                "coefficients ±2^23 of all three component kinds, shifts 0 and 63, cluster 254 of 255", {"cpca"}, cpca_limits_stream()));
+  suite.push_back(valid("cpca-18-groups", "refinements in groups (unit_kind 4) of about 150 bytes: starts and components (unit_kind 1) "
+                        "together", {"cpca"}, flag, cpca({{"clusters", "4"}, {"group-bytes", "150"}}), traced));
+  suite.push_back(valid("cpca-19-groups-over-mesh", "groups of starts and components over the mesh (unit_kind 2)", {"cpca"}, flag,
+                        cpca({{"clusters", "4"}, {"basis", "mesh"}, {"group-bytes", "150"}}), traced));
+  suite.push_back(valid("cpca-20-groups-of-trajectories", "groups of starts and trajectory components (unit_kind 3)", {"cpca"}, flag,
+                        cpca({{"clusters", "4"}, {"model", "trajectory"}, {"group-bytes", "150"}}), traced));
+  suite.push_back(written_case("cpca-21-group-limits", "groups at their limits, written symbol by symbol: 255 starts in one group "
+                               "(group_cluster 0 … 254, group_shift 0 and 63), a group of 1, a group of all three component kinds",
+                               {"cpca"}, cpca_group_limits_stream()));
   return suite;
 }
 
@@ -412,8 +502,8 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                               edited(limits, [&](ContainerParts& p) { p.units[refinement_unit(p, c.unit)].payload.push_back(0x00); }),
                               ErrorKind::kStructure, c.element, kNoPlane));
   }
-  suite.push_back(invalid("x-32-cpca-unit-kind", "unit_kind 4", {"cpca"},
-                          edited(base, [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, refinement_field("unit_kind"), 4); }),
+  suite.push_back(invalid("x-32-cpca-unit-kind", "unit_kind 5", {"cpca"},
+                          edited(base, [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, refinement_field("unit_kind"), 5); }),
                           ErrorKind::kOutOfRange, "unit_kind", kNoPlane));
   // The first component unit of a kind moves before every refinement unit (they follow the base mesh).
   auto component_first = [](uint32_t kind) {
@@ -523,6 +613,84 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                                        p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(last) + 1, copy);
                                    }),
                             ErrorKind::kStructure, "cluster", kNoPlane));
+  }
+  {
+    // cpca-18's first refinement unit is a group: its fields and its list.
+    const std::vector<uint8_t> groups = stream_of(valid, "cpca-18-groups");
+    auto first_group = [](ContainerParts& p) -> ContainerUnit& {
+      ContainerUnit& unit = p.units[refinement_unit(p, 0)];
+      if (unit_kind(unit) != kCpcaGroup) throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: cpca-18 starts without a group");
+      return unit;
+    };
+    auto put = [&](FieldBytes at, uint64_t value) {
+      return edited(groups, [&, at, value](ContainerParts& p) { put_field(first_group(p).payload, at, value); });
+    };
+    suite.push_back(invalid("x-134-cpca-group-cluster", "a group whose cluster field is 1", {"cpca"}, put(refinement_field("cluster"), 1),
+                            ErrorKind::kStructure, "cluster", kNoPlane));
+    suite.push_back(invalid("x-135-cpca-group-shift", "a group whose shift field is 16", {"cpca"}, put(refinement_field("shift"), 16),
+                            ErrorKind::kStructure, "shift", kNoPlane));
+    suite.push_back(invalid("x-136-cpca-group-empty", "group_size 0", {"cpca"}, put(group_field("group_size"), 0), ErrorKind::kOutOfRange,
+                            "group_size", kNoPlane));
+    suite.push_back(invalid("x-137-cpca-group-cluster-beyond", "a group's first refinement for cluster 4 of 4", {"cpca"},
+                            put(group_field("group_cluster"), 4), ErrorKind::kOutOfRange, "group_cluster", kNoPlane));
+    suite.push_back(invalid("x-138-cpca-group-kind", "a group's first refinement of group_kind 4 (a group in a group)", {"cpca"},
+                            put(group_field("group_kind"), kCpcaGroup), ErrorKind::kOutOfRange, "group_kind", kNoPlane));
+    suite.push_back(invalid("x-139-cpca-group-shift-range", "a group's first refinement at group_shift 64", {"cpca"},
+                            put(group_field("group_shift"), kCpcaMaxShift + 1), ErrorKind::kOutOfRange, "group_shift", kNoPlane));
+    // A start of the group made a component: its cluster has not started.
+    suite.push_back(invalid("x-140-cpca-group-not-started", "a group's first start made a component (unit_kind 1) of a cluster not started",
+                            {"cpca"}, edited(groups,
+                                             [&](ContainerParts& p) {
+                                               ContainerUnit& unit = first_group(p);
+                                               const std::vector<CpcaRefinementHeader> entries = group_entries(unit);
+                                               size_t j = 0;
+                                               while (entries.at(j).kind != kCpcaStart) ++j;
+                                               put_field(unit.payload, group_field("group_kind", j), kCpcaComponent);
+                                             }),
+                            ErrorKind::kStructure, "group_kind", kNoPlane));
+    // A component of the group made a start: its cluster started earlier in the group.
+    suite.push_back(invalid("x-141-cpca-group-second-start", "a group's component made a second start of a cluster the group started",
+                            {"cpca"}, edited(groups,
+                                             [&](ContainerParts& p) {
+                                               ContainerUnit& unit = first_group(p);
+                                               const std::vector<CpcaRefinementHeader> entries = group_entries(unit);
+                                               for (size_t j = 0; j < entries.size(); ++j)
+                                                 for (size_t i = 0; i < j; ++i)
+                                                   if (entries[j].kind != kCpcaStart && entries[i].kind == kCpcaStart &&
+                                                       entries[i].cluster == entries[j].cluster) {
+                                                     put_field(unit.payload, group_field("group_kind", j), kCpcaStart);
+                                                     return;
+                                                   }
+                                               throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no start and component in one group");
+                                             }),
+                            ErrorKind::kStructure, "group_kind", kNoPlane));
+  }
+  {
+    // cpca-21: one vertex per cluster over 2 frames (at most 2 components of
+    // kinds 1 and 2); cluster 0 has one after its second group.
+    const std::vector<uint8_t> limits = stream_of(valid, "cpca-21-group-limits");
+    suite.push_back(invalid("x-142-cpca-group-beyond-components", "a group of two more components of cluster 0, which has room for one",
+                            {"cpca"}, edited(limits,
+                                             [](ContainerParts& p) {
+                                               syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+                                               syntax::CpcaCoders coders;
+                                               for (int k = 0; k < 2; ++k) {
+                                                 std::vector<int32_t> basis{1, 1, 1}, coefficients{1, 1};
+                                                 syntax::describe_operator(symbols, coders.component, basis, coefficients);
+                                               }
+                                               const std::vector<uint8_t> unit = group_bytes(
+                                                   {{0, kCpcaComponent, kCpcaShiftBias}, {0, kCpcaComponent, kCpcaShiftBias}}, symbols);
+                                               p.units.push_back(ContainerUnit{0, 0, unit});
+                                             }),
+                            ErrorKind::kStructure, "group_cluster", kNoPlane));
+    suite.push_back(invalid("x-143-cpca-group-left-over", "a byte after the raw bits of a group whose last refinement is a trajectory component",
+                            {"cpca"},
+                            edited(limits, [](ContainerParts& p) { p.units[refinement_unit(p, 2)].payload.push_back(0x00); }),
+                            ErrorKind::kStructure, "trajectory_coefficient", kNoPlane));
+    suite.push_back(invalid("x-144-cpca-group-cluster-255", "a group's first refinement for cluster 255, one past the most clusters",
+                            {"cpca"},
+                            edited(limits, [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, group_field("group_cluster"), 255); }),
+                            ErrorKind::kOutOfRange, "group_cluster", kNoPlane));
   }
   return suite;
 }

@@ -37,37 +37,16 @@ class CpcaDecoder final : public CodecDecoder3d {
     if (!animation_) io.fail(ErrorKind::kStructure, "unit_type", "a refinement unit before the base mesh");
     if (unit.frame_index != 0) io.fail(ErrorKind::kStructure, "frame_index", "a refinement unit refines every frame and names frame 0");
     CpcaRefinement r;
-    syntax::describe(io, r);
-    if (r.cluster >= header_.cluster_count)
-      io.fail(ErrorKind::kOutOfRange, "cluster", "cluster " + std::to_string(r.cluster) + " of " + std::to_string(header_.cluster_count));
-    const std::vector<NodeIndex>& members = members_[r.cluster];
-    if (r.kind == kCpcaStart && started_[r.cluster])
-      io.fail(ErrorKind::kStructure, "unit_kind", "a second start of cluster " + std::to_string(r.cluster));
-    if (r.kind != kCpcaStart && !started_[r.cluster])
-      io.fail(ErrorKind::kStructure, "unit_kind", "a component of cluster " + std::to_string(r.cluster) + ", whose basis has not started");
-    const bool trajectory = r.kind == kCpcaTrajectory;
-    uint64_t& count = trajectory ? trajectories_[r.cluster] : components_[r.cluster];
-    if (r.kind != kCpcaStart && count >= cpca_component_limit(r.kind, members.size(), object_.frame_count))
-      io.fail(ErrorKind::kStructure, "cluster",
-              "a refinement beyond cluster " + std::to_string(r.cluster) + "'s " +
-                  std::to_string(cpca_component_limit(r.kind, members.size(), object_.frame_count)) +
-                  (trajectory ? " trajectory components" : " components"));
+    syntax::describe(io, r, [&](const CpcaRefinementHeader& h, bool grouped) { admit(io, h, grouped); });
     const uint8_t* payload = io.reader().data();
     const syntax::SectionPlace place{"bins", "raw", 8 * static_cast<uint64_t>(r.bins.data() - payload),
                                      8 * static_cast<uint64_t>(r.raw.data() - payload), io.plane()};
     if (trace_) {
       syntax::EntropyReadIO<true> symbols(r.bins, r.raw, place, trace_);
-      read_symbols(symbols, r.kind, r.cluster);
+      read_refinements(symbols, r.refinements());
     } else {
       syntax::EntropyReadIO<false> symbols(r.bins, r.raw, place);
-      read_symbols(symbols, r.kind, r.cluster);
-    }
-    if (r.kind == kCpcaStart) {
-      animation_->translate(members, translation_, r.shift);
-      started_[r.cluster] = 1;
-    } else {
-      animation_->refine(members, basis_, coefficients_, r.shift, trajectory);
-      ++count;
+      read_refinements(symbols, r.refinements());
     }
     for (uint32_t f = 0; f < object_.frame_count; ++f) decoded.push_back(f);
   }
@@ -80,24 +59,48 @@ class CpcaDecoder final : public CodecDecoder3d {
   bool holds_all_frames() const override { return true; }
 
  private:
-  template <class IO>
-  void read_symbols(IO& io, uint32_t kind, uint32_t cluster) {
-    if (kind == kCpcaStart) {
-      translation_.resize(3 * size_t{object_.frame_count});
-      syntax::describe_start(io, translation_);
-      io.finish("translation");
+  // A refinement's rules, checked as soon as its fields are read (the
+  // unit's own, or a group's `group_*`), and counted: the later ones of a
+  // group see the earlier ones as decoded.
+  void admit(syntax::ReadIO& io, const CpcaRefinementHeader& h, bool grouped) {
+    const char* cluster_field = grouped ? "group_cluster" : "cluster";
+    const char* kind_field = grouped ? "group_kind" : "unit_kind";
+    if (h.cluster >= header_.cluster_count)
+      io.fail(ErrorKind::kOutOfRange, cluster_field, "cluster " + std::to_string(h.cluster) + " of " + std::to_string(header_.cluster_count));
+    const std::string cluster = std::to_string(h.cluster);
+    if (h.kind == kCpcaStart) {
+      if (started_[h.cluster]) io.fail(ErrorKind::kStructure, kind_field, "a second start of cluster " + cluster);
+      started_[h.cluster] = 1;
       return;
     }
-    const size_t per_member = kind == kCpcaTrajectory ? 1 : 3;
-    basis_.resize(per_member * members_[cluster].size());
-    coefficients_.resize(3 / per_member * object_.frame_count);
-    if (kind == kCpcaMeshComponent)
-      mesh_->describe_operator<3>(io, cluster, basis_, coefficients_);
-    else if (kind == kCpcaTrajectory)
-      mesh_->describe_operator<1>(io, cluster, basis_, coefficients_);
-    else
-      syntax::describe_operator(io, basis_, coefficients_);
-    io.finish(kind == kCpcaTrajectory ? "trajectory_coefficient" : "coefficient");
+    if (!started_[h.cluster]) io.fail(ErrorKind::kStructure, kind_field, "a component of cluster " + cluster + ", whose basis has not started");
+    const bool trajectory = h.kind == kCpcaTrajectory;
+    uint64_t& count = trajectory ? trajectories_[h.cluster] : components_[h.cluster];
+    const uint64_t limit = cpca_component_limit(h.kind, members_[h.cluster].size(), object_.frame_count);
+    if (count >= limit)
+      io.fail(ErrorKind::kStructure, cluster_field,
+              "a refinement beyond cluster " + cluster + "'s " + std::to_string(limit) + (trajectory ? " trajectory components" : " components"));
+    ++count;
+  }
+
+  // The unit's refinements in order, each applied once its symbols are
+  // read, with one set of coders; then the end of the sections.
+  template <class IO>
+  void read_refinements(IO& io, const std::vector<CpcaRefinementHeader>& refinements) {
+    syntax::CpcaCoders coders;
+    for (const CpcaRefinementHeader& h : refinements) {
+      const size_t members = members_[h.cluster].size(), frames = object_.frame_count;
+      const size_t per_member = h.kind == kCpcaTrajectory ? 1 : 3;
+      translation_.resize(h.kind == kCpcaStart ? 3 * frames : 0);
+      basis_.resize(h.kind == kCpcaStart ? 0 : per_member * members);
+      coefficients_.resize(h.kind == kCpcaStart ? 0 : 3 / per_member * frames);
+      describe_refinement(io, coders, *mesh_, h, translation_, basis_, coefficients_);
+      if (h.kind == kCpcaStart)
+        animation_->translate(members_[h.cluster], translation_, h.shift);
+      else
+        animation_->refine(members_[h.cluster], basis_, coefficients_, h.shift, h.kind == kCpcaTrajectory);
+    }
+    io.finish(syntax::cpca_last_element(refinements.back().kind));
   }
 
   ObjectHeader object_;

@@ -37,6 +37,11 @@ using namespace cpca_wpt;
 // the coefficients are not).
 constexpr int kTrajectoryBasisFiner = 1;
 
+// The bytes of a refinement unit an operator in a group does not pay: the
+// start code, the unit header, the refinement fields less its three in the
+// group's list, and the arithmetic coder's flush (about 4 bytes).
+constexpr uint64_t kSharedInGroup = 4 + 5 + 7 - 3 + 4;
+
 constexpr syntax::SectionPlace kMapPlace{"cluster_map_bins", "cluster_map_raw", 0, 0, kNoPlane};
 
 class CpcaEncoder final : public CodecEncoder3d {
@@ -46,6 +51,7 @@ class CpcaEncoder final : public CodecEncoder3d {
               std::span<const uint32_t> coding_order)
       : components_(options.components),
         max_bytes_(options.max_bytes),
+        group_bytes_(options.group_bytes),
         target_kg_(options.target_kg),
         round_robin_(options.round_robin),
         basis_prediction_(options.basis),
@@ -90,12 +96,17 @@ class CpcaEncoder final : public CodecEncoder3d {
                         " bytes of the header and the base mesh (cpca-wpt)");
     CpcaAnimation animation(header_, mean_, static_cast<uint32_t>(s.frames.size()));
     size_t sent = 0;
-    for (; sent < plan_.sent; ++sent) {
-      Operator& op = plan_.operators[plan_.order[sent]];
-      if (max_bytes_ > 0 && sink.stream_bytes() + op.bytes > max_bytes_) break;
-      sink.unit(UnitType::kRefinement, 0, [&](syntax::WriteIO& io) { write_refinement(io, op, *mesh_); });
-      apply(animation, members_[op.cluster], op);
-      sink.progress(sent + 1, plan_.sent);
+    while (sent < plan_.sent) {
+      std::vector<Operator*> unit = next_unit(sent);
+      const size_t planned = unit.size();
+      if (max_bytes_ > 0)
+        while (!unit.empty() && sink.stream_bytes() + unit_bytes(unit) > max_bytes_) unit.pop_back();
+      if (unit.empty()) break;
+      sink.unit(UnitType::kRefinement, 0, [&](syntax::WriteIO& io) { write_refinements(io, unit, *mesh_); });
+      for (const Operator* op : unit) apply(animation, members_[op->cluster], *op);
+      sent += unit.size();
+      sink.progress(sent, plan_.sent);
+      if (unit.size() < planned) break;  // --max-bytes reached
     }
     plan_.sent = sent;
     kg_ = kg_of_prefix(s, sent);
@@ -222,7 +233,7 @@ class CpcaEncoder final : public CodecEncoder3d {
       if (sequence.size() == 1 && !(sequence[0].gain > 0)) continue;
       for (Operator& op : sequence) {
         if (op.kind != kCpcaComponent)
-          op.bytes = unit_bytes(op);
+          op.bytes = operator_bytes(op);
         else
           choose_kind(op);
         per_cluster[c].push_back(plan.operators.size());
@@ -325,24 +336,45 @@ class CpcaEncoder final : public CodecEncoder3d {
     return sum;
   }
 
-  // The bytes of an operator's unit in the stream.
-  uint64_t unit_bytes(Operator& op) const {
+  // The plan's operators from its `first` that the next unit carries: one,
+  // then more while their bytes stay below --group-bytes (at most 255).
+  std::vector<Operator*> next_unit(size_t first) {
+    std::vector<Operator*> unit;
+    uint64_t bytes = 0;
+    for (size_t i = first; i < plan_.sent && unit.size() < kCpcaMaxGroupSize && (unit.empty() || bytes < group_bytes_); ++i) {
+      unit.push_back(&plan_.operators[plan_.order[i]]);
+      bytes += unit.back()->bytes;
+    }
+    return unit;
+  }
+
+  // The bytes of the unit of these operators in the stream.
+  uint64_t unit_bytes(std::span<Operator* const> operators) const {
     BitWriter writer;
     syntax::WriteIO io(writer);
     UnitHeader header{static_cast<uint32_t>(UnitType::kRefinement), 0};
     syntax::describe(io, header);
-    write_refinement(io, op, *mesh_);
+    write_refinements(io, operators, *mesh_);
     return ContainerWriter::unit_size(writer.bytes());
+  }
+
+  // An operator's bytes in the stream: its own unit's, or with groups
+  // (estimated) those less the unit's framing and fields, which a group
+  // shares, plus its three bytes in the group's list.
+  uint64_t operator_bytes(Operator& op) const {
+    Operator* const alone[] = {&op};
+    const uint64_t bytes = unit_bytes(alone);
+    return group_bytes_ > 0 ? std::max<uint64_t>(bytes, kSharedInGroup + 1) - kSharedInGroup : bytes;
   }
 
   // A component's unit in the kind --basis asks for, or the smaller.
   void choose_kind(Operator& op) const {
     op.kind = basis_prediction_ == "index" ? kCpcaComponent : kCpcaMeshComponent;
-    op.bytes = unit_bytes(op);
+    op.bytes = operator_bytes(op);
     if (basis_prediction_ != "auto") return;
     Operator by_index = op;
     by_index.kind = kCpcaComponent;
-    by_index.bytes = unit_bytes(by_index);
+    by_index.bytes = operator_bytes(by_index);
     if (by_index.bytes < op.bytes) op = std::move(by_index);
   }
 
@@ -382,6 +414,7 @@ class CpcaEncoder final : public CodecEncoder3d {
   size_t components_ = 0;
   int requested_clusters_ = 0;
   uint64_t max_bytes_;
+  uint64_t group_bytes_;  // 0: a unit per operator
   double target_kg_;
   bool round_robin_;
   std::string basis_prediction_;  // --basis: index, mesh or auto

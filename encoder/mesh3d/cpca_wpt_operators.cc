@@ -29,19 +29,24 @@ std::vector<int32_t> scaled(const Eigen::VectorXd& values, int half_exponent) {
 }
 
 template <class SymbolIO>
-void write_refinement(syntax::WriteIO& io, SymbolIO& symbols, Operator& op, const CpcaMeshPrediction& mesh) {
-  if (op.kind == kCpcaStart)
-    syntax::describe_start(symbols, op.translation);
-  else if (op.kind == kCpcaMeshComponent)
-    mesh.describe_operator<3>(symbols, op.cluster, op.basis, op.coefficients);
-  else if (op.kind == kCpcaTrajectory)
-    mesh.describe_operator<1>(symbols, op.cluster, op.basis, op.coefficients);
-  else
-    syntax::describe_operator(symbols, op.basis, op.coefficients);
+void write_refinements(syntax::WriteIO& io, SymbolIO& symbols, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh) {
+  syntax::CpcaCoders coders;
   CpcaRefinement r;
-  r.cluster = op.cluster;
-  r.kind = op.kind;
-  r.shift = op.shift;
+  for (Operator* op : operators) {
+    const CpcaRefinementHeader h{op->cluster, op->kind, op->shift};
+    describe_refinement(symbols, coders, mesh, h, op->translation, op->basis, op->coefficients);
+    r.group.push_back(h);
+  }
+  if (r.group.size() == 1) {
+    r.cluster = r.group[0].cluster;
+    r.kind = r.group[0].kind;
+    r.shift = r.group[0].shift;
+    r.group.clear();
+  } else {
+    r.cluster = 0;
+    r.kind = kCpcaGroup;
+    r.shift = 0;
+  }
   symbols.finish(io, r);
 }
 
@@ -114,14 +119,14 @@ double estimated_gain(const Component& c, const Operator& op) {
   return c.sigma * c.sigma - noise;
 }
 
-void write_refinement(syntax::WriteIO& io, Operator& op, const CpcaMeshPrediction& mesh) {
+void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh) {
   const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane()};
   if (io.trace()) {
     syntax::EntropyWriteIO<true> symbols(place, io.trace());
-    write_refinement(io, symbols, op, mesh);
+    write_refinements(io, symbols, operators, mesh);
   } else {
     syntax::EntropyWriteIO<false> symbols(place);
-    write_refinement(io, symbols, op, mesh);
+    write_refinements(io, symbols, operators, mesh);
   }
 }
 

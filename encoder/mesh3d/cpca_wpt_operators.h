@@ -27,7 +27,7 @@ struct Operator {
   int basis_exponent = 0, coefficient_exponent = 0;  // the values are the real ones × 2^(exponent / 2)
   std::vector<int32_t> basis, coefficients, translation;
   double gain = 0;    // the squared error it removes (grid units², the decoder's reconstruction)
-  uint64_t bytes = 0;  // its unit, start code and header included
+  uint64_t bytes = 0;  // its unit, start code and header included, or its share of a group's
 };
 
 void apply(CpcaAnimation& animation, std::span<const NodeIndex> members, const Operator& op);
@@ -55,7 +55,8 @@ double estimated_gain(const Translation& t, size_t members, const Operator& op);
 // products, b unit).
 double estimated_gain(const Component& c, const Operator& op);
 
-// A refinement unit's data.
-void write_refinement(syntax::WriteIO& io, Operator& op, const CpcaMeshPrediction& mesh);
+// A refinement unit's data: one operator's (unit_kind 0 … 3), or a group
+// of several (unit_kind 4).
+void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh);
 
 }  // namespace m4mesh::cpca_wpt

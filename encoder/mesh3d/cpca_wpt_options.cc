@@ -57,6 +57,7 @@ Options parse_options(const CodecSettings& settings) {
   o.components = settings.text("components") == "auto" ? (o.max_bytes > 0 || o.target_kg > 0 ? kMaxComponents : kPaperComponents)
                                                        : parse_count(settings.text("components"), "--components", kMaxComponents);
   o.noise = parse_noise(settings.text("noise"));
+  o.group_bytes = static_cast<uint64_t>(settings.number("group-bytes"));
   return o;
 }
 
@@ -84,6 +85,9 @@ std::vector<CodecOption> cpca_wpt_options() {
            OptionKind::kText, "auto", 0, 0},
           {"order", "cpca-wpt: wpt (by squared error removed per bit) or rpt (round robin over the clusters)", OptionKind::kText, "wpt", 0, 0},
           {"max-bytes", "cpca-wpt: the stream's size at most (0: every operator)", OptionKind::kNumber, "0", 0, 1e15},
+          {"group-bytes", "cpca-wpt: refinements are sent in groups (unit_kind 4) of about this many bytes each, the granularity of "
+                          "progressive decoding (0: each refinement in a unit of its own)",
+           OptionKind::kNumber, "1024", 0, 1e9},
           {"target-kg", "cpca-wpt: stop at the first operator whose decoded KG error is at most this (0: off)", OptionKind::kNumber, "0", 0,
            100}};
 }

@@ -32,6 +32,7 @@ struct Options {
   size_t components = 0;       // at most this many per cluster
   std::optional<int> noise;    // log2 of the noise step in half steps
   uint64_t max_bytes = 0;      // 0: every operator
+  uint64_t group_bytes = 0;    // a group's unit closes at about this many bytes; 0: a unit per refinement
   double target_kg = 0;        // 0: none
 };
 

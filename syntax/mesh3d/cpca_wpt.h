@@ -31,10 +31,12 @@ inline constexpr uint32_t kCpcaStart = 0;      // unit_kind: the cluster's mean 
 inline constexpr uint32_t kCpcaComponent = 1;  // unit_kind: one principal component
 inline constexpr uint32_t kCpcaMeshComponent = 2;  // unit_kind: one, its basis predicted over the base mesh
 inline constexpr uint32_t kCpcaTrajectory = 3;     // unit_kind: one of the members' trajectories, predicted over the base mesh
+inline constexpr uint32_t kCpcaGroup = 4;          // unit_kind: several refinements of kinds 0 … 3 in one unit
+inline constexpr uint32_t kCpcaMaxGroupSize = 255;
 // A unit_kind as tools name it.
 inline const char* cpca_unit_kind_name(uint32_t kind) {
-  static constexpr const char* kNames[] = {"start", "component", "mesh component", "trajectory component"};
-  return kind <= kCpcaTrajectory ? kNames[kind] : "unknown";
+  static constexpr const char* kNames[] = {"start", "component", "mesh component", "trajectory component", "group"};
+  return kind <= kCpcaGroup ? kNames[kind] : "unknown";
 }
 // The decoder holds 36 bytes per vertex and frame: at most 2^22 of them.
 inline constexpr uint64_t kCpcaMaxVertexFrames = uint64_t{1} << 22;
@@ -54,15 +56,30 @@ struct CpcaHeader {
   float step_value(int axis) const { return bit_cast<float>(step[axis]); }
 };
 
-// A refinement unit's data: the cluster it refines, what it carries, the
-// shift, the bin section's length, the bins and the raw bits.
+// One refinement: the cluster it refines, what it carries (unit_kind 0 … 3)
+// and the shift.
+struct CpcaRefinementHeader {
+  uint32_t cluster = 0;
+  uint32_t kind = kCpcaComponent;
+  uint32_t shift = kCpcaShiftBias;
+};
+
+// A refinement unit's data: one refinement, or a group of them (unit_kind
+// 4, its own cluster and shift 0), the bin section's length, the bins and
+// the raw bits.
 struct CpcaRefinement {
   uint32_t cluster = 0;
   uint32_t kind = kCpcaComponent;
   uint32_t shift = kCpcaShiftBias;
+  std::vector<CpcaRefinementHeader> group;
   uint32_t arithmetic_bytes = 0;
   std::span<const uint8_t> bins;
   std::span<const uint8_t> raw;
+
+  // The refinements the unit carries, in order.
+  std::vector<CpcaRefinementHeader> refinements() const {
+    return kind == kCpcaGroup ? group : std::vector<CpcaRefinementHeader>{{cluster, kind, shift}};
+  }
 };
 
 namespace syntax {
@@ -92,15 +109,46 @@ void describe(IO& io, CpcaHeader& h) {
   io.section("cluster_map_raw", h.map_raw_bytes, h.map_raw);
 }
 
-template <class IO>
-void describe(IO& io, CpcaRefinement& r) {
+// `check` sees each refinement as soon as its fields are read: the unit's
+// own (unit_kind 0 … 3) or each of its group's.
+template <class IO, class Check>
+void describe(IO& io, CpcaRefinement& r, Check&& check) {
   io.field_in("cluster", 8, r.cluster, 0, kCpcaMaxClusters - 1);
-  io.field_in("unit_kind", 8, r.kind, kCpcaStart, kCpcaTrajectory);
+  io.field_in("unit_kind", 8, r.kind, kCpcaStart, kCpcaGroup);
   io.field_in("shift", 8, r.shift, 0, kCpcaMaxShift);
+  if (r.kind == kCpcaGroup || kTableOf<IO>) {
+    if constexpr (kTableOf<IO>) io.open("if (unit_kind == 4)");
+    io.require(r.cluster == 0, ErrorKind::kStructure, "cluster", "a group's cluster field is not 0");
+    io.require(r.shift == 0, ErrorKind::kStructure, "shift", "a group's shift field is not 0");
+    uint32_t size = static_cast<uint32_t>(r.group.size());
+    io.field_in("group_size", 8, size, 1, kCpcaMaxGroupSize);
+    io.resize(r.group, size, "group_size", 24);
+    if constexpr (kTableOf<IO>) {
+      io.open("for (each refinement of the group)");
+      r.group.resize(1);
+    }
+    for (CpcaRefinementHeader& h : r.group) {
+      io.field_in("group_cluster", 8, h.cluster, 0, kCpcaMaxClusters - 1);
+      io.field_in("group_kind", 8, h.kind, kCpcaStart, kCpcaTrajectory);
+      io.field_in("group_shift", 8, h.shift, 0, kCpcaMaxShift);
+      check(h, true);
+    }
+    if constexpr (kTableOf<IO>) {
+      io.close();
+      io.close();
+    }
+  } else {
+    check(CpcaRefinementHeader{r.cluster, r.kind, r.shift}, false);
+  }
   io.field("arithmetic_bytes", 32, r.arithmetic_bytes);
   io.require_length("arithmetic_bytes", r.arithmetic_bytes);
   io.section("bins", r.arithmetic_bytes, r.bins);
   io.tail_section("raw", r.raw);
+}
+
+template <class IO>
+void describe(IO& io, CpcaRefinement& r) {
+  describe(io, r, [](const CpcaRefinementHeader&, bool) {});
 }
 
 // values[j] as the difference to values[j − stride] (0 for the first
@@ -161,15 +209,28 @@ std::string write_cluster_map(CpcaHeader& h, std::vector<uint32_t> cluster_of, s
   return symbols.trace_text();
 }
 
+// The residual coders of a refinement unit, one per refinement kind: they
+// start afresh in every unit, and a group's refinements of one kind
+// continue the same coder.
+struct CpcaCoders {
+  ResidualCoder<3> start;
+  ResidualCoder<4> component;
+  ResidualCoder<7> mesh_component;  // 2D + 3/D channels, D = 3
+  ResidualCoder<5> trajectory;      // D = 1
+};
+
+// The element a refinement's end-of-section errors name.
+inline const char* cpca_last_element(uint32_t kind) {
+  return kind == kCpcaStart ? "translation" : kind == kCpcaTrajectory ? "trajectory_coefficient" : "coefficient";
+}
+
 // An operator's symbols: the basis value of each member vertex and axis
 // (members in index order, x, y, z), each as the difference to the same
 // axis of the member before (the first to 0), then the coefficient of
 // every frame as the difference to the frame before's (the first to 0);
-// |basis| ≤ 2^15, |coefficient| ≤ 2^23. The contexts start afresh in
-// every refinement unit.
+// |basis| ≤ 2^15, |coefficient| ≤ 2^23.
 template <class IO>
-void describe_operator(IO& io, std::span<int32_t> basis, std::span<int32_t> coefficients) {
-  ResidualCoder<4> coder;
+void describe_operator(IO& io, ResidualCoder<4>& coder, std::span<int32_t> basis, std::span<int32_t> coefficients) {
   describe_differences(io, coder, basis, 0, 3, -kCpcaMaxBasis, kCpcaMaxBasis, kCpcaBasis, "a basis value beyond ±2^15");
   describe_differences(io, coder, coefficients, kCpcaCoefficientChannel, 1, -kCpcaMaxCoefficient, kCpcaMaxCoefficient, kCpcaCoefficient,
                        "a coefficient beyond ±2^23");
@@ -178,10 +239,8 @@ void describe_operator(IO& io, std::span<int32_t> basis, std::span<int32_t> coef
 // A start's symbols: the cluster's translation of every frame and axis
 // (frame 0's x, y, z, then frame 1's, …), each as the difference to the
 // same axis of the frame before (the first to 0); |translation| ≤ 2^29.
-// The contexts start afresh in every refinement unit.
 template <class IO>
-void describe_start(IO& io, std::span<int32_t> translation) {
-  ResidualCoder<3> coder;
+void describe_start(IO& io, ResidualCoder<3>& coder, std::span<int32_t> translation) {
   describe_differences(io, coder, translation, 0, 3, -kCpcaMaxTranslation, kCpcaMaxTranslation, kCpcaTranslation,
                        "a translation beyond ±2^29");
 }
