@@ -23,10 +23,10 @@ const char* const kSequences[] = {"pcow", "horse-gallop", "openfamc_testdata/dan
                                   "openfamc_testdata/handstand_mesh"};
 
 
-// The report's tools (shape components, basis in index order) unless `values` name others.
+// The report's tools (shape components, basis in index order, a unit per refinement) unless `values` name others.
 Encode3dOptions options(const std::string& codec, CodecOptionValues values) {
   if (codec == "cpca-wpt")
-    for (const auto& [option, value] : CodecOptionValues{{"model", "shape"}, {"basis", "index"}})
+    for (const auto& [option, value] : CodecOptionValues{{"model", "shape"}, {"basis", "index"}, {"group-bytes", "0"}})
       if (!values.contains(option)) values[option] = value;
   Encode3dOptions o;
   o.codec = codec;
