@@ -71,8 +71,9 @@ Canvas texture_box(const Canvas& plane, const Image& texture) {
 }
 
 // Each I-plane's texture: a texture made for several (its kIntraPlanesText
-// `list`) cut into theirs, else the one texture for every I-plane.
-std::map<uint32_t, Image> textures_by_plane(const std::string& path, const std::string& list, Image texture) {
+// `list`, its kIntraColumnsText `columns`) cut into theirs, else the one
+// texture for every I-plane.
+std::map<uint32_t, Image> textures_by_plane(const std::string& path, const std::string& list, const std::string& columns, Image texture) {
   if (list.empty()) return {{0, std::move(texture)}};
   std::vector<uint32_t> planes;
   std::istringstream in(list);
@@ -81,16 +82,16 @@ std::map<uint32_t, Image> textures_by_plane(const std::string& path, const std::
     increasing = increasing && (planes.empty() || plane > planes.back());
     planes.push_back(plane);
   }
-  if (!in.eof() || !increasing || planes.empty() || planes.front() != 0 || texture.height % planes.size() != 0)
-    throw input_error(path, 0, "its '" + std::string(kIntraPlanesText) + "' text \"" + list + "\" does not list increasing planes from 0, one per equal part of its height");
-  const uint32_t height = texture.height / static_cast<uint32_t>(planes.size());
+  const unsigned long grid_columns = columns.empty() ? 1 : std::strtoul(columns.c_str(), nullptr, 10);
+  const size_t grid_rows = grid_columns == 0 ? 0 : (planes.size() + grid_columns - 1) / grid_columns;
+  if (grid_columns == 0 || grid_columns > texture.width || texture.width % grid_columns != 0 || std::to_string(grid_columns) != (columns.empty() ? "1" : columns))
+    throw input_error(path, 0, "its '" + std::string(kIntraColumnsText) + "' text \"" + columns + "\" is not a number of equal columns of its width");
+  if (!in.eof() || !increasing || planes.empty() || planes.front() != 0 || texture.height % grid_rows != 0)
+    throw input_error(path, 0, "its '" + std::string(kIntraPlanesText) + "' text \"" + list + "\" does not list increasing planes from 0, one per equal part of its " +
+                                   (grid_columns == 1 ? "height" : std::to_string(grid_columns) + " columns"));
+  std::vector<Image> tiles = untiled(texture, TileGrid{static_cast<uint32_t>(grid_columns), static_cast<uint32_t>(grid_rows)}, planes.size());
   std::map<uint32_t, Image> out;
-  for (size_t k = 0; k < planes.size(); ++k) {
-    Image tile(texture.width, height);
-    const auto from = texture.pixels.begin() + static_cast<std::ptrdiff_t>(k * tile.pixels.size());
-    std::copy(from, from + static_cast<std::ptrdiff_t>(tile.pixels.size()), tile.pixels.begin());
-    out.emplace(planes[k], std::move(tile));
-  }
+  for (size_t k = 0; k < planes.size(); ++k) out.emplace(planes[k], std::move(tiles[k]));
   return out;
 }
 
@@ -104,7 +105,7 @@ int run_render(const RenderArgs& args) {
   double fps = args.fps.value_or(25);
   if (!args.texture.empty()) {
     intra_planes = png_text(args.texture, kIntraPlanesText);
-    textures = textures_by_plane(args.texture, intra_planes, read_png(args.texture));
+    textures = textures_by_plane(args.texture, intra_planes, png_text(args.texture, kIntraColumnsText), read_png(args.texture));
     texture = textures.at(0);
     if (const std::string rate = png_text(args.texture, kFrameRateText); !args.fps && !rate.empty()) fps = std::strtod(rate.c_str(), nullptr);
   }

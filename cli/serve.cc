@@ -55,8 +55,11 @@ fs::path file_for(const fs::path& root, const std::string& request_path) {
   return file;
 }
 
-// What `serve` lists beside the site: streams, and glTF animations the player shows beside them.
-bool servable(const fs::path& file) { return file.extension() == ".m4m" || file.extension() == ".glb" || file.extension() == ".gltf"; }
+// What `serve` lists beside the site: streams, glTF animations the player
+// shows beside them, and textures (PNG) of 2D streams.
+bool servable(const fs::path& file) {
+  return file.extension() == ".m4m" || file.extension() == ".glb" || file.extension() == ".gltf" || file.extension() == ".png";
+}
 
 // The streams and glTF files named (files, and those of folders), by the
 // name they are served under (streams/NAME).
@@ -71,13 +74,13 @@ std::map<std::string, fs::path> streams_of(const std::vector<std::string>& paths
       std::vector<fs::path> found;
       for (const fs::directory_entry& entry : fs::directory_iterator(path))
         if (entry.is_regular_file() && servable(entry.path())) found.push_back(entry.path());
-      if (found.empty()) throw usage_error(path + ": neither a site (no index.html) nor a folder of streams (no .m4m, .glb or .gltf file)");
+      if (found.empty()) throw usage_error(path + ": neither a site (no index.html) nor a folder of streams (no .m4m, .glb, .gltf or .png file)");
       std::sort(found.begin(), found.end());
       for (const fs::path& file : found) add(file);
     } else if (fs::is_regular_file(path) && servable(path)) {
       add(path);
     } else {
-      throw usage_error(path + ": not a folder, a .m4m stream or a .glb or .gltf animation");
+      throw usage_error(path + ": not a folder, a .m4m stream, a .glb or .gltf animation or a .png texture");
     }
   }
   return streams;

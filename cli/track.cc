@@ -88,17 +88,17 @@ int run_track(const TrackArgs& args) {
     if (result.remeshes.empty()) {
       write_png(result.texture, args.texture, text);
     } else {
-      // Every I-plane's texture in the one file, one above the other.
-      Image stack(result.texture.width, result.texture.height * static_cast<uint32_t>(1 + result.remeshes.size()));
+      // Every I-plane's texture in the one file, tiles row by row (track keeps them within tile_grid()).
+      std::vector<const Image*> tiles{&result.texture};
       std::string planes = "0";
-      std::copy(result.texture.pixels.begin(), result.texture.pixels.end(), stack.pixels.begin());
-      for (size_t k = 0; k < result.remeshes.size(); ++k) {
-        const Image& tile = result.remeshes[k].texture;
-        std::copy(tile.pixels.begin(), tile.pixels.end(), stack.pixels.begin() + static_cast<std::ptrdiff_t>((k + 1) * tile.pixels.size()));
-        planes += " " + std::to_string(result.remeshes[k].plane);
+      for (const Remesh& remesh : result.remeshes) {
+        tiles.push_back(&remesh.texture);
+        planes += " " + std::to_string(remesh.plane);
       }
+      const TileGrid grid = *tile_grid(tiles.size(), result.texture.width, result.texture.height);
+      if (grid.columns > 1) text.emplace_back(kIntraColumnsText, std::to_string(grid.columns));
       text.emplace_back(kIntraPlanesText, planes);
-      write_png(stack, args.texture, text);
+      write_png(tiled(tiles, grid), args.texture, text);
     }
   }
   if (!args.report.empty()) {

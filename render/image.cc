@@ -98,6 +98,40 @@ std::string png_text(const std::string& path, const std::string& keyword) {
   return "";
 }
 
+std::optional<TileGrid> tile_grid(size_t count, uint32_t width, uint32_t height) {
+  if (count == 0 || width == 0 || height == 0 || width > kMostPictureSide || height > kMostPictureSide) return std::nullopt;
+  const uint64_t per_column = kMostPictureSide / height;
+  const uint64_t columns = (count + per_column - 1) / per_column;
+  if (columns > kMostPictureSide / width) return std::nullopt;
+  const uint64_t rows = (count + columns - 1) / columns;
+  return TileGrid{static_cast<uint32_t>(columns), static_cast<uint32_t>(rows)};
+}
+
+Image tiled(const std::vector<const Image*>& tiles, TileGrid grid) {
+  const uint32_t w = tiles.front()->width, h = tiles.front()->height;
+  Image picture(grid.columns * w, grid.rows * h);
+  for (size_t k = 0; k < tiles.size(); ++k) {
+    const uint32_t x0 = static_cast<uint32_t>(k % grid.columns) * w, y0 = static_cast<uint32_t>(k / grid.columns) * h;
+    for (uint32_t y = 0; y < h; ++y)
+      std::copy_n(tiles[k]->pixels.begin() + static_cast<std::ptrdiff_t>(size_t{y} * w), w,
+                  picture.pixels.begin() + static_cast<std::ptrdiff_t>(size_t{y0 + y} * picture.width + x0));
+  }
+  return picture;
+}
+
+std::vector<Image> untiled(const Image& picture, TileGrid grid, size_t count) {
+  const uint32_t w = picture.width / grid.columns, h = picture.height / grid.rows;
+  std::vector<Image> tiles;
+  for (size_t k = 0; k < count; ++k) {
+    const uint32_t x0 = static_cast<uint32_t>(k % grid.columns) * w, y0 = static_cast<uint32_t>(k / grid.columns) * h;
+    Image& tile = tiles.emplace_back(w, h);
+    for (uint32_t y = 0; y < h; ++y)
+      std::copy_n(picture.pixels.begin() + static_cast<std::ptrdiff_t>(size_t{y0 + y} * picture.width + x0), w,
+                  tile.pixels.begin() + static_cast<std::ptrdiff_t>(size_t{y} * w));
+  }
+  return tiles;
+}
+
 void write_png(const Image& image, const std::string& path, const std::vector<std::pair<std::string, std::string>>& text) {
   png_image png;
   std::memset(&png, 0, sizeof png);

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,12 +45,28 @@ std::string png_text(const std::string& path, const std::string& keyword);
 // writes the video's, `render` plays at it.
 inline constexpr const char* kFrameRateText = "Frame rate";
 // The keyword of a texture for several I-planes: their plane numbers
-// ("0 42 87"); the picture holds their textures, of equal height, one
-// above the other in that order. `track` writes it, `render` lays each
-// I-plane's own.
+// ("0 42 87"); the picture holds their textures, tiles of equal size, in
+// that order row by row in kIntraColumnsText columns (1 when the text is
+// absent: one above the other). `track` writes them, `render` and the web
+// player lay each I-plane's own.
 inline constexpr const char* kIntraPlanesText = "I-planes";
+inline constexpr const char* kIntraColumnsText = "I-plane columns";
 // The largest side of a PNG read.
 inline constexpr uint32_t kMostPictureSide = 16384;
+
+// Tiles of a texture for several I-planes: the k-th at column k mod
+// `columns`, row k / `columns`.
+struct TileGrid {
+  uint32_t columns = 1, rows = 1;
+};
+// The grid of `count` tiles of width × height in a picture of at most
+// kMostPictureSide on either side: one column while it fits, else the
+// fewest columns that hold them; none when they cannot fit.
+std::optional<TileGrid> tile_grid(size_t count, uint32_t width, uint32_t height);
+// Pictures of one size laid in `grid`, and cut back out: `count` tiles of
+// a picture whose sides `grid` divides.
+Image tiled(const std::vector<const Image*>& tiles, TileGrid grid);
+std::vector<Image> untiled(const Image& picture, TileGrid grid, size_t count);
 
 // An animated GIF written frame by frame (memory: one frame), looping.
 class GifWriter {

@@ -400,6 +400,32 @@ status=0; "$m4mesh" render conformance/streams/p04-uniform-split2.m4m --texture 
 [ "$status" = 1 ] && grep -q "stacked.png: its 'I-planes' text \"0 5 3\" does not list increasing planes" "$work/err" && [ ! -e "$work/stacked-out.png" ] ||
   fail "render with a bad I-planes text: exit $status, $(cat "$work/err")"
 
+# render: a texture of I-plane tiles in 2 columns (p17's I-planes 0, 3 and 6: red, green, blue, the fourth tile unused);
+# each I-plane's plane shows its own tile (the tiles span the planes' 254 × 255 pixels).
+/usr/bin/python3 -c "
+from PIL import Image, PngImagePlugin
+info = PngImagePlugin.PngInfo(); info.add_text('I-planes', '0 3 6'); info.add_text('I-plane columns', '2')
+tiles = Image.new('RGB', (512, 512))
+for k, colour in enumerate([(255, 0, 0), (0, 255, 0), (0, 0, 255)]): tiles.paste(colour, (256 * (k % 2), 256 * (k // 2), 256 * (k % 2) + 256, 256 * (k // 2) + 256))
+tiles.save('$work/tiles.png', pnginfo=info)"
+for plane in 0 3 6; do
+  "$m4mesh" -q render conformance/streams/p17-repeated-intra.m4m --texture "$work/tiles.png" --plane $plane -o "$work/tile-$plane.png" ||
+    fail "render --plane $plane over a texture in 2 columns"
+done
+/usr/bin/python3 -c "
+from PIL import Image
+for plane, colour in ((0, (255, 0, 0)), (3, (0, 255, 0)), (6, (0, 0, 255))):
+    counts = sorted(Image.open('$work/tile-%d.png' % plane).convert('RGB').getcolors(1 << 20), reverse=True)
+    seen = [c for n, c in counts if c != (40, 40, 48)][0]  # the most frequent colour but the background
+    assert seen == colour, (plane, seen, colour)" || fail "render: an I-plane in a texture of 2 columns shows another tile"
+/usr/bin/python3 -c "
+from PIL import Image, PngImagePlugin
+info = PngImagePlugin.PngInfo(); info.add_text('I-planes', '0 3 6'); info.add_text('I-plane columns', '3x')
+Image.new('RGB', (128, 96)).save('$work/tiles-bad.png', pnginfo=info)"
+status=0; "$m4mesh" render conformance/streams/p17-repeated-intra.m4m --texture "$work/tiles-bad.png" -o "$work/tiles-out.png" 2> "$work/err" || status=$?
+[ "$status" = 1 ] && grep -q "tiles-bad.png: its 'I-plane columns' text \"3x\" is not a number of equal columns" "$work/err" && [ ! -e "$work/tiles-out.png" ] ||
+  fail "render with a bad I-plane columns text: exit $status, $(cat "$work/err")"
+
 # An error in a refinement unit (it refines every frame) names its unit, no frame.
 status=0; "$m4mesh" check conformance/mesh3d/streams/x-62-cpca-beyond-trajectories.m4m > "$work/out" || status=$?
 [ "$status" = 1 ] && grep -q "^error: unit 6, cluster at bit 2952: " "$work/out" || fail "check of a refinement unit: $(head -1 "$work/out")"
@@ -431,7 +457,7 @@ kill "$server"; wait "$server" 2> /dev/null || true
 [ "$status" = 1 ] && grep -q "cannot listen on 127.0.0.1:$port (in use?" "$work/err" || fail "serve: a port in use: exit $status, $(cat "$work/err")"
 # serve: a file that is neither a folder nor a stream is a usage error.
 status=0; "$m4mesh" serve README.md --port 0 2> "$work/err" || status=$?
-[ "$status" = 2 ] && grep -q "README.md: not a folder, a .m4m stream or a .glb or .gltf animation" "$work/err" || fail "serve README.md: exit $status, $(cat "$work/err")"
+[ "$status" = 2 ] && grep -q "README.md: not a folder, a .m4m stream, a .glb or .gltf animation or a .png texture" "$work/err" || fail "serve README.md: exit $status, $(cat "$work/err")"
 
 "$m4mesh" demo --frames 12 > "$work/demo" || fail "demo failed"
 grep -q "bit-exact" "$work/demo" || fail "demo not bit-exact"

@@ -150,6 +150,37 @@ TEST(Pictures, PngCarriesItsText) {
   fs::remove(path);
 }
 
+// I-plane textures stay in one column while it fits (28 of 576 rows),
+// then take the fewest columns, rows balanced; none past 16384 × 16384.
+TEST(Pictures, TileGridsGrowColumnsOnlyWhenOneIsFull) {
+  auto grid = [](size_t count, uint32_t width, uint32_t height) {
+    const std::optional<TileGrid> g = tile_grid(count, width, height);
+    return g ? std::pair{g->columns, g->rows} : std::pair{0u, 0u};
+  };
+  EXPECT_EQ(grid(1, 768, 576), std::pair(1u, 1u));
+  EXPECT_EQ(grid(28, 768, 576), std::pair(1u, 28u));
+  EXPECT_EQ(grid(29, 768, 576), std::pair(2u, 15u));
+  EXPECT_EQ(grid(21 * 28, 768, 576), std::pair(21u, 28u));
+  EXPECT_EQ(grid(21 * 28 + 1, 768, 576), std::pair(0u, 0u));
+  EXPECT_EQ(grid(1, 16384, 16384), std::pair(1u, 1u));
+  EXPECT_EQ(grid(2, 16384, 16384), std::pair(0u, 0u));
+  EXPECT_EQ(grid(1, 16385, 1), std::pair(0u, 0u));
+  EXPECT_EQ(grid(0, 8, 8), std::pair(0u, 0u));
+  // Three tiles in 2 columns, row by row, cut back out as they were.
+  const Image a = checkerboard(5, 3, 1), b(5, 3, Rgb{1, 2, 3}), c(5, 3, Rgb{4, 5, 6});
+  const Image picture = tiled({&a, &b, &c}, TileGrid{2, 2});
+  EXPECT_EQ(picture.width, 10u);
+  EXPECT_EQ(picture.height, 6u);
+  EXPECT_EQ(picture.at(5, 0), (Rgb{1, 2, 3}));
+  EXPECT_EQ(picture.at(0, 3), (Rgb{4, 5, 6}));
+  EXPECT_EQ(picture.at(9, 5), Rgb{});
+  const std::vector<Image> back = untiled(picture, TileGrid{2, 2}, 3);
+  ASSERT_EQ(back.size(), 3u);
+  EXPECT_EQ(back[0].pixels, a.pixels);
+  EXPECT_EQ(back[1].pixels, b.pixels);
+  EXPECT_EQ(back[2].pixels, c.pixels);
+}
+
 TEST(Pictures, AGifNotFinishedLeavesNoFile) {
   const fs::path path = fs::temp_directory_path() / ("m4mesh-render-cut-" + std::to_string(::getpid()) + ".gif");
   {

@@ -151,12 +151,12 @@ TrackResult track_video(const std::string& path, const TrackSettings& settings) 
     const std::vector<Point>& at = tracker->track(luma);
     TrackedFrame report = measure(at, false);
     const bool due = remeshing && (report.strained > kMostStrained || report.coverage < kLeastCoverage);
-    // Every I-plane's texture goes into one PNG of at most kMostPictureSide rows.
-    const bool room = (result.remeshes.size() + 2) * size_t{h} <= kMostPictureSide;
+    // Every I-plane's texture goes into one PNG of at most kMostPictureSide on either side.
+    const bool room = tile_grid(result.remeshes.size() + 2, w, h).has_value();
     if (due && !room && !out_of_room) {
       out_of_room = true;
       result.warnings.push_back("no more I-planes from frame " + std::to_string(report.frame) + ": their textures would pass " +
-                                std::to_string(kMostPictureSide) + " rows in one PNG");
+                                std::to_string(kMostPictureSide) + " × " + std::to_string(kMostPictureSide) + " pixels in one PNG");
     }
     if (due && room) {
       result.remeshes.push_back({result.positions.size(), design(luma, nullptr), frame});

@@ -87,8 +87,11 @@ async function main() {
   const served = await fetch('streams.json').then((r) => (r.ok ? r.json() : [])).catch(() => []);
   state.served = served.map((s) => s.name);
   for (const { name, url } of served) {
+    if (name.endsWith('.png')) continue;  // a texture: it comes with its stream, NAME.m4m with NAME.png
+    const texture = name.replace(/\.m4m$/, '.png');
     const link = document.createElement('a');
-    link.href = /\.(glb|gltf)$/.test(url) ? `#player?gltf=${url}` : `#player?stream=${url}`;
+    link.href = /\.(glb|gltf)$/.test(url) ? `#player?gltf=${url}`
+      : `#player?stream=${url}${texture !== name && state.served.includes(texture) ? `&texture=streams/${texture}` : ''}`;
     link.textContent = name;
     link.className = 'served';
     samples.append(link);

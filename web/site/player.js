@@ -24,6 +24,39 @@ function checkerboard(size = 256, square = 16) {
   return texture;
 }
 
+// The texts of a PNG's tEXt chunks before its image data, keyword → text
+// (none for another format).
+function pngTexts(bytes) {
+  const texts = {}, view = new DataView(bytes.buffer, bytes.byteOffset, bytes.byteLength), latin1 = new TextDecoder('latin1');
+  if (bytes.length < 8 || view.getUint32(0) !== 0x89504e47) return texts;
+  for (let at = 8; at + 12 <= bytes.length;) {
+    const length = view.getUint32(at), type = latin1.decode(bytes.subarray(at + 4, at + 8));
+    if (type === 'IDAT' || length > bytes.length - at - 12) break;
+    if (type === 'tEXt') {
+      const data = bytes.subarray(at + 8, at + 8 + length), zero = data.indexOf(0);
+      if (zero >= 0) texts[latin1.decode(data.subarray(0, zero))] = latin1.decode(data.subarray(zero + 1));
+    }
+    at += 12 + length;
+  }
+  return texts;
+}
+
+// The tiles of a texture for several I-planes, as `track` writes them and
+// `m4mesh render` reads them (render/image.h): its "I-planes" text lists
+// their planes, its "I-plane columns" text (else 1) the columns, the k-th
+// tile at column k mod columns, row k / columns. Null for one texture.
+function textureTiles(texts, width, height, name) {
+  const list = texts['I-planes'], columnsText = texts['I-plane columns'] ?? '1';
+  if (list === undefined) return null;
+  const planes = list.trim().split(/\s+/).map(Number), columns = Number(columnsText);
+  if (!/^[1-9][0-9]*$/.test(columnsText) || width % columns !== 0)
+    throw new Error(`${name}: its 'I-plane columns' text "${columnsText}" is not a number of equal columns of its width`);
+  const rows = Math.ceil(planes.length / columns);
+  if (!planes.every((p, k) => Number.isInteger(p) && (k === 0 ? p === 0 : p > planes[k - 1])) || height % rows !== 0)
+    throw new Error(`${name}: its 'I-planes' text "${list}" does not list increasing planes from 0, one per equal part of its ${columns === 1 ? 'height' : `${columns} columns`}`);
+  return { planes, columns, rows };
+}
+
 // The rectangle, in pixels, that nodes (x, y pairs in half pixels) reach;
 // with `whole`, that of the pixels holding them (as canvas_over does).
 function bounds(nodeLists, whole = false) {
@@ -99,12 +132,32 @@ export class Player {
     if (this.bounds2d) this.fitOrthographic();
   }
 
+  // A texture for 2D streams: one picture, or a tile per I-plane (track's).
   async setTexture(source) {
-    const url = source instanceof File ? URL.createObjectURL(source) : source;
-    const texture = await new THREE.TextureLoader().loadAsync(url);
+    const name = source instanceof File ? source.name : source;
+    let bytes;
+    if (source instanceof File) {
+      bytes = new Uint8Array(await source.arrayBuffer());
+    } else {
+      const response = await fetch(source);
+      if (!response.ok) throw new Error(`${name}: cannot fetch the texture (HTTP ${response.status})`);
+      bytes = new Uint8Array(await response.arrayBuffer());
+    }
+    const url = URL.createObjectURL(new Blob([bytes]));
+    const texture = await new THREE.TextureLoader().loadAsync(url).finally(() => URL.revokeObjectURL(url));
     texture.colorSpace = THREE.SRGBColorSpace;
+    this.tiles = textureTiles(pngTexts(bytes), texture.image.width, texture.image.height, name);
     this.texture = texture;
-    if (this.mesh && this.kind === '2d') this.mesh.material.map = texture, (this.mesh.material.needsUpdate = true), (this.dirty = true);
+    this.state.texture = name;
+    if (this.kind === '2d') this.meshIntra = undefined, (this.changed = true);  // laid again on its I-plane's tile
+  }
+
+  // Where I-plane `intra`'s texture lies in this.texture: the whole picture,
+  // its tile, or none (a texture of tiles without one for it).
+  tileOf(intra) {
+    if (!this.tiles) return { column: 0, row: 0, columns: 1, rows: 1 };
+    const k = this.tiles.planes.indexOf(intra);
+    return k < 0 ? null : { column: k % this.tiles.columns, row: Math.floor(k / this.tiles.columns), columns: this.tiles.columns, rows: this.tiles.rows };
   }
 
   reset(name, size) {
@@ -409,7 +462,9 @@ export class Player {
     this.dirty = true;
   }
 
-  // The mesh of plane `index`: the texture lies on its I-plane's nodes, stretched over their pixels.
+  // The mesh of plane `index`: the texture (its I-plane's tile) lies on its
+  // I-plane's nodes, stretched over their pixels; the checkerboard when a
+  // texture of tiles has none for it.
   load2d(index) {
     let intra = index;
     while (!this.planes[intra].intra) --intra;
@@ -417,17 +472,19 @@ export class Player {
       if (this.mesh) this.scene.remove(this.mesh), this.mesh.geometry.dispose();
       const nodes = this.planes[intra].nodes;
       const { x0, y0, x1, y1 } = bounds([nodes], true);
+      const tile = this.tileOf(intra) ?? { column: 0, row: 0, columns: 1, rows: 1 };
       const uv = new Float32Array(nodes.length);
       for (let k = 0; k < nodes.length; k += 2) {
-        uv[k] = (nodes[k] / 2 - x0) / (x1 - x0);
-        uv[k + 1] = 1 - (nodes[k + 1] / 2 - y0) / (y1 - y0);
+        uv[k] = (tile.column + (nodes[k] / 2 - x0) / (x1 - x0)) / tile.columns;
+        uv[k + 1] = 1 - (tile.row + (nodes[k + 1] / 2 - y0) / (y1 - y0)) / tile.rows;
       }
       const geometry = new THREE.BufferGeometry();
       geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array((nodes.length / 2) * 3), 3));
       geometry.setAttribute('uv', new THREE.BufferAttribute(uv, 2));
       geometry.setIndex(this.planes[intra].triangles);
       const material = new THREE.MeshBasicMaterial({
-        map: this.texture, side: THREE.DoubleSide, wireframe: document.getElementById('wireframe').checked,
+        map: this.tileOf(intra) ? this.texture : (this.fallback ??= checkerboard()), side: THREE.DoubleSide,
+        wireframe: document.getElementById('wireframe').checked,
       });
       this.mesh = new THREE.Mesh(geometry, material);
       this.scene.add(this.mesh);

@@ -5,7 +5,8 @@
 //   2. `check` in the page lists what the native `m4mesh check` lists, on
 //      every stream to reject of both suites;
 //   3. the player shows a 3D stream shaded and a 2D stream as a warped
-//      texture (screenshots that are not blank);
+//      texture (screenshots that are not blank), each I-plane its own tile
+//      of a texture for several (`m4mesh serve S.m4m S.png`);
 //   4. a progressive stream served slowly (`m4mesh serve --rate`) plays
 //      before its download ends, and the units applied grow while it plays;
 //   5. the analyzer lists a stream's units, their elements and its chart;
@@ -17,11 +18,11 @@
 //      frames before its download ends.
 // Usage: node browser_test.mjs M4MESH SITE [SCREENSHOT_FOLDER]
 import { execFileSync } from 'node:child_process';
-import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { copyFileSync, existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import http from 'node:http';
 import { join } from 'node:path';
-import { launch, pictureStatistics, serve, until } from './harness.mjs';
+import { colourCounts, launch, pictureStatistics, serve, until } from './harness.mjs';
 
 const [m4mesh, site, shots] = process.argv.slice(2);
 if (!m4mesh || !site) throw new Error('usage: node browser_test.mjs M4MESH SITE [SCREENSHOT_FOLDER]');
@@ -143,6 +144,37 @@ try {
   expect(shown.player.kind === '2d' && shown.player.frames > 2, `2D player: ${shown.player.frames} planes, ${shown.player.framesDrawn} drawn`);
   await picture(page, 'player-2d');
   await page.close();
+  {
+    // A texture of I-plane tiles in 2 columns (as track writes one past 16,384 rows), served beside its stream:
+    // p17's I-planes 0, 3 and 6 each show their own tile, red, green and blue; the fourth tile is unused.
+    const folder = mkdtempSync(join(tmpdir(), 'm4mesh-tiles-'));
+    copyFileSync(join(site, 'conformance/streams/p17-repeated-intra.m4m'), join(folder, 'tiles.m4m'));
+    execFileSync('/usr/bin/python3', ['-c', `
+from PIL import Image, PngImagePlugin
+info = PngImagePlugin.PngInfo(); info.add_text('I-planes', '0 3 6'); info.add_text('I-plane columns', '2')
+tiles = Image.new('RGB', (512, 512))
+for k, colour in enumerate([(255, 0, 0), (0, 255, 0), (0, 0, 255)]): tiles.paste(colour, (256 * (k % 2), 256 * (k // 2), 256 * (k % 2) + 256, 256 * (k // 2) + 256))
+tiles.save('${join(folder, 'tiles.png')}', pnginfo=info)`]);
+    const tiled = await serve(m4mesh, [join(folder, 'tiles.m4m'), join(folder, 'tiles.png')]);
+    page = await openPage(browser, tiled.url);
+    await stateWhen(page, (s) => s.ready && s.served?.length === 2);
+    const href = await page.locator('a.served').getAttribute('href');
+    const colours = [[255, 0, 0], [0, 255, 0], [0, 0, 255]];
+    const seen = [];
+    for (const [k, plane] of [0, 3, 6].entries()) {
+      await page.evaluate(([link, frame]) => { location.hash = `${link}&frame=${frame}&pause`; }, [href, plane]);
+      await stateWhen(page, `(s) => s.player?.frameShown === ${plane} && s.texture === 'streams/tiles.png'`);
+      await new Promise((resolve) => setTimeout(resolve, 500));
+      const counts = await colourCounts(page, await page.locator('#viewport').screenshot(), colours);
+      seen.push(counts);
+      if (!(counts[k] > 200 && counts.every((n, i) => i === k || n === 0))) console.log(`     plane ${plane}: pixels of red, green, blue ${counts.join(', ')}`);
+    }
+    expect(seen.every((counts, k) => counts[k] > 200 && counts.every((n, i) => i === k || n === 0)) && href.endsWith('&texture=streams/tiles.png'),
+      `2D player, a texture of tiles served with its stream: I-planes 0, 3, 6 show their own tiles (${seen.map((c) => c.join('/')).join(', ')} pixels red/green/blue)`);
+    await page.close();
+    tiled.stop();
+    rmSync(folder, { recursive: true, force: true });
+  }
 
   // 4. A progressive stream arriving at 4,000 bytes/s: frames before the end, refined as units arrive.
   page = await openPage(browser, `${slow.url}#player?stream=conformance/mesh3d/streams/cpca-09-many-clusters.m4m`);

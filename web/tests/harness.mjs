@@ -63,6 +63,26 @@ export async function pictureStatistics(page, png) {
   }, png.toString('base64'));
 }
 
+// How many pixels of a screenshot are each of `colours` ([r, g, b]), each
+// channel within `tolerance`.
+export async function colourCounts(page, png, colours, tolerance = 8) {
+  return page.evaluate(async ([base64, targets, within]) => {
+    const image = new Image();
+    image.src = `data:image/png;base64,${base64}`;
+    await image.decode();
+    const canvas = new OffscreenCanvas(image.width, image.height);
+    const context = canvas.getContext('2d');
+    context.drawImage(image, 0, 0);
+    const data = context.getImageData(0, 0, image.width, image.height).data;
+    const counts = targets.map(() => 0);
+    for (let k = 0; k < data.length; k += 4)
+      targets.forEach((t, i) => {
+        if (Math.abs(data[k] - t[0]) <= within && Math.abs(data[k + 1] - t[1]) <= within && Math.abs(data[k + 2] - t[2]) <= within) counts[i]++;
+      });
+    return counts;
+  }, [png.toString('base64'), colours, tolerance]);
+}
+
 // Resolves once `predicate` (a function run in the page) returns true,
 // looking every half second; a page's own failure (window.m4mesh.failure)
 // ends it. (Playwright's waitForFunction did not resolve here on a page
