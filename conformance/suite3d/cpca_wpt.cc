@@ -255,6 +255,25 @@ std::vector<uint8_t> cpca_mixed_kinds_stream() {
   return writer.finish();
 }
 
+// The start of a clustered-PCA stream of 2 frames written symbol by symbol
+// over 255 vertices, one per cluster (the most clusters), and the
+// prediction over its base mesh (which reads the plan's faces: not moved).
+struct OneVertexClusters {
+  OneVertexClusters() = default;
+  OneVertexClusters(const OneVertexClusters&) = delete;
+  OneVertexClusters& operator=(const OneVertexClusters&) = delete;
+
+  MeshSequence sequence = designed_loose(2, static_cast<int>(kCpcaMaxClusters) - 11, [](int, int) { return 0; });  // its sheet and box hold 11
+  std::vector<uint32_t> cluster_of = [this] {
+    std::vector<uint32_t> each(sequence.vertex_count);
+    for (uint32_t v = 0; v < sequence.vertex_count; ++v) each[v] = v;
+    return each;
+  }();
+  BaseMeshPlan plan = plan_base_mesh(sequence.faces, sequence.vertex_count, false);
+  ContainerWriter writer = cpca_written_start(sequence, cluster_of, kCpcaMaxClusters, std::nullopt);
+  CpcaMeshPrediction mesh{plan.faces, plan.input_of, cluster_of, kCpcaMaxClusters};
+};
+
 // A clustered-PCA stream of 2 frames written symbol by symbol (no hash
 // units) whose values meet their limits, over 255 vertices, one per
 // cluster (the most clusters):
@@ -265,12 +284,9 @@ std::vector<uint8_t> cpca_mixed_kinds_stream() {
 //   trajectory component (unit_kind 3), their values the same.
 std::vector<uint8_t> cpca_limits_stream() {
   constexpr int32_t kBasis = kCpcaMaxBasis, kCoefficient = kCpcaMaxCoefficient, kTranslation = kCpcaMaxTranslation;
-  const MeshSequence s = designed_loose(2, static_cast<int>(kCpcaMaxClusters) - 11, [](int, int) { return 0; });  // its sheet and box hold 11
-  std::vector<uint32_t> cluster_of(s.vertex_count);
-  for (uint32_t v = 0; v < s.vertex_count; ++v) cluster_of[v] = v;
-  ContainerWriter writer = cpca_written_start(s, cluster_of, kCpcaMaxClusters, std::nullopt);
-  const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false);
-  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, kCpcaMaxClusters);
+  OneVertexClusters stream;
+  ContainerWriter& writer = stream.writer;
+  const CpcaMeshPrediction& mesh = stream.mesh;
   auto start = [&](uint32_t cluster, uint32_t shift, std::vector<int32_t> translation) {
     syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
     syntax::CpcaCoders coders;
@@ -313,12 +329,9 @@ std::vector<uint8_t> cpca_limits_stream() {
 //   min(3M, N) = 2), then cluster 254's trajectory component (unit_kind 3)
 //   at group_shift 63: a coder of each kind in one unit.
 std::vector<uint8_t> cpca_group_limits_stream() {
-  const MeshSequence s = designed_loose(2, static_cast<int>(kCpcaMaxClusters) - 11, [](int, int) { return 0; });  // its sheet and box hold 11
-  std::vector<uint32_t> cluster_of(s.vertex_count);
-  for (uint32_t v = 0; v < s.vertex_count; ++v) cluster_of[v] = v;
-  ContainerWriter writer = cpca_written_start(s, cluster_of, kCpcaMaxClusters, std::nullopt);
-  const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false);
-  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, kCpcaMaxClusters);
+  OneVertexClusters stream;
+  ContainerWriter& writer = stream.writer;
+  const CpcaMeshPrediction& mesh = stream.mesh;
   // values(i): the i-th value of a refinement, −2 … 2.
   auto group = [&](const std::vector<CpcaRefinementHeader>& refinements) {
     syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});

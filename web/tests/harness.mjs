@@ -41,9 +41,12 @@ export function launch() {
   });
 }
 
-// The screenshot's distinct colours and the spread of its brightness (a blank page has one colour, no spread).
-export async function pictureStatistics(page, png) {
-  return page.evaluate(async (base64) => {
+// What a screenshot shows, read back by the page: its distinct colours,
+// the spread of its brightness (a blank page has one colour, no spread),
+// and how many pixels are each of `targets` ([r, g, b]), each channel
+// within `tolerance`.
+async function screenshotFacts(page, png, targets = [], tolerance = 8) {
+  return page.evaluate(async ([base64, wanted, within]) => {
     const image = new Image();
     image.src = `data:image/png;base64,${base64}`;
     await image.decode();
@@ -51,36 +54,30 @@ export async function pictureStatistics(page, png) {
     const context = canvas.getContext('2d');
     context.drawImage(image, 0, 0);
     const data = context.getImageData(0, 0, image.width, image.height).data;
-    const colours = new Set();
+    const colours = new Set(), counts = wanted.map(() => 0);
     let sum = 0, squares = 0;
     for (let k = 0; k < data.length; k += 4) {
       colours.add((data[k] << 16) | (data[k + 1] << 8) | data[k + 2]);
       const light = (data[k] + data[k + 1] + data[k + 2]) / 3;
       sum += light, (squares += light * light);
-    }
-    const n = data.length / 4;
-    return { colours: colours.size, spread: Math.sqrt(squares / n - (sum / n) ** 2) };
-  }, png.toString('base64'));
-}
-
-// How many pixels of a screenshot are each of `colours` ([r, g, b]), each
-// channel within `tolerance`.
-export async function colourCounts(page, png, colours, tolerance = 8) {
-  return page.evaluate(async ([base64, targets, within]) => {
-    const image = new Image();
-    image.src = `data:image/png;base64,${base64}`;
-    await image.decode();
-    const canvas = new OffscreenCanvas(image.width, image.height);
-    const context = canvas.getContext('2d');
-    context.drawImage(image, 0, 0);
-    const data = context.getImageData(0, 0, image.width, image.height).data;
-    const counts = targets.map(() => 0);
-    for (let k = 0; k < data.length; k += 4)
-      targets.forEach((t, i) => {
+      wanted.forEach((t, i) => {
         if (Math.abs(data[k] - t[0]) <= within && Math.abs(data[k + 1] - t[1]) <= within && Math.abs(data[k + 2] - t[2]) <= within) counts[i]++;
       });
-    return counts;
-  }, [png.toString('base64'), colours, tolerance]);
+    }
+    const n = data.length / 4;
+    return { colours: colours.size, spread: Math.sqrt(squares / n - (sum / n) ** 2), counts };
+  }, [png.toString('base64'), targets, tolerance]);
+}
+
+// The screenshot's distinct colours and the spread of its brightness.
+export async function pictureStatistics(page, png) {
+  const { colours, spread } = await screenshotFacts(page, png);
+  return { colours, spread };
+}
+
+// How many pixels of a screenshot are each of `colours`.
+export async function colourCounts(page, png, colours) {
+  return (await screenshotFacts(page, png, colours)).counts;
 }
 
 // Resolves once `predicate` (a function run in the page) returns true,
