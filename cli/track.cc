@@ -127,7 +127,7 @@ int run_track(const TrackArgs& args) {
     std::string at;
     for (const Remesh& r : result.remeshes) at += (at.empty() ? "" : ", ") + std::to_string(result.frames[r.plane].frame);
     console::say("%zu more I-planes, the mesh laid out again where it degraded: frames %s%s", result.remeshes.size(), at.c_str(),
-                 args.texture.empty() ? "" : " (their textures below the first in the texture's PNG)");
+                 args.texture.empty() ? "" : " (their textures follow the first's in the texture's PNG)");
   }
   double stretch = 1;
   for (const TrackedFrame& f : result.frames) stretch = std::max(stretch, f.stretch);

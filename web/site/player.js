@@ -132,7 +132,9 @@ export class Player {
     if (this.bounds2d) this.fitOrthographic();
   }
 
-  // A texture for 2D streams: one picture, or a tile per I-plane (track's).
+  // A texture for 2D streams: one picture, or a tile per I-plane (track's),
+  // each cut into a texture of its own (a picture of tiles may pass the
+  // largest texture WebGL takes, which would shrink it).
   async setTexture(source) {
     const name = source instanceof File ? source.name : source;
     let bytes;
@@ -143,21 +145,31 @@ export class Player {
       if (!response.ok) throw new Error(`${name}: cannot fetch the texture (HTTP ${response.status})`);
       bytes = new Uint8Array(await response.arrayBuffer());
     }
-    const url = URL.createObjectURL(new Blob([bytes]));
-    const texture = await new THREE.TextureLoader().loadAsync(url).finally(() => URL.revokeObjectURL(url));
-    texture.colorSpace = THREE.SRGBColorSpace;
-    this.tiles = textureTiles(pngTexts(bytes), texture.image.width, texture.image.height, name);
-    this.texture = texture;
+    const picture = await createImageBitmap(new Blob([bytes]));
+    const tiles = textureTiles(pngTexts(bytes), picture.width, picture.height, name);
+    const grid = tiles ?? { planes: [0], columns: 1, rows: 1 };
+    const width = picture.width / grid.columns, height = picture.height / grid.rows;
+    const textures = new Map();
+    for (const [k, plane] of grid.planes.entries()) {
+      const canvas = document.createElement('canvas');
+      canvas.width = width, (canvas.height = height);
+      canvas.getContext('2d').drawImage(picture, (k % grid.columns) * width, Math.floor(k / grid.columns) * height, width, height, 0, 0, width, height);
+      const texture = new THREE.CanvasTexture(canvas);
+      texture.colorSpace = THREE.SRGBColorSpace;
+      textures.set(plane, texture);
+    }
+    picture.close();
+    for (const texture of [this.texture, ...(this.tiles?.values() ?? [])]) texture.dispose();
+    this.texture = tiles ? checkerboard() : textures.get(0);
+    this.tiles = tiles ? textures : null;
     this.state.texture = name;
-    if (this.kind === '2d') this.meshIntra = undefined, (this.changed = true);  // laid again on its I-plane's tile
+    if (this.kind === '2d') this.meshIntra = undefined, (this.changed = true);  // laid again with its I-plane's own
   }
 
-  // Where I-plane `intra`'s texture lies in this.texture: the whole picture,
-  // its tile, or none (a texture of tiles without one for it).
-  tileOf(intra) {
-    if (!this.tiles) return { column: 0, row: 0, columns: 1, rows: 1 };
-    const k = this.tiles.planes.indexOf(intra);
-    return k < 0 ? null : { column: k % this.tiles.columns, row: Math.floor(k / this.tiles.columns), columns: this.tiles.columns, rows: this.tiles.rows };
+  // I-plane `intra`'s texture: the texture's tile for it, else its one
+  // picture, else the checkerboard (no texture, or tiles without one for it).
+  textureOf(intra) {
+    return this.tiles?.get(intra) ?? this.texture;
   }
 
   reset(name, size) {
@@ -472,18 +484,17 @@ export class Player {
       if (this.mesh) this.scene.remove(this.mesh), this.mesh.geometry.dispose();
       const nodes = this.planes[intra].nodes;
       const { x0, y0, x1, y1 } = bounds([nodes], true);
-      const tile = this.tileOf(intra) ?? { column: 0, row: 0, columns: 1, rows: 1 };
       const uv = new Float32Array(nodes.length);
       for (let k = 0; k < nodes.length; k += 2) {
-        uv[k] = (tile.column + (nodes[k] / 2 - x0) / (x1 - x0)) / tile.columns;
-        uv[k + 1] = 1 - (tile.row + (nodes[k + 1] / 2 - y0) / (y1 - y0)) / tile.rows;
+        uv[k] = (nodes[k] / 2 - x0) / (x1 - x0);
+        uv[k + 1] = 1 - (nodes[k + 1] / 2 - y0) / (y1 - y0);
       }
       const geometry = new THREE.BufferGeometry();
       geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array((nodes.length / 2) * 3), 3));
       geometry.setAttribute('uv', new THREE.BufferAttribute(uv, 2));
       geometry.setIndex(this.planes[intra].triangles);
       const material = new THREE.MeshBasicMaterial({
-        map: this.tileOf(intra) ? this.texture : (this.fallback ??= checkerboard()), side: THREE.DoubleSide,
+        map: this.textureOf(intra), side: THREE.DoubleSide,
         wireframe: document.getElementById('wireframe').checked,
       });
       this.mesh = new THREE.Mesh(geometry, material);
