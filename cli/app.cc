@@ -214,8 +214,8 @@ int run_m4mesh(int argc, const char* const* argv) {
   ServeOptions serve_options;
   CLI::App* serve_cmd = app.add_subcommand("serve", "Serve the web player and analyzer (with your streams listed, or another site's folder) over HTTP, on loopback unless --host says otherwise");
   serve_cmd->add_option("paths", serve_options.paths,
-                        "a folder to serve (default: the site the build made beside the tool), or streams (.m4m files, and .glb or .gltf animations to play beside them; folders of them): the "
-                        "site with those streams listed in its player");
+                        "a folder to serve (default: the site the build made beside the tool), or streams (.m4m files, .glb or .gltf animations to play beside them, .png "
+                        "textures of 2D streams, NAME.png with NAME.m4m; folders of them): the site with those streams listed in its player");
   serve_cmd->add_option("--port", serve_options.port, "TCP port (0: any free port; the address is printed)")->check(CLI::Range(0, 65535));
   serve_cmd->add_option("--host", serve_options.host, "address to listen on (default 127.0.0.1; 0.0.0.0 opens it to the network)");
   serve_cmd->add_option("--rate", serve_options.rate, "bytes per second of each stream (.m4m) sent, to watch a progressive stream arrive (default: unthrottled)");
