@@ -22,7 +22,7 @@ import { copyFileSync, existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync,
 import { tmpdir } from 'node:os';
 import http from 'node:http';
 import { join } from 'node:path';
-import { colourCounts, launch, pictureStatistics, serve, until } from './harness.mjs';
+import { colourCounts, launch, pictureStatistics, serve, until, watchStalls } from './harness.mjs';
 
 const [m4mesh, site, shots] = process.argv.slice(2);
 if (!m4mesh || !site) throw new Error('usage: node browser_test.mjs M4MESH SITE [SCREENSHOT_FOLDER]');
@@ -245,15 +245,7 @@ tiles.save('${join(folder, 'tiles.png')}', pnginfo=info)`]);
     const own = await serve(m4mesh, [horse, join(folder, 'horse.glb')]);
     page = await browser.newPage({ viewport: { width: 1100, height: 760 } });
     page.on('pageerror', (error) => expect(false, `no error in the page (${error.message})`));
-    // The longest the page went without running a 50 ms timer: how long it stopped answering.
-    await page.addInitScript(() => {
-      const stall = (window.stall = { longest: 0, last: performance.now() });
-      setInterval(() => {
-        const now = performance.now();
-        stall.longest = Math.max(stall.longest, now - stall.last);
-        stall.last = now;
-      }, 50);
-    });
+    await watchStalls(page);
     await page.goto(`${own.url}#player?stream=streams/horse.m4m`);
     let started = Date.now();
     shown = await stateWhen(page, (s) => s.player?.done && s.player.framesDrawn >= 60, 120000);

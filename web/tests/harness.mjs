@@ -80,6 +80,19 @@ export async function colourCounts(page, png, colours) {
   return (await screenshotFacts(page, png, colours)).counts;
 }
 
+// From the page's next load on, window.stall.longest is the longest the
+// page went without running a 50 ms timer: how long it stopped answering.
+export async function watchStalls(page) {
+  await page.addInitScript(() => {
+    const stall = (window.stall = { longest: 0, last: performance.now() });
+    setInterval(() => {
+      const now = performance.now();
+      stall.longest = Math.max(stall.longest, now - stall.last);
+      stall.last = now;
+    }, 50);
+  });
+}
+
 // Resolves once `predicate` (a function run in the page) returns true,
 // looking every half second; a page's own failure (window.m4mesh.failure)
 // ends it. (Playwright's waitForFunction did not resolve here on a page

@@ -5,7 +5,7 @@
 // minutes); docs/web.md gives the run on the whole of vtest.avi.
 // Usage: node texture_check.mjs M4MESH STREAM.m4m TEXTURE.png FRAME [SCREENSHOT.png]
 import { basename } from 'node:path';
-import { launch, pictureStatistics, serve, until } from './harness.mjs';
+import { launch, pictureStatistics, serve, until, watchStalls } from './harness.mjs';
 
 const [m4mesh, stream, texture, frameText, screenshot] = process.argv.slice(2);
 if (!m4mesh || !stream || !texture || !frameText) throw new Error('usage: node texture_check.mjs M4MESH STREAM.m4m TEXTURE.png FRAME [SCREENSHOT.png]');
@@ -16,15 +16,7 @@ let failed = false;
 try {
   const page = await browser.newPage({ viewport: { width: 1100, height: 760 } });
   page.on('pageerror', (error) => ((failed = true), console.log(`FAIL an error in the page: ${error.message}`)));
-  // The longest the page went without running a 50 ms timer.
-  await page.addInitScript(() => {
-    const stall = (window.stall = { longest: 0, last: performance.now() });
-    setInterval(() => {
-      const now = performance.now();
-      stall.longest = Math.max(stall.longest, now - stall.last);
-      stall.last = now;
-    }, 50);
-  });
+  await watchStalls(page);
   const started = Date.now();
   await page.goto(`${server.url}#player?stream=streams/${basename(stream)}&texture=streams/${basename(texture)}&frame=${frame}&pause`);
   await until(page, `() => window.m4mesh.player?.frameShown === ${frame} && window.m4mesh.texture === 'streams/${basename(texture)}'`, 300000);
