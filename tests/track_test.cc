@@ -24,7 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // A folder for one test's files; kept under $M4MESH_TRACK_KEEP when set
-// (scripts/track_figures.sh measures the same videos).
+// (scripts/track_figures.py measures the same videos).
 class Workspace {
  public:
   explicit Workspace(const std::string& name) {
@@ -67,6 +67,32 @@ Image pattern(uint32_t width, uint32_t height, uint64_t seed) {
       }
       auto channel = [](double v) { return static_cast<uint8_t>(std::clamp(std::lround(v), 0L, 255L)); };
       picture.at(x, y) = {channel(r), channel(g), channel(b)};
+    }
+  return picture;
+}
+
+// A colour picture of sums of 24 sinusoids with periods of 6 to 40 pixels:
+// fine, repeating structure that a polygon can match a period off.
+Image waves(uint32_t width, uint32_t height, uint64_t seed) {
+  SplitMix64 random(seed);
+  auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * static_cast<double>(random.next() >> 11) / 9007199254740992.0; };
+  struct Wave {
+    double fx, fy, phase[3], weight[3];
+  };
+  std::vector<Wave> waves(24);
+  for (Wave& wave : waves) {
+    const double period = std::exp(uniform(std::log(6.0), std::log(40.0))), angle = uniform(0, std::numbers::pi);
+    wave.fx = std::cos(angle) / period, wave.fy = std::sin(angle) / period;
+    for (int c = 0; c < 3; ++c) wave.phase[c] = uniform(0, 2 * std::numbers::pi), wave.weight[c] = uniform(0.3, 1.0) * 4;
+  }
+  Image picture(width, height);
+  for (uint32_t y = 0; y < height; ++y)
+    for (uint32_t x = 0; x < width; ++x) {
+      double rgb[3] = {128, 128, 128};
+      for (const Wave& wave : waves)
+        for (int c = 0; c < 3; ++c) rgb[c] += wave.weight[c] * std::sin(2 * std::numbers::pi * (x * wave.fx + y * wave.fy) + wave.phase[c]);
+      auto channel = [](double v) { return static_cast<uint8_t>(std::clamp(std::lround(v), 0L, 255L)); };
+      picture.at(x, y) = {channel(rgb[0]), channel(rgb[1]), channel(rgb[2])};
     }
   return picture;
 }
@@ -279,6 +305,56 @@ TEST(Track, MaskedObjectMovesOverAStillBackground) {
   EXPECT_LT(result.frames[1].coverage, 0.25);
 }
 
+// A textured disc moving over a still textured background, no mask, through
+// H.264: a content-based mesh has polygons that straddle the disc's edge,
+// whose warp fits the other side's motion a period of the texture off.
+// Nodes on the disc follow the disc, nodes off it stay.
+TEST(Track, NodesOnAMovingDiscFollowItNotTheBackground) {
+  const Workspace folder("disc");
+  const uint32_t w = 320, h = 240;
+  const int frames = 14;
+  const double cx = 112, cy = 120, radius = 42, vx = 1.6, vy = -0.5;
+  const Image background = waves(w, h, 41), object = waves(w, h, 43);
+  auto on_disc = [&](double x, double y, int t) { return std::hypot(x - vx * t - cx, y - vy * t - cy) <= radius; };
+  std::vector<Image> video;
+  for (int t = 0; t < frames; ++t) {
+    Image frame = background;
+    for (uint32_t y = 0; y < h; ++y)
+      for (uint32_t x = 0; x < w; ++x)
+        if (on_disc(x + 0.5, y + 0.5, t)) frame.at(x, y) = bilinear(object, x - vx * t, y - vy * t);
+    video.push_back(std::move(frame));
+  }
+  const std::string clip = h264_video(folder, video);
+  TrackSettings settings;
+  settings.nodes = 60;
+  settings.remesh_stretch = 0;  // one mesh throughout
+  const TrackResult result = track_video(clip, settings);
+  ASSERT_EQ(result.positions.size(), static_cast<size_t>(frames));
+  expect_no_fold(result);
+  // Nodes at least 3 pixels from the disc's edge in the first frame, while their content is in view.
+  double disc_sum = 0, background_sum = 0;
+  size_t disc_count = 0, background_count = 0;
+  for (size_t n = 0; n < result.mesh.tracking.nodes.size(); ++n) {
+    const double x0 = result.mesh.tracking.nodes[n].x / 2.0, y0 = result.mesh.tracking.nodes[n].y / 2.0;
+    const double edge = std::hypot(x0 - cx, y0 - cy) - radius;
+    if (std::abs(edge) < 3) continue;
+    for (int t = 1; t < frames; ++t) {
+      const Point& p = result.positions[static_cast<size_t>(t)][n];
+      if (edge < 0) {
+        disc_sum += std::hypot(p.x / 2.0 - x0 - vx * t, p.y / 2.0 - y0 - vy * t), ++disc_count;
+      } else if (!on_disc(x0, y0, t)) {
+        background_sum += std::hypot(p.x / 2.0 - x0, p.y / 2.0 - y0), ++background_count;
+      }
+    }
+  }
+  ASSERT_GT(disc_count, 0u);
+  ASSERT_GT(background_count, 0u);
+  std::printf("disc over a still background (60 nodes), H.264: mean node error %.3f px on the disc, %.3f px off it\n",
+              disc_sum / static_cast<double>(disc_count), background_sum / static_cast<double>(background_count));
+  EXPECT_LE(disc_sum / static_cast<double>(disc_count), 0.5);
+  EXPECT_LE(background_sum / static_cast<double>(background_count), 0.5);
+}
+
 // A camera pan over a still scene, lossless: frame t is a window of a
 // larger picture whose content moves kPanX right and kPanY down a frame.
 constexpr uint32_t kPanWidth = 128, kPanHeight = 96;
@@ -333,6 +409,46 @@ TEST(Track, BorderNodesFollowAPan) {
       EXPECT_LT(result.frames.back().coverage, 0.9);
     }
   }
+}
+
+// A zoom into a still scene, lossless: the content leaves the frame on
+// every side, and the nodes near the frame's edge go with it as far as the
+// frame shows it.
+TEST(Track, BorderNodesFollowAZoom) {
+  const Workspace folder("zoom");
+  const uint32_t w = 160, h = 120;
+  const int frames = 16;
+  const double cx = w / 2.0, cy = h / 2.0, rate = 0.01;  // scale 1 + rate · t about the centre
+  const Image scene = waves(w, h, 47);
+  std::vector<Image> video;
+  for (int t = 0; t < frames; ++t) {
+    const double scale = 1 + rate * t;
+    Image frame(w, h);
+    for (uint32_t y = 0; y < h; ++y)
+      for (uint32_t x = 0; x < w; ++x) frame.at(x, y) = bilinear(scene, cx + (x + 0.5 - cx) / scale - 0.5, cy + (y + 0.5 - cy) / scale - 0.5);
+    video.push_back(std::move(frame));
+  }
+  write_frames(folder, video);
+  TrackSettings settings;
+  settings.remesh_stretch = 0;  // one mesh throughout
+  const TrackResult result = track_video(folder / "%03d.png", settings);
+  ASSERT_EQ(result.positions.size(), static_cast<size_t>(frames));
+  expect_no_fold(result);
+  double sum = 0;
+  size_t count = 0;
+  for (size_t n = 0; n < result.mesh.tracking.nodes.size(); ++n) {
+    const double x0 = result.mesh.tracking.nodes[n].x / 2.0, y0 = result.mesh.tracking.nodes[n].y / 2.0;
+    if (x0 > 16.5 && y0 > 16.5 && x0 < w - 16.5 && y0 < h - 16.5) continue;  // not within a cell of the frame's edge
+    for (int t = 1; t < frames; ++t) {
+      const double scale = 1 + rate * t, tx = cx + (x0 - cx) * scale, ty = cy + (y0 - cy) * scale;
+      if (tx < 0 || ty < 0 || tx > w || ty > h) continue;  // its content has left the frame
+      const Point& p = result.positions[static_cast<size_t>(t)][n];
+      sum += std::hypot(p.x / 2.0 - tx, p.y / 2.0 - ty), ++count;
+    }
+  }
+  ASSERT_GT(count, 0u);
+  std::printf("zoom to %.2f, lossless: mean error of the nodes within a cell of the edge, in view, %.3f px\n", 1 + rate * (frames - 1), sum / static_cast<double>(count));
+  EXPECT_LE(sum / static_cast<double>(count), 0.25);
 }
 
 // The same pan over 24 frames with the defaults: once the mesh covers less

@@ -237,12 +237,14 @@ std::vector<NodeTracker::Position> NodeTracker::start(const Affine& global) cons
 }
 
 // The polygons put a node where its triangles' warp fits best, which a
-// coarse mesh on a curved motion places off the node's own content. Each
-// node then matches a window of the reference around its own point
-// (within its triangles, shaped by the global motion's linear part) by a
-// descent on the half-pixel grid, taking only moves that keep the
-// triangles' shapes. A window too flat to say leaves the node.
-void NodeTracker::place_on_content(std::vector<Position>& p, const Affine& global) const {
+// coarse mesh on a curved motion places off the node's own content, and
+// where its polygon straddles a moving object's edge, on the other side's
+// motion. Each node then matches a window of the reference around its own
+// point (within its triangles, shaped by the global motion's linear part)
+// by a descent on the half-pixel grid from whichever of the polygons'
+// position and its start fits the window better, taking only moves that
+// keep the triangles' shapes. A window too flat to say leaves the node.
+void NodeTracker::place_on_content(std::vector<Position>& p, const std::vector<Position>& started, const Affine& global) const {
   constexpr int kRadius = 8;  // pixels
   constexpr int kPasses = 4;
   const Luma &reference = previous_pyramid_[0], &picture = frame_pyramid_[0];
@@ -275,13 +277,18 @@ void NodeTracker::place_on_content(std::vector<Position>& p, const Affine& globa
       }
     if (window.size() < 32 || gradient < 2.0 * static_cast<double>(window.size())) window.clear();
   }
-  auto cost_at = [&](const std::vector<std::array<double, 3>>& window, const Position& to, double bound) {
-    double cost = 0;
+  // The mean absolute difference over the window's pixels that land in the frame: content leaving the frame neither
+  // holds a node back nor pushes it out. A position where under half of them land in the frame is not taken.
+  auto cost_at = [&](const std::vector<std::array<double, 3>>& window, const Position& to) {
+    double sum = 0;
+    size_t inside = 0;
     for (const auto& [dx, dy, value] : window) {
-      cost += sample_cost(picture, to[0] + dx, to[1] + dy, static_cast<float>(value));
-      if (cost >= bound) break;
+      const double x = to[0] + dx, y = to[1] + dy;
+      if (x < 0 || y < 0 || x > picture.width || y > picture.height) continue;
+      sum += std::abs(picture.sample(x, y) - static_cast<float>(value));
+      ++inside;
     }
-    return cost;
+    return 2 * inside < window.size() ? std::numeric_limits<double>::infinity() : sum / static_cast<double>(inside);
   };
   // A descent for each node: to the best of its eight neighbours a pixel away, then half a pixel away, while that lowers the cost.
   for (int pass = 0; pass < kPasses; ++pass) {
@@ -289,7 +296,9 @@ void NodeTracker::place_on_content(std::vector<Position>& p, const Affine& globa
     for (uint32_t n = 0; n < p.size(); ++n) {
       if (windows[n].empty()) continue;
       const NodeFreedom f = freedom(n);
-      double current = cost_at(windows[n], p[n], std::numeric_limits<double>::max());
+      double current = cost_at(windows[n], p[n]);
+      if (pass == 0 && started[n] != p[n] && allowed(n, started[n], 1.0) && keeps_shape(n, started[n], p, 1.0))
+        if (const double there = cost_at(windows[n], started[n]); there < current) p[n] = started[n], current = there, moved = true;
       for (const double step : {1.0, 0.5})
         for (bool improved = true; improved;) {
           improved = false;
@@ -300,7 +309,7 @@ void NodeTracker::place_on_content(std::vector<Position>& p, const Affine& globa
               if ((sx == 0 && sy == 0) || (f == NodeFreedom::kAlongX && sy != 0) || (f == NodeFreedom::kAlongY && sx != 0)) continue;
               const Position to{p[n][0] + step * sx, p[n][1] + step * sy};
               if (!allowed(n, to, 1.0)) continue;
-              if (const double cost = cost_at(windows[n], to, best); cost < best) best = cost, best_to = to;
+              if (const double cost = cost_at(windows[n], to); cost < best) best = cost, best_to = to;
             }
           if (best_to != p[n] && keeps_shape(n, best_to, p, 1.0)) p[n] = best_to, current = best, improved = moved = true;
         }
@@ -320,6 +329,7 @@ const std::vector<Point>& NodeTracker::track(const Luma& frame) {
   const Affine guess = from_first && has_velocity_ ? global_.after(global_before_.inverse()).after(global_) : global_;
   const Affine global = global_motion(previous_pyramid_, frame_pyramid_, guess, options_.search);
   std::vector<Position> p = start(global);
+  const std::vector<Position> started = p;
   // A node whose start lies out of the frame (by over a 2-pixel margin) has little content to match: it keeps the global motion.
   constexpr double kMargin = 2;
   outside_.resize(p.size());
@@ -335,7 +345,7 @@ const std::vector<Point>& NodeTracker::track(const Luma& frame) {
     descend(level, p, scale, 0.5);
     for (Position& q : p) q = {q[0] / scale, q[1] / scale};
   }
-  if (from_first) place_on_content(p, global);
+  if (from_first) place_on_content(p, started, global);
 
   global_before_ = global_;
   global_ = global;

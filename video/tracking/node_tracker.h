@@ -81,7 +81,7 @@ class NodeTracker {
   NodeFreedom freedom(uint32_t node) const { return options_.border_on_frame ? mesh_.freedom[node] : NodeFreedom::kFree; }
   void build_samples(const std::vector<Luma>& reference, const std::vector<Point>& at);
   std::vector<Position> start(const Affine& global) const;
-  void place_on_content(std::vector<Position>& p, const Affine& global) const;
+  void place_on_content(std::vector<Position>& p, const std::vector<Position>& started, const Affine& global) const;
   double triangle_cost(int level, uint32_t t, const std::vector<Position>& p, NodeIndex moved, const Position& to) const;
   // Whether every triangle around `node` at `to` (positions of a level of `scale`) keeps clockwise, within kMaxStretch of its first area.
   bool keeps_shape(uint32_t node, const Position& to, const std::vector<Position>& p, double scale) const;
