@@ -25,8 +25,10 @@ double orientation(const std::array<double, 2>& a, const std::array<double, 2>& 
 // or, out of the frame (content that left it), a fixed price.
 constexpr float kOutsideCost = 12;
 
+bool in_frame(const Luma& picture, double x, double y) { return x >= 0 && y >= 0 && x <= picture.width && y <= picture.height; }
+
 float sample_cost(const Luma& picture, double x, double y, float value) {
-  if (x < 0 || y < 0 || x > picture.width || y > picture.height) return kOutsideCost;
+  if (!in_frame(picture, x, y)) return kOutsideCost;
   return std::abs(picture.sample(x, y) - value);
 }
 
@@ -284,7 +286,7 @@ void NodeTracker::place_on_content(std::vector<Position>& p, const std::vector<P
     size_t inside = 0;
     for (const auto& [dx, dy, value] : window) {
       const double x = to[0] + dx, y = to[1] + dy;
-      if (x < 0 || y < 0 || x > picture.width || y > picture.height) continue;
+      if (!in_frame(picture, x, y)) continue;
       sum += std::abs(picture.sample(x, y) - static_cast<float>(value));
       ++inside;
     }
