@@ -118,11 +118,12 @@ std::string h264_video(const Workspace& folder, const std::vector<Image>& frames
 // A smooth motion that vanishes on the frame's border: pixels, at frame t.
 struct SmoothMotion {
   double width, height;
+  double amplitude = 1;
   std::pair<double, double> at(double x, double y, int t) const {
     const double fx = std::clamp(x / width, 0.0, 1.0), fy = std::clamp(y / height, 0.0, 1.0);
     const double bump = std::sin(std::numbers::pi * fx) * std::sin(std::numbers::pi * fy);
     const double phase = 2 * std::numbers::pi * t / 24.0;
-    return {5.0 * std::sin(phase) * bump, 3.5 * std::sin(phase * 0.7) * bump * std::cos(std::numbers::pi * (fx - 0.3))};
+    return {amplitude * 5.0 * std::sin(phase) * bump, amplitude * 3.5 * std::sin(phase * 0.7) * bump * std::cos(std::numbers::pi * (fx - 0.3))};
   }
 };
 
@@ -217,6 +218,20 @@ TEST(Track, ContentBasedNodesFollowASmoothWarpThroughH264) {
   const double error = mean_error(result, [&](const Point& q, size_t t) { return video.truth_at(q, t); });
   std::printf("content-based Delaunay (80 nodes) on a smooth warp, H.264: mean node error %.3f px\n", error);
   EXPECT_LE(error, 0.5);
+}
+
+// A warp strong enough to stretch and turn the content under a node by
+// about a fifth across its window: each node's window takes the shape of
+// its ring's motion.
+TEST(Track, NodesMatchTheirContentAsTheWarpShapesIt) {
+  const Workspace folder("strong-warp");
+  const WarpedVideo video(160, 128, 16, SmoothMotion{160, 128, 2.5});
+  TrackSettings settings;
+  const TrackResult result = track_video(h264_video(folder, video.frames), settings);
+  expect_no_fold(result);
+  const double error = mean_error(result, [&](const Point& q, size_t t) { return video.truth_at(q, t); });
+  std::printf("uniform 16x16 on a strong warp, H.264: mean node error %.3f px\n", error);
+  EXPECT_LE(error, 0.3);
 }
 
 // The stream decodes to the tracked nodes, and `m4mesh render` of it with

@@ -238,17 +238,58 @@ std::vector<NodeTracker::Position> NodeTracker::start(const Affine& global) cons
   return still;
 }
 
+// The linear map that takes the corners of a node's triangles from their
+// offsets to the node in the reference to their offsets now (least squares,
+// the polygons' positions): the local motion's shape. None where the
+// corners do not span both axes, where they do not move as one linear map
+// (over 2 pixels' RMS residual: a motion boundary crosses the ring) or where
+// the map changes areas over twice, or under half, as much as the global
+// motion.
+std::optional<NodeTracker::Linear> NodeTracker::ring_shape(uint32_t node, const std::vector<Position>& p, const std::vector<Point>& origin,
+                                                           const Affine& global) const {
+  constexpr double kMaxResidual = 2;  // pixels, RMS
+  struct Pair {
+    double ex, ey, fx, fy;  // a corner's offset from the node in the reference and now
+  };
+  std::vector<Pair> ring;
+  double sxx = 0, sxy = 0, syy = 0, ux = 0, uy = 0, vx = 0, vy = 0;
+  for (uint32_t t : node_triangles_[node])
+    for (NodeIndex k : mesh_.triangles[t].v) {
+      if (k == node) continue;
+      const Pair q{(origin[k].x - origin[node].x) * 0.5, (origin[k].y - origin[node].y) * 0.5, p[k][0] - p[node][0], p[k][1] - p[node][1]};
+      sxx += q.ex * q.ex, sxy += q.ex * q.ey, syy += q.ey * q.ey;
+      ux += q.fx * q.ex, uy += q.fx * q.ey, vx += q.fy * q.ex, vy += q.fy * q.ey;
+      ring.push_back(q);
+    }
+  const double det = sxx * syy - sxy * sxy;
+  if (!(det > 0)) return std::nullopt;
+  const Linear m{(ux * syy - uy * sxy) / det, (uy * sxx - ux * sxy) / det, (vx * syy - vy * sxy) / det, (vy * sxx - vx * sxy) / det};
+  double residual = 0;
+  for (const Pair& q : ring) {
+    const double rx = q.fx - m[0] * q.ex - m[1] * q.ey, ry = q.fy - m[2] * q.ex - m[3] * q.ey;
+    residual += rx * rx + ry * ry;
+  }
+  const double area = m[0] * m[3] - m[1] * m[2], global_area = global.determinant();
+  if (residual > kMaxResidual * kMaxResidual * static_cast<double>(ring.size()) || !(area > 0.5 * global_area && area < 2 * global_area))
+    return std::nullopt;
+  return m;
+}
+
 // The polygons put a node where its triangles' warp fits best, which a
 // coarse mesh on a curved motion places off the node's own content, and
 // where its polygon straddles a moving object's edge, on the other side's
 // motion. Each node then matches a window of the reference around its own
-// point (within its triangles, shaped by the global motion's linear part)
-// by a descent on the half-pixel grid from whichever of the polygons'
-// position and its start fits the window better, taking only moves that
-// keep the triangles' shapes. A window too flat to say leaves the node.
+// point (within its triangles) by a descent on the half-pixel grid from
+// whichever of the polygons' position and its start fits the window better,
+// taking only moves that keep the triangles' shapes. A window too flat to
+// say leaves the node. The window is shaped by the global motion's linear
+// part, or by the node's ring (ring_shape) where that fits clearly better
+// near its two starts: a warp that turns or stretches the content under a
+// node is then matched as it is.
 void NodeTracker::place_on_content(std::vector<Position>& p, const std::vector<Position>& started, const Affine& global) const {
   constexpr int kRadius = 8;  // pixels
   constexpr int kPasses = 4;
+  constexpr double kRingFitsBetter = 0.9;  // the ring's shape is taken below this share of the global shape's cost
   const Luma &reference = previous_pyramid_[0], &picture = frame_pyramid_[0];
   const std::vector<Point>& origin = options_.reference == TrackingReference::kFirst ? mesh_.nodes : positions_;
   // The node's own content: the pixels of its triangles (a masked object's, not the background's).
@@ -261,27 +302,10 @@ void NodeTracker::place_on_content(std::vector<Position>& p, const std::vector<P
     }
     return false;
   };
-  // Each node's window: offsets mapped by the global motion's linear part, and the reference's values.
-  std::vector<std::vector<std::array<double, 3>>> windows(p.size());
-  for (uint32_t n = 0; n < p.size(); ++n) {
-    if (freedom(n) == NodeFreedom::kFixed || outside_[n]) continue;
-    const double ox = origin[n].x * 0.5, oy = origin[n].y * 0.5;
-    std::vector<std::array<double, 3>>& window = windows[n];
-    double gradient = 0;
-    for (int j = -kRadius; j <= kRadius; ++j)
-      for (int i = -kRadius; i <= kRadius; ++i) {
-        const double x = std::floor(ox) + i + 0.5, y = std::floor(oy) + j + 0.5;
-        if (x < 1 || y < 1 || x > reference.width - 1.0 || y > reference.height - 1.0 || !in_polygon(n, x, y)) continue;
-        const auto xi = static_cast<uint32_t>(x), yi = static_cast<uint32_t>(y);
-        gradient += std::abs(reference.at(xi + 1, yi) - reference.at(xi - 1, yi)) + std::abs(reference.at(xi, yi + 1) - reference.at(xi, yi - 1));
-        const double dx = x - ox, dy = y - oy;
-        window.push_back({global.a[0] * dx + global.a[1] * dy, global.a[2] * dx + global.a[3] * dy, reference.at(xi, yi)});
-      }
-    if (window.size() < 32 || gradient < 2.0 * static_cast<double>(window.size())) window.clear();
-  }
   // The mean absolute difference over the window's pixels that land in the frame: content leaving the frame neither
   // holds a node back nor pushes it out. A position where under half of them land in the frame is not taken.
-  auto cost_at = [&](const std::vector<std::array<double, 3>>& window, const Position& to) {
+  using Window = std::vector<std::array<double, 3>>;  // offsets from the node now, and the reference's values
+  auto cost_at = [&](const Window& window, const Position& to) {
     double sum = 0;
     size_t inside = 0;
     for (const auto& [dx, dy, value] : window) {
@@ -292,6 +316,40 @@ void NodeTracker::place_on_content(std::vector<Position>& p, const std::vector<P
     }
     return 2 * inside < window.size() ? std::numeric_limits<double>::infinity() : sum / static_cast<double>(inside);
   };
+  auto shaped = [](const Window& pixels, const Linear& m) {
+    Window window;
+    window.reserve(pixels.size());
+    for (const auto& [dx, dy, value] : pixels) window.push_back({m[0] * dx + m[1] * dy, m[2] * dx + m[3] * dy, value});
+    return window;
+  };
+  // A window's lowest cost on the half-pixel grid within a pixel of the node's two starts.
+  auto best_near = [&](const Window& window, uint32_t n) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const Position& from : {p[n], started[n]})
+      for (int sy = -2; sy <= 2; ++sy)
+        for (int sx = -2; sx <= 2; ++sx) best = std::min(best, cost_at(window, {from[0] + 0.5 * sx, from[1] + 0.5 * sy}));
+    return best;
+  };
+  const Linear global_shape{global.a[0], global.a[1], global.a[2], global.a[3]};
+  std::vector<Window> windows(p.size());
+  for (uint32_t n = 0; n < p.size(); ++n) {
+    if (freedom(n) == NodeFreedom::kFixed || outside_[n]) continue;
+    const double ox = origin[n].x * 0.5, oy = origin[n].y * 0.5;
+    Window pixels;  // offsets from the node in the reference
+    double gradient = 0;
+    for (int j = -kRadius; j <= kRadius; ++j)
+      for (int i = -kRadius; i <= kRadius; ++i) {
+        const double x = std::floor(ox) + i + 0.5, y = std::floor(oy) + j + 0.5;
+        if (x < 1 || y < 1 || x > reference.width - 1.0 || y > reference.height - 1.0 || !in_polygon(n, x, y)) continue;
+        const auto xi = static_cast<uint32_t>(x), yi = static_cast<uint32_t>(y);
+        gradient += std::abs(reference.at(xi + 1, yi) - reference.at(xi - 1, yi)) + std::abs(reference.at(xi, yi + 1) - reference.at(xi, yi - 1));
+        pixels.push_back({x - ox, y - oy, reference.at(xi, yi)});
+      }
+    if (pixels.size() < 32 || gradient < 2.0 * static_cast<double>(pixels.size())) continue;
+    windows[n] = shaped(pixels, global_shape);
+    if (const std::optional<Linear> ring = ring_shape(n, p, origin, global))
+      if (Window fitted = shaped(pixels, *ring); best_near(fitted, n) < kRingFitsBetter * best_near(windows[n], n)) windows[n] = std::move(fitted);
+  }
   // A descent for each node: to the best of its eight neighbours a pixel away, then half a pixel away, while that lowers the cost.
   for (int pass = 0; pass < kPasses; ++pass) {
     bool moved = false;

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "mesh/geometry.h"
@@ -82,6 +83,8 @@ class NodeTracker {
   void build_samples(const std::vector<Luma>& reference, const std::vector<Point>& at);
   std::vector<Position> start(const Affine& global) const;
   void place_on_content(std::vector<Position>& p, const std::vector<Position>& started, const Affine& global) const;
+  using Linear = std::array<double, 4>;  // a 2×2 matrix, row by row
+  std::optional<Linear> ring_shape(uint32_t node, const std::vector<Position>& p, const std::vector<Point>& origin, const Affine& global) const;
   double triangle_cost(int level, uint32_t t, const std::vector<Position>& p, NodeIndex moved, const Position& to) const;
   // Whether every triangle around `node` at `to` (positions of a level of `scale`) keeps clockwise, within kMaxStretch of its first area.
   bool keeps_shape(uint32_t node, const Position& to, const std::vector<Position>& p, double scale) const;
