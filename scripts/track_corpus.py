@@ -210,13 +210,18 @@ def bilinear(picture, x, y):
     return top * (1 - fy) + bottom * fy
 
 
+def decoded_frames(video):
+    """A corpus clip as FFmpeg decodes it: frames x rows x columns x RGB."""
+    raw = subprocess.run(["ffmpeg", "-v", "error", "-i", video, "-f", "rawvideo", "-pix_fmt", "rgb24", "-"], capture_output=True, check=True).stdout
+    return np.frombuffer(raw, np.uint8).reshape(-1, HEIGHT, WIDTH, 3)
+
+
 def video_lag(motion, video):
     """How far the coded video's last frame shows its content behind M_t: at points 16 px apart (away from the frame's
     edge and the disc's), the shift s with decoded(p) = drawn(p + s) over a 17 x 17 window (Lucas-Kanade), projected on
     the true motion there; the mean in pixels (positive: the content lags)."""
-    raw = subprocess.run(["ffmpeg", "-v", "error", "-i", video, "-f", "rawvideo", "-pix_fmt", "rgb24", "-"], capture_output=True, check=True).stdout
     t = FRAMES - 1
-    decoded = luma(np.frombuffer(raw, np.uint8).reshape(-1, HEIGHT, WIDTH, 3)[t].astype(float))
+    decoded = luma(decoded_frames(video)[t].astype(float))
     drawn = luma(motion.frame(t).astype(float))
     lags = []
     for y in range(24, HEIGHT - 23, 16):

@@ -11,7 +11,6 @@ The half-pixel rounding of the truth is the floor of both.
 """
 import argparse
 import os
-import subprocess
 import tempfile
 
 import numpy as np
@@ -22,14 +21,9 @@ RADIUS = 8  # pixels, as the tracker's step 5
 SEARCH = 1.5  # pixels around the truth
 
 
-def decoded_frames(video):
-    raw = subprocess.run(["ffmpeg", "-v", "error", "-i", video, "-f", "rawvideo", "-pix_fmt", "rgb24", "-"], capture_output=True, check=True).stdout
-    return np.frombuffer(raw, np.uint8).reshape(-1, corpus.HEIGHT, corpus.WIDTH, 3)
-
-
 def bound(motion, video):
     """Mean distance to the truth over frames 1 ... and points in view: (rigid window, shaped window, rounded truth)."""
-    frames = decoded_frames(video)
+    frames = corpus.decoded_frames(video)
     reference = corpus.luma(frames[0].astype(float))
     wy, wx = np.mgrid[-RADIUS:RADIUS + 1, -RADIUS:RADIUS + 1].astype(float)
     steps = np.arange(-SEARCH, SEARCH + 0.01, 0.5)
