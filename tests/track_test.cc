@@ -106,11 +106,11 @@ void write_frames(const Workspace& folder, const std::vector<Image>& frames) {
 }
 
 // The frames as H.264 (yuv420p), as a camera's video would come.
-std::string h264_video(const Workspace& folder, const std::vector<Image>& frames, int fps = 25) {
+std::string h264_video(const Workspace& folder, const std::vector<Image>& frames, int fps = 25, int crf = 12) {
   write_frames(folder, frames);
   const std::string video = folder / "video.mp4";
   const std::string command = "ffmpeg -nostdin -v error -y -framerate " + std::to_string(fps) + " -i '" + folder / "%03d.png" +
-                              "' -c:v libx264 -preset fast -crf 12 -pix_fmt yuv420p -movflags +faststart '" + video + "'";
+                              "' -c:v libx264 -preset fast -crf " + std::to_string(crf) + " -pix_fmt yuv420p -movflags +faststart '" + video + "'";
   EXPECT_EQ(std::system(command.c_str()), 0) << command;
   return video;
 }
@@ -321,11 +321,11 @@ TEST(Track, MaskedObjectMovesOverAStillBackground) {
 }
 
 // A textured disc moving over a still textured background, no mask, through
-// H.264: a content-based mesh has polygons that straddle the disc's edge,
-// whose warp fits the other side's motion a period of the texture off.
-// Nodes on the disc follow the disc, nodes off it stay.
-TEST(Track, NodesOnAMovingDiscFollowItNotTheBackground) {
-  const Workspace folder("disc");
+// H.264 at `crf`, tracked with 60 content-based nodes: the mean error of the
+// nodes at least 3 pixels inside the disc's edge in the first frame, and of
+// those outside it while the disc has not reached them.
+std::pair<double, double> disc_errors(const std::string& name, int crf) {
+  const Workspace folder(name);
   const uint32_t w = 320, h = 240;
   const int frames = 14;
   const double cx = 112, cy = 120, radius = 42, vx = 1.6, vy = -0.5;
@@ -339,12 +339,15 @@ TEST(Track, NodesOnAMovingDiscFollowItNotTheBackground) {
         if (on_disc(x + 0.5, y + 0.5, t)) frame.at(x, y) = bilinear(object, x - vx * t, y - vy * t);
     video.push_back(std::move(frame));
   }
-  const std::string clip = h264_video(folder, video);
+  const std::string clip = h264_video(folder, video, 25, crf);
   TrackSettings settings;
   settings.nodes = 60;
   settings.remesh_stretch = 0;  // one mesh throughout
   const TrackResult result = track_video(clip, settings);
-  ASSERT_EQ(result.positions.size(), static_cast<size_t>(frames));
+  if (result.positions.size() != static_cast<size_t>(frames)) {
+    ADD_FAILURE() << "tracked " << result.positions.size() << " frames of " << frames;
+    return {HUGE_VAL, HUGE_VAL};
+  }
   expect_no_fold(result);
   // Nodes at least 3 pixels from the disc's edge in the first frame, while their content is in view.
   double disc_sum = 0, background_sum = 0;
@@ -362,12 +365,29 @@ TEST(Track, NodesOnAMovingDiscFollowItNotTheBackground) {
       }
     }
   }
-  ASSERT_GT(disc_count, 0u);
-  ASSERT_GT(background_count, 0u);
-  std::printf("disc over a still background (60 nodes), H.264: mean node error %.3f px on the disc, %.3f px off it\n",
-              disc_sum / static_cast<double>(disc_count), background_sum / static_cast<double>(background_count));
-  EXPECT_LE(disc_sum / static_cast<double>(disc_count), 0.5);
-  EXPECT_LE(background_sum / static_cast<double>(background_count), 0.5);
+  EXPECT_GT(disc_count, 0u);
+  EXPECT_GT(background_count, 0u);
+  const double disc = disc_sum / static_cast<double>(disc_count), off = background_sum / static_cast<double>(background_count);
+  std::printf("disc over a still background (60 nodes), H.264 CRF %d: mean node error %.3f px on the disc, %.3f px off it\n", crf, disc, off);
+  return {disc, off};
+}
+
+// The mesh has polygons that straddle the disc's edge, whose warp fits the
+// other side's motion a period of the texture off. Nodes on the disc follow
+// the disc, nodes off it stay.
+TEST(Track, NodesOnAMovingDiscFollowItNotTheBackground) {
+  const auto [disc, off] = disc_errors("disc", 12);
+  EXPECT_LE(disc, 0.5);
+  EXPECT_LE(off, 0.5);
+}
+
+// The same through a coarse video (CRF 28): where the content moves as one,
+// a node matches a larger window, whose more pixels average the coding
+// noise (0.333 px on the disc with 17 × 17 windows only).
+TEST(Track, NodesAverageCodingNoiseOverALargerWindow) {
+  const auto [disc, off] = disc_errors("disc-coarse", 28);
+  EXPECT_LE(disc, 0.32);
+  EXPECT_LE(off, 0.1);
 }
 
 // A camera pan over a still scene, lossless: frame t is a window of a

@@ -285,9 +285,10 @@ std::optional<NodeTracker::Linear> NodeTracker::ring_shape(uint32_t node, const 
 // say leaves the node. The window is shaped by the global motion's linear
 // part, or by the node's ring (ring_shape) where that fits clearly better
 // near its two starts: a warp that turns or stretches the content under a
-// node is then matched as it is.
+// node is then matched as it is. A larger window is taken where it fits
+// better still: content that moves as one over it averages more noise.
 void NodeTracker::place_on_content(std::vector<Position>& p, const std::vector<Position>& started, const Affine& global) const {
-  constexpr int kRadius = 8;  // pixels
+  constexpr int kRadius = 8, kLargerRadius = 11;  // pixels
   constexpr int kPasses = 4;
   constexpr double kRingFitsBetter = 0.9;  // the ring's shape is taken below this share of the global shape's cost
   const Luma &reference = previous_pyramid_[0], &picture = frame_pyramid_[0];
@@ -303,9 +304,11 @@ void NodeTracker::place_on_content(std::vector<Position>& p, const std::vector<P
     return false;
   };
   // The mean absolute difference over the window's pixels that land in the frame: content leaving the frame neither
-  // holds a node back nor pushes it out. A position where under half of them land in the frame is not taken.
+  // holds a node back nor pushes it out. A position where under half of them land in the frame is not taken. Infinite
+  // as soon as the sum shows the cost is above `bound` (the mean over the pixels in the frame is at least sum / size).
   using Window = std::vector<std::array<double, 3>>;  // offsets from the node now, and the reference's values
-  auto cost_at = [&](const Window& window, const Position& to) {
+  auto cost_at = [&](const Window& window, const Position& to, double bound = std::numeric_limits<double>::infinity()) {
+    const double most = bound * static_cast<double>(window.size());
     double sum = 0;
     size_t inside = 0;
     for (const auto& [dx, dy, value] : window) {
@@ -313,6 +316,7 @@ void NodeTracker::place_on_content(std::vector<Position>& p, const std::vector<P
       if (!in_frame(picture, x, y)) continue;
       sum += std::abs(picture.sample(x, y) - static_cast<float>(value));
       ++inside;
+      if (sum > most) return std::numeric_limits<double>::infinity();
     }
     return 2 * inside < window.size() ? std::numeric_limits<double>::infinity() : sum / static_cast<double>(inside);
   };
@@ -322,33 +326,47 @@ void NodeTracker::place_on_content(std::vector<Position>& p, const std::vector<P
     for (const auto& [dx, dy, value] : pixels) window.push_back({m[0] * dx + m[1] * dy, m[2] * dx + m[3] * dy, value});
     return window;
   };
-  // A window's lowest cost on the half-pixel grid within a pixel of the node's two starts.
-  auto best_near = [&](const Window& window, uint32_t n) {
-    double best = std::numeric_limits<double>::infinity();
+  // A window's lowest cost on the half-pixel grid within a pixel of the node's two starts, if below `bound`.
+  auto best_near = [&](const Window& window, uint32_t n, double bound = std::numeric_limits<double>::infinity()) {
+    double best = bound;
     for (const Position& from : {p[n], started[n]})
       for (int sy = -2; sy <= 2; ++sy)
-        for (int sx = -2; sx <= 2; ++sx) best = std::min(best, cost_at(window, {from[0] + 0.5 * sx, from[1] + 0.5 * sy}));
-    return best;
+        for (int sx = -2; sx <= 2; ++sx) best = std::min(best, cost_at(window, {from[0] + 0.5 * sx, from[1] + 0.5 * sy}, best));
+    return best < bound ? best : std::numeric_limits<double>::infinity();
   };
   const Linear global_shape{global.a[0], global.a[1], global.a[2], global.a[3]};
-  std::vector<Window> windows(p.size());
-  for (uint32_t n = 0; n < p.size(); ++n) {
-    if (freedom(n) == NodeFreedom::kFixed || outside_[n]) continue;
+  // The window of a radius around a node, shaped by the global motion or by the node's ring where that fits clearly
+  // better, and its lowest cost near the node's starts; none where too few of its pixels are the node's or too flat.
+  auto fitted_window = [&](uint32_t n, int radius, const std::optional<Linear>& ring, double& cost) -> Window {
     const double ox = origin[n].x * 0.5, oy = origin[n].y * 0.5;
     Window pixels;  // offsets from the node in the reference
     double gradient = 0;
-    for (int j = -kRadius; j <= kRadius; ++j)
-      for (int i = -kRadius; i <= kRadius; ++i) {
+    for (int j = -radius; j <= radius; ++j)
+      for (int i = -radius; i <= radius; ++i) {
         const double x = std::floor(ox) + i + 0.5, y = std::floor(oy) + j + 0.5;
         if (x < 1 || y < 1 || x > reference.width - 1.0 || y > reference.height - 1.0 || !in_polygon(n, x, y)) continue;
         const auto xi = static_cast<uint32_t>(x), yi = static_cast<uint32_t>(y);
         gradient += std::abs(reference.at(xi + 1, yi) - reference.at(xi - 1, yi)) + std::abs(reference.at(xi, yi + 1) - reference.at(xi, yi - 1));
         pixels.push_back({x - ox, y - oy, reference.at(xi, yi)});
       }
-    if (pixels.size() < 32 || gradient < 2.0 * static_cast<double>(pixels.size())) continue;
-    windows[n] = shaped(pixels, global_shape);
-    if (const std::optional<Linear> ring = ring_shape(n, p, origin, global))
-      if (Window fitted = shaped(pixels, *ring); best_near(fitted, n) < kRingFitsBetter * best_near(windows[n], n)) windows[n] = std::move(fitted);
+    if (pixels.size() < 32 || gradient < 2.0 * static_cast<double>(pixels.size())) return {};
+    Window window = shaped(pixels, global_shape);
+    cost = best_near(window, n);
+    if (ring) {
+      Window fitted = shaped(pixels, *ring);
+      if (const double fitted_cost = best_near(fitted, n, kRingFitsBetter * cost); fitted_cost < kRingFitsBetter * cost) window = std::move(fitted), cost = fitted_cost;
+    }
+    return window;
+  };
+  std::vector<Window> windows(p.size());
+  for (uint32_t n = 0; n < p.size(); ++n) {
+    if (freedom(n) == NodeFreedom::kFixed || outside_[n]) continue;
+    const std::optional<Linear> ring = ring_shape(n, p, origin, global);
+    double cost = 0, larger_cost = 0;
+    windows[n] = fitted_window(n, kRadius, ring, cost);
+    if (windows[n].empty()) continue;
+    // Where the content moves as one over a larger window, its larger sample outweighs the video's noise.
+    if (Window larger = fitted_window(n, kLargerRadius, ring, larger_cost); !larger.empty() && larger_cost < cost) windows[n] = std::move(larger);
   }
   // A descent for each node: to the best of its eight neighbours a pixel away, then half a pixel away, while that lowers the cost.
   for (int pass = 0; pass < kPasses; ++pass) {
@@ -358,7 +376,7 @@ void NodeTracker::place_on_content(std::vector<Position>& p, const std::vector<P
       const NodeFreedom f = freedom(n);
       double current = cost_at(windows[n], p[n]);
       if (pass == 0 && started[n] != p[n] && allowed(n, started[n], 1.0) && keeps_shape(n, started[n], p, 1.0))
-        if (const double there = cost_at(windows[n], started[n]); there < current) p[n] = started[n], current = there, moved = true;
+        if (const double there = cost_at(windows[n], started[n], current); there < current) p[n] = started[n], current = there, moved = true;
       for (const double step : {1.0, 0.5})
         for (bool improved = true; improved;) {
           improved = false;
@@ -369,7 +387,7 @@ void NodeTracker::place_on_content(std::vector<Position>& p, const std::vector<P
               if ((sx == 0 && sy == 0) || (f == NodeFreedom::kAlongX && sy != 0) || (f == NodeFreedom::kAlongY && sx != 0)) continue;
               const Position to{p[n][0] + step * sx, p[n][1] + step * sy};
               if (!allowed(n, to, 1.0)) continue;
-              if (const double cost = cost_at(windows[n], to); cost < best) best = cost, best_to = to;
+              if (const double cost = cost_at(windows[n], to, best); cost < best) best = cost, best_to = to;
             }
           if (best_to != p[n] && keeps_shape(n, best_to, p, 1.0)) p[n] = best_to, current = best, improved = moved = true;
         }
