@@ -335,38 +335,52 @@ void NodeTracker::place_on_content(std::vector<Position>& p, const std::vector<P
     return best < bound ? best : std::numeric_limits<double>::infinity();
   };
   const Linear global_shape{global.a[0], global.a[1], global.a[2], global.a[3]};
-  // The window of a radius around a node, shaped by the global motion or by the node's ring where that fits clearly
-  // better, and its lowest cost near the node's starts; none where too few of its pixels are the node's or too flat.
-  auto fitted_window = [&](uint32_t n, int radius, const std::optional<Linear>& ring, double& cost) -> Window {
+  // The reference's pixels within the larger window of a node and in its triangles, row by row.
+  struct Pixel {
+    int ring;  // max(|i|, |j|): the smallest window radius holding the pixel
+    double dx, dy, gradient;
+    float value;
+  };
+  auto pixels_around = [&](uint32_t n) {
     const double ox = origin[n].x * 0.5, oy = origin[n].y * 0.5;
-    Window pixels;  // offsets from the node in the reference
-    double gradient = 0;
-    for (int j = -radius; j <= radius; ++j)
-      for (int i = -radius; i <= radius; ++i) {
+    std::vector<Pixel> pixels;
+    for (int j = -kLargerRadius; j <= kLargerRadius; ++j)
+      for (int i = -kLargerRadius; i <= kLargerRadius; ++i) {
         const double x = std::floor(ox) + i + 0.5, y = std::floor(oy) + j + 0.5;
         if (x < 1 || y < 1 || x > reference.width - 1.0 || y > reference.height - 1.0 || !in_polygon(n, x, y)) continue;
         const auto xi = static_cast<uint32_t>(x), yi = static_cast<uint32_t>(y);
-        gradient += std::abs(reference.at(xi + 1, yi) - reference.at(xi - 1, yi)) + std::abs(reference.at(xi, yi + 1) - reference.at(xi, yi - 1));
-        pixels.push_back({x - ox, y - oy, reference.at(xi, yi)});
+        const double gradient =
+            std::abs(reference.at(xi + 1, yi) - reference.at(xi - 1, yi)) + std::abs(reference.at(xi, yi + 1) - reference.at(xi, yi - 1));
+        pixels.push_back({std::max(std::abs(i), std::abs(j)), x - ox, y - oy, gradient, reference.at(xi, yi)});
       }
-    if (pixels.size() < 32 || gradient < 2.0 * static_cast<double>(pixels.size())) return {};
-    Window window = shaped(pixels, global_shape);
-    cost = best_near(window, n);
+    return pixels;
+  };
+  // The window of a radius around a node, shaped by the global motion or by the node's ring where that fits clearly
+  // better, and its lowest cost near the node's starts; none where too few of its pixels are the node's or too flat.
+  auto fitted_window = [&](uint32_t n, const std::vector<Pixel>& around, int radius, const std::optional<Linear>& ring) {
+    Window pixels;  // offsets from the node in the reference
+    double gradient = 0;
+    for (const Pixel& q : around)
+      if (q.ring <= radius) gradient += q.gradient, pixels.push_back({q.dx, q.dy, q.value});
+    if (pixels.size() < 32 || gradient < 2.0 * static_cast<double>(pixels.size())) return std::pair<Window, double>{};
+    std::pair<Window, double> fit{shaped(pixels, global_shape), 0};
+    fit.second = best_near(fit.first, n);
     if (ring) {
       Window fitted = shaped(pixels, *ring);
-      if (const double fitted_cost = best_near(fitted, n, kRingFitsBetter * cost); fitted_cost < kRingFitsBetter * cost) window = std::move(fitted), cost = fitted_cost;
+      if (const double cost = best_near(fitted, n, kRingFitsBetter * fit.second); cost < kRingFitsBetter * fit.second) fit = {std::move(fitted), cost};
     }
-    return window;
+    return fit;
   };
   std::vector<Window> windows(p.size());
   for (uint32_t n = 0; n < p.size(); ++n) {
     if (freedom(n) == NodeFreedom::kFixed || outside_[n]) continue;
     const std::optional<Linear> ring = ring_shape(n, p, origin, global);
-    double cost = 0, larger_cost = 0;
-    windows[n] = fitted_window(n, kRadius, ring, cost);
-    if (windows[n].empty()) continue;
-    // Where the content moves as one over a larger window, its larger sample outweighs the video's noise.
-    if (Window larger = fitted_window(n, kLargerRadius, ring, larger_cost); !larger.empty() && larger_cost < cost) windows[n] = std::move(larger);
+    const std::vector<Pixel> around = pixels_around(n);
+    auto [window, cost] = fitted_window(n, around, kRadius, ring);
+    if (window.empty()) continue;
+    // Where the content moves as one over a larger window, its more pixels average the video's noise.
+    if (auto [larger, larger_cost] = fitted_window(n, around, kLargerRadius, ring); !larger.empty() && larger_cost < cost) window = std::move(larger);
+    windows[n] = std::move(window);
   }
   // A descent for each node: to the best of its eight neighbours a pixel away, then half a pixel away, while that lowers the cost.
   for (int pass = 0; pass < kPasses; ++pass) {
