@@ -95,6 +95,10 @@ int run_m4mesh(int argc, const char* const* argv) {
   encode3d_cmd->add_flag("--no-hash", encode3d_args.no_hash, "leave out the decoded-frame hash units");
   encode3d_cmd->add_flag("--reorder", encode3d_args.reorder,
                          "number the vertices in coding order, not the input's: a smaller base mesh (decoders say so)");
+  encode3d_cmd->add_option("--position-blend", encode3d_args.position_blend,
+                           "the base mesh's positions: the known neighbours' mean blended into each parallelogram prediction, in sixteenths: "
+                           "0 … 16, or auto (each base mesh's smallest); 0 writes a version 1 stream")
+      ->capture_default_str();
   encode3d_cmd->add_option("--hash-group", encode3d_args.hash_group, "frames per group hash unit (1: an MD5 hash unit per frame)")
       ->check(CLI::Range(1, 65535))
       ->capture_default_str();

@@ -3,6 +3,7 @@
 #include "cli/encode3d.h"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <set>
@@ -16,6 +17,7 @@
 #include "encoder/mesh3d/codec_encoders.h"
 #include "encoder/mesh3d/container_encoder.h"
 #include "encoder/mesh3d/quality_target.h"
+#include "syntax/mesh3d/base_mesh.h"
 
 namespace m4mesh {
 
@@ -94,6 +96,13 @@ int run_encode3d(const Encode3dArgs& args) {
   options.hashes = !args.no_hash;
   options.hash_group = args.hash_group;
   options.reorder = args.reorder;
+  if (args.position_blend != "auto") {
+    const std::string& text = args.position_blend;
+    if (text.empty() || text.size() > 2 || !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; }) ||
+        std::stoul(text) > kPositionBlendUnit)
+      throw usage_error("--position-blend is auto or 0 … 16, not " + text);
+    options.position_blend = static_cast<uint32_t>(std::stoul(text));
+  }
   std::tie(options.frame_rate_num, options.frame_rate_den) = frame_rate_fraction(fps);
   options.trace = args.trace ? &trace : nullptr;
   options.threads = args.threads;

@@ -33,8 +33,8 @@ int run_info3d(const std::string& input) {
   const ContainerParts parts = split_container(stream);
   Mesh3dDecoder decoder(stream);
   const ObjectHeader& h = decoder.header();
-  std::printf("%s: %zu bytes, mesh3d container, codec_id %u (%s), %u vertices, %u faces, %u frames at %u/%u fps\n", input.c_str(),
-              stream.size(), h.codec_id, decoder.codec().name.c_str(), h.vertex_count, h.face_count, h.frame_count, h.frame_rate_num,
+  std::printf("%s: %zu bytes, mesh3d container version %u, codec_id %u (%s), %u vertices, %u faces, %u frames at %u/%u fps\n",
+              input.c_str(), stream.size(), h.version, h.codec_id, decoder.codec().name.c_str(), h.vertex_count, h.face_count, h.frame_count, h.frame_rate_num,
               h.frame_rate_den);
   if (const std::optional<uint32_t> order = decoder.vertex_order())
     std::printf("  vertex order: %s\n", vertex_order_name(*order));

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -47,10 +48,21 @@ class CodecEncoder3d {
   virtual std::vector<CodecStatistic> statistics() const { return {}; }
 };
 
+// How the encoder codes base meshes beyond their content: the stream's
+// version, and in version 2 the positions' blend (docs/base_mesh.md), or
+// the one of 0 … 16 that codes each base mesh in the fewest bytes.
+struct BaseMeshCoding {
+  uint32_t version = kLatestVersion;
+  std::optional<uint32_t> position_blend;
+
+  // Version 1 for a blend of 0 (a stream every decoder of version 1 reads), else version 2.
+  static BaseMeshCoding with_blend(std::optional<uint32_t> position_blend);
+};
+
 // A base mesh unit's data (docs/base_mesh.md): the faces, which must be in
 // coding order (the container encoder puts them so), and the grid
 // positions; `untraversed` as for plan_base_mesh (encoder/mesh3d/base_mesh.h).
 void write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions,
-                     std::span<const uint32_t> untraversed = {});
+                     const BaseMeshCoding& coding, std::span<const uint32_t> untraversed = {});
 
 }  // namespace m4mesh

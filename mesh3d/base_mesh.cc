@@ -73,12 +73,19 @@ void describe_vertex_order(IO& io, syntax::BaseMeshContexts& contexts, uint32_t 
 }
 
 template <class IO>
-void describe_positions(IO& io, syntax::BaseMeshContexts& contexts, std::span<const Triangle> faces, std::vector<IntPoint3>& positions) {
+void describe_positions(IO& io, syntax::BaseMeshContexts& contexts, std::span<const Triangle> faces, uint32_t blend,
+                        std::vector<IntPoint3>& positions) {
   const uint32_t count = static_cast<uint32_t>(positions.size());
   const MeshPredictor predictor(faces, count);
-  std::array<int64_t, 3> p{};
+  std::array<int64_t, 3> p{}, neighbours{};
   for (uint32_t v = 0; v < count; ++v) {
-    int channel = predictor.predict(v, [v](uint32_t u) { return u < v; }, [&](uint32_t u) { return positions[u]; }, p);
+    const auto known = [v](uint32_t u) { return u < v; };
+    const auto value = [&](uint32_t u) { return positions[u]; };
+    int channel = predictor.predict(v, known, value, p);
+    // A parallelogram's corners are known neighbours: the mean exists.
+    if (channel == syntax::kParallelogramChannel && blend > 0 && predictor.neighbour_mean(v, known, value, neighbours))
+      for (int a = 0; a < 3; ++a)
+        p[a] = floor_div((kPositionBlendUnit - blend) * p[a] + blend * neighbours[a], kPositionBlendUnit);
     if (channel < 0) {
       for (int a = 0; a < 3; ++a) p[a] = v > 0 ? positions[v - 1][a] : 0;
       channel = syntax::kNeighbourChannel;
@@ -96,7 +103,7 @@ void describe_positions(IO& io, syntax::BaseMeshContexts& contexts, std::span<co
 
 #define M4MESH_BASE_MESH_IO(IO)                                                                                        \
   template void describe_vertex_order<IO>(IO&, syntax::BaseMeshContexts&, uint32_t, std::span<const Triangle>, std::vector<uint32_t>&); \
-  template void describe_positions<IO>(IO&, syntax::BaseMeshContexts&, std::span<const Triangle>, std::vector<IntPoint3>&);
+  template void describe_positions<IO>(IO&, syntax::BaseMeshContexts&, std::span<const Triangle>, uint32_t, std::vector<IntPoint3>&);
 M4MESH_BASE_MESH_IO(syntax::EntropyReadIO<false>)
 M4MESH_BASE_MESH_IO(syntax::EntropyReadIO<true>)
 M4MESH_BASE_MESH_IO(syntax::EntropyWriteIO<false>)

@@ -102,8 +102,10 @@ void describe_vertex_order(IO& io, syntax::BaseMeshContexts& contexts, uint32_t 
                            std::vector<uint32_t>& input_of);
 
 // The first frame's positions in coding order: each the residual from the
-// prediction by the vertices before it.
+// prediction by the vertices before it, a parallelogram prediction blended
+// with the known neighbours' mean by `blend` sixteenths.
 template <class IO>
-void describe_positions(IO& io, syntax::BaseMeshContexts& contexts, std::span<const Triangle> faces, std::vector<IntPoint3>& positions);
+void describe_positions(IO& io, syntax::BaseMeshContexts& contexts, std::span<const Triangle> faces, uint32_t blend,
+                        std::vector<IntPoint3>& positions);
 
 }  // namespace m4mesh

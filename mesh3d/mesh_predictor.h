@@ -56,6 +56,15 @@ class MeshPredictor {
       for (size_t a = 0; a < D; ++a) p[a] = floor_div(sum[a], n);
       return syntax::kParallelogramChannel;
     }
+    return neighbour_mean(v, known, value, p) ? syntax::kNeighbourChannel : -1;
+  }
+
+  // The mean (floor) of the known corners of the faces around v, each
+  // counted once per face; false (p untouched) when none is known.
+  template <size_t D, class Known, class Value>
+  bool neighbour_mean(uint32_t v, Known known, Value value, std::array<int64_t, D>& p) const {
+    std::array<int64_t, D> sum{};
+    int64_t n = 0;
     for (uint32_t i = first_[v]; i < first_[v + 1]; ++i)
       for (NodeIndex u : faces_[around_[i]].v)
         if (u != v && known(u)) {
@@ -63,9 +72,9 @@ class MeshPredictor {
           for (size_t a = 0; a < D; ++a) sum[a] += vu[a];
           ++n;
         }
-    if (n == 0) return -1;
+    if (n == 0) return false;
     for (size_t a = 0; a < D; ++a) p[a] = floor_div(sum[a], n);
-    return syntax::kNeighbourChannel;
+    return true;
   }
 
  private:

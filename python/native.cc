@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <optional>
 #include <sstream>
 
 #include "codecs3d/registry.h"
@@ -19,6 +20,7 @@
 #include "encoder/mesh3d/container_encoder.h"
 #include "encoder/mesh3d/quality_target.h"
 #include "mesh3d/metrics.h"
+#include "syntax/mesh3d/base_mesh.h"
 
 namespace py = pybind11;
 
@@ -110,12 +112,14 @@ std::string keyword_spelling(const std::string& message) {
 }
 
 py::bytes encode(const Frames& frames, const Faces& faces, const std::string& codec, bool hashes, uint32_t hash_group, bool reorder,
-                 const py::kwargs& options) {
+                 std::optional<uint32_t> position_blend, const py::kwargs& options) {
   Encode3dOptions o;
   o.codec = codec;
   o.hashes = hashes;
   o.hash_group = hash_group;
   o.reorder = reorder;
+  if (position_blend > kPositionBlendUnit) throw py::value_error("position_blend is None (auto) or 0 … 16");
+  o.position_blend = position_blend;
   QualityTarget target;
   for (const auto& [key, value] : options) {
     std::string name = py::str(key);
@@ -293,15 +297,15 @@ PYBIND11_MODULE(_native, m) {
     return names;
   }, "The registered 3D codecs' names.");
   m.def("encode", &encode, py::arg("frames"), py::arg("faces"), py::arg("codec") = "bfs3d", py::arg("hashes") = true,
-        py::arg("hash_group") = 16, py::arg("reorder") = false,
+        py::arg("hash_group") = 16, py::arg("reorder") = false, py::arg("position_blend") = py::none(),
         R"(A 3D stream (bytes) of frames float32[F, V, 3] with faces int32[T, 3].
 
 codec: a name of m4mesh.codecs(), or "auto" (every codec at the target,
 the smallest stream kept). Its options as keywords, dashes as underscores
 (bits=12, me=5, theta_bits=6, noise="auto", …; True is "1"); target_kg=X
 or target_psnr=Y (a finite number above 0) searches the codec's quality
-for the smallest stream that reaches it. hashes, hash_group, reorder: as
-encode3d's.)");
+for the smallest stream that reaches it. hashes, hash_group, reorder,
+position_blend (None: auto; 0 writes a version 1 stream): as encode3d's.)");
   m.def("decode", &decode, py::arg("stream"),
         "(frames float32[F, V, 3], faces int32[T, 3]) of a 3D stream (bytes or any bytes-like object), every frame checked "
         "against its hash units. A stream of reorder=True numbers its vertices in coding order (a UserWarning says so): "

@@ -67,17 +67,17 @@ TestMesh awkward_mesh(uint64_t seed) {
   return m;
 }
 
-std::vector<uint8_t> write_unit(std::span<const Triangle> faces, std::span<const IntPoint3> positions) {
+std::vector<uint8_t> write_unit(std::span<const Triangle> faces, std::span<const IntPoint3> positions, const BaseMeshCoding& coding = {}) {
   BitWriter writer;
   syntax::WriteIO io(writer);
-  write_base_mesh(io, faces, positions);
+  write_base_mesh(io, faces, positions, coding);
   return writer.take_bytes();
 }
 
-BaseMesh read_unit(const std::vector<uint8_t>& unit, uint32_t vertex_count, uint32_t face_count) {
+BaseMesh read_unit(const std::vector<uint8_t>& unit, uint32_t vertex_count, uint32_t face_count, uint32_t version = kLatestVersion) {
   BitReader reader(unit.data(), unit.size());
   syntax::ReadIO io(reader);
-  return read_base_mesh(io, ObjectHeader{1, 1, vertex_count, face_count, 1, 25, 1}, nullptr);
+  return read_base_mesh(io, ObjectHeader{version, 1, vertex_count, face_count, 1, 25, 1}, nullptr);
 }
 
 TEST(BaseMesh, RoundTripsAwkwardMeshesInTheInputVertexOrder) {
@@ -134,6 +134,38 @@ TEST(BaseMesh, ParallelogramsOfInputNumbersPredictARowMajorGrid) {
   const std::vector<uint8_t> unit = write_unit(plan_base_mesh(faces, 1600, false).faces, positions);
   EXPECT_EQ(unit[0], kVertexOrderFromParallelogram);
   EXPECT_LT(unit.size(), 1600u);  // under 8 bits per vertex, the vertex order nearly free
+}
+
+// A bumpy sheet: its parallelograms miss by the bumps, which the neighbours' mean halves.
+TEST(BaseMesh, EveryPositionBlendRoundTripsAndAutoTakesTheSmallest) {
+  std::vector<Triangle> faces;
+  add_sheet(faces, 0, 30);
+  std::vector<IntPoint3> positions;
+  test::Random random(11);
+  for (int32_t y = 0; y < 30; ++y)
+    for (int32_t x = 0; x < 30; ++x) positions.push_back({x * 64 + random.uniform(-9, 9), y * 64 + random.uniform(-9, 9), random.uniform(-40, 40)});
+  const std::vector<Triangle> planned = plan_base_mesh(faces, 900, false).faces;
+  size_t smallest = SIZE_MAX;
+  uint32_t best = 0;
+  for (uint32_t blend = 0; blend <= kPositionBlendUnit; ++blend) {
+    const std::vector<uint8_t> unit = write_unit(planned, positions, BaseMeshCoding{kLatestVersion, blend});
+    EXPECT_EQ(unit[1], blend);  // after vertex_order
+    const BaseMesh base = read_unit(unit, 900, static_cast<uint32_t>(faces.size()));
+    ASSERT_EQ(base.positions, positions) << "blend " << blend;
+    if (unit.size() < smallest) {
+      smallest = unit.size();
+      best = blend;
+    }
+  }
+  EXPECT_GT(best, 0u);
+  const std::vector<uint8_t> automatic = write_unit(planned, positions);
+  EXPECT_EQ(automatic[1], best);
+  EXPECT_EQ(automatic.size(), smallest);
+  // Version 1: no position_blend field, the predictions of a blend of 0.
+  const std::vector<uint8_t> first = write_unit(planned, positions, BaseMeshCoding::with_blend(0u));
+  const std::vector<uint8_t> zero = write_unit(planned, positions, BaseMeshCoding{kLatestVersion, 0u});
+  EXPECT_EQ(first.size() + 1, zero.size());
+  EXPECT_EQ(read_unit(first, 900, static_cast<uint32_t>(faces.size()), kFirstVersion).positions, positions);
 }
 
 // Every damaged copy decodes or raises Error: never a crash, a hang or an overrun (ASan).

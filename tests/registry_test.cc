@@ -78,11 +78,11 @@ class ToyDecoder final : public CodecDecoder3d {
 
 class ToyEncoder final : public CodecEncoder3d {
  public:
-  explicit ToyEncoder(int levels) : levels_(static_cast<uint32_t>(levels)) {}
+  ToyEncoder(int levels, const BaseMeshCoding& base_mesh) : levels_(static_cast<uint32_t>(levels)), base_mesh_(base_mesh) {}
   void write_header(syntax::WriteIO&) override {}
   void encode(const MeshSequence& s, UnitSink& sink) override {
     const std::vector<IntPoint3> zeros(s.vertex_count, IntPoint3{0, 0, 0});
-    sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, zeros); });
+    sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, zeros, base_mesh_); });
     std::vector<uint32_t> q;
     for (const std::vector<Vec3>& frame : s.frames)
       for (const Vec3& p : frame)
@@ -106,6 +106,7 @@ class ToyEncoder final : public CodecEncoder3d {
 
  private:
   uint32_t levels_;
+  BaseMeshCoding base_mesh_;
 };
 
 // A codec that decodes frames out of display order: after the base mesh
@@ -146,6 +147,7 @@ class ReorderedDecoder final : public CodecDecoder3d {
 
 class ReorderedEncoder final : public CodecEncoder3d {
  public:
+  explicit ReorderedEncoder(const BaseMeshCoding& base_mesh) : base_mesh_(base_mesh) {}
   void write_header(syntax::WriteIO&) override {}
   void encode(const MeshSequence& s, UnitSink& sink) override {
     std::vector<uint32_t> order{0};
@@ -161,12 +163,15 @@ class ReorderedEncoder final : public CodecEncoder3d {
         for (int32_t c : grid.back()) q.push_back(static_cast<uint32_t>(c));
       }
       if (f == 0)
-        sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, grid); });
+        sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, grid, base_mesh_); });
       else
         sink.unit(UnitType::kFrame, f, [&](syntax::WriteIO& io) { describe_toy_frame(io, q, static_cast<uint32_t>(q.size())); });
       sink.decoded(f, decoded);
     }
   }
+
+ private:
+  BaseMeshCoding base_mesh_;
 };
 
 void register_toy() {
@@ -176,11 +181,11 @@ void register_toy() {
     register_decoder3d(kToyId, [](const ObjectHeader& h, syntax::ReadIO&) { return std::make_unique<ToyDecoder>(h); });
     register_encoder3d(kToyId, {{{"levels", "toy-progressive: refinement units to send", OptionKind::kInteger, "2", 1, 2}},
                                 {"levels", {"1", "2"}, {}},
-                                [](const MeshSequence&, const CodecSettings& s) { return std::make_unique<ToyEncoder>(s.integer("levels")); }});
+                                [](const MeshSequence&, const CodecSettings& s) { return std::make_unique<ToyEncoder>(s.integer("levels"), s.base_mesh()); }});
     register_codec3d({kToyId + 1, "toy-reordered", "a test's codec that decodes frames out of display order", "tests/registry_test.cc",
                       {UnitType::kBaseMesh, UnitType::kFrame}});
     register_decoder3d(kToyId + 1, [](const ObjectHeader& h, syntax::ReadIO&) { return std::make_unique<ReorderedDecoder>(h); });
-    register_encoder3d(kToyId + 1, {{}, {}, [](const MeshSequence&, const CodecSettings&) { return std::make_unique<ReorderedEncoder>(); }});
+    register_encoder3d(kToyId + 1, {{}, {}, [](const MeshSequence&, const CodecSettings& s) { return std::make_unique<ReorderedEncoder>(s.base_mesh()); }});
     return true;
   }();
   (void)registered;

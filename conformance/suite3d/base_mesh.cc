@@ -102,6 +102,29 @@ std::vector<SuiteCase> base_mesh_cases(bool traced) {
     suite.push_back(written_case("base-17-position-limits", "positions at 2^26 and −2^26 on every axis, written symbol by symbol", {"base-mesh"},
                                  written_base_mesh_stream(3, 1, triangle, {}, {{kMost, -kMost, 0}, {-kMost, kMost, kMost}, {0, 0, -kMost}})));
   }
+  {
+    // Spikes off a sheet: parallelograms and neighbours' means of either sign, far from each other.
+    const MeshSequence spiky = spiky_sheet(2, 32, 200, 46, 4);
+    const std::pair<const char*, uint32_t> blends[] = {{"base-18-blend-16", 16}, {"base-19-blend-5", 5}, {"base-20-version-1", 0}};
+    for (const auto& [id, blend] : blends) {
+      Encode3dOptions o = bits24;
+      o.position_blend = blend;
+      suite.push_back(valid(id, blend ? "positions predicted with position_blend " + std::to_string(blend) + " on a spiky sheet"
+                                      : std::string("the spiky sheet in a version 1 stream: no position_blend field"),
+                            {"base-mesh"}, spiky, o, traced));
+    }
+    // Its second frame moved below the first frame's box, an intra base mesh of negative positions.
+    MeshSequence below = spiky;
+    for (size_t v = 0; v < below.frames[1].size(); ++v) {
+      const Vec3& p = below.frames[0][v];
+      below.frames[1][v] = {p.x - 0.9, p.y - 0.9, p.z - 0.9};
+    }
+    Encode3dOptions intra;
+    intra.codec_options = {{"bits", "16"}, {"intra-period", "1"}};
+    intra.position_blend = 5;
+    suite.push_back(valid("base-21-blend-below-zero", "position_blend 5 on an intra base mesh below the grid's origin: blended sums of "
+                          "either sign, rounded down", {"base-mesh"}, below, intra, traced));
+  }
   return suite;
 }
 
@@ -250,6 +273,10 @@ std::vector<SuiteCase> base_mesh_rules_rejected(const std::vector<SuiteCase>& va
                             written_base_mesh_stream(3, 1, triangle, {}, {{0, 0, 0}, {kMaxQuantized + 1, 0, 0}, {0, 0, 0}}),
                             ErrorKind::kOutOfRange, "position", 0));
   }
+  suite.push_back(invalid("x-145-base-position-blend", "position_blend 17", {"base-mesh"},
+                          edited(stream_of(valid, "base-18-blend-16"),
+                                 [&](ContainerParts& p) { put_field(unit_of(p, UnitType::kBaseMesh, 0).payload, unit_field<BaseMeshData>("position_blend"), 17); }),
+                          ErrorKind::kOutOfRange, "position_blend", 0));
   return suite;
 }
 

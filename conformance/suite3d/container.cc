@@ -111,7 +111,9 @@ std::vector<SuiteCase> container_edge_rejected(const std::vector<SuiteCase>& val
     suite.push_back(invalid("x-51-trailing-byte", "a zero byte after the end code", {"container"}, trailing, ErrorKind::kTrailingData,
                             "mesh_object_end_code", kNoPlane));
   }
-  suite.push_back(invalid("x-52-version", "version 2", {"container"}, edited(base, [&](ContainerParts& p) { put_field(p.object_payload, object_field<AffineOctreeHeader>(base, "version"), 2); }),
+  suite.push_back(invalid("x-52-version", "version 3", {"container"}, edited(base, [&](ContainerParts& p) { put_field(p.object_payload, object_field<AffineOctreeHeader>(base, "version"), 3); }),
+                          ErrorKind::kReservedValue, "version", kNoPlane));
+  suite.push_back(invalid("x-146-version-0", "version 0", {"container"}, edited(base, [&](ContainerParts& p) { put_field(p.object_payload, object_field<AffineOctreeHeader>(base, "version"), 0); }),
                           ErrorKind::kReservedValue, "version", kNoPlane));
   return suite;
 }

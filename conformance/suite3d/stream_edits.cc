@@ -55,7 +55,13 @@ namespace {
 
 // The first base mesh unit of a stream, read, and the number of its faces
 // the traversal coded.
-std::pair<BaseMesh, size_t> first_base_mesh(const ContainerParts& parts) {
+struct FirstBaseMesh {
+  BaseMesh base;
+  size_t traversal_faces = 0;
+  BaseMeshCoding coding;  // the unit's version and blend
+};
+
+FirstBaseMesh first_base_mesh(const ContainerParts& parts) {
   BitReader object_reader(parts.object_payload.data(), parts.object_payload.size());
   syntax::ReadIO object_in(object_reader);
   ObjectHeader object;
@@ -66,14 +72,17 @@ std::pair<BaseMesh, size_t> first_base_mesh(const ContainerParts& parts) {
   UnitHeader header;
   syntax::describe(in, header);
   BaseMesh base = read_base_mesh(in, object, nullptr);
-  const size_t loose = field_value(payload, unit_field<BaseMeshData>("loose_face_count"));
-  return {std::move(base), object.face_count - loose};
+  BaseMeshData data;
+  data.version = object.version;
+  const size_t loose = field_value(payload, field_bytes("loose_face_count", header, data));
+  const uint64_t blend = object.version >= 2 ? field_value(payload, field_bytes("position_blend", header, data)) : 0;
+  return {std::move(base), object.face_count - loose, {object.version, static_cast<uint32_t>(blend)}};
 }
 
 }  // namespace
 
 std::vector<uint32_t> untraversed_vertices(const std::vector<uint8_t>& stream) {
-  const auto [base, traversal_faces] = first_base_mesh(split_container(stream));
+  const auto [base, traversal_faces, coding] = first_base_mesh(split_container(stream));
   std::set<uint32_t> reached;
   for (size_t f = 0; f < traversal_faces; ++f) reached.insert(base.faces[f].v.begin(), base.faces[f].v.end());
   std::vector<uint32_t> untraversed;
@@ -84,10 +93,10 @@ std::vector<uint32_t> untraversed_vertices(const std::vector<uint8_t>& stream) {
 
 std::vector<uint8_t> with_untraversed_order(const std::vector<uint8_t>& stream, std::span<const uint32_t> untraversed) {
   return edited(stream, [&](ContainerParts& parts) {
-    const BaseMesh base = first_base_mesh(parts).first;
+    const FirstBaseMesh first = first_base_mesh(parts);
     BitWriter writer;
     syntax::WriteIO out(writer);
-    write_base_mesh(out, base.faces, base.positions, untraversed);
+    write_base_mesh(out, first.base.faces, first.base.positions, first.coding, untraversed);
     std::vector<uint8_t>& payload = parts.units.at(0).payload;
     payload = unit_header_bytes(payload);
     payload.insert(payload.end(), writer.bytes().begin(), writer.bytes().end());

@@ -24,7 +24,7 @@ int32_t clamp_to(double value, int32_t lo, int32_t hi) {
 class AffineOctreeEncoder final : public GridFrameEncoder {
  public:
   AffineOctreeEncoder(const MeshSequence& s, const CodecSettings& settings)
-      : GridFrameEncoder(Grid::covering(s, settings.integer("bits"), true), settings.integer("intra-period")),
+      : GridFrameEncoder(Grid::covering(s, settings.integer("bits"), true), settings.integer("intra-period"), settings.base_mesh()),
         max_error_(settings.number("me") / 100) {
     header_.bits = static_cast<uint32_t>(settings.integer("bits"));
     for (int axis = 0; axis < 3; ++axis) header_.origin[axis] = bit_cast<uint32_t>(grid_.origin[axis]);

@@ -151,9 +151,32 @@ size_t vertex_order_bytes(uint32_t method, const Connectivity& c) {
   return symbols.finish_bins().size() + symbols.finish_raw().size();
 }
 
+// The bytes the positions take with a blend, alone.
+size_t position_bytes(std::span<const Triangle> faces, const std::vector<IntPoint3>& coded, uint32_t blend) {
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+  syntax::BaseMeshContexts contexts;
+  std::vector<IntPoint3> positions = coded;
+  describe_positions(symbols, contexts, faces, blend, positions);
+  return symbols.finish_bins().size() + symbols.finish_raw().size();
+}
+
+// The coding's blend, else the smallest of 0 … 16 (the lowest of equals).
+uint32_t chosen_blend(const BaseMeshCoding& coding, std::span<const Triangle> faces, const std::vector<IntPoint3>& coded) {
+  if (coding.version < 2) return 0;
+  if (coding.position_blend) return *coding.position_blend;
+  uint32_t best = 0;
+  size_t best_bytes = position_bytes(faces, coded, 0);
+  for (uint32_t blend = 1; blend <= kPositionBlendUnit; ++blend)
+    if (const size_t bytes = position_bytes(faces, coded, blend); bytes < best_bytes) {
+      best = blend;
+      best_bytes = bytes;
+    }
+  return best;
+}
+
 template <class IO>
 void write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> faces, std::span<const IntPoint3> positions,
-                std::span<const uint32_t> untraversed) {
+                const BaseMeshCoding& coding, std::span<const uint32_t> untraversed) {
   const uint32_t vertex_count = static_cast<uint32_t>(positions.size());
   syntax::BaseMeshContexts contexts;
   Connectivity c = write_connectivity(symbols, contexts, faces, vertex_count, untraversed);
@@ -166,6 +189,7 @@ void write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> face
   if (!std::equal(decoded.begin(), decoded.end(), faces.begin(), faces.end()))
     throw Error(ErrorKind::kInput, "base_mesh", kNoPlane, kNoOffset, "encoder: the faces are not in coding order (plan_base_mesh)");
   BaseMeshData data;
+  data.version = coding.version;
   data.loose_face_count = c.loose_faces;
   data.vertex_order = identity ? kVertexOrderCoding
                       : vertex_order_bytes(kVertexOrderFromParallelogram, c) < vertex_order_bytes(kVertexOrderFromGate, c)
@@ -174,7 +198,8 @@ void write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> face
   describe_vertex_order(symbols, contexts, data.vertex_order, c.parents, c.input_of);
   std::vector<IntPoint3> coded(vertex_count);
   for (uint32_t i = 0; i < vertex_count; ++i) coded[i] = positions[c.input_of[i]];
-  describe_positions(symbols, contexts, c.faces, coded);
+  data.position_blend = chosen_blend(coding, c.faces, coded);
+  describe_positions(symbols, contexts, c.faces, data.position_blend, coded);
   symbols.finish(io, data);
 }
 
@@ -220,15 +245,19 @@ MeshSequence renumbered(const MeshSequence& sequence, std::span<const uint32_t> 
   return s;
 }
 
+BaseMeshCoding BaseMeshCoding::with_blend(std::optional<uint32_t> position_blend) {
+  return {position_blend == 0u ? kFirstVersion : kLatestVersion, position_blend};
+}
+
 void write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions,
-                     std::span<const uint32_t> untraversed) {
+                     const BaseMeshCoding& coding, std::span<const uint32_t> untraversed) {
   const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane()};
   if (io.trace()) {
     syntax::EntropyWriteIO<true> symbols(place, io.trace());
-    write_data(io, symbols, faces, positions, untraversed);
+    write_data(io, symbols, faces, positions, coding, untraversed);
   } else {
     syntax::EntropyWriteIO<false> symbols(place);
-    write_data(io, symbols, faces, positions, untraversed);
+    write_data(io, symbols, faces, positions, coding, untraversed);
   }
 }
 

@@ -27,7 +27,7 @@ void encode_axis(std::span<int32_t> residuals, const syntax::SectionPlace& place
 class Bfs3dEncoder final : public GridFrameEncoder {
  public:
   Bfs3dEncoder(const MeshSequence& s, const CodecSettings& settings)
-      : GridFrameEncoder(Grid::covering(s, settings.integer("bits")), settings.integer("intra-period")),
+      : GridFrameEncoder(Grid::covering(s, settings.integer("bits")), settings.integer("intra-period"), settings.base_mesh()),
         order_(bfs3d_order(s.faces, s.vertex_count)),
         motion_(s.vertex_count + size_t{1}) {
     header_.bits = static_cast<uint32_t>(settings.integer("bits"));

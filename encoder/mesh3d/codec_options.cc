@@ -36,8 +36,8 @@ void check(const std::string& codec, const CodecOption& o, const std::string& va
 }  // namespace
 
 CodecSettings::CodecSettings(const std::string& codec, const std::vector<CodecOption>& options, const CodecOptionValues& values,
-                             unsigned threads)
-    : threads_(threads) {
+                             const BaseMeshCoding& base_mesh, unsigned threads)
+    : base_mesh_(base_mesh), threads_(threads) {
   for (const CodecOption& o : options) values_[o.name] = o.kind == OptionKind::kFlag ? "0" : o.default_value;
   for (const auto& [name, value] : values) {
     auto it = values_.find(name);

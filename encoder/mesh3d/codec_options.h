@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "codecs3d/codec_encoder.h"
+
 namespace m4mesh {
 
 enum class OptionKind { kInteger, kNumber, kFlag, kText };
@@ -29,18 +31,22 @@ using CodecOptionValues = std::map<std::string, std::string>;
 // its declaration (a usage error names the option), defaults for the rest.
 class CodecSettings {
  public:
-  // threads: how many an encoder's own search may run at once (0: every core).
-  CodecSettings(const std::string& codec, const std::vector<CodecOption>& options, const CodecOptionValues& values, unsigned threads = 0);
+  // base_mesh: how its base meshes are coded; threads: how many an
+  // encoder's own search may run at once (0: every core).
+  CodecSettings(const std::string& codec, const std::vector<CodecOption>& options, const CodecOptionValues& values,
+                const BaseMeshCoding& base_mesh, unsigned threads = 0);
 
   int integer(const std::string& name) const;
   double number(const std::string& name) const;
   bool flag(const std::string& name) const;
   const std::string& text(const std::string& name) const;
+  const BaseMeshCoding& base_mesh() const { return base_mesh_; }
   unsigned threads() const { return threads_; }
 
  private:
   const std::string& value(const std::string& name) const;
   std::map<std::string, std::string> values_;
+  BaseMeshCoding base_mesh_;
   unsigned threads_;
 };
 

@@ -114,7 +114,8 @@ Encode3dResult encode_mesh3d(const MeshSequence& input, const Encode3dOptions& o
   const MeshSequence s = in_coding_order(input, plan, options.reorder);
   const Codec3d& codec = codec3d_by_name(options.codec);
   const CodecEncoding& encoding = codec_encoding(codec);
-  const CodecSettings settings(codec.name, encoding.options, options.codec_options, options.threads);
+  const BaseMeshCoding base_mesh = BaseMeshCoding::with_blend(options.position_blend);
+  const CodecSettings settings(codec.name, encoding.options, options.codec_options, base_mesh, options.threads);
   std::unique_ptr<CodecEncoder3d> encoder = encoding.make_encoder(s, settings);
 
   ContainerWriter container;
@@ -124,7 +125,7 @@ Encode3dResult encode_mesh3d(const MeshSequence& input, const Encode3dOptions& o
     if (options.trace) options.trace->begin_payload(-1, "object", "mesh3d_object_start_code", kMesh3dObjectStartCode);
     BitWriter writer;
     syntax::WriteIO io(writer, options.trace);
-    ObjectHeader header{1, codec.id, s.vertex_count, static_cast<uint32_t>(s.faces.size()), static_cast<uint32_t>(s.frames.size()),
+    ObjectHeader header{base_mesh.version, codec.id, s.vertex_count, static_cast<uint32_t>(s.faces.size()), static_cast<uint32_t>(s.frames.size()),
                         options.frame_rate_num, options.frame_rate_den};
     syntax::describe(io, header);
     encoder->write_header(io);

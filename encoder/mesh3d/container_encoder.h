@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,7 @@ struct Encode3dOptions {
   Trace* trace = nullptr;        // every element written, as `m4mesh trace` prints it
   bool keep_decoded = false;     // the decoder's output in the result
   bool reorder = false;          // vertices renumbered in coding order (docs/base_mesh.md)
+  std::optional<uint32_t> position_blend;  // base meshes' blend (0 … 16: 0 writes version 1); none: each mesh's smallest
   std::function<void(size_t done, size_t total)> progress;
   unsigned threads = 0;  // a search's trials at once (--codec auto, a codec's own search); 0: every core
 };

@@ -56,7 +56,8 @@ class CpcaEncoder final : public CodecEncoder3d {
         round_robin_(options.round_robin),
         basis_prediction_(options.basis),
         trajectories_(trajectories),
-        noise_(options.noise) {
+        noise_(options.noise),
+        base_mesh_(options.base_mesh) {
     if (uint64_t{s.vertex_count} * s.frames.size() > kCpcaMaxVertexFrames)
       throw usage_error("cpca-wpt takes at most 2^22 vertex-frames (vertices × frames)");
     std::vector<Vec3> mean(s.vertex_count);
@@ -90,7 +91,7 @@ class CpcaEncoder final : public CodecEncoder3d {
   // The base mesh, then the plan's operators while the stream through the
   // last refinement stays within --max-bytes, then the frames' hashes.
   void encode(const MeshSequence& s, UnitSink& sink) override {
-    sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, mean_); });
+    sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, mean_, base_mesh_); });
     if (max_bytes_ > 0 && sink.stream_bytes() > max_bytes_)
       throw usage_error("--max-bytes " + std::to_string(max_bytes_) + " is below the " + std::to_string(sink.stream_bytes()) +
                         " bytes of the header and the base mesh (cpca-wpt)");
@@ -383,12 +384,12 @@ class CpcaEncoder final : public CodecEncoder3d {
   uint64_t fixed_bytes(const MeshSequence& s) {
     BitWriter object, base;
     syntax::WriteIO object_io(object), base_io(base);
-    ObjectHeader header{1, 4, s.vertex_count, static_cast<uint32_t>(s.faces.size()), static_cast<uint32_t>(s.frames.size()), 25, 1};
+    ObjectHeader header{base_mesh_.version, 4, s.vertex_count, static_cast<uint32_t>(s.faces.size()), static_cast<uint32_t>(s.frames.size()), 25, 1};
     syntax::describe(object_io, header);
     write_header(object_io);
     UnitHeader unit{static_cast<uint32_t>(UnitType::kBaseMesh), 0};
     syntax::describe(base_io, unit);
-    write_base_mesh(base_io, s.faces, mean_);
+    write_base_mesh(base_io, s.faces, mean_, base_mesh_);
     return ContainerWriter::unit_size(object.bytes()) + ContainerWriter::unit_size(base.bytes());
   }
 
@@ -420,6 +421,7 @@ class CpcaEncoder final : public CodecEncoder3d {
   std::string basis_prediction_;  // --basis: index, mesh or auto
   bool trajectories_;  // components of the members' trajectories (unit_kind 3), else of their shapes
   std::optional<int> noise_;  // log2 of the noise step in half steps; none: auto
+  BaseMeshCoding base_mesh_;
   Grid grid_;
   CpcaHeader header_;
   std::vector<IntPoint3> mean_;

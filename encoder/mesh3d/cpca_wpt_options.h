@@ -34,6 +34,7 @@ struct Options {
   uint64_t max_bytes = 0;      // 0: every operator
   uint64_t group_bytes = 0;    // a group's unit closes at about this many bytes; 0: a unit per refinement
   double target_kg = 0;        // 0: none
+  BaseMeshCoding base_mesh;    // the container's
 };
 
 // The options given, each checked (a usage error names the option).

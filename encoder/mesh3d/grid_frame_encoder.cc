@@ -20,7 +20,7 @@ void GridFrameEncoder::encode(const MeshSequence& s, UnitSink& sink) {
     const uint32_t frame = static_cast<uint32_t>(f);
     if (f == 0 || (intra_period_ > 0 && f % static_cast<size_t>(intra_period_) == 0)) {
       quantize_frame(grid_, s.frames[f], f, positions);
-      sink.unit(UnitType::kBaseMesh, frame, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, positions); });
+      sink.unit(UnitType::kBaseMesh, frame, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, positions, base_mesh_); });
     } else {
       sink.unit(UnitType::kFrame, frame, [&](syntax::WriteIO& io) { encode_frame(io, s.frames[f], f, positions); });
     }

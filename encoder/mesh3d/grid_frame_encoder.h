@@ -14,7 +14,8 @@ namespace m4mesh {
 
 class GridFrameEncoder : public CodecEncoder3d {
  public:
-  GridFrameEncoder(const Grid& grid, int intra_period) : grid_(grid), intra_period_(intra_period) {}
+  GridFrameEncoder(const Grid& grid, int intra_period, const BaseMeshCoding& base_mesh)
+      : grid_(grid), intra_period_(intra_period), base_mesh_(base_mesh) {}
 
   void encode(const MeshSequence& sequence, UnitSink& sink) final;
 
@@ -27,6 +28,7 @@ class GridFrameEncoder : public CodecEncoder3d {
 
  private:
   int intra_period_;
+  BaseMeshCoding base_mesh_;
 };
 
 // A frame on the grid; an input error names the frame and vertex that do not fit.

@@ -102,7 +102,7 @@ std::vector<Float3> as_floats(std::span<const Vec3> positions) {
 class LccEncoder final : public CodecEncoder3d {
  public:
   LccEncoder(const MeshSequence& s, const CodecSettings& settings)
-      : grid_(Grid::covering(s, settings.integer("bits"))), target_kg_(settings.number("target-kg")) {
+      : grid_(Grid::covering(s, settings.integer("bits"))), target_kg_(settings.number("target-kg")), base_mesh_(settings.base_mesh()) {
     header_.bits = static_cast<uint32_t>(settings.integer("bits"));
     for (int axis = 0; axis < 3; ++axis) {
       header_.origin[axis] = bit_cast<uint32_t>(grid_.origin[axis]);
@@ -136,7 +136,7 @@ class LccEncoder final : public CodecEncoder3d {
   void write_header(syntax::WriteIO& io) override { syntax::describe(io, header_); }
 
   void encode(const MeshSequence& s, UnitSink& sink) override {
-    sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, reference_grid_); });
+    sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, reference_grid_, base_mesh_); });
     const LccModel model = model_of(s);
     if (header_.reference == kLccReferenceIsFrame0) sink.decoded(0, as_floats(reference_));
     size_t done = 0;
@@ -293,6 +293,7 @@ class LccEncoder final : public CodecEncoder3d {
   Grid grid_;
   LccHeader header_;
   double target_kg_;
+  BaseMeshCoding base_mesh_;
   double reached_kg_ = 0;
   std::vector<IntPoint3> reference_grid_;
   std::vector<Vec3> reference_;

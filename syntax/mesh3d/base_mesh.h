@@ -10,6 +10,7 @@
 
 #include "bitstream/arithmetic.h"
 #include "syntax/io.h"
+#include "syntax/mesh3d/container.h"
 #include "syntax/mesh3d/residual.h"
 
 namespace m4mesh {
@@ -21,8 +22,14 @@ inline constexpr uint32_t kVertexOrderCoding = 0;
 inline constexpr uint32_t kVertexOrderFromGate = 1;
 inline constexpr uint32_t kVertexOrderFromParallelogram = 2;
 
+// The weight, in sixteenths, of the known neighbours' mean in a position
+// predicted by parallelograms (docs/base_mesh.md, "Positions").
+inline constexpr uint32_t kPositionBlendUnit = 16;
+
 struct BaseMeshData {
+  uint32_t version = kLatestVersion;  // the object header's: version 1 has no position_blend
   uint32_t vertex_order = kVertexOrderFromGate;
+  uint32_t position_blend = 0;
   uint32_t loose_face_count = 0;  // faces outside the traversal, coded by their indices
   uint32_t arithmetic_bytes = 0;
   std::span<const uint8_t> bins;
@@ -37,6 +44,11 @@ namespace syntax {
 template <class IO>
 void describe(IO& io, BaseMeshData& b) {
   io.field_in("vertex_order", 8, b.vertex_order, kVertexOrderCoding, kVertexOrderFromParallelogram);
+  if (b.version >= 2 || kTableOf<IO>) {
+    if constexpr (kTableOf<IO>) io.open("if (version >= 2)");
+    io.field_in("position_blend", 8, b.position_blend, 0, kPositionBlendUnit);
+    if constexpr (kTableOf<IO>) io.close();
+  }
   io.field("loose_face_count", 32, b.loose_face_count);  // at most face_count: checked by the decoder
   io.field("arithmetic_bytes", 32, b.arithmetic_bytes);
   io.require_length("arithmetic_bytes", b.arithmetic_bytes);

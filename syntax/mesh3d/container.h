@@ -20,8 +20,12 @@ inline constexpr uint32_t kUnitTypes = 5;
 inline bool is_hash_unit(UnitType type) { return type == UnitType::kFrameHash || type == UnitType::kGroupHash; }
 const char* unit_type_name(UnitType type);
 
+// Version 2 adds the base mesh's `position_blend` (docs/base_mesh.md).
+inline constexpr uint32_t kFirstVersion = 1;
+inline constexpr uint32_t kLatestVersion = 2;
+
 struct ObjectHeader {
-  uint32_t version = 1;
+  uint32_t version = kLatestVersion;
   uint32_t codec_id = 0;
   uint32_t vertex_count = 0;
   uint32_t face_count = 0;
@@ -60,7 +64,7 @@ namespace syntax {
 template <class IO>
 void describe(IO& io, ObjectHeader& h) {
   io.field("version", 8, h.version);
-  io.require(h.version == 1, ErrorKind::kReservedValue, "version", "only version 1 is defined");
+  io.require(h.version >= kFirstVersion && h.version <= kLatestVersion, ErrorKind::kReservedValue, "version", "only versions 1 and 2 are defined");
   io.field("codec_id", 8, h.codec_id);  // checked against the registry (codecs3d/registry.h)
   io.field_in("vertex_count", 32, h.vertex_count, 3, kMaxVertices3d);
   io.field_in("face_count", 32, h.face_count, 1, kMaxFaces3d);
