@@ -11,6 +11,7 @@
 #include "bench/sequences.h"
 #include "bitstream/bit_reader.h"
 #include "decoder/mesh3d/container_decoder.h"
+#include "decoder/mesh3d/cpca_wpt.h"
 #include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/cpca_wpt.h"
 #include "mesh3d/metrics.h"
@@ -126,8 +127,7 @@ void BM_CpcaRefinementPass(benchmark::State& state) {
   // The clusters' sizes, from the header's cluster map.
   const ContainerParts parts = split_container(stream);
   const auto [object, header] = read_headers<CpcaHeader>(parts);
-  const std::vector<std::vector<NodeIndex>> members =
-      cpca_members(syntax::read_cluster_map<false>(header, object.vertex_count, syntax::SectionPlace{}), header.cluster_count);
+  const std::vector<std::vector<NodeIndex>> members = cpca_members(cpca_cluster_map(parts), header.cluster_count);
   double vertex_frames = 0;
   for (const ContainerUnit& unit : parts.units)
     if (unit.payload[0] == static_cast<uint8_t>(UnitType::kRefinement))

@@ -59,4 +59,9 @@ class CodecDecoder3d {
 // (docs/base_mesh.md), its symbols traced when `trace` is set.
 BaseMesh read_base_mesh(syntax::ReadIO& io, const ObjectHeader& header, Trace* trace);
 
+// An error of the object payload (its offset counted from the payload's
+// start) found while a unit is decoded, as when a header's section is read
+// late: placed in the object payload, outside any unit.
+Error in_object_payload(const Error& e);
+
 }  // namespace m4mesh

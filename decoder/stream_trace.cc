@@ -1,5 +1,7 @@
 #include "decoder/stream_trace.h"
 
+#include <algorithm>
+
 #include "codecs3d/registry.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "syntax/mesh3d/container.h"
@@ -17,7 +19,9 @@ void trace_stream(std::span<const uint8_t> stream, std::ostream& out, const Trac
     Decode3dOptions options;
     options.trace = &trace;
     Mesh3dDecoder decoder(stream, options);
-    while (before_part(static_cast<int64_t>(decoder.units_taken())) && decoder.next_unit()) {
+    // The object's part runs through the first unit: a header's section may be read there (cpca-wpt's map by neighbours).
+    const int64_t last = selection.part ? std::max<int64_t>(*selection.part, 0) : 0;
+    while ((!selection.part || static_cast<int64_t>(decoder.units_taken()) <= last) && decoder.next_unit()) {
     }
     return;
   }

@@ -13,7 +13,8 @@ namespace m4mesh {
 
 struct TraceSelection {
   // Only this part (Trace's parts: −1 the object header or mesh object,
-  // k the 3D unit or 2D plane k); reading stops once it is traced.
+  // k the 3D unit or 2D plane k); reading stops once it is traced (the 3D
+  // object header after the first unit, where a header's section may be read).
   std::optional<int64_t> part;
   // Bins and raw bits of arithmetic-coded sections too (3D).
   bool symbols = true;

@@ -9,17 +9,91 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "common/point3.h"
 #include "mesh/topology.h"
 #include "mesh3d/base_mesh.h"
+#include "mesh3d/mesh_predictor.h"
 #include "syntax/mesh3d/cpca_wpt.h"
+#include "syntax/mesh3d/entropy_io.h"
 
 namespace m4mesh {
 
 // Each cluster's vertices in index order.
 std::vector<std::vector<NodeIndex>> cpca_members(std::span<const uint32_t> cluster_of, uint32_t cluster_count);
+
+// cluster_map_prediction 1 (docs/codec_cpca_wpt.md, "The cluster map"):
+// every vertex's cluster ranked by the clusters of its neighbours numbered
+// before it, over the base mesh's faces in output numbers.
+template <class IO>
+void describe_cluster_map_by_neighbours(IO& io, std::span<const Triangle> faces, std::span<uint32_t> cluster_of, uint32_t cluster_count) {
+  const MeshPredictor around(faces, static_cast<uint32_t>(cluster_of.size()));
+  syntax::CpcaRankContexts contexts;
+  std::vector<uint32_t> count(cluster_count, 0);
+  std::vector<uint32_t> held;  // the clusters the vertex's earlier neighbours hold
+  for (uint32_t v = 0; v < cluster_of.size(); ++v) {
+    around.for_each_known_corner(v, [v](uint32_t u) { return u < v; }, [&](uint32_t u) {
+      if (count[cluster_of[u]]++ == 0) held.push_back(cluster_of[u]);
+    });
+    // The most frequent first, the lower cluster of equals; without a neighbour, the previous vertex's cluster (0 for the first).
+    const auto ahead = [&](uint32_t a, uint32_t b) { return count[a] > count[b] || (count[a] == count[b] && a < b); };
+    uint32_t first = v > 0 ? cluster_of[v - 1] : 0, second = first;
+    if (!held.empty()) {
+      first = held[0];
+      second = held[0];
+      for (size_t i = 1; i < held.size(); ++i) {
+        const uint32_t c = held[i];
+        if (ahead(c, first)) {
+          second = first;
+          first = c;
+        } else if (second == first || ahead(c, second)) {
+          second = c;
+        }
+      }
+    }
+    const uint32_t candidates = held.empty() ? 1 : static_cast<uint32_t>(held.size());
+    syntax::describe_ranked_cluster(io, contexts, candidates, first, second, cluster_count, cluster_of[v]);
+    for (uint32_t c : held) count[c] = 0;
+    held.clear();
+  }
+}
+
+// The header's cluster map read, as its cluster_map_prediction says; with
+// prediction 1 `faces` are the base mesh's (output numbers).
+template <bool kTraced>
+std::vector<uint32_t> read_cluster_map(const CpcaHeader& h, std::span<const Triangle> faces, uint32_t vertex_count,
+                                       const syntax::SectionPlace& place, Trace* trace = nullptr) {
+  std::vector<uint32_t> cluster_of(vertex_count);
+  syntax::EntropyReadIO<kTraced> symbols(h.map_bins, h.map_raw, place, trace);
+  if (h.map_prediction == kCpcaMapByNeighbours) {
+    describe_cluster_map_by_neighbours(symbols, faces, cluster_of, h.cluster_count);
+    symbols.finish("cluster_not_first");
+  } else {
+    syntax::describe_cluster_map(symbols, cluster_of, h.cluster_count);
+    symbols.finish("cluster_of_vertex");
+  }
+  return cluster_of;
+}
+
+// The header's cluster map written, the mirror of read_cluster_map(): the
+// sections into `bins` and `raw`, which `h` then points at with their
+// lengths; returns the symbols' trace (in the place of `like`).
+template <bool kTraced>
+std::string write_cluster_map(CpcaHeader& h, std::span<const Triangle> faces, std::vector<uint32_t> cluster_of, std::vector<uint8_t>& bins,
+                              std::vector<uint8_t>& raw, const syntax::SectionPlace& place, Trace* like = nullptr) {
+  syntax::EntropyWriteIO<kTraced> symbols(place, like);
+  if (h.map_prediction == kCpcaMapByNeighbours) describe_cluster_map_by_neighbours(symbols, faces, cluster_of, h.cluster_count);
+  else syntax::describe_cluster_map(symbols, cluster_of, h.cluster_count);
+  bins = symbols.finish_bins();
+  raw = symbols.finish_raw();
+  h.map_bins_bytes = static_cast<uint32_t>(bins.size());
+  h.map_bins = bins;
+  h.map_raw_bytes = static_cast<uint32_t>(raw.size());
+  h.map_raw = raw;
+  return symbols.trace_text();
+}
 
 // The number of components of a cluster of `members` vertices over
 // `frames` frames, the rank bound of its motion matrix: min(3 · members,

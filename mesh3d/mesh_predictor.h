@@ -65,16 +65,23 @@ class MeshPredictor {
   bool neighbour_mean(uint32_t v, Known known, Value value, std::array<int64_t, D>& p) const {
     std::array<int64_t, D> sum{};
     int64_t n = 0;
-    for (uint32_t i = first_[v]; i < first_[v + 1]; ++i)
-      for (NodeIndex u : faces_[around_[i]].v)
-        if (u != v && known(u)) {
-          const auto& vu = value(u);
-          for (size_t a = 0; a < D; ++a) sum[a] += vu[a];
-          ++n;
-        }
+    for_each_known_corner(v, known, [&](uint32_t u) {
+      const auto& vu = value(u);
+      for (size_t a = 0; a < D; ++a) sum[a] += vu[a];
+      ++n;
+    });
     if (n == 0) return false;
     for (size_t a = 0; a < D; ++a) p[a] = floor_div(sum[a], n);
     return true;
+  }
+
+  // Calls visit(u) for every known corner u ≠ v of every face around v,
+  // once per face (a face listed once per corner of v).
+  template <class Known, class Visit>
+  void for_each_known_corner(uint32_t v, Known known, Visit visit) const {
+    for (uint32_t i = first_[v]; i < first_[v + 1]; ++i)
+      for (NodeIndex u : faces_[around_[i]].v)
+        if (u != v && known(u)) visit(u);
   }
 
  private:

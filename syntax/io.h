@@ -64,12 +64,13 @@ class IOBase {
     else
       starts_.push_back({name, offset});
   }
-
- protected:
+  // Where an error about the element is placed (fail()).
   uint64_t start_of(const char* element) const {
     const size_t i = index_of(element);
     return i < starts_.size() ? starts_[i].offset : element_start_;
   }
+
+ protected:
 
   struct FieldStart {
     const char* name;

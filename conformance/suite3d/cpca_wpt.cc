@@ -1,11 +1,14 @@
 // The clustered-PCA codec's streams (docs/codec_cpca_wpt.md) and those to reject.
 #include <algorithm>
+#include <bit>
+#include <functional>
 #include <optional>
 
 #include "conformance/suite3d/cases.h"
 #include "conformance/suite3d/inputs.h"
 #include "conformance/suite3d/stream_edits.h"
 #include "decoder/mesh3d/container_decoder.h"
+#include "decoder/mesh3d/cpca_wpt.h"
 #include "encoder/mesh3d/base_mesh.h"
 #include "mesh3d/cpca_wpt.h"
 #include "syntax/mesh3d/cpca_wpt.h"
@@ -93,9 +96,10 @@ ContainerWriter cpca_written_start(const MeshSequence& s, const std::vector<uint
   ContainerParts parts = split_container(encode_mesh3d(s, o).stream);
   auto [object, header] = read_headers<CpcaHeader>(parts);
   header.cluster_count = clusters;
+  header.map_prediction = kCpcaMapByDifference;
   if (fraction_bits) header.fraction_bits = *fraction_bits;
   std::vector<uint8_t> map_bins, map_raw;
-  syntax::write_cluster_map<false>(header, cluster_of, map_bins, map_raw, syntax::SectionPlace{});
+  write_cluster_map<false>(header, {}, cluster_of, map_bins, map_raw, syntax::SectionPlace{});
   BitWriter payload;
   syntax::WriteIO out(payload);
   syntax::describe(out, object);
@@ -104,6 +108,58 @@ ContainerWriter cpca_written_start(const MeshSequence& s, const std::vector<uint
   writer.object(payload.take_bytes());
   writer.unit(unit_of(parts, UnitType::kBaseMesh, 0).payload);
   return writer;
+}
+
+// What a rewritten clustered-PCA header starts from: the stream's map and
+// its base mesh's faces (which predict a map by neighbours).
+struct CpcaMap {
+  std::vector<uint32_t> cluster_of;
+  std::vector<Triangle> faces;
+};
+
+// `stream` with its clustered-PCA header rewritten: `edit` changes the
+// header and writes the cluster map's sections.
+std::vector<uint8_t> with_cpca_header(const std::vector<uint8_t>& stream,
+                                      const std::function<void(CpcaHeader&, const CpcaMap&, std::vector<uint8_t>&, std::vector<uint8_t>&)>& edit) {
+  return edited(stream, [&](ContainerParts& parts) {
+    auto [object, header] = read_headers<CpcaHeader>(parts);
+    std::vector<uint8_t> bins, raw;
+    edit(header, CpcaMap{cpca_cluster_map(parts), base_mesh_of(parts).faces}, bins, raw);
+    header.map_bins_bytes = static_cast<uint32_t>(bins.size());
+    header.map_bins = bins;
+    header.map_raw_bytes = static_cast<uint32_t>(raw.size());
+    header.map_raw = raw;
+    BitWriter payload;
+    syntax::WriteIO out(payload);
+    syntax::describe(out, object);
+    syntax::describe(out, header);
+    parts.object_payload = payload.take_bytes();
+  });
+}
+
+// The same stream with its cluster map coded by the differences (cluster_map_prediction 0).
+std::vector<uint8_t> with_map_by_difference(const std::vector<uint8_t>& stream) {
+  return with_cpca_header(stream, [](CpcaHeader& h, const CpcaMap& map, std::vector<uint8_t>& bins, std::vector<uint8_t>& raw) {
+    h.map_prediction = kCpcaMapByDifference;
+    write_cluster_map<false>(h, {}, map.cluster_of, bins, raw, syntax::SectionPlace{});
+  });
+}
+
+// A cluster map by neighbours of `clusters` clusters whose first vertex
+// (no neighbour before it: one candidate, cluster 0) is not cluster 0 and
+// then, with more than one cluster, takes the raw rank `rank`.
+std::vector<uint8_t> with_first_rank(const std::vector<uint8_t>& stream, uint32_t clusters, uint32_t rank) {
+  return with_cpca_header(stream, [&](CpcaHeader& h, const CpcaMap&, std::vector<uint8_t>& bins, std::vector<uint8_t>& raw) {
+    h.map_prediction = kCpcaMapByNeighbours;
+    h.cluster_count = clusters;
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    syntax::CpcaRankContexts contexts;
+    bool not_first = true;
+    symbols.bin("cluster_not_first", contexts.not_first[0], 0, not_first);
+    if (clusters > 1) symbols.raw("cluster_rank", std::bit_width(clusters - 2), rank);
+    bins = symbols.finish_bins();
+    raw = symbols.finish_raw();
+  });
 }
 
 // A clustered-PCA stream of 2 frames written symbol by symbol (no hash
@@ -443,6 +499,20 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
   suite.push_back(written_case("cpca-21-group-limits", "groups at their limits, written symbol by symbol: 255 starts in one group "
                                "(group_cluster 0 … 254, group_shift 0 and 63), a group of 1, a group of all three component kinds",
                                {"cpca"}, cpca_group_limits_stream()));
+  const auto by_neighbours = [](const std::vector<uint8_t>& stream) {
+    return with_cpca_header(stream, [](CpcaHeader& h, const CpcaMap& map, std::vector<uint8_t>& bins, std::vector<uint8_t>& raw) {
+      h.map_prediction = kCpcaMapByNeighbours;
+      write_cluster_map<false>(h, map.faces, map.cluster_of, bins, raw, syntax::SectionPlace{});
+    });
+  };
+  suite.push_back(written_case("cpca-22-map-by-neighbours", "cpca-09's 200 scattered clusters, its map by neighbours: one, two and more "
+                               "candidates, second candidates and raw ranks", {"cpca"}, by_neighbours(stream_of(suite, "cpca-09-many-clusters"))));
+  suite.push_back(written_case("cpca-23-map-limits-by-neighbours", "cpca-17's 255 clusters, its map by neighbours: raw ranks up to 253 of "
+                               "8 bits", {"cpca"}, by_neighbours(stream_of(suite, "cpca-17-limits"))));
+  Encode3dOptions first_version = cpca({{"clusters", "4"}});
+  first_version.position_blend = 0;
+  suite.push_back(valid("cpca-24-version-1", "a version 1 stream: no cluster_map_prediction, the map by differences", {"cpca"}, flag,
+                        first_version, traced));
   return suite;
 }
 
@@ -466,9 +536,27 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
       {"x-29-cpca-empty-cluster", "cluster_count 5 while the map names clusters 0 … 3", "cluster_count", 5, ErrorKind::kStructure, "cluster_count"},
       {"x-37-cpca-quantization-bits", "quantization_bits 3", "quantization_bits", 3, ErrorKind::kOutOfRange, "quantization_bits"},
   };
+  // The map's own cases on the same stream with its map by differences.
+  const std::vector<uint8_t> by_difference = with_map_by_difference(base);
   for (const auto& c : header_cases)
-    suite.push_back(invalid(c.id, c.purpose, {"cpca"}, edited(base, [&](ContainerParts& p) { put_field(p.object_payload, field(c.field), c.value); }),
+    suite.push_back(invalid(c.id, c.purpose, {"cpca"},
+                            edited(by_difference, [&](ContainerParts& p) { put_field(p.object_payload, object_field<CpcaHeader>(by_difference, c.field), c.value); }),
                             c.kind, c.element, kNoPlane));
+  suite.push_back(invalid("x-147-cpca-map-prediction", "cluster_map_prediction 2", {"cpca"},
+                          edited(base, [&](ContainerParts& p) { put_field(p.object_payload, field("cluster_map_prediction"), 2); }),
+                          ErrorKind::kOutOfRange, "cluster_map_prediction", kNoPlane));
+  suite.push_back(invalid("x-148-cpca-rank-beyond", "a cluster map by neighbours of 4 clusters whose first vertex takes rank 3 of the 3 left",
+                          {"cpca"}, with_first_rank(base, 4, 3), ErrorKind::kOutOfRange, "cluster_rank", kNoPlane));
+  suite.push_back(invalid("x-149-cpca-rank-none-left", "a cluster map by neighbours of 1 cluster whose first vertex is not in it",
+                          {"cpca"}, with_first_rank(base, 1, 0), ErrorKind::kOutOfRange, "cluster_rank", kNoPlane));
+  suite.push_back(invalid("x-150-cpca-empty-cluster-by-neighbours", "a cluster map by neighbours naming clusters 0 … 3 of 5", {"cpca"},
+                          with_cpca_header(base,
+                                           [](CpcaHeader& h, const CpcaMap& map, std::vector<uint8_t>& bins, std::vector<uint8_t>& raw) {
+                                             h.map_prediction = kCpcaMapByNeighbours;
+                                             h.cluster_count = 5;
+                                             write_cluster_map<false>(h, map.faces, map.cluster_of, bins, raw, syntax::SectionPlace{});
+                                           }),
+                          ErrorKind::kStructure, "cluster_count", kNoPlane));
   suite.push_back(invalid("x-30-cpca-no-frame-count", "frame_count 0 (unknown)", {"cpca"},
                           edited(base,
                                  [&](ContainerParts& p) { put_field(p.object_payload, field("frame_count"), 0); }),
@@ -555,8 +643,7 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
     const size_t start = refinement_unit(parts, 0);
     const uint32_t cluster = static_cast<uint32_t>(field_value(parts.units[start].payload, refinement_field("cluster")));
     // The cluster's size, from the header's cluster map.
-    const auto [object, header] = read_headers<CpcaHeader>(parts);
-    const std::vector<uint32_t> cluster_of = syntax::read_cluster_map<false>(header, object.vertex_count, syntax::SectionPlace{});
+    const std::vector<uint32_t> cluster_of = cpca_cluster_map(parts);
     std::vector<std::pair<int, int32_t>> coefficient_beyond(3 * static_cast<size_t>(std::count(cluster_of.begin(), cluster_of.end(), cluster)));
     for (size_t j = 0; j < coefficient_beyond.size(); ++j) coefficient_beyond[j] = {static_cast<int>(j % 3), 0};
     coefficient_beyond.emplace_back(syntax::kCpcaCoefficientChannel, (1 << 23) + 1);

@@ -81,6 +81,8 @@ FirstBaseMesh first_base_mesh(const ContainerParts& parts) {
 
 }  // namespace
 
+BaseMesh base_mesh_of(const ContainerParts& parts) { return first_base_mesh(parts).base; }
+
 std::vector<uint32_t> untraversed_vertices(const std::vector<uint8_t>& stream) {
   const auto [base, traversal_faces, coding] = first_base_mesh(split_container(stream));
   std::set<uint32_t> reached;

@@ -13,6 +13,7 @@
 #include "bitstream/bit_writer.h"
 #include "common/error.h"
 #include "conformance/suite.h"
+#include "mesh3d/base_mesh.h"
 #include "syntax/io.h"
 #include "syntax/mesh3d/container.h"
 
@@ -81,6 +82,9 @@ void put_field(std::vector<uint8_t>& payload, FieldBytes field, uint64_t value);
 // A unit payload whose bin section, which follows its length field
 // `length`, gains a zero byte that the length counts.
 void add_bins_byte(std::vector<uint8_t>& payload, FieldBytes length);
+
+// The first base mesh unit of a stream's parts, decoded.
+BaseMesh base_mesh_of(const ContainerParts& parts);
 
 // The vertices outside the traversal of `stream`'s first base mesh unit, in
 // increasing output number.

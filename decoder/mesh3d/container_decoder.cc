@@ -13,14 +13,18 @@ namespace {
 
 // An error inside a payload, moved to the stream: its offset counted from
 // the payload start becomes one from the stream start (the payload follows
-// a 32-bit start code); `frame` is used when the error names none.
+// a 32-bit start code); `frame` is used when the error names none. An
+// error placed already (in_object_payload) stays.
 Error located(const Error& e, uint64_t start_code_byte, int64_t frame, int64_t unit) {
+  if (e.mesh3d()) return e;
   const int64_t start = static_cast<int64_t>(start_code_byte * 8);
   const int64_t at = e.bit_offset() == kNoOffset ? start : start + 32 + e.bit_offset();
   return Error(e.kind(), e.element(), e.plane() == kNoPlane ? frame : e.plane(), at, e.message()).in_mesh3d(unit);
 }
 
 }  // namespace
+
+Error in_object_payload(const Error& e) { return located(e, 0, kNoPlane, kNoUnit); }
 
 Mesh3dDecoder::Mesh3dDecoder(std::span<const uint8_t> stream, const Decode3dOptions& options)
     : parts_(split_container(stream)), options_(options) {

@@ -1,7 +1,10 @@
 // The clustered-PCA codec (codec_id 4) decoding (docs/codec_cpca_wpt.md):
-// the cluster map from the header, the mean shape from the base mesh, then
+// the cluster map from the header (read with it, or after the base mesh
+// when its prediction needs the faces), the mean shape from the base mesh, then
 // every refinement unit adds a cluster's mean trajectory (its start) or one
 // of its operators to every frame.
+#include "decoder/mesh3d/cpca_wpt.h"
+
 #include <optional>
 
 #include "codecs3d/codec_decoder.h"
@@ -13,21 +16,45 @@ namespace m4mesh {
 
 namespace {
 
+// The header's cluster map sections and where they are, kept to be read
+// once the base mesh gives the faces (cluster_map_prediction 1).
+struct MapSections {
+  std::vector<uint8_t> bins, raw;
+  syntax::SectionPlace place;
+  uint64_t cluster_count_offset = 0;  // where an empty cluster is reported
+};
+
 class CpcaDecoder final : public CodecDecoder3d {
  public:
-  CpcaDecoder(const ObjectHeader& object, const CpcaHeader& header, const std::vector<uint32_t>& cluster_of)
+  // header_trace: where the header's symbols are traced (the map of prediction 0).
+  CpcaDecoder(const ObjectHeader& object, const CpcaHeader& header, MapSections map, Trace* header_trace)
       : object_(object),
         header_(header),
-        cluster_of_(cluster_of),
-        members_(cpca_members(cluster_of, header.cluster_count)),
+        map_(std::move(map)),
         started_(header.cluster_count, 0),
         components_(header.cluster_count, 0),
-        trajectories_(header.cluster_count, 0) {}
+        trajectories_(header.cluster_count, 0) {
+    header_.map_bins = map_.bins;
+    header_.map_raw = map_.raw;
+    if (header_.map_prediction == kCpcaMapByDifference) read_map({}, header_trace);
+  }
 
   void decode_unit(const UnitHeader& unit, syntax::ReadIO& io, std::vector<uint32_t>& decoded) override {
     if (unit.type() == UnitType::kBaseMesh) {
       if (animation_) io.fail(ErrorKind::kStructure, "unit_type", "a second base mesh unit: the mean shape is sent once");
       BaseMesh base = read_base_mesh(io, object_, trace_);
+      if (header_.map_prediction == kCpcaMapByNeighbours) {
+        try {
+          if (trace_) {
+            Trace in_object = trace_->in_object();
+            read_map(base.faces, &in_object);
+          } else {
+            read_map(base.faces, nullptr);
+          }
+        } catch (const Error& e) {
+          throw in_object_payload(e);
+        }
+      }
       mesh_.emplace(base.faces, base.coding_order, cluster_of_, header_.cluster_count);
       faces_ = std::move(base.faces);
       animation_.emplace(header_, base.positions, object_.frame_count);
@@ -59,6 +86,17 @@ class CpcaDecoder final : public CodecDecoder3d {
   bool holds_all_frames() const override { return true; }
 
  private:
+  // The cluster map's symbols, placed in the object payload; every cluster must have a vertex.
+  void read_map(std::span<const Triangle> faces, Trace* trace) {
+    cluster_of_ = trace ? read_cluster_map<true>(header_, faces, object_.vertex_count, map_.place, trace)
+                        : read_cluster_map<false>(header_, faces, object_.vertex_count, map_.place);
+    members_ = cpca_members(cluster_of_, header_.cluster_count);
+    for (uint32_t c = 0; c < header_.cluster_count; ++c)
+      if (members_[c].empty())
+        throw Error(ErrorKind::kStructure, "cluster_count", kNoPlane, static_cast<int64_t>(map_.cluster_count_offset),
+                    "cluster " + std::to_string(c) + " has no vertex");
+  }
+
   // A refinement's rules, checked as soon as its fields are read (the
   // unit's own, or a group's `group_*`), and counted: the later ones of a
   // group see the earlier ones as decoded.
@@ -105,6 +143,7 @@ class CpcaDecoder final : public CodecDecoder3d {
 
   ObjectHeader object_;
   CpcaHeader header_;
+  MapSections map_;
   std::vector<uint32_t> cluster_of_;
   std::vector<std::vector<NodeIndex>> members_;
   std::vector<uint8_t> started_;      // per cluster: its start decoded
@@ -120,20 +159,32 @@ class CpcaDecoder final : public CodecDecoder3d {
 
 std::unique_ptr<CodecDecoder3d> make_cpca_wpt_decoder(const ObjectHeader& object, syntax::ReadIO& io) {
   CpcaHeader header;
+  header.version = object.version;
   syntax::describe(io, header);
   if (object.frame_count == 0) io.fail(ErrorKind::kStructure, "frame_count", "the clustered-PCA codec needs the frame count");
   if (uint64_t{object.vertex_count} * object.frame_count > kCpcaMaxVertexFrames)
     io.fail(ErrorKind::kLimit, "frame_count", "more than 2^22 vertex-frames");
   const uint8_t* payload = io.reader().data();
-  const syntax::SectionPlace place{"cluster_map_bins", "cluster_map_raw", 8 * static_cast<uint64_t>(header.map_bins.data() - payload),
-                                   8 * static_cast<uint64_t>(header.map_raw.data() - payload), kNoPlane};
-  const std::vector<uint32_t> cluster_of = io.trace() ? syntax::read_cluster_map<true>(header, object.vertex_count, place, io.trace())
-                                                      : syntax::read_cluster_map<false>(header, object.vertex_count, place);
-  const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, header.cluster_count);
-  for (uint32_t c = 0; c < header.cluster_count; ++c)
-    if (members[c].empty())
-      io.fail(ErrorKind::kStructure, "cluster_count", "cluster " + std::to_string(c) + " has no vertex");
-  return std::make_unique<CpcaDecoder>(object, header, cluster_of);
+  MapSections map{{header.map_bins.begin(), header.map_bins.end()},
+                  {header.map_raw.begin(), header.map_raw.end()},
+                  {"cluster_map_bins", "cluster_map_raw", 8 * static_cast<uint64_t>(header.map_bins.data() - payload),
+                   8 * static_cast<uint64_t>(header.map_raw.data() - payload), kNoPlane},
+                  io.start_of("cluster_count")};
+  return std::make_unique<CpcaDecoder>(object, header, std::move(map), io.trace());
+}
+
+std::vector<uint32_t> cpca_cluster_map(const ContainerParts& parts) {
+  const auto [object, header] = read_headers<CpcaHeader>(parts);
+  std::vector<Triangle> faces;
+  if (header.map_prediction == kCpcaMapByNeighbours) {
+    const std::vector<uint8_t>& base = parts.units.at(0).payload;
+    BitReader reader(base.data(), base.size());
+    syntax::ReadIO io(reader);
+    UnitHeader unit;
+    syntax::describe(io, unit);
+    faces = read_base_mesh(io, object, nullptr).faces;
+  }
+  return read_cluster_map<false>(header, faces, object.vertex_count, syntax::SectionPlace{});
 }
 
 }  // namespace m4mesh

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <utility>
 #include <optional>
 
 #include "codecs3d/codec_encoder.h"
@@ -66,6 +67,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     const double n = static_cast<double>(s.frames.size());
     for (Vec3& p : mean) p = {p.x / n, p.y / n, p.z / n};
     grid_ = Grid::over(mean, bits, true);
+    header_.version = base_mesh_.version;
     header_.bits = static_cast<uint32_t>(bits);
     for (int axis = 0; axis < 3; ++axis) {
       header_.origin[axis] = bit_cast<uint32_t>(grid_.origin[axis]);
@@ -81,17 +83,23 @@ class CpcaEncoder final : public CodecEncoder3d {
     prepare(s, clustering.cluster_of, coding_order);
   }
 
+  // The map's symbols are traced where the decoder reads them: after the
+  // header's fields, or after the base mesh with prediction 1.
   void write_header(syntax::WriteIO& io) override {
     header_.map_bins = map_bins_;
     header_.map_raw = map_raw_;
     syntax::describe(io, header_);
-    if (io.trace()) io.trace()->stream() << syntax::write_cluster_map<true>(header_, cluster_of_, map_bins_, map_raw_, kMapPlace, io.trace());
+    if (!io.trace()) return;
+    map_trace_ = io.trace();
+    map_trace_text_ = write_cluster_map<true>(header_, faces_, cluster_of_, map_bins_, map_raw_, kMapPlace, io.trace());
+    if (header_.map_prediction == kCpcaMapByDifference) map_trace_->stream() << std::exchange(map_trace_text_, {});
   }
 
   // The base mesh, then the plan's operators while the stream through the
   // last refinement stays within --max-bytes, then the frames' hashes.
   void encode(const MeshSequence& s, UnitSink& sink) override {
     sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, mean_, base_mesh_); });
+    if (map_trace_) map_trace_->stream() << std::exchange(map_trace_text_, {});
     if (max_bytes_ > 0 && sink.stream_bytes() > max_bytes_)
       throw usage_error("--max-bytes " + std::to_string(max_bytes_) + " is below the " + std::to_string(sink.stream_bytes()) +
                         " bytes of the header and the base mesh (cpca-wpt)");
@@ -136,6 +144,20 @@ class CpcaEncoder final : public CodecEncoder3d {
   }
 
  private:
+  // Version 2: the map's prediction of fewer bytes (by the differences of equals).
+  void choose_cluster_map() {
+    header_.map_prediction = kCpcaMapByDifference;
+    write_cluster_map<false>(header_, faces_, cluster_of_, map_bins_, map_raw_, kMapPlace);
+    if (header_.version < 2) return;
+    const size_t by_difference = map_bins_.size() + map_raw_.size();
+    header_.map_prediction = kCpcaMapByNeighbours;
+    write_cluster_map<false>(header_, faces_, cluster_of_, map_bins_, map_raw_, kMapPlace);
+    if (map_bins_.size() + map_raw_.size() >= by_difference) {
+      header_.map_prediction = kCpcaMapByDifference;
+      write_cluster_map<false>(header_, faces_, cluster_of_, map_bins_, map_raw_, kMapPlace);
+    }
+  }
+
   // Clusters, components, then the plan of the noise step given, or of the
   // best one for --max-bytes (the smallest KG error within it) or
   // --target-kg (the fewest bytes that reach it), else of the default.
@@ -144,7 +166,8 @@ class CpcaEncoder final : public CodecEncoder3d {
     header_.cluster_count = *std::max_element(cluster_of_.begin(), cluster_of_.end()) + 1;
     members_ = cpca_members(cluster_of_, header_.cluster_count);
     mesh_.emplace(s.faces, coding_order, cluster_of_, header_.cluster_count);
-    syntax::write_cluster_map<false>(header_, cluster_of_, map_bins_, map_raw_, kMapPlace);
+    faces_ = s.faces;
+    choose_cluster_map();
     auto start = std::chrono::steady_clock::now();
     for (uint32_t c = 0; c < header_.cluster_count; ++c) {
       Eigen::MatrixXd d = motion(s, c);
@@ -429,6 +452,9 @@ class CpcaEncoder final : public CodecEncoder3d {
   std::vector<std::vector<NodeIndex>> members_;
   std::optional<CpcaMeshPrediction> mesh_;
   std::vector<uint8_t> map_bins_, map_raw_;
+  std::vector<Triangle> faces_;  // the base mesh's, which predict the map
+  Trace* map_trace_ = nullptr;
+  std::string map_trace_text_;  // the map's symbols, traced after the base mesh with prediction 1
   std::vector<Translation> translations_;
   std::vector<std::vector<Component>> components_of_;
   std::vector<double> mean_error_;  // per cluster, of the mean shape alone

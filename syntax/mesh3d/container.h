@@ -165,6 +165,7 @@ std::pair<ObjectHeader, CodecHeader> read_headers(const ContainerParts& parts) {
   // Unqualified: the codec header's describe() is found where this is used.
   using syntax::describe;
   describe(in, headers.first);
+  if constexpr (requires { headers.second.version; }) headers.second.version = headers.first.version;
   describe(in, headers.second);
   return headers;
 }

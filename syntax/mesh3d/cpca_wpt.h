@@ -5,13 +5,16 @@
 // coefficients folded into two integer vectors and a shift).
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "common/bit_cast.h"
 #include "syntax/io.h"
+#include "syntax/mesh3d/container.h"
 #include "syntax/mesh3d/entropy_io.h"
 #include "syntax/mesh3d/grid.h"
 #include "syntax/mesh3d/residual.h"
@@ -20,6 +23,12 @@ namespace m4mesh {
 
 inline constexpr uint32_t kCpcaMaxClusters = 255;
 inline constexpr uint32_t kCpcaMaxFractionBits = 16;
+// How the cluster map is coded (cluster_map_prediction, version 2): each
+// vertex's cluster as its difference to the previous vertex's, or ranked
+// by the clusters of its neighbours numbered before it (read once the base
+// mesh has given the faces).
+inline constexpr uint32_t kCpcaMapByDifference = 0;
+inline constexpr uint32_t kCpcaMapByNeighbours = 1;
 // The shift of a refinement is stored plus this bias: contributions are
 // (basis × coefficient) × 2^−(shift − bias).
 inline constexpr uint32_t kCpcaShiftBias = 16;
@@ -42,11 +51,13 @@ inline const char* cpca_unit_kind_name(uint32_t kind) {
 inline constexpr uint64_t kCpcaMaxVertexFrames = uint64_t{1} << 22;
 
 struct CpcaHeader {
+  uint32_t version = kLatestVersion;  // the object header's: version 1 has no cluster_map_prediction
   uint32_t bits = 12;  // the grid of the base mesh (the mean shape)
   std::array<uint32_t, 3> origin{};  // binary32 bit patterns
   std::array<uint32_t, 3> step{};
   uint32_t cluster_count = 1;
   uint32_t fraction_bits = 8;  // F: positions accumulate in steps of 2^−F grid units
+  uint32_t map_prediction = kCpcaMapByDifference;
   uint32_t map_bins_bytes = 0;
   std::span<const uint8_t> map_bins;
   uint32_t map_raw_bytes = 0;
@@ -101,6 +112,11 @@ void describe(IO& io, CpcaHeader& h) {
   describe_grid(io, h.origin, h.step);
   io.field_in("cluster_count", 8, h.cluster_count, 1, kCpcaMaxClusters);
   io.field_in("fraction_bits", 8, h.fraction_bits, 0, kCpcaMaxFractionBits);
+  if (h.version >= 2 || kTableOf<IO>) {
+    if constexpr (kTableOf<IO>) io.open("if (version >= 2)");
+    io.field_in("cluster_map_prediction", 8, h.map_prediction, kCpcaMapByDifference, kCpcaMapByNeighbours);
+    if constexpr (kTableOf<IO>) io.close();
+  }
   io.field("cluster_map_bins_bytes", 32, h.map_bins_bytes);
   io.require_length("cluster_map_bins_bytes", h.map_bins_bytes);
   io.section("cluster_map_bins", h.map_bins_bytes, h.map_bins);
@@ -181,32 +197,48 @@ void describe_cluster_map(IO& io, std::span<uint32_t> cluster_of, uint32_t clust
   describe_differences(io, coder, clusters, 0, 1, 0, int64_t{cluster_count} - 1, kCpcaCluster, "a cluster beyond cluster_count");
 }
 
-// The header's cluster map read: the cluster of every vertex.
-template <bool kTraced>
-std::vector<uint32_t> read_cluster_map(const CpcaHeader& h, uint32_t vertex_count, const SectionPlace& place, Trace* trace = nullptr) {
-  std::vector<uint32_t> cluster_of(vertex_count);
-  EntropyReadIO<kTraced> symbols(h.map_bins, h.map_raw, place, trace);
-  describe_cluster_map(symbols, cluster_of, h.cluster_count);
-  symbols.finish("cluster_of_vertex");
-  return cluster_of;
-}
+// The contexts of cluster_map_prediction 1, starting at the map.
+struct CpcaRankContexts {
+  BinContext not_first[3];   // by min(candidates, 3) − 1
+  BinContext not_second[2];  // by min(candidates, 3) − 2
+};
 
-// The header's cluster map written, the mirror of read_cluster_map(): the
-// sections into `bins` and `raw`, which `h` then points at with their
-// lengths; returns the symbols' trace (in the place of `like`), which
-// follows the header's fields.
-template <bool kTraced>
-std::string write_cluster_map(CpcaHeader& h, std::vector<uint32_t> cluster_of, std::vector<uint8_t>& bins, std::vector<uint8_t>& raw,
-                              const SectionPlace& place, Trace* like = nullptr) {
-  EntropyWriteIO<kTraced> symbols(place, like);
-  describe_cluster_map(symbols, cluster_of, h.cluster_count);
-  bins = symbols.finish_bins();
-  raw = symbols.finish_raw();
-  h.map_bins_bytes = static_cast<uint32_t>(bins.size());
-  h.map_bins = bins;
-  h.map_raw_bytes = static_cast<uint32_t>(raw.size());
-  h.map_raw = raw;
-  return symbols.trace_text();
+// One vertex's cluster under cluster_map_prediction 1. Its earlier
+// neighbours hold `candidates` clusters (at least 1), `first` and `second`
+// the two most frequent (`second` with 2 or more); any other cluster is
+// named by its rank among the clusters left, in increasing number.
+template <class IO>
+void describe_ranked_cluster(IO& io, CpcaRankContexts& c, uint32_t candidates, uint32_t first, uint32_t second, uint32_t cluster_count,
+                             uint32_t& cluster) {
+  const uint32_t shown = std::min<uint32_t>(candidates, 3);
+  bool not_first = cluster != first;
+  io.bin("cluster_not_first", c.not_first[shown - 1], static_cast<int>(shown - 1), not_first);
+  if (!not_first) {
+    cluster = first;
+    return;
+  }
+  uint32_t low = first, high = first;
+  if (candidates >= 2) {
+    bool not_second = cluster != second;
+    io.bin("cluster_not_second", c.not_second[shown - 2], static_cast<int>(shown - 2), not_second);
+    if (!not_second) {
+      cluster = second;
+      return;
+    }
+    low = std::min(first, second);
+    high = std::max(first, second);
+  }
+  const uint32_t left_out = low == high ? 1 : 2;
+  if (cluster_count <= left_out) io.fail(ErrorKind::kOutOfRange, "cluster_rank", "no cluster left to name");
+  uint32_t rank = 0;
+  if constexpr (!IO::kReading) rank = cluster - (cluster > low ? 1 : 0) - (left_out == 2 && cluster > high ? 1 : 0);
+  io.raw("cluster_rank", std::bit_width(cluster_count - left_out - 1), rank);
+  if (rank >= cluster_count - left_out) io.fail(ErrorKind::kOutOfRange, "cluster_rank", "a rank beyond the clusters left");
+  if constexpr (IO::kReading) {
+    cluster = rank;
+    if (cluster >= low) ++cluster;
+    if (left_out == 2 && cluster >= high) ++cluster;
+  }
 }
 
 // The residual coders of a refinement unit, one per refinement kind: they
