@@ -28,14 +28,15 @@ std::vector<IntPoint3> grid_positions(const MeshSequence& s, int bits) {
   return q;
 }
 
-std::vector<uint8_t> base_unit(const MeshSequence& s, const std::vector<IntPoint3>& q, bool reorder) {
+std::vector<uint8_t> base_unit(const MeshSequence& s, const std::vector<IntPoint3>& q, bool reorder,
+                               const BaseMeshCoding& coding = {}) {
   const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, reorder);
   std::vector<IntPoint3> positions = q;
   if (reorder)
     for (uint32_t i = 0; i < s.vertex_count; ++i) positions[i] = q[plan.input_of[i]];
   BitWriter writer;
   syntax::WriteIO io(writer);
-  write_base_mesh(io, plan.faces, positions, BaseMeshCoding{});
+  write_base_mesh(io, plan.faces, positions, coding);
   return writer.take_bytes();
 }
 
@@ -56,19 +57,22 @@ void BM_BaseMeshRate(benchmark::State& state) {
 }
 BENCHMARK(BM_BaseMeshRate)->ArgsProduct({{0, 1, 2, 3, 4, 5}, {10, 12, 14}})->Unit(benchmark::kMillisecond)->Iterations(1);
 
+// Version 1 (no blend) beside version 2 (the blend the encoder chooses), in one run.
 void BM_BaseMeshDecode(benchmark::State& state) {
   const MeshSequence& s = bench::sequence(kSequences[state.range(0)]);
-  const std::vector<uint8_t> unit = base_unit(s, grid_positions(s, 12), false);
-  const ObjectHeader header{1, 1, s.vertex_count, static_cast<uint32_t>(s.faces.size()), 1, 25, 1};
+  const BaseMeshCoding coding = state.range(1) == 1 ? BaseMeshCoding::with_blend(0u) : BaseMeshCoding{};
+  const std::vector<uint8_t> unit = base_unit(s, grid_positions(s, 12), false, coding);
+  const ObjectHeader header{coding.version, 1, s.vertex_count, static_cast<uint32_t>(s.faces.size()), 1, 25, 1};
   for (auto _ : state) {
     BitReader reader(unit.data(), unit.size());
     syntax::ReadIO io(reader);
     benchmark::DoNotOptimize(read_base_mesh(io, header, nullptr).positions.data());
   }
-  state.SetLabel(bench::label(kSequences[state.range(0)]));
+  state.SetLabel(bench::label(kSequences[state.range(0)]) + " version " + std::to_string(coding.version) + ", position_blend " +
+                 std::to_string(coding.version == 1 ? 0 : unit[1]));
   state.counters["vertices/s"] = benchmark::Counter(static_cast<double>(state.iterations()) * s.vertex_count, benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_BaseMeshDecode)->Arg(0)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BaseMeshDecode)->ArgsProduct({{0, 2}, {1, 2}})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace m4mesh
