@@ -34,10 +34,13 @@ int run_info3d(const std::string& input) {
   Mesh3dDecoder decoder(stream);
   const ObjectHeader& h = decoder.header();
   std::printf("%s: %zu bytes, mesh3d container version %u, codec_id %u (%s), %u vertices, %u faces, %u frames at %u/%u fps\n",
-              input.c_str(), stream.size(), h.version, h.codec_id, decoder.codec().name.c_str(), h.vertex_count, h.face_count, h.frame_count, h.frame_rate_num,
-              h.frame_rate_den);
+              input.c_str(), stream.size(), h.version, h.codec_id, decoder.codec().name.c_str(), h.vertex_count, h.face_count,
+              h.frame_count, h.frame_rate_num, h.frame_rate_den);
   if (const std::optional<uint32_t> order = decoder.vertex_order())
     std::printf("  vertex order: %s\n", vertex_order_name(*order));
+  if (const std::optional<uint32_t> blend = decoder.position_blend())
+    std::printf("  positions: parallelograms blended with the neighbours' mean by %u/16%s\n", *blend,
+                h.version == 1 ? " (version 1: no blend)" : "");
   const UnitSizes unit = unit_sizes(parts, stream.size());
   const uint64_t* sizes = unit.bytes;
   const uint64_t* counts = unit.count;

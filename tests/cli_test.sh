@@ -199,6 +199,9 @@ grep -q "progressive needs a progressive codec" "$work/err" || fail "progressive
 "$m4mesh" decode3d "$work/re.m4m" -o "$work/re.m4seq" > /dev/null 2> "$work/err" || fail "decode3d of a reordered stream"
 grep -q "^note: .* numbers its vertices in coding order" "$work/err" || fail "decode3d note: $(cat "$work/err")"
 "$m4mesh" info "$work/t.m4m" | grep -q "vertex order: the input's" || fail "info of an input-order stream"
+# The version and the base mesh's blend, in both versions.
+"$m4mesh" info conformance/mesh3d/streams/base-19-blend-5.m4m | grep -q "container version 2, .*" && "$m4mesh" info conformance/mesh3d/streams/base-19-blend-5.m4m | grep -q "neighbours' mean by 5/16$" || fail "info of a version 2 stream"
+"$m4mesh" info conformance/mesh3d/streams/base-20-version-1.m4m | grep -q "container version 1, .*" && "$m4mesh" info conformance/mesh3d/streams/base-20-version-1.m4m | grep -q "by 0/16 (version 1: no blend)" || fail "info of a version 1 stream"
 
 # PC2 output, with its OBJ beside it, reads back as the same sequence; it never overwrites the input's OBJ.
 "$m4mesh" decode3d "$work/t.m4m" -o "$work/t.pc2" > /dev/null || fail "decode3d -o .pc2"

@@ -87,7 +87,7 @@ uint32_t Mesh3dDecoder::seek(uint32_t frame) {
   return start;
 }
 
-std::optional<uint32_t> Mesh3dDecoder::vertex_order() const {
+std::optional<BaseMeshData> Mesh3dDecoder::first_base_mesh_fields() const {
   for (const ContainerUnit& unit : parts_.units) {
     BitReader reader(unit.payload.data(), unit.payload.size());
     syntax::ReadIO io(reader);
@@ -96,13 +96,24 @@ std::optional<uint32_t> Mesh3dDecoder::vertex_order() const {
       syntax::describe(io, header);
       if (header.type() != UnitType::kBaseMesh) continue;
       BaseMeshData data;
+      data.version = header_.version;
       syntax::describe(io, data);
-      return data.vertex_order;
+      return data;
     } catch (const Error&) {
       return std::nullopt;
     }
   }
   return std::nullopt;
+}
+
+std::optional<uint32_t> Mesh3dDecoder::vertex_order() const {
+  const std::optional<BaseMeshData> data = first_base_mesh_fields();
+  return data ? std::optional<uint32_t>(data->vertex_order) : std::nullopt;
+}
+
+std::optional<uint32_t> Mesh3dDecoder::position_blend() const {
+  const std::optional<BaseMeshData> data = first_base_mesh_fields();
+  return data ? std::optional<uint32_t>(data->position_blend) : std::nullopt;
 }
 
 UnitHeader Mesh3dDecoder::begin_unit(size_t index) {

@@ -21,6 +21,7 @@
 #include "codecs3d/codec_decoder.h"
 #include "mesh3d/frame_hash.h"
 #include "mesh3d/sequence.h"
+#include "syntax/mesh3d/base_mesh.h"
 #include "syntax/mesh3d/container.h"
 #include "syntax/trace.h"
 
@@ -52,9 +53,11 @@ class Mesh3dDecoder {
   const Codec3d& codec() const { return *codec_row_; }
   const std::vector<Triangle>& faces() const { return codec_->faces(); }
   bool has_end_code() const { return parts_.has_end_code; }
-  // The first base mesh unit's vertex_order (syntax/mesh3d/base_mesh.h);
-  // none when the stream has no readable base mesh unit.
+  // The first base mesh unit's vertex_order and position_blend
+  // (syntax/mesh3d/base_mesh.h); none when the stream has no readable base
+  // mesh unit.
   std::optional<uint32_t> vertex_order() const;
+  std::optional<uint32_t> position_blend() const;
   // Whether every unit refines every frame (a progressive codec).
   bool progressive() const { return codec_->holds_all_frames(); }
 
@@ -102,6 +105,7 @@ class Mesh3dDecoder {
   const std::vector<Float3>& positions() const { return positions_; }
 
  private:
+  std::optional<BaseMeshData> first_base_mesh_fields() const;
   UnitHeader read_unit_header(size_t index, bool traced);
   // The unit's header, traced with the unit's location when tracing.
   UnitHeader begin_unit(size_t index);
