@@ -62,7 +62,7 @@ int run_m4mesh(int argc, const char* const* argv) {
   trace_cmd->add_option("input", trace_input, "mesh stream")->required();
   TraceSelection trace_selection;
   bool trace_fields_only = false;
-  trace_cmd->add_option("--part", trace_selection.part, "only part K: the 3D unit K or the 2D plane K (-1: the object header); reads no further")
+  trace_cmd->add_option("--part", trace_selection.part, "only part K: the 3D unit K or the 2D plane K (-1: the object header); reads no further (the 3D header: through the first unit, where a map by neighbours is read)")
       ->check(CLI::Range(int64_t{-1}, int64_t{1} << 32));
   trace_cmd->add_flag("--fields-only", trace_fields_only, "no bins and raw bits of arithmetic-coded sections: fixed fields and byte sections only");
 
