@@ -149,13 +149,14 @@ class CpcaEncoder final : public CodecEncoder3d {
     header_.map_prediction = kCpcaMapByDifference;
     write_cluster_map<false>(header_, faces_, cluster_of_, map_bins_, map_raw_, kMapPlace);
     if (header_.version < 2) return;
-    const size_t by_difference = map_bins_.size() + map_raw_.size();
-    header_.map_prediction = kCpcaMapByNeighbours;
-    write_cluster_map<false>(header_, faces_, cluster_of_, map_bins_, map_raw_, kMapPlace);
-    if (map_bins_.size() + map_raw_.size() >= by_difference) {
-      header_.map_prediction = kCpcaMapByDifference;
-      write_cluster_map<false>(header_, faces_, cluster_of_, map_bins_, map_raw_, kMapPlace);
-    }
+    CpcaHeader by_neighbours = header_;
+    by_neighbours.map_prediction = kCpcaMapByNeighbours;
+    std::vector<uint8_t> bins, raw;
+    write_cluster_map<false>(by_neighbours, faces_, cluster_of_, bins, raw, kMapPlace);
+    if (bins.size() + raw.size() >= map_bins_.size() + map_raw_.size()) return;
+    header_ = by_neighbours;
+    map_bins_ = std::move(bins);
+    map_raw_ = std::move(raw);
   }
 
   // Clusters, components, then the plan of the noise step given, or of the
