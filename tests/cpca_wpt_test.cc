@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <numeric>
 #include <set>
 
 #include "decoder/mesh3d/container_decoder.h"
@@ -66,13 +67,18 @@ void expect_prefixes_decode_and_improve(const MeshSequence& s, const std::vector
   EXPECT_EQ(container_prefix(parts, stream.size(), 3).units, 0u);
 }
 
-// With a unit per refinement and with groups.
+// With a unit per refinement, with groups of one size and with growing groups.
 TEST(CpcaWpt, EveryPrefixDecodesAndTheErrorNeverGrows) {
   const MeshSequence s = test::test_sequence(12, 7);
-  for (const auto& [group_bytes, least_units] : {std::pair{"0", 10u}, std::pair{"60", 5u}}) {
-    const std::vector<uint8_t> stream = encode_mesh3d(s, cpca({{"clusters", "4"}, {"group-bytes", group_bytes}})).stream;
+  struct Case {
+    const char *group_bytes, *growth;
+    size_t least_units;
+  };
+  for (const Case& c : {Case{"0", "1", 10}, Case{"60", "1", 5}, Case{"60", "2", 3}}) {
+    const std::vector<uint8_t> stream =
+        encode_mesh3d(s, cpca({{"clusters", "4"}, {"group-bytes", c.group_bytes}, {"group-growth", c.growth}})).stream;
     const ContainerParts parts = split_container(stream);
-    ASSERT_GT(parts.units.size(), least_units);
+    ASSERT_GT(parts.units.size(), c.least_units);
     expect_prefixes_decode_and_improve(s, stream, parts);
   }
 }
@@ -134,19 +140,26 @@ TEST(CpcaWpt, ATargetChoosesTheClusterCount) {
   EXPECT_THROW(encode_mesh3d(s, cpca({{"components", "many"}})), Error);
 }
 
-// The refinements of a stream's refinement units, in order.
-std::vector<CpcaRefinementHeader> refinements(const std::vector<uint8_t>& stream) {
-  std::vector<CpcaRefinementHeader> all;
+// Calls visit(unit, io) for each refinement unit of a stream, io just after its unit header.
+template <class Visit>
+void for_each_refinement_unit(const std::vector<uint8_t>& stream, Visit visit) {
   for (const ContainerUnit& unit : split_container(stream).units) {
     BitReader reader(unit.payload.data(), unit.payload.size());
     syntax::ReadIO io(reader);
     UnitHeader header;
     syntax::describe(io, header);
-    if (header.type() != UnitType::kRefinement) continue;
+    if (header.type() == UnitType::kRefinement) visit(unit, io);
+  }
+}
+
+// The refinements of a stream's refinement units, in order.
+std::vector<CpcaRefinementHeader> refinements(const std::vector<uint8_t>& stream) {
+  std::vector<CpcaRefinementHeader> all;
+  for_each_refinement_unit(stream, [&](const ContainerUnit&, syntax::ReadIO& io) {
     CpcaRefinement r;
     syntax::describe(io, r);
     for (const CpcaRefinementHeader& h : r.refinements()) all.push_back(h);
-  }
+  });
   return all;
 }
 
@@ -206,6 +219,13 @@ TEST(CpcaWpt, GroupsDecodeAsTheirRefinementsAloneInFewerBytes) {
   }
 }
 
+// The refinement units' payload bytes, in order.
+std::vector<size_t> refinement_unit_bytes(const std::vector<uint8_t>& stream) {
+  std::vector<size_t> bytes;
+  for_each_refinement_unit(stream, [&](const ContainerUnit& unit, syntax::ReadIO&) { bytes.push_back(unit.payload.size()); });
+  return bytes;
+}
+
 // A 24 × 24 sheet, its vertices numbered in a scrambled order, waving in
 // two travelling waves: smooth over the surface, not along the numbers.
 MeshSequence scrambled_waving_sheet(int frames) {
@@ -229,6 +249,33 @@ MeshSequence scrambled_waving_sheet(int frames) {
     s.frames.push_back(std::move(frame));
   }
   return s;
+}
+
+// --group-growth F: group k fills to about B · F^k bytes, at most 4 B,
+// where B is --group-bytes; the same refinements in fewer units and bytes.
+TEST(CpcaWpt, GroupsGrowByTheirFactorUpToFourTimesTheFirst) {
+  const MeshSequence s = scrambled_waving_sheet(24);
+  auto encoded = [&](const char* group_bytes, const char* growth) {
+    const CodecOptionValues values{{"clusters", "4"}, {"components", "4096"}, {"noise", "-4"}, {"group-bytes", group_bytes}, {"group-growth", growth}};
+    return encode_mesh3d(s, cpca(values)).stream;
+  };
+  const std::vector<uint8_t> fixed = encoded("50", "1"), doubling = encoded("50", "2"), capped = encoded("50", "16");
+  const std::vector<size_t> fixed_units = refinement_unit_bytes(fixed), doubling_units = refinement_unit_bytes(doubling),
+                            capped_units = refinement_unit_bytes(capped);
+  ASSERT_GE(fixed_units.size(), 30u) << "the test needs a long run of refinements";
+  EXPECT_LT(doubling_units.size(), fixed_units.size() * 3 / 4);
+  EXPECT_LT(doubling.size(), fixed.size());
+  EXPECT_EQ(refinements(doubling).size(), refinements(fixed).size());
+  EXPECT_EQ(decode_mesh3d(doubling).frames, decode_mesh3d(fixed).frames);
+  // A group closes once its refinements' planned bytes reach its limit: each but the last holds at least half of it.
+  for (size_t k = 0; k + 1 < doubling_units.size(); ++k) {
+    const double limit = std::min(50.0 * std::pow(2.0, static_cast<double>(k)), 200.0);
+    EXPECT_GT(static_cast<double>(doubling_units[k]), 0.5 * limit) << "group " << k;
+  }
+  // Growth 16 reaches the cap at the second group: from there on, groups of about 200 bytes.
+  const size_t total = std::accumulate(capped_units.begin(), capped_units.end(), size_t{0});
+  EXPECT_GE(capped_units.size(), total / 400) << total << " bytes";
+  for (size_t k = 1; k + 1 < capped_units.size(); ++k) EXPECT_LT(capped_units[k], 400u) << "group " << k;
 }
 
 // Per shape component, --basis auto sends the smaller of unit_kind 1 and 2:

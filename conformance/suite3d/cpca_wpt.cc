@@ -491,11 +491,11 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
   suite.push_back(written_case("cpca-17-limits", "values at their limits, written symbol by symbol: translations ±2^29, basis values ±2^15 and "
                                "coefficients ±2^23 of all three component kinds, shifts 0 and 63, cluster 254 of 255", {"cpca"}, cpca_limits_stream()));
   suite.push_back(valid("cpca-18-groups", "refinements in groups (unit_kind 4) of about 150 bytes: starts and components (unit_kind 1) "
-                        "together", {"cpca"}, flag, cpca({{"clusters", "4"}, {"group-bytes", "150"}}), traced));
+                        "together", {"cpca"}, flag, cpca({{"clusters", "4"}, {"group-bytes", "150"}, {"group-growth", "1"}}), traced));
   suite.push_back(valid("cpca-19-groups-over-mesh", "groups of starts and components over the mesh (unit_kind 2)", {"cpca"}, flag,
-                        cpca({{"clusters", "4"}, {"basis", "mesh"}, {"group-bytes", "150"}}), traced));
+                        cpca({{"clusters", "4"}, {"basis", "mesh"}, {"group-bytes", "150"}, {"group-growth", "1"}}), traced));
   suite.push_back(valid("cpca-20-groups-of-trajectories", "groups of starts and trajectory components (unit_kind 3)", {"cpca"}, flag,
-                        cpca({{"clusters", "4"}, {"model", "trajectory"}, {"group-bytes", "150"}}), traced));
+                        cpca({{"clusters", "4"}, {"model", "trajectory"}, {"group-bytes", "150"}, {"group-growth", "1"}}), traced));
   suite.push_back(written_case("cpca-21-group-limits", "groups at their limits, written symbol by symbol: 255 starts in one group "
                                "(group_cluster 0 … 254, group_shift 0 and 63), a group of 1, a group of all three component kinds",
                                {"cpca"}, cpca_group_limits_stream()));

@@ -53,6 +53,7 @@ class CpcaEncoder final : public CodecEncoder3d {
       : components_(options.components),
         max_bytes_(options.max_bytes),
         group_bytes_(options.group_bytes),
+        group_growth_(options.group_growth),
         target_kg_(options.target_kg),
         round_robin_(options.round_robin),
         basis_prediction_(options.basis),
@@ -105,8 +106,10 @@ class CpcaEncoder final : public CodecEncoder3d {
                         " bytes of the header and the base mesh (cpca-wpt)");
     CpcaAnimation animation(header_, mean_, static_cast<uint32_t>(s.frames.size()));
     size_t sent = 0;
+    double group_bytes = static_cast<double>(group_bytes_);
     while (sent < plan_.sent) {
-      std::vector<Operator*> unit = next_unit(sent);
+      std::vector<Operator*> unit = next_unit(sent, static_cast<uint64_t>(group_bytes));
+      group_bytes = std::min(group_bytes * group_growth_, kMaxGroupGrowth * static_cast<double>(group_bytes_));
       const size_t planned = unit.size();
       if (max_bytes_ > 0)
         while (!unit.empty() && sink.stream_bytes() + unit_bytes(unit) > max_bytes_) unit.pop_back();
@@ -362,11 +365,11 @@ class CpcaEncoder final : public CodecEncoder3d {
   }
 
   // The plan's operators from its `first` that the next unit carries: one,
-  // then more while their bytes stay below --group-bytes (at most 255).
-  std::vector<Operator*> next_unit(size_t first) {
+  // then more while their bytes stay below `group_bytes` (at most 255).
+  std::vector<Operator*> next_unit(size_t first, uint64_t group_bytes) {
     std::vector<Operator*> unit;
     uint64_t bytes = 0;
-    for (size_t i = first; i < plan_.sent && unit.size() < kCpcaMaxGroupSize && (unit.empty() || bytes < group_bytes_); ++i) {
+    for (size_t i = first; i < plan_.sent && unit.size() < kCpcaMaxGroupSize && (unit.empty() || bytes < group_bytes); ++i) {
       unit.push_back(&plan_.operators[plan_.order[i]]);
       bytes += unit.back()->bytes;
     }
@@ -439,7 +442,8 @@ class CpcaEncoder final : public CodecEncoder3d {
   size_t components_ = 0;
   int requested_clusters_ = 0;
   uint64_t max_bytes_;
-  uint64_t group_bytes_;  // 0: a unit per operator
+  uint64_t group_bytes_;  // the first group's; 0: a unit per operator
+  double group_growth_;
   double target_kg_;
   bool round_robin_;
   std::string basis_prediction_;  // --basis: index, mesh or auto

@@ -59,6 +59,7 @@ Options parse_options(const CodecSettings& settings) {
                                                        : parse_count(settings.text("components"), "--components", kMaxComponents);
   o.noise = parse_noise(settings.text("noise"));
   o.group_bytes = static_cast<uint64_t>(settings.number("group-bytes"));
+  o.group_growth = settings.number("group-growth");
   return o;
 }
 
@@ -86,9 +87,12 @@ std::vector<CodecOption> cpca_wpt_options() {
            OptionKind::kText, "auto", 0, 0},
           {"order", "cpca-wpt: wpt (by squared error removed per bit) or rpt (round robin over the clusters)", OptionKind::kText, "wpt", 0, 0},
           {"max-bytes", "cpca-wpt: the stream's size at most (0: every operator)", OptionKind::kNumber, "0", 0, 1e15},
-          {"group-bytes", "cpca-wpt: refinements are sent in groups (unit_kind 4) of about this many bytes each, the granularity of "
-                          "progressive decoding (0: each refinement in a unit of its own)",
+          {"group-bytes", "cpca-wpt: refinements are sent in groups (unit_kind 4), the first of about this many bytes, the granularity "
+                          "of progressive decoding (0: each refinement in a unit of its own)",
            OptionKind::kNumber, "1024", 0, 1e9},
+          {"group-growth", "cpca-wpt: each group this many times the bytes of the one before, up to 4 × --group-bytes (1: every group "
+                           "of about --group-bytes); later refinements remove less error per byte, so coarser steps cost little",
+           OptionKind::kNumber, "1.5", 1, 16},
           {"target-kg", "cpca-wpt: stop at the first operator whose decoded KG error is at most this (0: off)", OptionKind::kNumber, "0", 0,
            100}};
 }

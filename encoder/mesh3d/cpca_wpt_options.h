@@ -23,6 +23,10 @@ constexpr int kPaperClusters = 10;
 // The mean shape's quantization bits: the default, and the range --bits takes.
 constexpr int kDefaultBits = 12, kMinBits = 4, kMaxBits = 24;
 
+// The most a group grows, in units of --group-bytes: a long download
+// keeps being refined at least every 4 first groups' worth of bytes.
+constexpr double kMaxGroupGrowth = 4;
+
 // The options as the encoder uses them; none where "auto" lets it choose.
 struct Options {
   std::string model;  // shape, trajectory or auto
@@ -32,7 +36,8 @@ struct Options {
   size_t components = 0;       // at most this many per cluster
   std::optional<int> noise;    // log2 of the noise step in half steps
   uint64_t max_bytes = 0;      // 0: every operator
-  uint64_t group_bytes = 0;    // a group's unit closes at about this many bytes; 0: a unit per refinement
+  uint64_t group_bytes = 0;    // the first group's unit closes at about this many bytes; 0: a unit per refinement
+  double group_growth = 1;     // each group's bytes this many times the one before's, up to kMaxGroupGrowth × group_bytes
   double target_kg = 0;        // 0: none
   BaseMeshCoding base_mesh;    // the container's
 };
