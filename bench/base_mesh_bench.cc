@@ -57,10 +57,12 @@ void BM_BaseMeshRate(benchmark::State& state) {
 }
 BENCHMARK(BM_BaseMeshRate)->ArgsProduct({{0, 1, 2, 3, 4, 5}, {10, 12, 14}})->Unit(benchmark::kMillisecond)->Iterations(1);
 
-// Version 1 (no blend) beside version 2 (the blend the encoder chooses), in one run.
+// Each version in one run: 1 (no blend, contexts at the fixed rate), 2
+// (the blend the encoder chooses) and 3 (contexts warming up as well).
 void BM_BaseMeshDecode(benchmark::State& state) {
   const MeshSequence& s = bench::sequence(kSequences[state.range(0)]);
-  const BaseMeshCoding coding = state.range(1) == 1 ? BaseMeshCoding::with_blend(0u) : BaseMeshCoding{};
+  const uint32_t version = static_cast<uint32_t>(state.range(1));
+  const BaseMeshCoding coding = BaseMeshCoding::of(version, version == 1 ? std::optional<uint32_t>(0) : std::nullopt);
   const std::vector<uint8_t> unit = base_unit(s, grid_positions(s, 12), false, coding);
   const ObjectHeader header{coding.version, 1, s.vertex_count, static_cast<uint32_t>(s.faces.size()), 1, 25, 1};
   for (auto _ : state) {
@@ -72,7 +74,7 @@ void BM_BaseMeshDecode(benchmark::State& state) {
                  std::to_string(coding.version == 1 ? 0 : unit[1]));
   state.counters["vertices/s"] = benchmark::Counter(static_cast<double>(state.iterations()) * s.vertex_count, benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_BaseMeshDecode)->ArgsProduct({{0, 2}, {1, 2}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BaseMeshDecode)->ArgsProduct({{0, 2}, {1, 2, 3}})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace m4mesh

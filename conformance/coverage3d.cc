@@ -79,6 +79,7 @@ std::set<std::string> coverage_items3d(std::span<const uint8_t> stream) {
     if (n == "unit_type" && value == 3) items.insert(item("container", "frame hash unit"));
     if (n == "unit_type" && value == 4) items.insert(item("container", "group hash unit"));
     if (n == "frame_count" && value == 0) items.insert(item("container", "frame_count = 0 (streaming)"));
+    if (n == "version") items.insert(item(area, "version = " + line->value));
     if (n == "vertex_order") items.insert(item("base-mesh", "vertex_order = " + std::to_string(value)));
     if (n == "loose_face_count" && value > 0) items.insert(item("base-mesh", "loose faces"));
     if (n == "quantization_bits" && (value == 4 || value == 24)) items.insert(item(area, "quantization_bits = " + std::to_string(value)));
@@ -189,6 +190,11 @@ std::map<std::string, std::set<std::string>> coverage_catalog3d() {
                         "component shift > 16", "cluster_count = 1", "cluster_count > 1", "fraction_bits = 0", "fraction_bits = 16",
                         "quantization_bits = 4", "quantization_bits = 24", "unit_kind = 0", "unit_kind = 1", "unit_kind = 2", "unit_kind = 3"})
     cpca.insert(item("cpca-wpt", s));
+
+  // Every codec in every version: the two adaptations of the contexts.
+  for (const char* codec : {"bfs3d", "affine-octree", "lcc", "cpca-wpt"})
+    for (uint32_t version = kFirstVersion; version <= kLatestVersion; ++version)
+      c[codec].insert(item(codec, "version = " + std::to_string(version)));
   return c;
 }
 

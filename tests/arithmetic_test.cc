@@ -12,31 +12,36 @@
 namespace m4mesh {
 namespace {
 
+constexpr Adaptation kAdaptations[] = {Adaptation::kFixedRate, Adaptation::kWarmUp};
+
 TEST(Arithmetic, RoundTripsBins) {
-  test::Random random(2);
-  std::vector<std::pair<int, int>> bins;  // (context, value)
-  ArithmeticEncoder encoder;
-  std::vector<BinContext> contexts(4);
-  for (int i = 0; i < 20000; ++i) {
-    const int context = random.uniform(0, 3);
-    const int bin = random.uniform(0, 9) < context * 3 ? 1 : 0;
-    bins.push_back({context, bin});
-    encoder.encode(contexts[context], bin);
+  for (const Adaptation adaptation : kAdaptations) {
+    test::Random random(2);
+    std::vector<std::pair<int, int>> bins;  // (context, value)
+    ArithmeticEncoder encoder(adaptation);
+    std::vector<BinContext> contexts(4);
+    for (int i = 0; i < 20000; ++i) {
+      const int context = random.uniform(0, 3);
+      const int bin = random.uniform(0, 9) < context * 3 ? 1 : 0;
+      bins.push_back({context, bin});
+      encoder.encode(contexts[context], bin);
+    }
+    const std::vector<uint8_t> data = encoder.finish();
+    EXPECT_LT(data.size(), 20000u / 8);  // skewed bins cost less than a bit each
+    ArithmeticDecoder decoder(data, adaptation);
+    std::vector<BinContext> decoding(4);
+    for (const auto& [context, bin] : bins) ASSERT_EQ(decoder.decode(decoding[context]), bin);
+    EXPECT_EQ(decoder.overrun(), 0u);
+    EXPECT_EQ(decoder.position(), data.size());
+    ArithmeticDecoder truncated(std::span<const uint8_t>(data).first(data.size() / 2), adaptation);
+    for (const auto& [context, bin] : bins) truncated.decode(decoding[context]);
+    EXPECT_GT(truncated.overrun(), 0u);
   }
-  const std::vector<uint8_t> data = encoder.finish();
-  EXPECT_LT(data.size(), 20000u / 8);  // skewed bins cost less than a bit each
-  ArithmeticDecoder decoder(data);
-  std::vector<BinContext> decoding(4);
-  for (const auto& [context, bin] : bins) ASSERT_EQ(decoder.decode(decoding[context]), bin);
-  EXPECT_EQ(decoder.overrun(), 0u);
-  EXPECT_EQ(decoder.position(), data.size());
-  ArithmeticDecoder truncated(std::span<const uint8_t>(data).first(data.size() / 2));
-  for (const auto& [context, bin] : bins) truncated.decode(decoding[context]);
-  EXPECT_GT(truncated.overrun(), 0u);
 }
 
 // The decoder renormalizes by at most one byte per bin; the least likely
-// bins at both probability limits (31 and 2017 of 2048) must still decode.
+// bins at both probability limits (fixed rate: 31 and 2017 of 2048; warm-up:
+// 128 and 32640 of 32768) must still decode.
 TEST(Arithmetic, LeastLikelyBinsAtTheProbabilityLimitsRoundTrip) {
   std::vector<int> bins;
   for (int run = 0; run < 40; ++run) {
@@ -44,22 +49,39 @@ TEST(Arithmetic, LeastLikelyBinsAtTheProbabilityLimitsRoundTrip) {
     bins.insert(bins.end(), 300 + 7 * run, likely);
     bins.insert(bins.end(), 1 + run % 3, 1 - likely);
   }
-  ArithmeticEncoder encoder;
-  BinContext context;
-  for (int bin : bins) encoder.encode(context, bin);
-  const std::vector<uint8_t> data = encoder.finish();
-  ArithmeticDecoder decoder(data);
-  BinContext decoding;
-  uint16_t lowest = decoding.p0, highest = decoding.p0;
-  for (size_t i = 0; i < bins.size(); ++i) {
-    lowest = std::min(lowest, decoding.p0);
-    highest = std::max(highest, decoding.p0);
-    ASSERT_EQ(decoder.decode(decoding), bins[i]) << "bin " << i;
+  for (const Adaptation adaptation : kAdaptations) {
+    ArithmeticEncoder encoder(adaptation);
+    BinContext context;
+    for (int bin : bins) encoder.encode(context, bin);
+    const std::vector<uint8_t> data = encoder.finish();
+    ArithmeticDecoder decoder(data, adaptation);
+    BinContext decoding;
+    uint16_t lowest = decoding.p0, highest = decoding.p0;
+    for (size_t i = 0; i < bins.size(); ++i) {
+      lowest = std::min(lowest, decoding.p0);
+      highest = std::max(highest, decoding.p0);
+      ASSERT_EQ(decoder.decode(decoding), bins[i]) << "bin " << i;
+    }
+    const bool fixed = adaptation == Adaptation::kFixedRate;
+    EXPECT_EQ(lowest, fixed ? 31 * 16 : 128);
+    EXPECT_EQ(highest, fixed ? 2017 * 16 : 32640);
+    EXPECT_EQ(decoder.overrun(), 0u);
+    EXPECT_EQ(decoder.position(), data.size());
   }
-  EXPECT_EQ(lowest, 31);
-  EXPECT_EQ(highest, 2017);
-  EXPECT_EQ(decoder.overrun(), 0u);
-  EXPECT_EQ(decoder.position(), data.size());
+}
+
+// Warm-up: a context moves by 1/8 of the way over its first 16 bins, then
+// 1/16, 1/32, and 1/64 from its 49th bin on.
+TEST(Arithmetic, WarmUpSlowsEverySixteenBins) {
+  BinContext context;
+  for (int n = 0; n < 100; ++n) {
+    const uint32_t before = context.p0;
+    const int bin = n % 5 == 4 ? 1 : 0;
+    arithmetic::adapt(context, bin, Adaptation::kWarmUp);
+    const int shift = n < 16 ? 3 : n < 32 ? 4 : n < 48 ? 5 : 6;
+    const uint32_t expected = bin == 0 ? before + ((32768 - before) >> shift) : before - (before >> shift);
+    ASSERT_EQ(context.p0, expected) << "bin " << n;
+  }
 }
 
 TEST(Arithmetic, ResidualsOfEverySizeRoundTrip) {

@@ -162,8 +162,8 @@ TEST(BaseMesh, EveryPositionBlendRoundTripsAndAutoTakesTheSmallest) {
   EXPECT_EQ(automatic[1], best);
   EXPECT_EQ(automatic.size(), smallest);
   // Version 1: no position_blend field, the predictions of a blend of 0.
-  const std::vector<uint8_t> first = write_unit(planned, positions, BaseMeshCoding::with_blend(0u));
-  const std::vector<uint8_t> zero = write_unit(planned, positions, BaseMeshCoding{kLatestVersion, 0u});
+  const std::vector<uint8_t> first = write_unit(planned, positions, BaseMeshCoding::of(std::nullopt, 0u));
+  const std::vector<uint8_t> zero = write_unit(planned, positions, BaseMeshCoding{2, 0u});
   EXPECT_EQ(first.size() + 1, zero.size());
   EXPECT_EQ(read_unit(first, 900, static_cast<uint32_t>(faces.size()), kFirstVersion).positions, positions);
 }

@@ -113,6 +113,11 @@ std::vector<SuiteCase> base_mesh_cases(bool traced) {
                                       : std::string("the spiky sheet in a version 1 stream: no position_blend field"),
                             {"base-mesh"}, spiky, o, traced));
     }
+    Encode3dOptions second_version = bits24;
+    second_version.position_blend = 5;
+    second_version.version = 2;
+    suite.push_back(valid("base-22-version-2", "base-19's spiky sheet, position_blend 5, in a version 2 stream: contexts at the fixed rate",
+                          {"base-mesh"}, spiky, second_version, traced));
     // Its second frame moved below the first frame's box, an intra base mesh of negative positions.
     MeshSequence below = spiky;
     for (size_t v = 0; v < below.frames[1].size(); ++v) {

@@ -45,7 +45,8 @@ class Bfs3dDecoder final : public GridFrameDecoder {
     for (int axis = 0; axis < 3; ++axis) {
       const syntax::SectionPlace place{syntax::kAxisBins[axis], syntax::kAxisRaw[axis],
                                        8 * static_cast<uint64_t>(frame.bins[axis].data() - payload),
-                                       8 * static_cast<uint64_t>(frame.raw[axis].data() - payload), io.plane()};
+                                       8 * static_cast<uint64_t>(frame.raw[axis].data() - payload), io.plane(),
+                                       adaptation_of(object_.version)};
       if (trace_)
         decode_axis<true>(frame.bins[axis], frame.raw[axis], place, trace_, residuals_[axis]);
       else

@@ -15,10 +15,10 @@ void GridFrameDecoder::decode_unit(const UnitHeader& unit, syntax::ReadIO& io, s
             "frame " + std::to_string(unit.frame_index) + " where frame " + std::to_string(expected) + " was expected");
   }
   if (unit.type() == UnitType::kBaseMesh) {
-    BaseMesh base = read_base_mesh(io, header_, trace_);
+    BaseMesh base = read_base_mesh(io, object_, trace_);
     if (first) {
       faces_ = std::move(base.faces);
-      start(faces_, header_.vertex_count);
+      start(faces_, object_.vertex_count);
     } else if (base.faces != faces_) {
       io.fail(ErrorKind::kStructure, "base_mesh", "an intra base mesh with other faces than frame 0's");
     }

@@ -13,7 +13,7 @@ namespace m4mesh {
 
 class GridFrameDecoder : public CodecDecoder3d {
  public:
-  GridFrameDecoder(const ObjectHeader& header, const Grid& grid) : header_(header), grid_(grid) {}
+  GridFrameDecoder(const ObjectHeader& object, const Grid& grid) : object_(object), grid_(grid) {}
 
   void decode_unit(const UnitHeader& unit, syntax::ReadIO& io, std::vector<uint32_t>& decoded) final;
   const std::vector<Triangle>& faces() const final { return faces_; }
@@ -27,7 +27,7 @@ class GridFrameDecoder : public CodecDecoder3d {
   // the new ones.
   virtual void decode_frame(syntax::ReadIO& io, std::vector<IntPoint3>& positions) = 0;
 
-  const ObjectHeader header_;
+  const ObjectHeader object_;
 
  private:
   const Grid grid_;

@@ -55,7 +55,8 @@ class LccDecoder final : public CodecDecoder3d {
     syntax::describe(io, data);
     const uint8_t* payload = io.reader().data();
     const syntax::SectionPlace place{"bins", "raw", 8 * static_cast<uint64_t>(data.bins.data() - payload),
-                                     8 * static_cast<uint64_t>(data.raw.data() - payload), io.plane()};
+                                     8 * static_cast<uint64_t>(data.raw.data() - payload), io.plane(),
+                                     adaptation_of(object_.version)};
     if (header_.mode == kLccStreamMode) coder_.emplace();
     if (trace_) {
       syntax::EntropyReadIO<true> symbols(data.bins, data.raw, place, trace_);

@@ -143,8 +143,8 @@ Connectivity write_connectivity(IO& symbols, syntax::BaseMeshContexts& contexts,
 }
 
 // The bytes the vertex order takes in a coding, alone.
-size_t vertex_order_bytes(uint32_t method, const Connectivity& c) {
-  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+size_t vertex_order_bytes(uint32_t method, const Connectivity& c, Adaptation adaptation) {
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.adaptation = adaptation});
   syntax::BaseMeshContexts contexts;
   std::vector<uint32_t> input_of = c.input_of;
   describe_vertex_order(symbols, contexts, method, c.parents, input_of);
@@ -152,8 +152,8 @@ size_t vertex_order_bytes(uint32_t method, const Connectivity& c) {
 }
 
 // The bytes the positions take with a blend, alone.
-size_t position_bytes(std::span<const Triangle> faces, const std::vector<IntPoint3>& coded, uint32_t blend) {
-  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+size_t position_bytes(std::span<const Triangle> faces, const std::vector<IntPoint3>& coded, uint32_t blend, Adaptation adaptation) {
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.adaptation = adaptation});
   syntax::BaseMeshContexts contexts;
   std::vector<IntPoint3> positions = coded;
   describe_positions(symbols, contexts, faces, blend, positions);
@@ -165,9 +165,10 @@ uint32_t chosen_blend(const BaseMeshCoding& coding, std::span<const Triangle> fa
   if (coding.version < 2) return 0;
   if (coding.position_blend) return *coding.position_blend;
   uint32_t best = 0;
-  size_t best_bytes = position_bytes(faces, coded, 0);
+  const Adaptation adaptation = adaptation_of(coding.version);
+  size_t best_bytes = position_bytes(faces, coded, 0, adaptation);
   for (uint32_t blend = 1; blend <= kPositionBlendUnit; ++blend)
-    if (const size_t bytes = position_bytes(faces, coded, blend); bytes < best_bytes) {
+    if (const size_t bytes = position_bytes(faces, coded, blend, adaptation); bytes < best_bytes) {
       best = blend;
       best_bytes = bytes;
     }
@@ -192,7 +193,8 @@ void write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> face
   data.version = coding.version;
   data.loose_face_count = c.loose_faces;
   data.vertex_order = identity ? kVertexOrderCoding
-                      : vertex_order_bytes(kVertexOrderFromParallelogram, c) < vertex_order_bytes(kVertexOrderFromGate, c)
+                      : vertex_order_bytes(kVertexOrderFromParallelogram, c, adaptation_of(coding.version)) <
+                                vertex_order_bytes(kVertexOrderFromGate, c, adaptation_of(coding.version))
                           ? kVertexOrderFromParallelogram
                           : kVertexOrderFromGate;
   describe_vertex_order(symbols, contexts, data.vertex_order, c.parents, c.input_of);
@@ -245,13 +247,17 @@ MeshSequence renumbered(const MeshSequence& sequence, std::span<const uint32_t> 
   return s;
 }
 
-BaseMeshCoding BaseMeshCoding::with_blend(std::optional<uint32_t> position_blend) {
-  return {position_blend == 0u ? kFirstVersion : kLatestVersion, position_blend};
+BaseMeshCoding BaseMeshCoding::of(std::optional<uint32_t> version, std::optional<uint32_t> position_blend) {
+  if (!version) return {position_blend == 0u ? kFirstVersion : kLatestVersion, position_blend};
+  if (*version < kFirstVersion || *version > kLatestVersion)
+    throw usage_error("the container version is 1 … " + std::to_string(kLatestVersion) + ", not " + std::to_string(*version));
+  if (*version == 1 && position_blend.value_or(0) != 0) throw usage_error("a version 1 stream has no position blend: only 0");
+  return {*version, *version == 1 ? std::optional<uint32_t>(0) : position_blend};
 }
 
 void write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions,
                      const BaseMeshCoding& coding, std::span<const uint32_t> untraversed) {
-  const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane()};
+  const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane(), adaptation_of(coding.version)};
   if (io.trace()) {
     syntax::EntropyWriteIO<true> symbols(place, io.trace());
     write_data(io, symbols, faces, positions, coding, untraversed);

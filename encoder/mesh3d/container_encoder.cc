@@ -114,7 +114,7 @@ Encode3dResult encode_mesh3d(const MeshSequence& input, const Encode3dOptions& o
   const MeshSequence s = in_coding_order(input, plan, options.reorder);
   const Codec3d& codec = codec3d_by_name(options.codec);
   const CodecEncoding& encoding = codec_encoding(codec);
-  const BaseMeshCoding base_mesh = BaseMeshCoding::with_blend(options.position_blend);
+  const BaseMeshCoding base_mesh = BaseMeshCoding::of(options.version, options.position_blend);
   const CodecSettings settings(codec.name, encoding.options, options.codec_options, base_mesh, options.threads);
   std::unique_ptr<CodecEncoder3d> encoder = encoding.make_encoder(s, settings);
 

@@ -43,8 +43,6 @@ constexpr int kTrajectoryBasisFiner = 1;
 // group's list, and the arithmetic coder's flush (about 4 bytes).
 constexpr uint64_t kSharedInGroup = 4 + 5 + 7 - 3 + 4;
 
-constexpr syntax::SectionPlace kMapPlace{"cluster_map_bins", "cluster_map_raw", 0, 0, kNoPlane};
-
 class CpcaEncoder final : public CodecEncoder3d {
  public:
   // coding_order: the base mesh's vertices in coding order.
@@ -92,7 +90,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     syntax::describe(io, header_);
     if (!io.trace()) return;
     map_trace_ = io.trace();
-    map_trace_text_ = write_cluster_map<true>(header_, faces_, cluster_of_, map_bins_, map_raw_, kMapPlace, io.trace());
+    map_trace_text_ = write_cluster_map<true>(header_, faces_, cluster_of_, map_bins_, map_raw_, map_place(), io.trace());
     if (header_.map_prediction == kCpcaMapByDifference) map_trace_->stream() << std::exchange(map_trace_text_, {});
   }
 
@@ -114,7 +112,7 @@ class CpcaEncoder final : public CodecEncoder3d {
       if (max_bytes_ > 0)
         while (!unit.empty() && sink.stream_bytes() + unit_bytes(unit) > max_bytes_) unit.pop_back();
       if (unit.empty()) break;
-      sink.unit(UnitType::kRefinement, 0, [&](syntax::WriteIO& io) { write_refinements(io, unit, *mesh_); });
+      sink.unit(UnitType::kRefinement, 0, [&](syntax::WriteIO& io) { write_refinements(io, unit, *mesh_, adaptation_of(header_.version)); });
       for (const Operator* op : unit) apply(animation, members_[op->cluster], *op);
       sent += unit.size();
       sink.progress(sent, plan_.sent);
@@ -147,15 +145,17 @@ class CpcaEncoder final : public CodecEncoder3d {
   }
 
  private:
+  syntax::SectionPlace map_place() const { return {"cluster_map_bins", "cluster_map_raw", 0, 0, kNoPlane, adaptation_of(header_.version)}; }
+
   // Version 2: the map's prediction of fewer bytes (by the differences of equals).
   void choose_cluster_map() {
     header_.map_prediction = kCpcaMapByDifference;
-    write_cluster_map<false>(header_, faces_, cluster_of_, map_bins_, map_raw_, kMapPlace);
+    write_cluster_map<false>(header_, faces_, cluster_of_, map_bins_, map_raw_, map_place());
     if (header_.version < 2) return;
     CpcaHeader by_neighbours = header_;
     by_neighbours.map_prediction = kCpcaMapByNeighbours;
     std::vector<uint8_t> bins, raw;
-    write_cluster_map<false>(by_neighbours, faces_, cluster_of_, bins, raw, kMapPlace);
+    write_cluster_map<false>(by_neighbours, faces_, cluster_of_, bins, raw, map_place());
     if (bins.size() + raw.size() >= map_bins_.size() + map_raw_.size()) return;
     header_ = by_neighbours;
     map_bins_ = std::move(bins);
@@ -382,7 +382,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     syntax::WriteIO io(writer);
     UnitHeader header{static_cast<uint32_t>(UnitType::kRefinement), 0};
     syntax::describe(io, header);
-    write_refinements(io, operators, *mesh_);
+    write_refinements(io, operators, *mesh_, adaptation_of(header_.version));
     return ContainerWriter::unit_size(writer.bytes());
   }
 

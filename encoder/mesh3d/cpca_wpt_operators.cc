@@ -119,8 +119,8 @@ double estimated_gain(const Component& c, const Operator& op) {
   return c.sigma * c.sigma - noise;
 }
 
-void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh) {
-  const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane()};
+void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh, Adaptation adaptation) {
+  const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane(), adaptation};
   if (io.trace()) {
     syntax::EntropyWriteIO<true> symbols(place, io.trace());
     write_refinements(io, symbols, operators, mesh);

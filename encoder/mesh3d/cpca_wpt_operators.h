@@ -57,6 +57,6 @@ double estimated_gain(const Component& c, const Operator& op);
 
 // A refinement unit's data: one operator's (unit_kind 0 … 3), or a group
 // of several (unit_kind 4).
-void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh);
+void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh, Adaptation adaptation);
 
 }  // namespace m4mesh::cpca_wpt

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "bitstream/arithmetic.h"
 #include "syntax/io.h"
 
 namespace m4mesh {
@@ -20,9 +21,13 @@ inline constexpr uint32_t kUnitTypes = 5;
 inline bool is_hash_unit(UnitType type) { return type == UnitType::kFrameHash || type == UnitType::kGroupHash; }
 const char* unit_type_name(UnitType type);
 
-// Version 2 adds the base mesh's `position_blend` (docs/base_mesh.md).
+// Version 2 adds the base mesh's `position_blend` (docs/base_mesh.md) and
+// cpca-wpt's `cluster_map_prediction`; version 3 the warm-up adaptation of
+// every context (docs/container3d.md, "Contexts").
 inline constexpr uint32_t kFirstVersion = 1;
-inline constexpr uint32_t kLatestVersion = 2;
+inline constexpr uint32_t kLatestVersion = 3;
+
+inline Adaptation adaptation_of(uint32_t version) { return version >= 3 ? Adaptation::kWarmUp : Adaptation::kFixedRate; }
 
 struct ObjectHeader {
   uint32_t version = kLatestVersion;
@@ -64,7 +69,7 @@ namespace syntax {
 template <class IO>
 void describe(IO& io, ObjectHeader& h) {
   io.field("version", 8, h.version);
-  io.require(h.version >= kFirstVersion && h.version <= kLatestVersion, ErrorKind::kReservedValue, "version", "only versions 1 and 2 are defined");
+  io.require(h.version >= kFirstVersion && h.version <= kLatestVersion, ErrorKind::kReservedValue, "version", "only versions 1, 2 and 3 are defined");
   io.field("codec_id", 8, h.codec_id);  // checked against the registry (codecs3d/registry.h)
   io.field_in("vertex_count", 32, h.vertex_count, 3, kMaxVertices3d);
   io.field_in("face_count", 32, h.face_count, 1, kMaxFaces3d);

@@ -20,13 +20,15 @@
 
 namespace m4mesh::syntax {
 
-// Where a pair of sections lies in its unit's payload, for errors and traces.
+// Where a pair of sections lies in its unit's payload, for errors and
+// traces, and how its contexts adapt (the stream's version: adaptation_of).
 struct SectionPlace {
   const char* bins_name = "bins";
   const char* raw_name = "raw";
   uint64_t bins_offset = 0;  // bits from the payload's start
   uint64_t raw_offset = 0;
   int64_t frame = kNoPlane;
+  Adaptation adaptation = Adaptation::kWarmUp;
 };
 
 // An error in a section: the element, and the bit where the decoder was.
@@ -38,7 +40,7 @@ class EntropyReadIO {
   static constexpr bool kReading = true;
 
   EntropyReadIO(std::span<const uint8_t> bins, std::span<const uint8_t> raw, const SectionPlace& place, Trace* trace = nullptr)
-      : bins_(bins), raw_(raw.data(), raw.size()), place_(place), trace_(trace) {}
+      : bins_(bins, place.adaptation), raw_(raw.data(), raw.size()), place_(place), trace_(trace) {}
 
   // `context` numbers the bin's context for the trace only.
   void bin(const char* name, BinContext& context_state, int context, bool& value) {
@@ -89,7 +91,7 @@ class EntropyWriteIO {
   // With kTraced, lines go to a buffer in `like`'s location (trace_text()),
   // for the caller to print after the fields that precede the sections.
   explicit EntropyWriteIO(const SectionPlace& place, Trace* like = nullptr)
-      : place_(place), trace_(buffer_, like ? *like : Trace(buffer_)) {}
+      : bins_(place.adaptation), place_(place), trace_(buffer_, like ? *like : Trace(buffer_)) {}
 
   void bin(const char* name, BinContext& context_state, int context, bool& value) {
     bins_.encode(context_state, value);

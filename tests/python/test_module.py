@@ -174,13 +174,16 @@ def test_a_reordered_stream_is_compared_through_the_stream_or_its_faces(shuffled
         m4mesh.metrics(frames, decoded, faces, decoded_faces=decoded_faces[::-1, ::-1].copy())
 
 
-def test_position_blend_zero_writes_version_1_and_decodes_the_same(shuffled_sheet):
+def test_older_versions_decode_the_same(shuffled_sheet):
     frames, faces = shuffled_sheet
-    first, blended = (m4mesh.encode(frames, faces, bits=10, position_blend=b) for b in (0, 9))
-    assert (first[4], blended[4]) == (1, 2)  # the version, after the object start code
-    assert np.array_equal(m4mesh.decode(first)[0], m4mesh.decode(blended)[0])
+    first, second, latest = (m4mesh.encode(frames, faces, bits=10, position_blend=b, container_version=v) for b, v in ((0, None), (9, 2), (9, None)))
+    assert (first[4], second[4], latest[4]) == (1, 2, 3)  # the version, after the object start code
+    expected = m4mesh.decode(latest)[0]
+    assert np.array_equal(m4mesh.decode(first)[0], expected) and np.array_equal(m4mesh.decode(second)[0], expected)
     with pytest.raises(ValueError, match="position_blend"):
         m4mesh.encode(frames, faces, position_blend=17)
+    with pytest.raises(ValueError, match="container_version"):
+        m4mesh.encode(frames, faces, container_version=4)
 
 
 @pytest.mark.parametrize("where", ["original", "decoded"])
