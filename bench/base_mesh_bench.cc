@@ -57,6 +57,24 @@ void BM_BaseMeshRate(benchmark::State& state) {
 }
 BENCHMARK(BM_BaseMeshRate)->ArgsProduct({{0, 1, 2, 3, 4, 5}, {10, 12, 14}})->Unit(benchmark::kMillisecond)->Iterations(1);
 
+// Bits per vertex of each part at 12 bits in the input order, each coded
+// alone, in versions 1, 2 and 3.
+void BM_BaseMeshParts(benchmark::State& state) {
+  const MeshSequence& s = bench::sequence(kSequences[state.range(0)]);
+  const uint32_t version = static_cast<uint32_t>(state.range(1));
+  const std::vector<IntPoint3> q = grid_positions(s, 12);
+  const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false);
+  const BaseMeshCoding coding = BaseMeshCoding::of(version, version == 1 ? std::optional<uint32_t>(0) : std::nullopt);
+  BaseMeshParts parts;
+  for (auto _ : state) parts = base_mesh_parts(plan.faces, q, coding);
+  const double v = s.vertex_count;
+  state.counters["connectivity"] = 8.0 * static_cast<double>(parts.connectivity) / v;
+  state.counters["order"] = 8.0 * static_cast<double>(parts.vertex_order) / v;
+  state.counters["positions"] = 8.0 * static_cast<double>(parts.positions) / v;
+  state.SetLabel(bench::label(kSequences[state.range(0)]) + " version " + std::to_string(version));
+}
+BENCHMARK(BM_BaseMeshParts)->ArgsProduct({{0, 1, 2, 3, 4, 5}, {1, 2, 3}})->Unit(benchmark::kMillisecond)->Iterations(1);
+
 // Each version in one run: 1 (no blend, contexts at the fixed rate), 2
 // (the blend the encoder chooses) and 3 (contexts warming up as well).
 void BM_BaseMeshDecode(benchmark::State& state) {

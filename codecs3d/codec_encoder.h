@@ -67,4 +67,13 @@ struct BaseMeshCoding {
 void write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions,
                      const BaseMeshCoding& coding, std::span<const uint32_t> untraversed = {});
 
+// The bytes of a base mesh's parts as write_base_mesh codes them, each
+// alone in its own sections with fresh contexts (a figure, not a stream).
+struct BaseMeshParts {
+  size_t connectivity = 0;  // the traversal and the loose faces
+  size_t vertex_order = 0;  // 0 in coding order
+  size_t positions = 0;
+};
+BaseMeshParts base_mesh_parts(std::span<const Triangle> faces, std::span<const IntPoint3> positions, const BaseMeshCoding& coding);
+
 }  // namespace m4mesh

@@ -84,6 +84,44 @@ TEST(Arithmetic, WarmUpSlowsEverySixteenBins) {
   }
 }
 
+// A section one byte short stops the decoding at the first symbol that
+// needs the missing byte, not after the section's last symbol: zeros would
+// decode on (a fuzzer's 3 KB stream ran through 2^24 vertices).
+TEST(Arithmetic, ASectionThatEndsEarlyStopsTheDecodingThere) {
+  const syntax::SectionPlace place;
+  syntax::EntropyWriteIO<false> writer(place);
+  std::vector<BinContext> contexts(2);
+  constexpr int kBins = 4000;
+  for (int i = 0; i < kBins; ++i) {
+    bool bin = i % 7 == 0;
+    writer.bin("b", contexts[i % 2], i % 2, bin);
+  }
+  for (uint32_t i = 0; i < 10; ++i) writer.raw("r", 8, i);
+  const std::vector<uint8_t> bins = writer.finish_bins(), raw = writer.finish_raw();
+  const std::vector<uint8_t> short_bins(bins.begin(), bins.end() - 1), short_raw(raw.begin(), raw.end() - 1);
+  auto stop = [&](bool in_bins) {
+    syntax::EntropyReadIO<false> reader(in_bins ? short_bins : bins, in_bins ? raw : short_raw, place);
+    std::vector<BinContext> decoding(2);
+    int read = 0;
+    try {
+      for (; read < kBins; ++read) {
+        bool bin = false;
+        reader.bin("b", decoding[read % 2], read % 2, bin);
+      }
+      for (uint32_t value = 0; read < kBins + 10; ++read) reader.raw("r", 8, value);
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::kTruncated);
+      EXPECT_EQ(e.element(), in_bins ? "bins" : "raw");
+      return read;
+    }
+    return -1;
+  };
+  const int bins_read = stop(true);
+  EXPECT_GT(bins_read, kBins / 2);
+  EXPECT_LT(bins_read, kBins);
+  EXPECT_EQ(stop(false), kBins + 9);  // the tenth raw byte is missing
+}
+
 TEST(Arithmetic, ResidualsOfEverySizeRoundTrip) {
   std::vector<int32_t> values{0, 1, -1, 2, -2, 3, 100, -100, 65535, -65536, (1 << 29), -(1 << 29), (1 << 30) + 7};
   test::Random random(3);

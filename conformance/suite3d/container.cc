@@ -7,6 +7,7 @@
 #include "conformance/suite3d/inputs.h"
 #include "conformance/suite3d/stream_edits.h"
 #include "syntax/mesh3d/affine_octree.h"
+#include "syntax/mesh3d/base_mesh.h"
 #include "syntax/mesh3d/bfs3d.h"
 #include "syntax/mesh3d/entropy_io.h"
 
@@ -165,10 +166,13 @@ std::vector<SuiteCase> container_cases(bool traced) {
 
 namespace {
 
+// How bfs3d_raw_unit damages its raw_x.
+enum class RawDamage { kPaddingBitSet, kLastByteCut };
+
 // A bfs3d frame unit of `vertex_count` residuals per axis, all 0 but the
-// first x residual, whose raw bits do not end on a byte, with a padding
-// bit set.
-std::vector<uint8_t> bfs3d_padding_unit(std::vector<uint8_t> unit_header, uint32_t vertex_count) {
+// first x residual, whose raw bits do not end on a byte, with raw_x
+// damaged: a padding bit set, or its last byte cut.
+std::vector<uint8_t> bfs3d_raw_unit(std::vector<uint8_t> unit_header, uint32_t vertex_count, RawDamage damage) {
   Bfs3dFrame frame;
   std::vector<uint8_t> sections[3][2];
   for (int32_t first = 2;; ++first) {
@@ -179,7 +183,8 @@ std::vector<uint8_t> bfs3d_padding_unit(std::vector<uint8_t> unit_header, uint32
     if (symbols.raw_bits() % 8 == 0) continue;
     sections[0][0] = symbols.finish_bins();
     sections[0][1] = symbols.finish_raw();
-    sections[0][1].back() |= 1;  // the last padding bit
+    if (damage == RawDamage::kPaddingBitSet) sections[0][1].back() |= 1;  // the last padding bit
+    else sections[0][1].pop_back();
     break;
   }
   for (int axis = 1; axis < 3; ++axis) {
@@ -202,7 +207,8 @@ std::vector<uint8_t> bfs3d_padding_unit(std::vector<uint8_t> unit_header, uint32
 
 // The object and unit headers' ranges one past each end, bytes left after
 // the codec header, the units' order and placement, and the end of a
-// section: a bin section one byte short, a raw section's padding not zero.
+// section: a bin or raw section one byte short, a raw section's padding not
+// zero.
 std::vector<SuiteCase> container_rules_rejected(const std::vector<SuiteCase>& valid) {
   std::vector<SuiteCase> suite;
   const std::vector<uint8_t> base = stream_of(valid, "bfs3d-01-average");
@@ -252,15 +258,38 @@ std::vector<SuiteCase> container_rules_rejected(const std::vector<SuiteCase>& va
                                    unit.erase(unit.begin() + static_cast<std::ptrdiff_t>(unit_field<Bfs3dFrame>("bins_x").first + bins - 1));
                                    put_field(unit, length, bins - 1);
                                  }),
-                          ErrorKind::kTruncated, "motion_residual", 1));
+                          ErrorKind::kTruncated, "bins_x", 1));
   const uint32_t vertices = read_headers<Bfs3dHeader>(split_container(base)).first.vertex_count;
-  suite.push_back(invalid("x-79-raw-padding", "a padding bit of raw_x set", {"container"},
+  const struct {
+    const char* id;
+    const char* purpose;
+    RawDamage damage;
+    ErrorKind kind;
+    const char* element;
+  } raw_damages[] = {{"x-79-raw-padding", "a padding bit of raw_x set", RawDamage::kPaddingBitSet, ErrorKind::kStructure, "raw_padding"},
+                     {"x-151-raw-one-byte-short", "frame 1's raw_x one byte short, raw_bytes_x one less", RawDamage::kLastByteCut,
+                      ErrorKind::kTruncated, "raw_x"}};
+  for (const auto& d : raw_damages)
+    suite.push_back(invalid(d.id, d.purpose, {"container"},
+                            edited(base,
+                                   [&](ContainerParts& p) {
+                                     ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
+                                     unit.payload = bfs3d_raw_unit(unit_header_bytes(unit.payload), vertices, d.damage);
+                                   }),
+                            d.kind, d.element, 1));
+  // A decoder that decodes zeros on past the end reports another error here (mutant ct-39).
+  suite.push_back(invalid("x-152-base-bins-cut", "the base mesh's bins cut to their first 6 bytes (arithmetic_bytes 6): the traversal stops "
+                          "where they end", {"container"},
                           edited(base,
-                                 [&](ContainerParts& p) {
-                                   ContainerUnit& unit = unit_of(p, UnitType::kFrame, 1);
-                                   unit.payload = bfs3d_padding_unit(unit_header_bytes(unit.payload), vertices);
+                                 [](ContainerParts& p) {
+                                   std::vector<uint8_t>& unit = unit_of(p, UnitType::kBaseMesh, 0).payload;
+                                   const FieldBytes length = unit_field<BaseMeshData>("arithmetic_bytes");
+                                   const auto bins = static_cast<std::ptrdiff_t>(field_value(unit, length));
+                                   const auto first = static_cast<std::ptrdiff_t>(length.first + length.count);
+                                   unit.erase(unit.begin() + first + 6, unit.begin() + first + bins);
+                                   put_field(unit, length, 6);
                                  }),
-                          ErrorKind::kStructure, "raw_padding", 1));
+                          ErrorKind::kTruncated, "bins", 0));
   return suite;
 }
 

@@ -50,29 +50,38 @@ std::vector<uint8_t> refinement_bytes(uint32_t cluster, uint32_t kind, uint32_t 
   return refinement_unit_bytes(CpcaRefinement{cluster, kind, shift, {}, 0, {}, {}}, symbols);
 }
 
-// A group unit (unit_kind 4) of these refinements.
-std::vector<uint8_t> group_bytes(std::vector<CpcaRefinementHeader> group, syntax::EntropyWriteIO<false>& symbols) {
-  return refinement_unit_bytes(CpcaRefinement{0, kCpcaGroup, 0, std::move(group), 0, {}, {}}, symbols);
+// A group unit (unit_kind 4) of these refinements in a stream of `version`.
+std::vector<uint8_t> group_bytes(std::vector<CpcaRefinementHeader> group, syntax::EntropyWriteIO<false>& symbols,
+                                 uint32_t version = kLatestVersion) {
+  return refinement_unit_bytes(CpcaRefinement{0, kCpcaGroup, 0, std::move(group), 0, {}, {}, version}, symbols);
 }
 
 // A group unit's field: `group_size`, or the `entry`-th refinement's
-// `group_cluster`, `group_kind` or `group_shift`.
-FieldBytes group_field(const char* name, size_t entry = 0) {
+// `group_cluster`, `group_kind` or `group_shift`, whole bytes (from
+// version 3 `group_kind` and `group_shift` share one).
+FieldBytes group_field(const char* name, size_t entry = 0, uint32_t version = kLatestVersion) {
   UnitHeader header;
-  CpcaRefinement group{0, kCpcaGroup, 0, std::vector<CpcaRefinementHeader>(1), 0, {}, {}};
+  CpcaRefinement group{0, kCpcaGroup, 0, std::vector<CpcaRefinementHeader>(1), 0, {}, {}, version};
   FieldBytes field = field_bytes(name, header, group);
-  if (std::string_view(name) != "group_size") field.first += 3 * entry;
+  if (std::string_view(name) != "group_size") field.first += (version >= 3 ? 2 : 3) * entry;
   return field;
 }
 
-// The refinements a group unit lists.
-std::vector<CpcaRefinementHeader> group_entries(const ContainerUnit& unit) {
-  std::vector<CpcaRefinementHeader> entries(field_value(unit.payload, group_field("group_size")));
-  for (size_t j = 0; j < entries.size(); ++j)
-    entries[j] = {static_cast<uint32_t>(field_value(unit.payload, group_field("group_cluster", j))),
-                  static_cast<uint32_t>(field_value(unit.payload, group_field("group_kind", j))),
-                  static_cast<uint32_t>(field_value(unit.payload, group_field("group_shift", j)))};
-  return entries;
+// A group unit of a stream of `version` with its list edited.
+void edit_group_list(ContainerUnit& unit, uint32_t version, const std::function<void(std::vector<CpcaRefinementHeader>&)>& edit) {
+  BitReader reader(unit.payload.data(), unit.payload.size());
+  syntax::ReadIO in(reader);
+  UnitHeader header;
+  syntax::describe(in, header);
+  CpcaRefinement r;
+  r.version = version;
+  syntax::describe(in, r);
+  edit(r.group);
+  BitWriter writer;
+  syntax::WriteIO out(writer);
+  syntax::describe(out, header);
+  syntax::describe(out, r);
+  unit.payload = writer.take_bytes();
 }
 
 // A refinement unit (frame 0, shift 16) whose symbols are the residuals
@@ -90,16 +99,17 @@ std::vector<uint8_t> crafted_refinement(uint32_t cluster, uint32_t kind, const s
 // units), the header's cluster map replaced by `cluster_of` (and F by
 // `fraction_bits` when given); refinement units follow.
 ContainerWriter cpca_written_start(const MeshSequence& s, const std::vector<uint32_t>& cluster_of, uint32_t clusters,
-                                   std::optional<uint32_t> fraction_bits) {
+                                   std::optional<uint32_t> fraction_bits, uint32_t version = kLatestVersion) {
   Encode3dOptions o = cpca({{"clusters", "1"}});
   o.hashes = false;
+  o.version = version;
   ContainerParts parts = split_container(encode_mesh3d(s, o).stream);
   auto [object, header] = read_headers<CpcaHeader>(parts);
   header.cluster_count = clusters;
   header.map_prediction = kCpcaMapByDifference;
   if (fraction_bits) header.fraction_bits = *fraction_bits;
   std::vector<uint8_t> map_bins, map_raw;
-  write_cluster_map<false>(header, {}, cluster_of, map_bins, map_raw, syntax::SectionPlace{});
+  write_cluster_map<false>(header, {}, cluster_of, map_bins, map_raw, syntax::SectionPlace{.adaptation = adaptation_of(version)});
   BitWriter payload;
   syntax::WriteIO out(payload);
   syntax::describe(out, object);
@@ -315,9 +325,11 @@ std::vector<uint8_t> cpca_mixed_kinds_stream() {
 // over 255 vertices, one per cluster (the most clusters), and the
 // prediction over its base mesh (which reads the plan's faces: not moved).
 struct OneVertexClusters {
-  OneVertexClusters() = default;
+  explicit OneVertexClusters(uint32_t stream_version = kLatestVersion) : version(stream_version) {}
   OneVertexClusters(const OneVertexClusters&) = delete;
   OneVertexClusters& operator=(const OneVertexClusters&) = delete;
+
+  uint32_t version;
 
   MeshSequence sequence = designed_loose(2, static_cast<int>(kCpcaMaxClusters) - 11, [](int, int) { return 0; });  // its sheet and box hold 11
   std::vector<uint32_t> cluster_of = [this] {
@@ -326,7 +338,7 @@ struct OneVertexClusters {
     return each;
   }();
   BaseMeshPlan plan = plan_base_mesh(sequence.faces, sequence.vertex_count, false);
-  ContainerWriter writer = cpca_written_start(sequence, cluster_of, kCpcaMaxClusters, std::nullopt);
+  ContainerWriter writer = cpca_written_start(sequence, cluster_of, kCpcaMaxClusters, std::nullopt, version);
   CpcaMeshPrediction mesh{plan.faces, plan.input_of, cluster_of, kCpcaMaxClusters};
 };
 
@@ -375,8 +387,9 @@ std::vector<uint8_t> cpca_limits_stream() {
   return writer.finish();
 }
 
-// A clustered-PCA stream of 2 frames written symbol by symbol (no hash
-// units) of groups at their limits, over 255 vertices, one per cluster:
+// A clustered-PCA stream of `version`, 2 frames written symbol by symbol
+// (no hash units), of groups at their limits, over 255 vertices, one per
+// cluster:
 // - a group of 255: every cluster's start in cluster order, cluster 0's at
 //   group_shift 0 and cluster 254's at 63, translations −2 … 2 (one start
 //   coder through all 255);
@@ -384,13 +397,13 @@ std::vector<uint8_t> cpca_limits_stream() {
 // - a group of 3: cluster 1's components of unit_kind 1 and 2 (its limit,
 //   min(3M, N) = 2), then cluster 254's trajectory component (unit_kind 3)
 //   at group_shift 63: a coder of each kind in one unit.
-std::vector<uint8_t> cpca_group_limits_stream() {
-  OneVertexClusters stream;
+std::vector<uint8_t> cpca_group_limits_stream(uint32_t version) {
+  OneVertexClusters stream(version);
   ContainerWriter& writer = stream.writer;
   const CpcaMeshPrediction& mesh = stream.mesh;
   // values(i): the i-th value of a refinement, −2 … 2.
   auto group = [&](const std::vector<CpcaRefinementHeader>& refinements) {
-    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.adaptation = adaptation_of(version)});
     syntax::CpcaCoders coders;
     for (const CpcaRefinementHeader& h : refinements) {
       const size_t per_member = h.kind == kCpcaTrajectory ? 1 : 3;
@@ -400,7 +413,7 @@ std::vector<uint8_t> cpca_group_limits_stream() {
         for (size_t i = 0; i < values->size(); ++i) (*values)[i] = static_cast<int32_t>((h.cluster + 3 * i) % 5) - 2;
       describe_refinement(symbols, coders, mesh, h, translation, basis, coefficients);
     }
-    writer.unit(group_bytes(refinements, symbols));
+    writer.unit(group_bytes(refinements, symbols, version));
   };
   std::vector<CpcaRefinementHeader> starts;
   for (uint32_t c = 0; c < kCpcaMaxClusters; ++c)
@@ -498,7 +511,7 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
                         cpca({{"clusters", "4"}, {"model", "trajectory"}, {"group-bytes", "150"}, {"group-growth", "1"}}), traced));
   suite.push_back(written_case("cpca-21-group-limits", "groups at their limits, written symbol by symbol: 255 starts in one group "
                                "(group_cluster 0 … 254, group_shift 0 and 63), a group of 1, a group of all three component kinds",
-                               {"cpca"}, cpca_group_limits_stream()));
+                               {"cpca"}, cpca_group_limits_stream(kLatestVersion)));
   const auto by_neighbours = [](const std::vector<uint8_t>& stream) {
     return with_cpca_header(stream, [](CpcaHeader& h, const CpcaMap& map, std::vector<uint8_t>& bins, std::vector<uint8_t>& raw) {
       h.map_prediction = kCpcaMapByNeighbours;
@@ -513,6 +526,12 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
   first_version.position_blend = 0;
   suite.push_back(valid("cpca-24-version-1", "a version 1 stream: no cluster_map_prediction, the map by differences", {"cpca"}, flag,
                         first_version, traced));
+  // Version 2's group lists, a byte a field.
+  suite.push_back(written_case("cpca-25-group-limits-version-2", "cpca-21's groups at their limits in a version 2 stream: group_kind and "
+                               "group_shift a byte each", {"cpca"}, cpca_group_limits_stream(2)));
+  Encode3dOptions second_version = cpca({{"clusters", "4"}, {"group-bytes", "150"}, {"group-growth", "1"}});
+  second_version.version = 2;
+  suite.push_back(valid("cpca-26-groups-version-2", "cpca-18's groups in a version 2 stream", {"cpca"}, flag, second_version, traced));
   return suite;
 }
 
@@ -719,7 +738,7 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
     const std::vector<uint8_t> groups = stream_of(valid, "cpca-18-groups");
     auto first_group = [](ContainerParts& p) -> ContainerUnit& {
       ContainerUnit& unit = p.units[refinement_unit(p, 0)];
-      if (unit_kind(unit) != kCpcaGroup) throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: cpca-18 starts without a group");
+      if (unit_kind(unit) != kCpcaGroup) throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: the stream starts without a group");
       return unit;
     };
     auto put = [&](FieldBytes at, uint64_t value) {
@@ -733,35 +752,40 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                             "group_size", kNoPlane));
     suite.push_back(invalid("x-137-cpca-group-cluster-beyond", "a group's first refinement for cluster 4 of 4", {"cpca"},
                             put(group_field("group_cluster"), 4), ErrorKind::kOutOfRange, "group_cluster", kNoPlane));
-    suite.push_back(invalid("x-138-cpca-group-kind", "a group's first refinement of group_kind 4 (a group in a group)", {"cpca"},
-                            put(group_field("group_kind"), kCpcaGroup), ErrorKind::kOutOfRange, "group_kind", kNoPlane));
-    suite.push_back(invalid("x-139-cpca-group-shift-range", "a group's first refinement at group_shift 64", {"cpca"},
-                            put(group_field("group_shift"), kCpcaMaxShift + 1), ErrorKind::kOutOfRange, "group_shift", kNoPlane));
+    // Kinds and shifts out of their range: a version 2 list's bytes hold them, version 3's 2 and 6 bits do not.
+    const std::vector<uint8_t> second_version = stream_of(valid, "cpca-26-groups-version-2");
+    auto put_v2 = [&](FieldBytes at, uint64_t value) {
+      return edited(second_version, [&, at, value](ContainerParts& p) { put_field(first_group(p).payload, at, value); });
+    };
+    suite.push_back(invalid("x-138-cpca-group-kind", "a version 2 group's first refinement of group_kind 4 (a group in a group)", {"cpca"},
+                            put_v2(group_field("group_kind", 0, 2), kCpcaGroup), ErrorKind::kOutOfRange, "group_kind", kNoPlane));
+    suite.push_back(invalid("x-139-cpca-group-shift-range", "a version 2 group's first refinement at group_shift 64", {"cpca"},
+                            put_v2(group_field("group_shift", 0, 2), kCpcaMaxShift + 1), ErrorKind::kOutOfRange, "group_shift", kNoPlane));
     // A start of the group made a component: its cluster has not started.
     suite.push_back(invalid("x-140-cpca-group-not-started", "a group's first start made a component (unit_kind 1) of a cluster not started",
                             {"cpca"}, edited(groups,
                                              [&](ContainerParts& p) {
-                                               ContainerUnit& unit = first_group(p);
-                                               const std::vector<CpcaRefinementHeader> entries = group_entries(unit);
-                                               size_t j = 0;
-                                               while (entries.at(j).kind != kCpcaStart) ++j;
-                                               put_field(unit.payload, group_field("group_kind", j), kCpcaComponent);
+                                               edit_group_list(first_group(p), kLatestVersion, [](std::vector<CpcaRefinementHeader>& entries) {
+                                                 size_t j = 0;
+                                                 while (entries.at(j).kind != kCpcaStart) ++j;
+                                                 entries[j].kind = kCpcaComponent;
+                                               });
                                              }),
                             ErrorKind::kStructure, "group_kind", kNoPlane));
     // A component of the group made a start: its cluster started earlier in the group.
     suite.push_back(invalid("x-141-cpca-group-second-start", "a group's component made a second start of a cluster the group started",
                             {"cpca"}, edited(groups,
                                              [&](ContainerParts& p) {
-                                               ContainerUnit& unit = first_group(p);
-                                               const std::vector<CpcaRefinementHeader> entries = group_entries(unit);
-                                               for (size_t j = 0; j < entries.size(); ++j)
-                                                 for (size_t i = 0; i < j; ++i)
-                                                   if (entries[j].kind != kCpcaStart && entries[i].kind == kCpcaStart &&
-                                                       entries[i].cluster == entries[j].cluster) {
-                                                     put_field(unit.payload, group_field("group_kind", j), kCpcaStart);
-                                                     return;
-                                                   }
-                                               throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no start and component in one group");
+                                               edit_group_list(first_group(p), kLatestVersion, [](std::vector<CpcaRefinementHeader>& entries) {
+                                                 for (size_t j = 0; j < entries.size(); ++j)
+                                                   for (size_t i = 0; i < j; ++i)
+                                                     if (entries[j].kind != kCpcaStart && entries[i].kind == kCpcaStart &&
+                                                         entries[i].cluster == entries[j].cluster) {
+                                                       entries[j].kind = kCpcaStart;
+                                                       return;
+                                                     }
+                                                 throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no start and component in one group");
+                                               });
                                              }),
                             ErrorKind::kStructure, "group_kind", kNoPlane));
   }

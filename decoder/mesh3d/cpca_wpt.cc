@@ -64,6 +64,7 @@ class CpcaDecoder final : public CodecDecoder3d {
     if (!animation_) io.fail(ErrorKind::kStructure, "unit_type", "a refinement unit before the base mesh");
     if (unit.frame_index != 0) io.fail(ErrorKind::kStructure, "frame_index", "a refinement unit refines every frame and names frame 0");
     CpcaRefinement r;
+    r.version = object_.version;
     syntax::describe(io, r, [&](const CpcaRefinementHeader& h, bool grouped) { admit(io, h, grouped); });
     const uint8_t* payload = io.reader().data();
     const syntax::SectionPlace place{"bins", "raw", 8 * static_cast<uint64_t>(r.bins.data() - payload),

@@ -175,14 +175,23 @@ uint32_t chosen_blend(const BaseMeshCoding& coding, std::span<const Triangle> fa
   return best;
 }
 
+// The vertex order's coding: none when the traversal numbers the vertices
+// as the input does, else the cheaper of the two.
+uint32_t chosen_vertex_order(const Connectivity& c, Adaptation adaptation) {
+  for (uint32_t i = 0; i < c.input_of.size(); ++i)
+    if (c.input_of[i] != i)
+      return vertex_order_bytes(kVertexOrderFromParallelogram, c, adaptation) < vertex_order_bytes(kVertexOrderFromGate, c, adaptation)
+                 ? kVertexOrderFromParallelogram
+                 : kVertexOrderFromGate;
+  return kVertexOrderCoding;
+}
+
 template <class IO>
 void write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> faces, std::span<const IntPoint3> positions,
                 const BaseMeshCoding& coding, std::span<const uint32_t> untraversed) {
   const uint32_t vertex_count = static_cast<uint32_t>(positions.size());
   syntax::BaseMeshContexts contexts;
   Connectivity c = write_connectivity(symbols, contexts, faces, vertex_count, untraversed);
-  bool identity = true;
-  for (uint32_t i = 0; i < vertex_count; ++i) identity = identity && c.input_of[i] == i;
   // Coding numbers back to input numbers, to compare with the faces given.
   std::vector<Triangle> decoded = c.faces;
   for (Triangle& t : decoded)
@@ -192,11 +201,7 @@ void write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> face
   BaseMeshData data;
   data.version = coding.version;
   data.loose_face_count = c.loose_faces;
-  data.vertex_order = identity ? kVertexOrderCoding
-                      : vertex_order_bytes(kVertexOrderFromParallelogram, c, adaptation_of(coding.version)) <
-                                vertex_order_bytes(kVertexOrderFromGate, c, adaptation_of(coding.version))
-                          ? kVertexOrderFromParallelogram
-                          : kVertexOrderFromGate;
+  data.vertex_order = chosen_vertex_order(c, adaptation_of(coding.version));
   describe_vertex_order(symbols, contexts, data.vertex_order, c.parents, c.input_of);
   std::vector<IntPoint3> coded(vertex_count);
   for (uint32_t i = 0; i < vertex_count; ++i) coded[i] = positions[c.input_of[i]];
@@ -245,6 +250,22 @@ MeshSequence renumbered(const MeshSequence& sequence, std::span<const uint32_t> 
     for (uint32_t i = 0; i < sequence.vertex_count; ++i) s.frames[f][i] = sequence.frames[f][input_of[i]];
   }
   return s;
+}
+
+BaseMeshParts base_mesh_parts(std::span<const Triangle> faces, std::span<const IntPoint3> positions, const BaseMeshCoding& coding) {
+  const Adaptation adaptation = adaptation_of(coding.version);
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.adaptation = adaptation});
+  syntax::BaseMeshContexts contexts;
+  const uint32_t vertex_count = static_cast<uint32_t>(positions.size());
+  const Connectivity c = write_connectivity(symbols, contexts, faces, vertex_count, {});
+  BaseMeshParts parts;
+  parts.connectivity = symbols.finish_bins().size() + symbols.finish_raw().size();
+  const uint32_t order = chosen_vertex_order(c, adaptation);
+  parts.vertex_order = order == kVertexOrderCoding ? 0 : vertex_order_bytes(order, c, adaptation);
+  std::vector<IntPoint3> coded(vertex_count);
+  for (uint32_t i = 0; i < vertex_count; ++i) coded[i] = positions[c.input_of[i]];
+  parts.positions = position_bytes(c.faces, coded, chosen_blend(coding, c.faces, coded), adaptation);
+  return parts;
 }
 
 BaseMeshCoding BaseMeshCoding::of(std::optional<uint32_t> version, std::optional<uint32_t> position_blend) {

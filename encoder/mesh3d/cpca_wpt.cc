@@ -39,9 +39,9 @@ using namespace cpca_wpt;
 constexpr int kTrajectoryBasisFiner = 1;
 
 // The bytes of a refinement unit an operator in a group does not pay: the
-// start code, the unit header, the refinement fields less its three in the
+// start code, the unit header, the refinement fields less its entry in the
 // group's list, and the arithmetic coder's flush (about 4 bytes).
-constexpr uint64_t kSharedInGroup = 4 + 5 + 7 - 3 + 4;
+constexpr uint64_t shared_in_group(uint32_t version) { return 4 + 5 + 7 - (version >= 3 ? 2 : 3) + 4; }
 
 class CpcaEncoder final : public CodecEncoder3d {
  public:
@@ -112,7 +112,7 @@ class CpcaEncoder final : public CodecEncoder3d {
       if (max_bytes_ > 0)
         while (!unit.empty() && sink.stream_bytes() + unit_bytes(unit) > max_bytes_) unit.pop_back();
       if (unit.empty()) break;
-      sink.unit(UnitType::kRefinement, 0, [&](syntax::WriteIO& io) { write_refinements(io, unit, *mesh_, adaptation_of(header_.version)); });
+      sink.unit(UnitType::kRefinement, 0, [&](syntax::WriteIO& io) { write_refinements(io, unit, *mesh_, header_.version); });
       for (const Operator* op : unit) apply(animation, members_[op->cluster], *op);
       sent += unit.size();
       sink.progress(sent, plan_.sent);
@@ -382,7 +382,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     syntax::WriteIO io(writer);
     UnitHeader header{static_cast<uint32_t>(UnitType::kRefinement), 0};
     syntax::describe(io, header);
-    write_refinements(io, operators, *mesh_, adaptation_of(header_.version));
+    write_refinements(io, operators, *mesh_, header_.version);
     return ContainerWriter::unit_size(writer.bytes());
   }
 
@@ -392,7 +392,8 @@ class CpcaEncoder final : public CodecEncoder3d {
   uint64_t operator_bytes(Operator& op) const {
     Operator* const alone[] = {&op};
     const uint64_t bytes = unit_bytes(alone);
-    return group_bytes_ > 0 ? std::max<uint64_t>(bytes, kSharedInGroup + 1) - kSharedInGroup : bytes;
+    const uint64_t shared = shared_in_group(header_.version);
+    return group_bytes_ > 0 ? std::max<uint64_t>(bytes, shared + 1) - shared : bytes;
   }
 
   // A component's unit in the kind --basis asks for, or the smaller.

@@ -29,9 +29,11 @@ std::vector<int32_t> scaled(const Eigen::VectorXd& values, int half_exponent) {
 }
 
 template <class SymbolIO>
-void write_refinements(syntax::WriteIO& io, SymbolIO& symbols, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh) {
+void write_refinements(syntax::WriteIO& io, SymbolIO& symbols, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh,
+                       uint32_t version) {
   syntax::CpcaCoders coders;
   CpcaRefinement r;
+  r.version = version;
   for (Operator* op : operators) {
     const CpcaRefinementHeader h{op->cluster, op->kind, op->shift};
     describe_refinement(symbols, coders, mesh, h, op->translation, op->basis, op->coefficients);
@@ -119,14 +121,14 @@ double estimated_gain(const Component& c, const Operator& op) {
   return c.sigma * c.sigma - noise;
 }
 
-void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh, Adaptation adaptation) {
-  const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane(), adaptation};
+void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh, uint32_t version) {
+  const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane(), adaptation_of(version)};
   if (io.trace()) {
     syntax::EntropyWriteIO<true> symbols(place, io.trace());
-    write_refinements(io, symbols, operators, mesh);
+    write_refinements(io, symbols, operators, mesh, version);
   } else {
     syntax::EntropyWriteIO<false> symbols(place);
-    write_refinements(io, symbols, operators, mesh);
+    write_refinements(io, symbols, operators, mesh, version);
   }
 }
 

@@ -55,8 +55,8 @@ double estimated_gain(const Translation& t, size_t members, const Operator& op);
 // products, b unit).
 double estimated_gain(const Component& c, const Operator& op);
 
-// A refinement unit's data: one operator's (unit_kind 0 … 3), or a group
-// of several (unit_kind 4).
-void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh, Adaptation adaptation);
+// A refinement unit's data in the stream's version: one operator's
+// (unit_kind 0 … 3), or a group of several (unit_kind 4).
+void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh, uint32_t version);
 
 }  // namespace m4mesh::cpca_wpt

@@ -23,7 +23,8 @@ const char* unit_type_name(UnitType type);
 
 // Version 2 adds the base mesh's `position_blend` (docs/base_mesh.md) and
 // cpca-wpt's `cluster_map_prediction`; version 3 the warm-up adaptation of
-// every context (docs/container3d.md, "Contexts").
+// every context (docs/container3d.md, "Contexts") and cpca-wpt's group
+// lists in 2 bytes a refinement.
 inline constexpr uint32_t kFirstVersion = 1;
 inline constexpr uint32_t kLatestVersion = 3;
 

@@ -86,6 +86,7 @@ struct CpcaRefinement {
   uint32_t arithmetic_bytes = 0;
   std::span<const uint8_t> bins;
   std::span<const uint8_t> raw;
+  uint32_t version = kLatestVersion;  // the object header's: from version 3 a group lists each refinement in 2 bytes
 
   // The refinements the unit carries, in order.
   std::vector<CpcaRefinementHeader> refinements() const {
@@ -145,8 +146,18 @@ void describe(IO& io, CpcaRefinement& r, Check&& check) {
     }
     for (CpcaRefinementHeader& h : r.group) {
       io.field_in("group_cluster", 8, h.cluster, 0, kCpcaMaxClusters - 1);
-      io.field_in("group_kind", 8, h.kind, kCpcaStart, kCpcaTrajectory);
-      io.field_in("group_shift", 8, h.shift, 0, kCpcaMaxShift);
+      if (r.version >= 3 || kTableOf<IO>) {
+        if constexpr (kTableOf<IO>) io.open("if (version >= 3)");
+        io.field("group_kind", 2, h.kind);
+        io.field("group_shift", 6, h.shift);
+        if constexpr (kTableOf<IO>) io.close();
+      }
+      if (r.version <= 2 || kTableOf<IO>) {
+        if constexpr (kTableOf<IO>) io.open("if (version <= 2)");
+        io.field_in("group_kind", 8, h.kind, kCpcaStart, kCpcaTrajectory);
+        io.field_in("group_shift", 8, h.shift, 0, kCpcaMaxShift);
+        if constexpr (kTableOf<IO>) io.close();
+      }
       check(h, true);
     }
     if constexpr (kTableOf<IO>) {

@@ -42,15 +42,19 @@ class EntropyReadIO {
   EntropyReadIO(std::span<const uint8_t> bins, std::span<const uint8_t> raw, const SectionPlace& place, Trace* trace = nullptr)
       : bins_(bins, place.adaptation), raw_(raw.data(), raw.size()), place_(place), trace_(trace) {}
 
-  // `context` numbers the bin's context for the trace only.
+  // `context` numbers the bin's context for the trace only. A bin that
+  // needs a byte past the section's end stops the decoding (truncated):
+  // zeros would go on decoding, a whole unit's symbols from a few bytes.
   void bin(const char* name, BinContext& context_state, int context, bool& value) {
     value = bins_.decode(context_state) != 0;
     if constexpr (kTraced) trace_->bin(place_.bins_name, bin_index_++, name, context, value);
+    if (bins_.overrun() != 0) bins_ended();
   }
   void raw(const char* name, int bits, uint32_t& value) {
     if constexpr (kTraced) raw_start_ = raw_.position();
     value = raw_.read(bits);
     if constexpr (kTraced) trace_->raw(place_.raw_name, raw_start_, name, bits, value);
+    if (raw_.overrun()) raw_ended();
   }
   [[noreturn]] void fail(ErrorKind kind, const char* element, const std::string& message) const {
     entropy_error(kind, element, message, place_.frame, place_.bins_offset + 8 * bins_.position());
@@ -59,12 +63,11 @@ class EntropyReadIO {
   // bytes, and the raw bits up to their last byte, whose padding is zeros.
   void finish(const char* element) {
     const uint64_t bins_end = place_.bins_offset + 8 * bins_.position();
-    if (bins_.overrun() != 0) entropy_error(ErrorKind::kTruncated, element, "the arithmetic-coded section ends early", place_.frame, bins_end);
+    if (bins_.overrun() != 0) bins_ended();
     if (bins_.position() != bins_.size())
       entropy_error(ErrorKind::kStructure, element,
                     std::to_string(bins_.size() - bins_.position()) + " bytes of the arithmetic-coded section left over", place_.frame, bins_end);
-    if (raw_.overrun())
-      entropy_error(ErrorKind::kTruncated, element, "the raw bit section ends early", place_.frame, place_.raw_offset + raw_.position());
+    if (raw_.overrun()) raw_ended();
     const int padding = static_cast<int>((8 - raw_.position() % 8) % 8);
     const uint64_t padding_at = place_.raw_offset + raw_.position();
     if (raw_.read(padding) != 0)
@@ -75,6 +78,14 @@ class EntropyReadIO {
   }
 
  private:
+  [[noreturn]] void bins_ended() const {
+    entropy_error(ErrorKind::kTruncated, place_.bins_name, "the arithmetic-coded section ends early", place_.frame,
+                  place_.bins_offset + 8 * bins_.position());
+  }
+  [[noreturn]] void raw_ended() const {
+    entropy_error(ErrorKind::kTruncated, place_.raw_name, "the raw bit section ends early", place_.frame, place_.raw_offset + raw_.size_bits());
+  }
+
   ArithmeticDecoder bins_;
   BitReader raw_;
   const SectionPlace place_;
