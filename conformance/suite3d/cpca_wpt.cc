@@ -56,25 +56,22 @@ std::vector<uint8_t> group_bytes(std::vector<CpcaRefinementHeader> group, syntax
   return refinement_unit_bytes(CpcaRefinement{0, kCpcaGroup, 0, std::move(group), 0, {}, {}, version}, symbols);
 }
 
-// A group unit's field: `group_size`, or the `entry`-th refinement's
-// `group_cluster`, `group_kind` or `group_shift`, whole bytes (from
-// version 3 `group_kind` and `group_shift` share one).
-FieldBytes group_field(const char* name, size_t entry = 0, uint32_t version = kLatestVersion) {
+// A group unit's field in a stream of `version`: `group_size`, or its
+// first refinement's `group_cluster`, or up to version 2 its `group_kind`
+// or `group_shift` (from version 3 those two share a byte).
+FieldBytes group_field(const char* name, uint32_t version = kLatestVersion) {
   UnitHeader header;
   CpcaRefinement group{0, kCpcaGroup, 0, std::vector<CpcaRefinementHeader>(1), 0, {}, {}, version};
-  FieldBytes field = field_bytes(name, header, group);
-  if (std::string_view(name) != "group_size") field.first += (version >= 3 ? 2 : 3) * entry;
-  return field;
+  return field_bytes(name, header, group);
 }
 
-// A group unit of a stream of `version` with its list edited.
-void edit_group_list(ContainerUnit& unit, uint32_t version, const std::function<void(std::vector<CpcaRefinementHeader>&)>& edit) {
+// A group unit of the latest version with its list edited.
+void edit_group_list(ContainerUnit& unit, const std::function<void(std::vector<CpcaRefinementHeader>&)>& edit) {
   BitReader reader(unit.payload.data(), unit.payload.size());
   syntax::ReadIO in(reader);
   UnitHeader header;
   syntax::describe(in, header);
   CpcaRefinement r;
-  r.version = version;
   syntax::describe(in, r);
   edit(r.group);
   BitWriter writer;
@@ -758,14 +755,14 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
       return edited(second_version, [&, at, value](ContainerParts& p) { put_field(first_group(p).payload, at, value); });
     };
     suite.push_back(invalid("x-138-cpca-group-kind", "a version 2 group's first refinement of group_kind 4 (a group in a group)", {"cpca"},
-                            put_v2(group_field("group_kind", 0, 2), kCpcaGroup), ErrorKind::kOutOfRange, "group_kind", kNoPlane));
+                            put_v2(group_field("group_kind", 2), kCpcaGroup), ErrorKind::kOutOfRange, "group_kind", kNoPlane));
     suite.push_back(invalid("x-139-cpca-group-shift-range", "a version 2 group's first refinement at group_shift 64", {"cpca"},
-                            put_v2(group_field("group_shift", 0, 2), kCpcaMaxShift + 1), ErrorKind::kOutOfRange, "group_shift", kNoPlane));
+                            put_v2(group_field("group_shift", 2), kCpcaMaxShift + 1), ErrorKind::kOutOfRange, "group_shift", kNoPlane));
     // A start of the group made a component: its cluster has not started.
     suite.push_back(invalid("x-140-cpca-group-not-started", "a group's first start made a component (unit_kind 1) of a cluster not started",
                             {"cpca"}, edited(groups,
                                              [&](ContainerParts& p) {
-                                               edit_group_list(first_group(p), kLatestVersion, [](std::vector<CpcaRefinementHeader>& entries) {
+                                               edit_group_list(first_group(p), [](std::vector<CpcaRefinementHeader>& entries) {
                                                  size_t j = 0;
                                                  while (entries.at(j).kind != kCpcaStart) ++j;
                                                  entries[j].kind = kCpcaComponent;
@@ -776,7 +773,7 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
     suite.push_back(invalid("x-141-cpca-group-second-start", "a group's component made a second start of a cluster the group started",
                             {"cpca"}, edited(groups,
                                              [&](ContainerParts& p) {
-                                               edit_group_list(first_group(p), kLatestVersion, [](std::vector<CpcaRefinementHeader>& entries) {
+                                               edit_group_list(first_group(p), [](std::vector<CpcaRefinementHeader>& entries) {
                                                  for (size_t j = 0; j < entries.size(); ++j)
                                                    for (size_t i = 0; i < j; ++i)
                                                      if (entries[j].kind != kCpcaStart && entries[i].kind == kCpcaStart &&
