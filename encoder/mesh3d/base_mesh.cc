@@ -175,15 +175,28 @@ uint32_t chosen_blend(const BaseMeshCoding& coding, std::span<const Triangle> fa
   return best;
 }
 
-// The vertex order's coding: none when the traversal numbers the vertices
-// as the input does, else the cheaper of the two.
-uint32_t chosen_vertex_order(const Connectivity& c, Adaptation adaptation) {
+// The vertex order's coding and its bytes alone: none when the traversal
+// numbers the vertices as the input does, else the cheaper of the two.
+struct VertexOrderCoding {
+  uint32_t method = kVertexOrderCoding;
+  size_t bytes = 0;
+};
+VertexOrderCoding chosen_vertex_order(const Connectivity& c, Adaptation adaptation) {
   for (uint32_t i = 0; i < c.input_of.size(); ++i)
-    if (c.input_of[i] != i)
-      return vertex_order_bytes(kVertexOrderFromParallelogram, c, adaptation) < vertex_order_bytes(kVertexOrderFromGate, c, adaptation)
-                 ? kVertexOrderFromParallelogram
-                 : kVertexOrderFromGate;
-  return kVertexOrderCoding;
+    if (c.input_of[i] != i) {
+      const size_t by_parallelogram = vertex_order_bytes(kVertexOrderFromParallelogram, c, adaptation);
+      const size_t by_gate = vertex_order_bytes(kVertexOrderFromGate, c, adaptation);
+      return by_parallelogram < by_gate ? VertexOrderCoding{kVertexOrderFromParallelogram, by_parallelogram}
+                                        : VertexOrderCoding{kVertexOrderFromGate, by_gate};
+    }
+  return {};
+}
+
+// The positions in coding numbers.
+std::vector<IntPoint3> in_coding_numbers(std::span<const IntPoint3> positions, const Connectivity& c) {
+  std::vector<IntPoint3> coded(positions.size());
+  for (size_t i = 0; i < coded.size(); ++i) coded[i] = positions[c.input_of[i]];
+  return coded;
 }
 
 template <class IO>
@@ -201,10 +214,9 @@ void write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> face
   BaseMeshData data;
   data.version = coding.version;
   data.loose_face_count = c.loose_faces;
-  data.vertex_order = chosen_vertex_order(c, adaptation_of(coding.version));
+  data.vertex_order = chosen_vertex_order(c, adaptation_of(coding.version)).method;
   describe_vertex_order(symbols, contexts, data.vertex_order, c.parents, c.input_of);
-  std::vector<IntPoint3> coded(vertex_count);
-  for (uint32_t i = 0; i < vertex_count; ++i) coded[i] = positions[c.input_of[i]];
+  std::vector<IntPoint3> coded = in_coding_numbers(positions, c);
   data.position_blend = chosen_blend(coding, c.faces, coded);
   describe_positions(symbols, contexts, c.faces, data.position_blend, coded);
   symbols.finish(io, data);
@@ -256,14 +268,11 @@ BaseMeshParts base_mesh_parts(std::span<const Triangle> faces, std::span<const I
   const Adaptation adaptation = adaptation_of(coding.version);
   syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.adaptation = adaptation});
   syntax::BaseMeshContexts contexts;
-  const uint32_t vertex_count = static_cast<uint32_t>(positions.size());
-  const Connectivity c = write_connectivity(symbols, contexts, faces, vertex_count, {});
+  const Connectivity c = write_connectivity(symbols, contexts, faces, static_cast<uint32_t>(positions.size()), {});
   BaseMeshParts parts;
   parts.connectivity = symbols.finish_bins().size() + symbols.finish_raw().size();
-  const uint32_t order = chosen_vertex_order(c, adaptation);
-  parts.vertex_order = order == kVertexOrderCoding ? 0 : vertex_order_bytes(order, c, adaptation);
-  std::vector<IntPoint3> coded(vertex_count);
-  for (uint32_t i = 0; i < vertex_count; ++i) coded[i] = positions[c.input_of[i]];
+  parts.vertex_order = chosen_vertex_order(c, adaptation).bytes;
+  const std::vector<IntPoint3> coded = in_coding_numbers(positions, c);
   parts.positions = position_bytes(c.faces, coded, chosen_blend(coding, c.faces, coded), adaptation);
   return parts;
 }
