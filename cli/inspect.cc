@@ -36,7 +36,8 @@ int run_info3d(const std::string& input) {
   std::printf("%s: %zu bytes, mesh3d container version %u, codec_id %u (%s), %u vertices, %u faces, %u frames at %u/%u fps\n",
               input.c_str(), stream.size(), h.version, h.codec_id, decoder.codec().name.c_str(), h.vertex_count, h.face_count,
               h.frame_count, h.frame_rate_num, h.frame_rate_den);
-  std::printf("  contexts: %s\n", adaptation_of(h.version) == Adaptation::kWarmUp ? "warm-up (version 3)" : "fixed rate (versions 1 and 2)");
+  std::printf("  contexts: %s\n", adaptation_of(h.version) == Adaptation::kWarmUp ? "warm-up (versions 3 and 4)" : "fixed rate (versions 1 and 2)");
+  std::printf("  residual signs: %s\n", residual_sign_in_bins(h.version) ? "in bins, with the suffix's top bit (version 4)" : "raw (versions 1 to 3)");
   if (const std::optional<uint32_t> order = decoder.vertex_order())
     std::printf("  vertex order: %s\n", vertex_order_name(*order));
   if (const std::optional<uint32_t> blend = decoder.position_blend())

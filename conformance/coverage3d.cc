@@ -18,19 +18,31 @@ std::string bin_item(const std::string& area, const std::string& name, int conte
   return item(area, name + " ctx " + std::to_string(context) + " = " + std::to_string(value));
 }
 
-// A residual symbol's bin (syntax/mesh3d/residual.h) by channel, class of
-// the previous residual and prefix slot, from its trace context number.
+// A residual symbol's bin (syntax/mesh3d/residual.h) from its trace context
+// number: a zero flag or prefix bin by channel, class of the previous
+// residual and prefix slot; a sign bin by channel and previous sign; a top
+// bin by channel.
 std::string residual_bin_item(const std::string& area, const std::string& name, int context, int value) {
-  const int group = context / (Residual::kPrefixContexts + 1), slot = context % (Residual::kPrefixContexts + 1) - 1;
-  std::string text = name + " channel " + std::to_string(group / Residual::kClasses) + " class " + std::to_string(group % Residual::kClasses);
-  if (slot >= 0) text += " bin " + std::to_string(slot) + (slot == Residual::kPrefixContexts - 1 ? "+" : "");
+  std::string text = name + " channel ";
+  if (name.ends_with("_sign")) {
+    text += std::to_string(context / 3) + " after " + (context % 3 == 0 ? "none" : context % 3 == 1 ? "+" : "-");
+  } else if (name.ends_with("_top")) {
+    text += std::to_string(context);
+  } else {
+    const int group = context / (Residual::kPrefixContexts + 1), slot = context % (Residual::kPrefixContexts + 1) - 1;
+    text += std::to_string(group / Residual::kClasses) + " class " + std::to_string(group % Residual::kClasses);
+    if (slot >= 0) text += " bin " + std::to_string(slot) + (slot == Residual::kPrefixContexts - 1 ? "+" : "");
+  }
   return item(area, text + " = " + std::to_string(value));
 }
 
-bool is_residual_bin(const std::string& name) { return name.ends_with("_nonzero") || name.ends_with("_prefix"); }
+bool is_residual_bin(const std::string& name) {
+  return name.ends_with("_nonzero") || name.ends_with("_prefix") || name.ends_with("_sign") || name.ends_with("_top");
+}
 
 // A residual family (syntax/mesh3d/residual.h) on `channels`, whose prefix
-// length e cannot exceed max_e: its zero flag and prefix bins by class.
+// length e cannot exceed max_e: its zero flag and prefix bins by class, its
+// sign bins by previous sign and its top bins (version 4).
 void residual_family(std::set<std::string>& out, const std::string& area, const std::string& name, std::initializer_list<int> channels,
                      int max_e = Residual::kMaxPrefix) {
   for (int channel : channels)
@@ -42,6 +54,11 @@ void residual_family(std::set<std::string>& out, const std::string& area, const 
         if (slot <= max_e) out.insert(residual_bin_item(area, name + "_prefix", base + 1 + slot, 0));
         if (slot < max_e || (last && max_e > slot)) out.insert(residual_bin_item(area, name + "_prefix", base + 1 + slot, 1));
       }
+    }
+  for (int channel : channels)
+    for (int v = 0; v < 2; ++v) {
+      for (int previous_sign = 0; previous_sign < 3; ++previous_sign) out.insert(residual_bin_item(area, name + "_sign", channel * 3 + previous_sign, v));
+      out.insert(residual_bin_item(area, name + "_top", channel, v));
     }
 }
 
@@ -180,6 +197,8 @@ std::map<std::string, std::set<std::string>> coverage_catalog3d() {
   // cpca-wpt: cluster differences lie within ±254, so e ≤ 7.
   std::set<std::string>& cpca = c["cpca-wpt"];
   residual_family(cpca, "cpca-wpt", "cluster", {0}, 7);
+  // Clusters start at 0 and stay at or above it: the first nonzero difference is positive.
+  cpca.erase(residual_bin_item("cpca-wpt", "cluster_sign", 0, 1));
   residual_family(cpca, "cpca-wpt", "translation", {0, 1, 2});
   residual_family(cpca, "cpca-wpt", "basis", {0, 1, 2});
   residual_family(cpca, "cpca-wpt", "coefficient", {3, 6});

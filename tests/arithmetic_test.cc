@@ -122,14 +122,15 @@ TEST(Arithmetic, ASectionThatEndsEarlyStopsTheDecodingThere) {
   EXPECT_EQ(stop(false), kBins + 9);  // the tenth raw byte is missing
 }
 
-TEST(Arithmetic, ResidualsOfEverySizeRoundTrip) {
-  std::vector<int32_t> values{0, 1, -1, 2, -2, 3, 100, -100, 65535, -65536, (1 << 29), -(1 << 29), (1 << 30) + 7};
-  test::Random random(3);
-  for (int i = 0; i < 3000; ++i) values.push_back(random.uniform(-3000, 3000) >> random.uniform(0, 10));
-  const syntax::SectionPlace place;
+// The bytes of both sections, and whether they decode back to `values`.
+size_t residual_bytes(uint32_t version, const std::vector<int32_t>& values) {
+  const syntax::SectionPlace place{.version = version};
   syntax::EntropyWriteIO<false> writer(place);
   syntax::ResidualCoder<3> model;
-  for (size_t i = 0; i < values.size(); ++i) model.describe(writer, static_cast<int>(i % 3), values[i], syntax::kMotionResidual);
+  for (size_t i = 0; i < values.size(); ++i) {
+    int32_t v = values[i];
+    model.describe(writer, static_cast<int>(i % 3), v, syntax::kMotionResidual);
+  }
   const std::vector<uint8_t> data = writer.finish_bins();
   const std::vector<uint8_t> raw_bytes = writer.finish_raw();
   syntax::EntropyReadIO<false> reader(data, raw_bytes, place);
@@ -137,9 +138,34 @@ TEST(Arithmetic, ResidualsOfEverySizeRoundTrip) {
   for (size_t i = 0; i < values.size(); ++i) {
     int32_t r = 0;
     decoding.describe(reader, static_cast<int>(i % 3), r, syntax::kMotionResidual);
-    ASSERT_EQ(r, values[i]);
+    EXPECT_EQ(r, values[i]) << "version " << version << ", residual " << i;
   }
   EXPECT_NO_THROW(reader.finish("motion_residual"));
+  return data.size() + raw_bytes.size();
+}
+
+TEST(Arithmetic, ResidualsOfEverySizeRoundTripInEveryVersion) {
+  std::vector<int32_t> values{0, 1, -1, 2, -2, 3, 100, -100, 65535, -65536, (1 << 29), -(1 << 29), (1 << 30) + 7};
+  test::Random random(3);
+  for (int i = 0; i < 3000; ++i) values.push_back(random.uniform(-3000, 3000) >> random.uniform(0, 10));
+  for (uint32_t version = kFirstVersion; version <= kLatestVersion; ++version) residual_bytes(version, values);
+}
+
+// Version 4's sign and top bins: residuals whose sign runs on, and whose
+// magnitudes lean to the low half of their prefix's range, take fewer
+// bytes than in version 3; signs and magnitudes at random barely more.
+TEST(Arithmetic, Version4LearnsLeaningSignsAndMagnitudes) {
+  test::Random random(5);
+  std::vector<int32_t> leaning, even;
+  int32_t signs[3] = {1, 1, 1};  // per channel
+  for (int i = 0; i < 6000; ++i) {
+    int32_t& sign = signs[i % 3];
+    if (random.uniform(0, 9) == 0) sign = -sign;
+    leaning.push_back(sign * (1 + random.uniform(0, 15) * random.uniform(0, 15) / 8));
+    even.push_back(random.uniform(-64, 64));
+  }
+  EXPECT_LT(residual_bytes(4, leaning), residual_bytes(3, leaning) * 90 / 100);
+  EXPECT_LT(residual_bytes(4, even), residual_bytes(3, even) * 101 / 100);
 }
 
 // After the last symbol: no bin bytes left over, zero padding, no raw bytes left over.

@@ -71,6 +71,16 @@ std::vector<SuiteCase> base_mesh_cases(bool traced) {
                                 return written_base_mesh_stream(kVertices, 1, seed, order_schedule(kVertices));
                               }()));
   {
+    // Seed 0, 1, 2; gate 2 → 0 numbers 3 (parallelogram 2 + 0 − 1, input 3:
+    // difference 0), gate 2 → 3 numbers 4 (parallelogram 2 + 3 − 0 = 5, one
+    // untaken number below: input 4 is difference −1), vertex 5 in no face.
+    BrokenBaseMesh fan;
+    fan.script = {{GateSymbol::kBorder, 0, 0}, {GateSymbol::kBorder, 0, 0}, {GateSymbol::kNewVertex, 0, 0}, {GateSymbol::kNewVertex, 0, 0}};
+    suite.push_back(written_case("base-23-order-below-first", "a vertex order (by parallelograms) whose first nonzero difference is "
+                                 "negative (written symbol by symbol)", {"base-mesh"},
+                                 written_base_mesh_stream(6, 3, fan, {0, 0, 0, 0, -1, 0}, {}, kVertexOrderFromParallelogram)));
+  }
+  {
     const std::vector<uint64_t> seeds = covering_component_seeds();
     const Traversed size = traversed(ComponentOracle(seeds));
     ComponentOracle oracle(seeds);

@@ -29,6 +29,7 @@ class StopAtFailureIO {
   static constexpr bool kReading = false;
   struct Stop {};
   explicit StopAtFailureIO(syntax::EntropyWriteIO<false>& io) : io_(io) {}
+  uint32_t version() const { return io_.version(); }
   void bin(const char* name, BinContext& state, int context, bool& value) { io_.bin(name, state, context, value); }
   void raw(const char* name, int bits, uint32_t& value) { io_.raw(name, bits, value); }
   [[noreturn]] void fail(ErrorKind, const char*, const std::string&) const { throw Stop{}; }
@@ -78,7 +79,8 @@ std::vector<uint8_t> broken_base_mesh_unit(std::vector<uint8_t> unit_header, uin
 // past ±2^26 are written up to the first, where a decoder must fail.
 template <class Oracle>
 std::vector<uint8_t> written_base_mesh_stream(uint32_t vertex_count, uint32_t face_count, Oracle& oracle,
-                                              std::vector<int32_t> order_differences = {}, std::vector<IntPoint3> positions = {}) {
+                                              std::vector<int32_t> order_differences = {}, std::vector<IntPoint3> positions = {},
+                                              uint32_t order_method = kVertexOrderFromGate) {
   MeshSequence points;  // any object of this vertex count: its base mesh unit and face count are replaced
   points.vertex_count = vertex_count;
   points.faces = {{{0, 1, 2}}};
@@ -103,7 +105,7 @@ std::vector<uint8_t> written_base_mesh_stream(uint32_t vertex_count, uint32_t fa
     put_field(p.object_payload, faces, face_count);
     ContainerUnit& unit = unit_of(p, UnitType::kBaseMesh, 0);
     unit.payload = base_mesh_unit(unit_header_bytes(unit.payload), symbols,
-                                  order_differences.empty() ? kVertexOrderCoding : kVertexOrderFromGate);
+                                  order_differences.empty() ? kVertexOrderCoding : order_method);
   });
 }
 
@@ -225,6 +227,7 @@ class ComponentOracle : public FaceTracker {
 class BinRecorder {
  public:
   static constexpr bool kReading = false;
+  uint32_t version() const { return kLatestVersion; }
   void bin(const char* name, BinContext&, int context, bool& value) { bins.insert({name, context, value}); }
   void raw(const char*, int, uint32_t&) {}
   [[noreturn]] void fail(ErrorKind kind, const char* element, const std::string& message) const {

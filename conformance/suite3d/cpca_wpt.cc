@@ -106,7 +106,7 @@ ContainerWriter cpca_written_start(const MeshSequence& s, const std::vector<uint
   header.map_prediction = kCpcaMapByDifference;
   if (fraction_bits) header.fraction_bits = *fraction_bits;
   std::vector<uint8_t> map_bins, map_raw;
-  write_cluster_map<false>(header, {}, cluster_of, map_bins, map_raw, syntax::SectionPlace{.adaptation = adaptation_of(version)});
+  write_cluster_map<false>(header, {}, cluster_of, map_bins, map_raw, syntax::SectionPlace{.version = version});
   BitWriter payload;
   syntax::WriteIO out(payload);
   syntax::describe(out, object);
@@ -400,7 +400,7 @@ std::vector<uint8_t> cpca_group_limits_stream(uint32_t version) {
   const CpcaMeshPrediction& mesh = stream.mesh;
   // values(i): the i-th value of a refinement, −2 … 2.
   auto group = [&](const std::vector<CpcaRefinementHeader>& refinements) {
-    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.adaptation = adaptation_of(version)});
+    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.version = version});
     syntax::CpcaCoders coders;
     for (const CpcaRefinementHeader& h : refinements) {
       const size_t per_member = h.kind == kCpcaTrajectory ? 1 : 3;
@@ -488,6 +488,8 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
                               {"cpca"}, cpca_written_stream()));
   suite.push_back(valid("cpca-11-mesh-basis", "shape components whose basis is predicted over the base mesh (unit_kind 2)", {"cpca"}, flag,
                         cpca({{"clusters", "4"}, {"basis", "mesh"}}), traced));
+  suite.push_back(valid("cpca-27-mesh-basis-spikes", "cpca-08's spikes, the basis predicted over the base mesh (unit_kind 2)", {"cpca"},
+                        spiky_sheet(8, 16, 0, 43, 30), cpca({{"clusters", "3"}, {"bits", "24"}, {"basis", "mesh"}}), traced));
   suite.push_back(valid("cpca-12-trajectories", "trajectory components (unit_kind 3)", {"cpca"}, flag,
                         cpca({{"clusters", "4"}, {"model", "trajectory"}}), traced));
   suite.push_back(valid("cpca-13-trajectories-scattered", "trajectory components of 200 clusters over a sheet: members without neighbours",

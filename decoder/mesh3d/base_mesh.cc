@@ -55,7 +55,7 @@ BaseMesh read_base_mesh(syntax::ReadIO& io, const ObjectHeader& header, Trace* t
     io.fail(ErrorKind::kOutOfRange, "loose_face_count", "more loose faces than the object's face_count");
   const uint8_t* payload = io.reader().data();
   const syntax::SectionPlace place{"bins", "raw", 8 * static_cast<uint64_t>(data.bins.data() - payload),
-                                   8 * static_cast<uint64_t>(data.raw.data() - payload), io.plane(), adaptation_of(header.version)};
+                                   8 * static_cast<uint64_t>(data.raw.data() - payload), io.plane(), header.version};
   if (trace) {
     syntax::EntropyReadIO<true> symbols(data.bins, data.raw, place, trace);
     return read_symbols(symbols, data, header);

@@ -46,7 +46,7 @@ class Bfs3dDecoder final : public GridFrameDecoder {
       const syntax::SectionPlace place{syntax::kAxisBins[axis], syntax::kAxisRaw[axis],
                                        8 * static_cast<uint64_t>(frame.bins[axis].data() - payload),
                                        8 * static_cast<uint64_t>(frame.raw[axis].data() - payload), io.plane(),
-                                       adaptation_of(object_.version)};
+                                       object_.version};
       if (trace_)
         decode_axis<true>(frame.bins[axis], frame.raw[axis], place, trace_, residuals_[axis]);
       else

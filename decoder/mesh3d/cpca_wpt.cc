@@ -69,7 +69,7 @@ class CpcaDecoder final : public CodecDecoder3d {
     const uint8_t* payload = io.reader().data();
     const syntax::SectionPlace place{"bins", "raw", 8 * static_cast<uint64_t>(r.bins.data() - payload),
                                      8 * static_cast<uint64_t>(r.raw.data() - payload), io.plane(),
-                                     adaptation_of(object_.version)};
+                                     object_.version};
     if (trace_) {
       syntax::EntropyReadIO<true> symbols(r.bins, r.raw, place, trace_);
       read_refinements(symbols, r.refinements());
@@ -170,7 +170,7 @@ std::unique_ptr<CodecDecoder3d> make_cpca_wpt_decoder(const ObjectHeader& object
   MapSections map{{header.map_bins.begin(), header.map_bins.end()},
                   {header.map_raw.begin(), header.map_raw.end()},
                   {"cluster_map_bins", "cluster_map_raw", 8 * static_cast<uint64_t>(header.map_bins.data() - payload),
-                   8 * static_cast<uint64_t>(header.map_raw.data() - payload), kNoPlane, adaptation_of(object.version)},
+                   8 * static_cast<uint64_t>(header.map_raw.data() - payload), kNoPlane, object.version},
                   io.start_of("cluster_count")};
   return std::make_unique<CpcaDecoder>(object, header, std::move(map), io.trace());
 }
@@ -186,7 +186,7 @@ std::vector<uint32_t> cpca_cluster_map(const ContainerParts& parts) {
     syntax::describe(io, unit);
     faces = read_base_mesh(io, object, nullptr).faces;
   }
-  return read_cluster_map<false>(header, faces, object.vertex_count, syntax::SectionPlace{.adaptation = adaptation_of(object.version)});
+  return read_cluster_map<false>(header, faces, object.vertex_count, syntax::SectionPlace{.version = object.version});
 }
 
 }  // namespace m4mesh

@@ -56,7 +56,7 @@ class LccDecoder final : public CodecDecoder3d {
     const uint8_t* payload = io.reader().data();
     const syntax::SectionPlace place{"bins", "raw", 8 * static_cast<uint64_t>(data.bins.data() - payload),
                                      8 * static_cast<uint64_t>(data.raw.data() - payload), io.plane(),
-                                     adaptation_of(object_.version)};
+                                     object_.version};
     if (header_.mode == kLccStreamMode) coder_.emplace();
     if (trace_) {
       syntax::EntropyReadIO<true> symbols(data.bins, data.raw, place, trace_);

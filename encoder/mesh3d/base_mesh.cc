@@ -143,8 +143,8 @@ Connectivity write_connectivity(IO& symbols, syntax::BaseMeshContexts& contexts,
 }
 
 // The bytes the vertex order takes in a coding, alone.
-size_t vertex_order_bytes(uint32_t method, const Connectivity& c, Adaptation adaptation) {
-  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.adaptation = adaptation});
+size_t vertex_order_bytes(uint32_t method, const Connectivity& c, uint32_t version) {
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.version = version});
   syntax::BaseMeshContexts contexts;
   std::vector<uint32_t> input_of = c.input_of;
   describe_vertex_order(symbols, contexts, method, c.parents, input_of);
@@ -152,8 +152,8 @@ size_t vertex_order_bytes(uint32_t method, const Connectivity& c, Adaptation ada
 }
 
 // The bytes the positions take with a blend, alone.
-size_t position_bytes(std::span<const Triangle> faces, const std::vector<IntPoint3>& coded, uint32_t blend, Adaptation adaptation) {
-  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.adaptation = adaptation});
+size_t position_bytes(std::span<const Triangle> faces, const std::vector<IntPoint3>& coded, uint32_t blend, uint32_t version) {
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.version = version});
   syntax::BaseMeshContexts contexts;
   std::vector<IntPoint3> positions = coded;
   describe_positions(symbols, contexts, faces, blend, positions);
@@ -165,10 +165,9 @@ uint32_t chosen_blend(const BaseMeshCoding& coding, std::span<const Triangle> fa
   if (coding.version < 2) return 0;
   if (coding.position_blend) return *coding.position_blend;
   uint32_t best = 0;
-  const Adaptation adaptation = adaptation_of(coding.version);
-  size_t best_bytes = position_bytes(faces, coded, 0, adaptation);
+  size_t best_bytes = position_bytes(faces, coded, 0, coding.version);
   for (uint32_t blend = 1; blend <= kPositionBlendUnit; ++blend)
-    if (const size_t bytes = position_bytes(faces, coded, blend, adaptation); bytes < best_bytes) {
+    if (const size_t bytes = position_bytes(faces, coded, blend, coding.version); bytes < best_bytes) {
       best = blend;
       best_bytes = bytes;
     }
@@ -181,11 +180,11 @@ struct VertexOrderCoding {
   uint32_t method = kVertexOrderCoding;
   size_t bytes = 0;
 };
-VertexOrderCoding chosen_vertex_order(const Connectivity& c, Adaptation adaptation) {
+VertexOrderCoding chosen_vertex_order(const Connectivity& c, uint32_t version) {
   for (uint32_t i = 0; i < c.input_of.size(); ++i)
     if (c.input_of[i] != i) {
-      const size_t by_parallelogram = vertex_order_bytes(kVertexOrderFromParallelogram, c, adaptation);
-      const size_t by_gate = vertex_order_bytes(kVertexOrderFromGate, c, adaptation);
+      const size_t by_parallelogram = vertex_order_bytes(kVertexOrderFromParallelogram, c, version);
+      const size_t by_gate = vertex_order_bytes(kVertexOrderFromGate, c, version);
       return by_parallelogram < by_gate ? VertexOrderCoding{kVertexOrderFromParallelogram, by_parallelogram}
                                         : VertexOrderCoding{kVertexOrderFromGate, by_gate};
     }
@@ -214,7 +213,7 @@ void write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> face
   BaseMeshData data;
   data.version = coding.version;
   data.loose_face_count = c.loose_faces;
-  data.vertex_order = chosen_vertex_order(c, adaptation_of(coding.version)).method;
+  data.vertex_order = chosen_vertex_order(c, coding.version).method;
   describe_vertex_order(symbols, contexts, data.vertex_order, c.parents, c.input_of);
   std::vector<IntPoint3> coded = in_coding_numbers(positions, c);
   data.position_blend = chosen_blend(coding, c.faces, coded);
@@ -265,15 +264,14 @@ MeshSequence renumbered(const MeshSequence& sequence, std::span<const uint32_t> 
 }
 
 BaseMeshParts base_mesh_parts(std::span<const Triangle> faces, std::span<const IntPoint3> positions, const BaseMeshCoding& coding) {
-  const Adaptation adaptation = adaptation_of(coding.version);
-  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.adaptation = adaptation});
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.version = coding.version});
   syntax::BaseMeshContexts contexts;
   const Connectivity c = write_connectivity(symbols, contexts, faces, static_cast<uint32_t>(positions.size()), {});
   BaseMeshParts parts;
   parts.connectivity = symbols.finish_bins().size() + symbols.finish_raw().size();
-  parts.vertex_order = chosen_vertex_order(c, adaptation).bytes;
+  parts.vertex_order = chosen_vertex_order(c, coding.version).bytes;
   const std::vector<IntPoint3> coded = in_coding_numbers(positions, c);
-  parts.positions = position_bytes(c.faces, coded, chosen_blend(coding, c.faces, coded), adaptation);
+  parts.positions = position_bytes(c.faces, coded, chosen_blend(coding, c.faces, coded), coding.version);
   return parts;
 }
 
@@ -287,7 +285,7 @@ BaseMeshCoding BaseMeshCoding::of(std::optional<uint32_t> version, std::optional
 
 void write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions,
                      const BaseMeshCoding& coding, std::span<const uint32_t> untraversed) {
-  const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane(), adaptation_of(coding.version)};
+  const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane(), coding.version};
   if (io.trace()) {
     syntax::EntropyWriteIO<true> symbols(place, io.trace());
     write_data(io, symbols, faces, positions, coding, untraversed);

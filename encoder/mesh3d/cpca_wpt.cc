@@ -145,7 +145,7 @@ class CpcaEncoder final : public CodecEncoder3d {
   }
 
  private:
-  syntax::SectionPlace map_place() const { return {"cluster_map_bins", "cluster_map_raw", 0, 0, kNoPlane, adaptation_of(header_.version)}; }
+  syntax::SectionPlace map_place() const { return {"cluster_map_bins", "cluster_map_raw", 0, 0, kNoPlane, header_.version}; }
 
   // Version 2: the map's prediction of fewer bytes (by the differences of equals).
   void choose_cluster_map() {

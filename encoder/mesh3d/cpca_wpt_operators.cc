@@ -122,7 +122,7 @@ double estimated_gain(const Component& c, const Operator& op) {
 }
 
 void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh, uint32_t version) {
-  const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane(), adaptation_of(version)};
+  const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane(), version};
   if (io.trace()) {
     syntax::EntropyWriteIO<true> symbols(place, io.trace());
     write_refinements(io, symbols, operators, mesh, version);

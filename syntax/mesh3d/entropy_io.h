@@ -16,19 +16,20 @@
 #include "bitstream/bit_writer.h"
 #include "common/error.h"
 #include "syntax/io.h"
+#include "syntax/mesh3d/container.h"
 #include "syntax/trace.h"
 
 namespace m4mesh::syntax {
 
 // Where a pair of sections lies in its unit's payload, for errors and
-// traces, and how its contexts adapt (the stream's version: adaptation_of).
+// traces, and the stream's version, which says how its symbols are coded.
 struct SectionPlace {
   const char* bins_name = "bins";
   const char* raw_name = "raw";
   uint64_t bins_offset = 0;  // bits from the payload's start
   uint64_t raw_offset = 0;
   int64_t frame = kNoPlane;
-  Adaptation adaptation = Adaptation::kWarmUp;
+  uint32_t version = kLatestVersion;
 };
 
 // An error in a section: the element, and the bit where the decoder was.
@@ -40,8 +41,9 @@ class EntropyReadIO {
   static constexpr bool kReading = true;
 
   EntropyReadIO(std::span<const uint8_t> bins, std::span<const uint8_t> raw, const SectionPlace& place, Trace* trace = nullptr)
-      : bins_(bins, place.adaptation), raw_(raw.data(), raw.size()), place_(place), trace_(trace) {}
+      : bins_(bins, adaptation_of(place.version)), raw_(raw.data(), raw.size()), place_(place), trace_(trace) {}
 
+  uint32_t version() const { return place_.version; }
   // `context` numbers the bin's context for the trace only. A bin that
   // needs a byte past the section's end stops the decoding (truncated):
   // zeros would go on decoding, a whole unit's symbols from a few bytes.
@@ -102,8 +104,9 @@ class EntropyWriteIO {
   // With kTraced, lines go to a buffer in `like`'s location (trace_text()),
   // for the caller to print after the fields that precede the sections.
   explicit EntropyWriteIO(const SectionPlace& place, Trace* like = nullptr)
-      : bins_(place.adaptation), place_(place), trace_(buffer_, like ? *like : Trace(buffer_)) {}
+      : bins_(adaptation_of(place.version)), place_(place), trace_(buffer_, like ? *like : Trace(buffer_)) {}
 
+  uint32_t version() const { return place_.version; }
   void bin(const char* name, BinContext& context_state, int context, bool& value) {
     bins_.encode(context_state, value);
     if constexpr (kTraced) trace_.bin(place_.bins_name, bin_index_++, name, context, value);

@@ -10,6 +10,7 @@
 
 #include "bitstream/arithmetic.h"
 #include "common/error.h"
+#include "syntax/mesh3d/container.h"
 
 namespace m4mesh::syntax {
 
@@ -17,16 +18,23 @@ namespace m4mesh::syntax {
 struct ResidualNames {
   const char* nonzero;
   const char* prefix;
-  const char* sign_suffix;
-  const char* element;  // the residual as a whole, for errors
+  const char* sign_suffix;  // versions 1 to 3
+  const char* element;      // the residual as a whole, for errors
+  const char* sign;         // version 4: the sign's bin, the suffix's top bin and its other bits
+  const char* top;
+  const char* suffix;
 };
 
 // A zero flag, then |r| − 1 in exp-Golomb of order k, where k follows a
 // running mean of the channel's magnitudes. The zero flag and the prefix
 // bins are arithmetic-coded with contexts per channel and class of the
 // channel's previous residual (0: zero, 1: prefix length e = 0, 2: e > 0),
-// a class known as soon as that residual's bins are decoded. The sign and
-// the e + k suffix bits, equiprobable, are one raw field.
+// a class known as soon as that residual's bins are decoded. Up to version
+// 3 the sign and the e + k suffix bits are one raw field; from version 4
+// the sign is a bin by the sign of the channel's previous nonzero residual
+// and the suffix's top bit a bin by channel (both lean: prediction errors
+// keep their sign along a surface, and magnitudes fall within a prefix's
+// range), the other suffix bits raw.
 template <int kChannels>
 class ResidualCoder {
  public:
@@ -35,7 +43,8 @@ class ResidualCoder {
   static constexpr int kMaxPrefix = 30;  // |r| < 2^31
 
   // Trace context numbers: nonzero (channel · 3 + class) · 13, prefix bin i
-  // the same + 1 + min(i, 11).
+  // the same + 1 + min(i, 11); sign channel · 3 + previous sign (0: none
+  // yet, 1: positive, 2: negative); top channel.
   template <class IO>
   void describe(IO& io, int channel, int32_t& r, const ResidualNames& names) {
     const int cls = previous_[channel];
@@ -68,15 +77,35 @@ class ResidualCoder {
       }
       if (i + 1 + k > kMaxPrefix) io.fail(ErrorKind::kInvalidCode, names.element, "a residual longer than 32 bits");
     }
-    // The sign (1: negative), then e bits of h − 2^e and k bits of m mod 2^k: at most 31 bits.
-    uint32_t bits = 0;
-    if constexpr (!IO::kReading)
-      bits = (r < 0 ? 1u << (e + k) : 0u) | ((high - (1u << e)) << k) | (m & ((1u << k) - 1));
-    io.raw(names.sign_suffix, 1 + e + k, bits);
+    // The sign (1: negative), then the suffix: e bits of h − 2^e and k bits
+    // of m mod 2^k, at most 30 bits.
+    const int n = e + k;
+    bool negative = false;
+    uint32_t suffix = 0;
+    if constexpr (!IO::kReading) {
+      negative = r < 0;
+      suffix = ((high - (1u << e)) << k) | (m & ((1u << k) - 1));
+    }
+    if (residual_sign_in_bins(io.version())) {
+      const int sign_class = previous_sign_[channel];
+      io.bin(names.sign, sign_[channel][sign_class], channel * 3 + sign_class, negative);
+      previous_sign_[channel] = negative ? 2 : 1;
+      if (n > 0) {
+        bool top = suffix >> (n - 1) != 0;
+        io.bin(names.top, top_[channel], channel, top);
+        uint32_t low = suffix & ((1u << (n - 1)) - 1);
+        if (n > 1) io.raw(names.suffix, n - 1, low);
+        suffix = (top ? 1u << (n - 1) : 0u) | low;
+      }
+    } else {
+      uint32_t bits = (negative ? 1u << n : 0u) | suffix;
+      io.raw(names.sign_suffix, 1 + n, bits);
+      negative = bits >> n != 0;
+      suffix = bits & ((1u << n) - 1);
+    }
     if constexpr (IO::kReading) {
-      const uint32_t suffix = bits & ((1u << (e + k)) - 1);
       magnitude = (((1u << e) - 1) << k) + suffix + 1;
-      r = bits >> (e + k) ? -static_cast<int32_t>(magnitude) : static_cast<int32_t>(magnitude);
+      r = negative ? -static_cast<int32_t>(magnitude) : static_cast<int32_t>(magnitude);
     }
     update(channel, magnitude, e + 1);
   }
@@ -96,7 +125,10 @@ class ResidualCoder {
 
   BinContext nonzero_[kChannels][kClasses];
   BinContext prefix_[kChannels][kClasses][kPrefixContexts];
+  BinContext sign_[kChannels][3];
+  BinContext top_[kChannels];
   int previous_[kChannels] = {};
+  int previous_sign_[kChannels] = {};
   uint32_t sum_[kChannels] = {};
 };
 
