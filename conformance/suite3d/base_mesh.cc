@@ -158,6 +158,31 @@ std::vector<SuiteCase> base_mesh_unit_rejected(const std::vector<SuiteCase>& val
                                    put_field(base_unit(p), unit_field<BaseMeshData>("loose_face_count"), faces + 1);
                                  }),
                           ErrorKind::kOutOfRange, "loose_face_count", 0));
+  {
+    // Seed 0 of three new vertices, its gates borders; seed 1 a new vertex
+    // and the old 2 and 1, in the raw section, which is cut: read as zeros,
+    // they would make a seed of corners 3, 0, 0 (structure seed_vertex:
+    // mutant ct-48).
+    struct SecondSeedOnOldVertices {
+      int seeds = 0;
+      bool seed_corner(int corner, uint32_t& vertex) {
+        const bool old = seeds == 1 && corner > 0;
+        vertex = corner == 1 ? 2 : 1;
+        if (corner == 2) ++seeds;
+        return old;
+      }
+      void numbered(uint32_t) {}
+      GateAnswer gate(HalfEdge, std::span<const uint32_t>) { return {GateSymbol::kBorder, 0, 0}; }
+    } oracle;
+    suite.push_back(invalid("x-153-base-raw-cut", "a second seed's two old corners in the raw section, cut: the decoder stops at the "
+                            "first seed_vertex", {"container"},
+                            edited(written_base_mesh_stream(4, 2, oracle),
+                                   [&](ContainerParts& p) {
+                                     std::vector<uint8_t>& unit = base_unit(p);
+                                     unit.resize(unit_field<BaseMeshData>("bins").first + field_value(unit, unit_field<BaseMeshData>("arithmetic_bytes")));
+                                   }),
+                            ErrorKind::kTruncated, "raw", 0));
+  }
   suite.push_back(invalid("x-48-base-raw-left-over", "a byte after the raw bits", {"base-mesh"},
                           edited(awkward, [&](ContainerParts& p) { base_unit(p).push_back(0x00); }), ErrorKind::kStructure, "base_mesh", 0));
   suite.push_back(invalid("x-49-base-bins-left-over", "a zero byte after the last bin, counted by arithmetic_bytes", {"base-mesh"},
