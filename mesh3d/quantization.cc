@@ -8,12 +8,11 @@ namespace m4mesh {
 
 namespace {
 
-Grid over_box(const Box3& box, int bits, bool equal_steps) {
+Grid over_box(const Box3& box, double steps, bool equal_steps) {
   const Vec3& lo = box.lo;
   const Vec3& hi = box.hi;
   const double extent[3] = {hi.x - lo.x, hi.y - lo.y, hi.z - lo.z};
   const double largest = std::max({extent[0], extent[1], extent[2], 1e-30});
-  const double steps = std::ldexp(1.0, bits) - 1;
   Grid grid;
   const double low[3] = {lo.x, lo.y, lo.z};
   for (int axis = 0; axis < 3; ++axis) {
@@ -24,9 +23,16 @@ Grid over_box(const Box3& box, int bits, bool equal_steps) {
   return grid;
 }
 
+double steps_of(int bits) { return std::ldexp(1.0, bits) - 1; }
+
 }  // namespace
 
-Grid Grid::over(const std::vector<Vec3>& frame, int bits, bool equal_steps) { return over_box(box_of(frame), bits, equal_steps); }
+Grid Grid::over(const std::vector<Vec3>& frame, int bits, bool equal_steps) { return over_box(box_of(frame), steps_of(bits), equal_steps); }
+
+Grid Grid::over_half_bits(const std::vector<Vec3>& frame, int half_bits, bool equal_steps) {
+  // √2 is correctly rounded, so every platform's encoder lays the same grid.
+  return over_box(box_of(frame), std::ldexp(half_bits % 2 != 0 ? std::sqrt(2.0) : 1.0, half_bits / 2) - 1, equal_steps);
+}
 
 Grid Grid::covering(const MeshSequence& s, int bits, bool equal_steps) {
   const Grid first = over(s.frames[0], bits, equal_steps);
@@ -37,7 +43,7 @@ Grid Grid::covering(const MeshSequence& s, int bits, bool equal_steps) {
   if (fits) return first;
   Box3 box;
   for (const std::vector<Vec3>& frame : s.frames) box.add(frame);
-  return over_box(box, bits, equal_steps);
+  return over_box(box, steps_of(bits), equal_steps);
 }
 
 bool Grid::quantize(const Vec3& p, IntPoint3& q) const {

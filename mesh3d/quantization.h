@@ -25,6 +25,8 @@ struct Grid {
   // every axis takes the step of the largest extent, so that grid units
   // are the same length on every axis.
   static Grid over(const std::vector<Vec3>& frame, int bits, bool equal_steps = false);
+  // The same with 2^(half_bits / 2) − 1 steps: a grid between two of whole bits.
+  static Grid over_half_bits(const std::vector<Vec3>& frame, int half_bits, bool equal_steps = false);
   // The grid over the first frame, unless a vertex of some frame lies
   // beyond ±kMaxQuantized steps on it: then the grid over every frame's box.
   static Grid covering(const MeshSequence& sequence, int bits, bool equal_steps = false);

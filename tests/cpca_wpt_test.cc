@@ -13,6 +13,7 @@
 #include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/cpca_wpt.h"
 #include "mesh3d/metrics.h"
+#include "mesh3d/quantization.h"
 #include "syntax/mesh3d/cpca_wpt.h"
 #include "syntax/mesh3d/container.h"
 #include "tests/test_util.h"
@@ -138,6 +139,25 @@ TEST(CpcaWpt, ATargetChoosesTheClusterCount) {
   }
   EXPECT_THROW(encode_mesh3d(s, cpca({{"clusters", "0"}})), Error);
   EXPECT_THROW(encode_mesh3d(s, cpca({{"components", "many"}})), Error);
+}
+
+// A target's search tries the mean shape's grid half a bit either side of
+// the whole bits it settles on (2^(b ± 1/2) − 1 steps), and takes one here:
+// its stream is no larger than those of the whole bits around its choice.
+TEST(CpcaWpt, ATargetsMeanShapeGridMayLieHalfABitBetween) {
+  const MeshSequence s = test::test_sequence(12, 6);
+  const Encode3dResult chosen = encode_mesh3d(s, cpca({{"target-kg", "1"}}));
+  const auto bits = std::find_if(chosen.statistics.begin(), chosen.statistics.end(), [](const CodecStatistic& c) { return c.first == "mean shape bits"; });
+  ASSERT_NE(bits, chosen.statistics.end());
+  EXPECT_EQ(bits->second, 8.5);  // this sequence's, between 8 and 9
+  for (const double whole : {std::floor(bits->second), std::ceil(bits->second)}) {
+    const uint64_t bytes = encode_mesh3d(s, cpca({{"target-kg", "1"}, {"bits", std::to_string(static_cast<int>(whole))}})).stream.size();
+    EXPECT_LE(chosen.stream.size(), bytes + bytes / 50) << whole << " bits";  // the choice is on planned sizes
+  }
+  const Grid whole = Grid::over(s.frames[0], 10, true), same = Grid::over_half_bits(s.frames[0], 20, true),
+             half = Grid::over_half_bits(s.frames[0], 21, true);
+  EXPECT_EQ(same.step, whole.step);
+  EXPECT_NEAR(whole.step[0] / half.step[0], (std::sqrt(2.0) * 1024 - 1) / 1023, 1e-6);
 }
 
 // Calls visit(unit, io) for each refinement unit of a stream, io just after its unit header.

@@ -45,8 +45,9 @@ constexpr uint64_t shared_in_group(uint32_t version) { return 4 + 5 + 7 - (versi
 
 class CpcaEncoder final : public CodecEncoder3d {
  public:
-  // coding_order: the base mesh's vertices in coding order.
-  CpcaEncoder(const MeshSequence& s, const Options& options, int bits, const Clustering& clustering, bool trajectories,
+  // coding_order: the base mesh's vertices in coding order. The mean
+  // shape's grid has 2^(half_bits / 2) − 1 steps.
+  CpcaEncoder(const MeshSequence& s, const Options& options, int half_bits, const Clustering& clustering, bool trajectories,
               std::span<const uint32_t> coding_order)
       : components_(options.components),
         max_bytes_(options.max_bytes),
@@ -65,7 +66,9 @@ class CpcaEncoder final : public CodecEncoder3d {
       for (size_t v = 0; v < s.vertex_count; ++v) mean[v] = {mean[v].x + frame[v].x, mean[v].y + frame[v].y, mean[v].z + frame[v].z};
     const double n = static_cast<double>(s.frames.size());
     for (Vec3& p : mean) p = {p.x / n, p.y / n, p.z / n};
-    grid_ = Grid::over(mean, bits, true);
+    grid_ = Grid::over_half_bits(mean, half_bits, true);
+    half_bits_ = half_bits;
+    const int bits = (half_bits + 1) / 2;
     header_.version = base_mesh_.version;
     header_.bits = static_cast<uint32_t>(bits);
     for (int axis = 0; axis < 3; ++axis) {
@@ -129,11 +132,12 @@ class CpcaEncoder final : public CodecEncoder3d {
   // fixed part).
   uint64_t planned_bytes() const { return plan_.bytes; }
   int clusters() const { return requested_clusters_; }
-  int bits() const { return static_cast<int>(header_.bits); }
+  int half_bits() const { return half_bits_; }
   bool trajectory_model() const { return trajectories_; }
 
   std::vector<CodecStatistic> statistics() const override {
-    return {{"clusters", header_.cluster_count},
+    return {{"mean shape bits", half_bits_ / 2.0},
+            {"clusters", header_.cluster_count},
             {"trajectory model", trajectories_ ? 1.0 : 0.0},
             {"noise step log2", plan_.noise / 2.0},
             {"operators sent", static_cast<double>(plan_.sent)},
@@ -467,6 +471,7 @@ class CpcaEncoder final : public CodecEncoder3d {
   double spread_ = 0;
   uint64_t fixed_bytes_ = 0;
   Plan plan_;
+  int half_bits_ = 0;
   double kg_ = 0, kmeans_seconds_ = 0, svd_seconds_ = 0, order_seconds_ = 0;
 };
 
@@ -477,7 +482,7 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequen
   const Options options = parse_options(settings);
   const bool target = options.target_kg > 0;
   const bool bits_auto = !options.bits;
-  const int bits = options.bits.value_or(kDefaultBits);
+  const int half_bits = 2 * options.bits.value_or(kDefaultBits);
   const std::vector<int> cluster_counts = options.clusters ? std::vector<int>{*options.clusters}
                                           : target         ? std::vector<int>{5, 10, 20, 40}
                                                            : std::vector<int>{kPaperClusters};
@@ -487,13 +492,15 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequen
   // The vertices in the base mesh's coding order, once for every candidate.
   const std::vector<uint32_t> coding_order = plan_base_mesh(sequence.faces, sequence.vertex_count, false).input_of;
   if (cluster_counts.size() == 1 && trajectory_models.size() == 1 && !(bits_auto && target))
-    return std::make_unique<CpcaEncoder>(sequence, options, bits, clustering(sequence, cluster_counts[0]), trajectory_models[0], coding_order);
+    return std::make_unique<CpcaEncoder>(sequence, options, half_bits, clustering(sequence, cluster_counts[0]), trajectory_models[0],
+                                         coding_order);
   // The cluster count and model whose plan reaches the target in the fewest
   // bytes, then the counts √2 either side of it, then the mean shape's bits
-  // from 12 towards the smaller plan. Candidates run side by side; the
-  // first of the smallest is kept, whatever the threads.
+  // from 12 towards the smaller plan, then half a bit either side.
+  // Candidates run side by side; the first of the smallest is kept, whatever
+  // the threads.
   struct Candidate {
-    int bits, clusters;
+    int half_bits, clusters;
     bool trajectories;
   };
   std::unique_ptr<CpcaEncoder> best;
@@ -517,7 +524,7 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequen
         candidates.size(), settings.threads(),
         [&](size_t i) {
           try {
-            built[i] = std::make_unique<CpcaEncoder>(sequence, options, candidates[i].bits, clusterings.at(candidates[i].clusters),
+            built[i] = std::make_unique<CpcaEncoder>(sequence, options, candidates[i].half_bits, clusterings.at(candidates[i].clusters),
                                                      candidates[i].trajectories, coding_order);
           } catch (const Error& e) {
             if (e.kind() != ErrorKind::kUsage) throw;
@@ -536,22 +543,27 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequen
   };
   std::vector<Candidate> first;
   for (const int clusters : cluster_counts)
-    for (const bool trajectories : trajectory_models) first.push_back({bits, clusters, trajectories});
+    for (const bool trajectories : trajectory_models) first.push_back({half_bits, clusters, trajectories});
   try_all(first);
   if (!best) throw *missed;
   const int chosen = best->clusters();
   const bool trajectories = best->trajectory_model();
   if (cluster_counts.size() > 1)
-    try_all({{bits, chosen * 7 / 10, trajectories}, {bits, chosen * 14 / 10, trajectories}});
+    try_all({{half_bits, chosen * 7 / 10, trajectories}, {half_bits, chosen * 14 / 10, trajectories}});
   if (bits_auto) {
     const int clusters = best->clusters();
     const uint64_t before = best->planned_bytes();
-    try_all({{bits - 1, clusters, trajectories}, {bits + 1, clusters, trajectories}});
+    try_all({{half_bits - 2, clusters, trajectories}, {half_bits + 2, clusters, trajectories}});
     if (best->planned_bytes() < before) {
-      const int direction = best->bits() < bits ? -1 : 1;
-      for (int b = bits + 2 * direction; b >= kMinBits && b <= kMaxBits && try_all({{b, clusters, trajectories}}); b += direction) {
+      const int direction = best->half_bits() < half_bits ? -2 : 2;
+      for (int h = half_bits + 2 * direction; h >= 2 * kMinBits && h <= 2 * kMaxBits && try_all({{h, clusters, trajectories}}); h += direction) {
       }
     }
+    const int whole = best->half_bits();
+    std::vector<Candidate> halves;
+    for (const int h : {whole - 1, whole + 1})
+      if (h >= 2 * kMinBits && h <= 2 * kMaxBits) halves.push_back({h, clusters, trajectories});
+    try_all(halves);
   }
   return best;
 }

@@ -67,7 +67,7 @@ Options parse_options(const CodecSettings& settings) {
 
 std::vector<CodecOption> cpca_wpt_options() {
   return {{"bits", "cpca-wpt: quantization bits of the mean shape (the base mesh), 4 … 24, or auto (12; with --target-kg, from 12 "
-                   "towards the neighbour whose planned stream is smaller while it shrinks)",
+                   "towards the neighbour whose planned stream is smaller while it shrinks, then half a bit either side)",
            OptionKind::kText, "auto", 0, 0},
           {"clusters", "cpca-wpt: k, the clusters of k-means on the vertices' trajectories, 1 … 255, or auto (10, the paper's; with "
                        "--target-kg the one of 5, 10, 20 and 40 whose planned stream is smallest, then 0.7 and 1.4 times it if smaller)",
