@@ -55,8 +55,8 @@ struct AffineFrame {
 
 namespace syntax {
 
-inline constexpr ResidualNames kMatrixResidual{"matrix_nonzero", "matrix_prefix", "matrix_sign_suffix", "matrix_residual", "matrix_sign", "matrix_top", "matrix_suffix"};
-inline constexpr ResidualNames kDirectMotion{"direct_nonzero", "direct_prefix", "direct_sign_suffix", "direct_motion", "direct_sign", "direct_top", "direct_suffix"};
+inline constexpr ResidualNames kMatrixResidual = M4MESH_RESIDUAL_NAMES("matrix", "matrix_residual");
+inline constexpr ResidualNames kDirectMotion = M4MESH_RESIDUAL_NAMES("direct", "direct_motion");
 
 template <class IO>
 void describe(IO& io, AffineFrame& f) {

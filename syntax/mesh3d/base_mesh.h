@@ -60,9 +60,9 @@ void describe(IO& io, BaseMeshData& b) {
 // then x, y, z predicted otherwise.
 inline constexpr int kParallelogramChannel = 0;
 inline constexpr int kNeighbourChannel = 3;
-inline constexpr ResidualNames kPositionNames{"position_nonzero", "position_prefix", "position_sign_suffix", "position", "position_sign", "position_top", "position_suffix"};
-inline constexpr ResidualNames kFarNames{"far_nonzero", "far_prefix", "far_sign_suffix", "far_vertex", "far_sign", "far_top", "far_suffix"};
-inline constexpr ResidualNames kOrderNames{"order_nonzero", "order_prefix", "order_sign_suffix", "vertex_order_difference", "order_sign", "order_top", "order_suffix"};
+inline constexpr ResidualNames kPositionNames = M4MESH_RESIDUAL_NAMES("position", "position");
+inline constexpr ResidualNames kFarNames = M4MESH_RESIDUAL_NAMES("far", "far_vertex");
+inline constexpr ResidualNames kOrderNames = M4MESH_RESIDUAL_NAMES("order", "vertex_order_difference");
 
 // The adaptive state of a base mesh's bins.
 struct BaseMeshContexts {

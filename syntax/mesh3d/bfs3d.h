@@ -42,7 +42,7 @@ namespace syntax {
 
 inline constexpr const char* kAxisBins[3] = {"bins_x", "bins_y", "bins_z"};
 inline constexpr const char* kAxisRaw[3] = {"raw_x", "raw_y", "raw_z"};
-inline constexpr ResidualNames kMotionResidual{"motion_nonzero", "motion_prefix", "motion_sign_suffix", "motion_residual", "motion_sign", "motion_top", "motion_suffix"};
+inline constexpr ResidualNames kMotionResidual = M4MESH_RESIDUAL_NAMES("motion", "motion_residual");
 
 template <class IO>
 void describe(IO& io, Bfs3dHeader& h) {

@@ -96,15 +96,13 @@ struct CpcaRefinement {
 
 namespace syntax {
 
-inline constexpr ResidualNames kCpcaCluster{"cluster_nonzero", "cluster_prefix", "cluster_sign_suffix", "cluster_of_vertex", "cluster_sign", "cluster_top", "cluster_suffix"};
-inline constexpr ResidualNames kCpcaBasis{"basis_nonzero", "basis_prefix", "basis_sign_suffix", "basis", "basis_sign", "basis_top", "basis_suffix"};
-inline constexpr ResidualNames kCpcaCoefficient{"coefficient_nonzero", "coefficient_prefix", "coefficient_sign_suffix", "coefficient", "coefficient_sign", "coefficient_top", "coefficient_suffix"};
-inline constexpr ResidualNames kCpcaMeshBasis{"mesh_basis_nonzero", "mesh_basis_prefix", "mesh_basis_sign_suffix", "mesh_basis", "mesh_basis_sign", "mesh_basis_top", "mesh_basis_suffix"};
-inline constexpr ResidualNames kCpcaTrajectoryBasis{"trajectory_basis_nonzero", "trajectory_basis_prefix", "trajectory_basis_sign_suffix",
-                                                    "trajectory_basis", "trajectory_basis_sign", "trajectory_basis_top", "trajectory_basis_suffix"};
-inline constexpr ResidualNames kCpcaTrajectoryCoefficient{"trajectory_coefficient_nonzero", "trajectory_coefficient_prefix",
-                                                          "trajectory_coefficient_sign_suffix", "trajectory_coefficient", "trajectory_coefficient_sign", "trajectory_coefficient_top", "trajectory_coefficient_suffix"};
-inline constexpr ResidualNames kCpcaTranslation{"translation_nonzero", "translation_prefix", "translation_sign_suffix", "translation", "translation_sign", "translation_top", "translation_suffix"};
+inline constexpr ResidualNames kCpcaCluster = M4MESH_RESIDUAL_NAMES("cluster", "cluster_of_vertex");
+inline constexpr ResidualNames kCpcaBasis = M4MESH_RESIDUAL_NAMES("basis", "basis");
+inline constexpr ResidualNames kCpcaCoefficient = M4MESH_RESIDUAL_NAMES("coefficient", "coefficient");
+inline constexpr ResidualNames kCpcaMeshBasis = M4MESH_RESIDUAL_NAMES("mesh_basis", "mesh_basis");
+inline constexpr ResidualNames kCpcaTrajectoryBasis = M4MESH_RESIDUAL_NAMES("trajectory_basis", "trajectory_basis");
+inline constexpr ResidualNames kCpcaTrajectoryCoefficient = M4MESH_RESIDUAL_NAMES("trajectory_coefficient", "trajectory_coefficient");
+inline constexpr ResidualNames kCpcaTranslation = M4MESH_RESIDUAL_NAMES("translation", "translation");
 inline constexpr int kCpcaCoefficientChannel = 3;  // the basis uses 0 … 2 (x, y, z)
 
 template <class IO>

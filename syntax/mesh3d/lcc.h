@@ -55,10 +55,10 @@ inline constexpr int kLccRadiusChannel = 4;
 inline constexpr int kLccHeightChannel = 5;
 inline constexpr int kLccPredictedChannels = 6;
 inline constexpr int kLccChannels = 12;
-inline constexpr ResidualNames kLccDirect{"direct_nonzero", "direct_prefix", "direct_sign_suffix", "direct_position", "direct_sign", "direct_top", "direct_suffix"};
-inline constexpr ResidualNames kLccTheta{"theta_nonzero", "theta_prefix", "theta_sign_suffix", "theta", "theta_sign", "theta_top", "theta_suffix"};
-inline constexpr ResidualNames kLccRadius{"rho_nonzero", "rho_prefix", "rho_sign_suffix", "rho", "rho_sign", "rho_top", "rho_suffix"};
-inline constexpr ResidualNames kLccHeight{"zeta_nonzero", "zeta_prefix", "zeta_sign_suffix", "zeta", "zeta_sign", "zeta_top", "zeta_suffix"};
+inline constexpr ResidualNames kLccDirect = M4MESH_RESIDUAL_NAMES("direct", "direct_position");
+inline constexpr ResidualNames kLccTheta = M4MESH_RESIDUAL_NAMES("theta", "theta");
+inline constexpr ResidualNames kLccRadius = M4MESH_RESIDUAL_NAMES("rho", "rho");
+inline constexpr ResidualNames kLccHeight = M4MESH_RESIDUAL_NAMES("zeta", "zeta");
 
 template <class IO>
 void describe(IO& io, LccHeader& h) {

@@ -25,6 +25,11 @@ struct ResidualNames {
   const char* suffix;
 };
 
+// A family's names from its stem (motion: motion_nonzero, motion_prefix, …)
+// and the name of the residual as a whole.
+#define M4MESH_RESIDUAL_NAMES(stem, element)                                                                                        \
+  ResidualNames { stem "_nonzero", stem "_prefix", stem "_sign_suffix", element, stem "_sign", stem "_top", stem "_suffix" }
+
 // A zero flag, then |r| − 1 in exp-Golomb of order k, where k follows a
 // running mean of the channel's magnitudes. The zero flag and the prefix
 // bins are arithmetic-coded with contexts per channel and class of the
