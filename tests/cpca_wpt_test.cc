@@ -124,35 +124,43 @@ TEST(CpcaWpt, BudgetAndTargetAreMet) {
 }
 
 // With a KG target, clusters and components left to auto: of 5, 10, 20 and
-// 40 clusters the one whose plan is smallest, with every component; the
-// same stream as that count given.
+// 40 clusters the one whose stream is smallest, then counts 0.7 and 1.4, a
+// quarter and an eighth of an octave either side; with every component and
+// the model it chose, the same stream as that count given, and no larger
+// than other counts. This sequence goes down to 1.
 TEST(CpcaWpt, ATargetChoosesTheClusterCount) {
   const MeshSequence s = test::test_sequence(12, 6);
-  const Encode3dResult chosen = encode_mesh3d(s, cpca({{"target-kg", "1"}}));
-  const auto clusters = std::find_if(chosen.statistics.begin(), chosen.statistics.end(), [](const CodecStatistic& c) { return c.first == "clusters"; });
-  ASSERT_NE(clusters, chosen.statistics.end());
-  const std::string count = std::to_string(static_cast<int>(clusters->second));
-  EXPECT_EQ(encode_mesh3d(s, cpca({{"target-kg", "1"}, {"clusters", count}, {"components", "4096"}})).stream, chosen.stream);
-  for (const char* other : {"5", "10", "20", "40"}) {
-    const uint64_t bytes = encode_mesh3d(s, cpca({{"target-kg", "1"}, {"clusters", other}, {"components", "4096"}})).stream.size();
-    EXPECT_LE(chosen.stream.size(), bytes + bytes / 50) << other << " clusters";  // the choice is on planned sizes
-  }
+  const Encode3dResult chosen = encode_mesh3d(s, cpca({{"target-kg", "1"}, {"bits", "8"}}));
+  auto statistic = [&](const char* name) {
+    const auto found = std::find_if(chosen.statistics.begin(), chosen.statistics.end(), [&](const CodecStatistic& c) { return c.first == name; });
+    EXPECT_NE(found, chosen.statistics.end()) << name;
+    return found == chosen.statistics.end() ? -1.0 : found->second;
+  };
+  EXPECT_EQ(statistic("clusters"), 1);
+  const char* model = statistic("trajectory model") == 1 ? "trajectory" : "shape";
+  auto with = [&](const char* count) {
+    return encode_mesh3d(s, cpca({{"target-kg", "1"}, {"bits", "8"}, {"model", model}, {"clusters", count}, {"components", "4096"}})).stream;
+  };
+  EXPECT_EQ(with("1"), chosen.stream);
+  for (const char* other : {"2", "3", "5", "10", "20", "40"}) EXPECT_LE(chosen.stream.size(), with(other).size()) << other << " clusters";
   EXPECT_THROW(encode_mesh3d(s, cpca({{"clusters", "0"}})), Error);
   EXPECT_THROW(encode_mesh3d(s, cpca({{"components", "many"}})), Error);
 }
 
 // A target's search tries the mean shape's grid half a bit either side of
-// the whole bits it settles on (2^(b ± 1/2) − 1 steps), and takes one here:
-// its stream is no larger than those of the whole bits around its choice.
+// the whole bits it settles on (2^(b ± 1/2) − 1 steps), and takes one here
+// (5 clusters): its stream is no larger than those of the whole bits around
+// its choice.
 TEST(CpcaWpt, ATargetsMeanShapeGridMayLieHalfABitBetween) {
   const MeshSequence s = test::test_sequence(12, 6);
-  const Encode3dResult chosen = encode_mesh3d(s, cpca({{"target-kg", "1"}}));
+  const Encode3dResult chosen = encode_mesh3d(s, cpca({{"target-kg", "1"}, {"clusters", "5"}}));
   const auto bits = std::find_if(chosen.statistics.begin(), chosen.statistics.end(), [](const CodecStatistic& c) { return c.first == "mean shape bits"; });
   ASSERT_NE(bits, chosen.statistics.end());
   EXPECT_EQ(bits->second, 8.5);  // this sequence's, between 8 and 9
   for (const double whole : {std::floor(bits->second), std::ceil(bits->second)}) {
-    const uint64_t bytes = encode_mesh3d(s, cpca({{"target-kg", "1"}, {"bits", std::to_string(static_cast<int>(whole))}})).stream.size();
-    EXPECT_LE(chosen.stream.size(), bytes + bytes / 50) << whole << " bits";  // the choice is on planned sizes
+    const uint64_t bytes =
+        encode_mesh3d(s, cpca({{"target-kg", "1"}, {"clusters", "5"}, {"bits", std::to_string(static_cast<int>(whole))}})).stream.size();
+    EXPECT_LE(chosen.stream.size(), bytes) << whole << " bits";
   }
   const Grid whole = Grid::over(s.frames[0], 10, true), same = Grid::over_half_bits(s.frames[0], 20, true),
              half = Grid::over_half_bits(s.frames[0], 21, true);
@@ -386,6 +394,7 @@ TEST(CpcaWptRealData, WptNeverNeedsMoreBytesThanRpt) {
     }
   }
 }
+
 
 }  // namespace
 }  // namespace m4mesh

@@ -128,8 +128,8 @@ class CpcaEncoder final : public CodecEncoder3d {
     for (uint32_t f = 0; f < s.frames.size(); ++f) sink.decoded(f, animation.frame(f));
   }
 
-  // The bytes of the stream planned (estimated: every unit's size, and the
-  // fixed part).
+  // The stream's bytes before its hash units: as coded with --target-kg,
+  // else estimated (every operator's bytes and the fixed part).
   uint64_t planned_bytes() const { return plan_.bytes; }
   int clusters() const { return requested_clusters_; }
   int half_bits() const { return half_bits_; }
@@ -212,7 +212,10 @@ class CpcaEncoder final : public CodecEncoder3d {
       q = best.noise;
     }
     plan_ = plan_for(s, q, true);
-    if (target_kg_ > 0) reach_target(s);
+    if (target_kg_ > 0) {
+      reach_target(s);
+      plan_.bytes = coded_bytes();
+    }
     order_seconds_ = seconds_since(start);
   }
 
@@ -380,6 +383,20 @@ class CpcaEncoder final : public CodecEncoder3d {
     return unit;
   }
 
+  // The bytes before the hash units of the stream that sends the plan, its
+  // operators in the units `encode` makes.
+  uint64_t coded_bytes() {
+    uint64_t bytes = fixed_bytes_;
+    double group_bytes = static_cast<double>(group_bytes_);
+    for (size_t sent = 0; sent < plan_.sent;) {
+      const std::vector<Operator*> unit = next_unit(sent, static_cast<uint64_t>(group_bytes));
+      group_bytes = std::min(group_bytes * group_growth_, kMaxGroupGrowth * static_cast<double>(group_bytes_));
+      bytes += unit_bytes(unit);
+      sent += unit.size();
+    }
+    return bytes;
+  }
+
   // The bytes of the unit of these operators in the stream.
   uint64_t unit_bytes(std::span<Operator* const> operators) const {
     BitWriter writer;
@@ -496,7 +513,8 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequen
                                          coding_order);
   // The cluster count and model whose plan reaches the target in the fewest
   // bytes, then the counts √2 either side of it, then the mean shape's bits
-  // from 12 towards the smaller plan, then half a bit either side.
+  // from 12 towards the smaller plan, then half a bit either side, then the
+  // counts 2^(1/4) and 2^(1/8) either side at those bits.
   // Candidates run side by side; the first of the smallest is kept, whatever
   // the threads.
   struct Candidate {
@@ -564,6 +582,16 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequen
     for (const int h : {whole - 1, whole + 1})
       if (h >= 2 * kMinBits && h <= 2 * kMaxBits) halves.push_back({h, clusters, trajectories});
     try_all(halves);
+  }
+  if (cluster_counts.size() > 1) {
+    const int h = best->half_bits();
+    for (const int percent : {119, 109}) {
+      const int c = best->clusters();
+      std::vector<Candidate> near;
+      for (const int n : {c * 100 / percent, c * percent / 100})
+        if (n >= 1 && n != c) near.push_back({h, n, trajectories});
+      try_all(near);
+    }
   }
   return best;
 }

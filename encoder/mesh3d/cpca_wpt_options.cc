@@ -70,7 +70,8 @@ std::vector<CodecOption> cpca_wpt_options() {
                    "towards the neighbour whose planned stream is smaller while it shrinks, then half a bit either side)",
            OptionKind::kText, "auto", 0, 0},
           {"clusters", "cpca-wpt: k, the clusters of k-means on the vertices' trajectories, 1 … 255, or auto (10, the paper's; with "
-                       "--target-kg the one of 5, 10, 20 and 40 whose planned stream is smallest, then 0.7 and 1.4 times it if smaller)",
+                       "--target-kg the one of 5, 10, 20 and 40 whose planned stream is smallest, then 0.7 and 1.4 times it, then 2^(±1/4) "
+                       "and 2^(±1/8) times it, each if smaller)",
            OptionKind::kText, "auto", 0, 0},
           {"components", "cpca-wpt: at most this many principal components per cluster, 1 … 4096, or auto (40, the paper's, or every "
                          "one for --max-bytes or --target-kg)",
