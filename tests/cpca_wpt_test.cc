@@ -127,10 +127,11 @@ TEST(CpcaWpt, BudgetAndTargetAreMet) {
 // 40 clusters the one whose stream is smallest, then counts 0.7 and 1.4, a
 // quarter and an eighth of an octave either side; with every component and
 // the model it chose, the same stream as that count given, and no larger
-// than other counts. This sequence goes down to 1.
+// than other counts. Here 5, then 3 (0.7 times), 2 (2^(−1/4) times) and 1
+// (2^(−1/8) times 2): each step of the search shows.
 TEST(CpcaWpt, ATargetChoosesTheClusterCount) {
   const MeshSequence s = test::test_sequence(12, 6);
-  const Encode3dResult chosen = encode_mesh3d(s, cpca({{"target-kg", "1"}, {"bits", "8"}}));
+  const Encode3dResult chosen = encode_mesh3d(s, cpca({{"target-kg", "2"}, {"bits", "8"}}));
   auto statistic = [&](const char* name) {
     const auto found = std::find_if(chosen.statistics.begin(), chosen.statistics.end(), [&](const CodecStatistic& c) { return c.first == name; });
     EXPECT_NE(found, chosen.statistics.end()) << name;
@@ -139,7 +140,7 @@ TEST(CpcaWpt, ATargetChoosesTheClusterCount) {
   EXPECT_EQ(statistic("clusters"), 1);
   const char* model = statistic("trajectory model") == 1 ? "trajectory" : "shape";
   auto with = [&](const char* count) {
-    return encode_mesh3d(s, cpca({{"target-kg", "1"}, {"bits", "8"}, {"model", model}, {"clusters", count}, {"components", "4096"}})).stream;
+    return encode_mesh3d(s, cpca({{"target-kg", "2"}, {"bits", "8"}, {"model", model}, {"clusters", count}, {"components", "4096"}})).stream;
   };
   EXPECT_EQ(with("1"), chosen.stream);
   for (const char* other : {"2", "3", "5", "10", "20", "40"}) EXPECT_LE(chosen.stream.size(), with(other).size()) << other << " clusters";
@@ -180,13 +181,26 @@ void for_each_refinement_unit(const std::vector<uint8_t>& stream, Visit visit) {
   }
 }
 
-// The refinements of a stream's refinement units, in order.
+// The refinements of a stream's refinement units, in order (from version
+// 5 a group's list is read from its bins).
 std::vector<CpcaRefinementHeader> refinements(const std::vector<uint8_t>& stream) {
+  const auto [object, header] = read_headers<CpcaHeader>(split_container(stream));
+  std::vector<uint8_t> started(header.cluster_count, 0);
   std::vector<CpcaRefinementHeader> all;
   for_each_refinement_unit(stream, [&](const ContainerUnit&, syntax::ReadIO& io) {
     CpcaRefinement r;
+    r.version = object.version;
     syntax::describe(io, r);
-    for (const CpcaRefinementHeader& h : r.refinements()) all.push_back(h);
+    if (r.kind == kCpcaGroup && cpca_group_list_in_bins(r.version)) {
+      syntax::EntropyReadIO<false> symbols(r.bins, r.raw, syntax::SectionPlace{.version = r.version});
+      syntax::CpcaGroupContexts contexts;
+      syntax::describe_group_list(symbols, contexts, std::span(r.group), header.cluster_count, [&](uint32_t c) { return started[c] != 0; },
+                                  [&](const CpcaRefinementHeader& h, bool) { started[h.cluster] |= h.kind == kCpcaStart; });
+    }
+    for (const CpcaRefinementHeader& h : r.refinements()) {
+      if (h.kind == kCpcaStart) started[h.cluster] = 1;
+      all.push_back(h);
+    }
   });
   return all;
 }

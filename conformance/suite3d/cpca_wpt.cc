@@ -50,9 +50,23 @@ std::vector<uint8_t> refinement_bytes(uint32_t cluster, uint32_t kind, uint32_t 
   return refinement_unit_bytes(CpcaRefinement{cluster, kind, shift, {}, 0, {}, {}}, symbols);
 }
 
-// A group unit (unit_kind 4) of these refinements in a stream of `version`.
-std::vector<uint8_t> group_bytes(std::vector<CpcaRefinementHeader> group, syntax::EntropyWriteIO<false>& symbols,
-                                 uint32_t version = kLatestVersion) {
+// A group unit (unit_kind 4) of these refinements in a stream of
+// `version`: from version 5 its list in bins, of clusters `started` tells
+// (the list's starts set it), then the symbols `data` writes.
+std::vector<uint8_t> group_bytes(std::vector<CpcaRefinementHeader> group, std::vector<uint8_t>& started, uint32_t version,
+                                 const std::function<void(syntax::EntropyWriteIO<false>&)>& data) {
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.version = version});
+  auto start = [&](const CpcaRefinementHeader& h, bool) {
+    if (h.kind == kCpcaStart) started.at(h.cluster) = 1;
+  };
+  if (cpca_group_list_in_bins(version)) {
+    syntax::CpcaGroupContexts contexts;
+    syntax::describe_group_list(symbols, contexts, std::span(group), static_cast<uint32_t>(started.size()),
+                                [&](uint32_t cluster) { return started.at(cluster) != 0; }, start);
+  } else {
+    for (const CpcaRefinementHeader& h : group) start(h, false);
+  }
+  data(symbols);
   return refinement_unit_bytes(CpcaRefinement{0, kCpcaGroup, 0, std::move(group), 0, {}, {}, version}, symbols);
 }
 
@@ -65,13 +79,14 @@ FieldBytes group_field(const char* name, uint32_t version = kLatestVersion) {
   return field_bytes(name, header, group);
 }
 
-// A group unit of the latest version with its list edited.
+// A group unit of version 4 with its list edited.
 void edit_group_list(ContainerUnit& unit, const std::function<void(std::vector<CpcaRefinementHeader>&)>& edit) {
   BitReader reader(unit.payload.data(), unit.payload.size());
   syntax::ReadIO in(reader);
   UnitHeader header;
   syntax::describe(in, header);
   CpcaRefinement r;
+  r.version = 4;
   syntax::describe(in, r);
   edit(r.group);
   BitWriter writer;
@@ -394,13 +409,10 @@ std::vector<uint8_t> cpca_limits_stream() {
 // - a group of 3: cluster 1's components of unit_kind 1 and 2 (its limit,
 //   min(3M, N) = 2), then cluster 254's trajectory component (unit_kind 3)
 //   at group_shift 63: a coder of each kind in one unit.
-std::vector<uint8_t> cpca_group_limits_stream(uint32_t version) {
-  OneVertexClusters stream(version);
-  ContainerWriter& writer = stream.writer;
-  const CpcaMeshPrediction& mesh = stream.mesh;
-  // values(i): the i-th value of a refinement, −2 … 2.
-  auto group = [&](const std::vector<CpcaRefinementHeader>& refinements) {
-    syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.version = version});
+// Writes a group unit of these refinements over OneVertexClusters, the
+// i-th value of each −2 … 2; `started` as group_bytes's.
+void write_one_vertex_group(OneVertexClusters& stream, std::vector<uint8_t>& started, const std::vector<CpcaRefinementHeader>& refinements) {
+  stream.writer.unit(group_bytes(refinements, started, stream.version, [&](syntax::EntropyWriteIO<false>& symbols) {
     syntax::CpcaCoders coders;
     for (const CpcaRefinementHeader& h : refinements) {
       const size_t per_member = h.kind == kCpcaTrajectory ? 1 : 3;
@@ -408,17 +420,61 @@ std::vector<uint8_t> cpca_group_limits_stream(uint32_t version) {
           coefficients(h.kind == kCpcaStart ? 0 : 6 / per_member);
       for (std::vector<int32_t>* values : {&translation, &basis, &coefficients})
         for (size_t i = 0; i < values->size(); ++i) (*values)[i] = static_cast<int32_t>((h.cluster + 3 * i) % 5) - 2;
-      describe_refinement(symbols, coders, mesh, h, translation, basis, coefficients);
+      describe_refinement(symbols, coders, stream.mesh, h, translation, basis, coefficients);
     }
-    writer.unit(group_bytes(refinements, symbols, version));
-  };
+  }));
+}
+
+std::vector<uint8_t> cpca_group_limits_stream(uint32_t version) {
+  OneVertexClusters stream(version);
+  std::vector<uint8_t> started(kCpcaMaxClusters, 0);
+  auto group = [&](const std::vector<CpcaRefinementHeader>& refinements) { write_one_vertex_group(stream, started, refinements); };
   std::vector<CpcaRefinementHeader> starts;
   for (uint32_t c = 0; c < kCpcaMaxClusters; ++c)
     starts.push_back({c, kCpcaStart, c == 0 ? 0 : c == kCpcaMaxClusters - 1 ? kCpcaMaxShift : kCpcaShiftBias});
   group(starts);
   group({{0, kCpcaComponent, kCpcaShiftBias}});
   group({{1, kCpcaComponent, kCpcaShiftBias}, {1, kCpcaMeshComponent, kCpcaShiftBias}, {kCpcaMaxClusters - 1, kCpcaTrajectory, kCpcaMaxShift}});
-  return writer.finish();
+  return stream.writer.finish();
+}
+
+// A version 5 clustered-PCA stream over OneVertexClusters whose group
+// lists' shifts walk 0 … 63 at random (a fixed seed; a third of the time
+// the same shift, a third one up or down, a third anywhere), then climb a
+// ladder to the longest prefixes, so that the shift differences of starts
+// and of components reach every context: a group of the 255 starts, then
+// every cluster's components of unit_kind 1, 2 and 3 in three groups.
+std::vector<uint8_t> cpca_group_shifts_stream() {
+  OneVertexClusters stream;
+  std::vector<uint8_t> started(kCpcaMaxClusters, 0);
+  uint32_t state = 12345, shift = kCpcaShiftBias;
+  auto next_shift = [&] {
+    state = state * 1103515245u + 12345u;
+    const uint32_t step = (state >> 16) % 3;
+    if (step == 1) shift = (state >> 20) % 2 == 0 ? std::max(shift, 1u) - 1 : std::min(shift + 1, kCpcaMaxShift);
+    if (step == 2) shift = (state >> 20) % (kCpcaMaxShift + 1);
+    return shift;
+  };
+  // The list's last 104 shifts: from 0 up and from 63 down, 24 times the
+  // same (the order k falls to 0), a step of 1 or 2 (class 1 or 2), then a
+  // jump of 40 (prefix length 5).
+  std::vector<uint32_t> ladder;
+  for (const uint32_t step : {1u, 2u})
+    for (const bool up : {true, false}) {
+      const uint32_t from = up ? 0 : kCpcaMaxShift;
+      ladder.insert(ladder.end(), 24, from);
+      ladder.push_back(up ? from + step : from - step);
+      ladder.push_back(up ? from + step + 40 : from - step - 40);
+    }
+  for (const uint32_t kind : {kCpcaStart, kCpcaComponent, kCpcaMeshComponent, kCpcaTrajectory}) {
+    std::vector<CpcaRefinementHeader> group;
+    for (uint32_t c = 0; c < kCpcaMaxClusters; ++c) {
+      const bool on_ladder = c + ladder.size() >= kCpcaMaxClusters;
+      group.push_back({c, kind, on_ladder ? ladder[c + ladder.size() - kCpcaMaxClusters] : next_shift()});
+    }
+    write_one_vertex_group(stream, started, group);
+  }
+  return stream.writer.finish();
 }
 
 }  // namespace
@@ -531,6 +587,15 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
   Encode3dOptions second_version = cpca({{"clusters", "4"}, {"group-bytes", "150"}, {"group-growth", "1"}});
   second_version.version = 2;
   suite.push_back(valid("cpca-26-groups-version-2", "cpca-18's groups in a version 2 stream", {"cpca"}, flag, second_version, traced));
+  // Version 4's group lists in the units' fields.
+  Encode3dOptions fourth_version = second_version;
+  fourth_version.version = 4;
+  suite.push_back(valid("cpca-28-groups-version-4", "cpca-18's groups in a version 4 stream: group lists in the units' fields", {"cpca"},
+                        flag, fourth_version, traced));
+  suite.push_back(written_case("cpca-29-group-limits-version-4", "cpca-21's groups at their limits in a version 4 stream", {"cpca"},
+                               cpca_group_limits_stream(4)));
+  suite.push_back(written_case("cpca-30-group-shifts", "version 5 group lists whose shifts walk 0 … 63 at random: 255 starts, then the "
+                               "components of unit_kind 1, 2 and 3 of every cluster, a group each", {"cpca"}, cpca_group_shifts_stream()));
   return suite;
 }
 
@@ -749,8 +814,13 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                             ErrorKind::kStructure, "shift", kNoPlane));
     suite.push_back(invalid("x-136-cpca-group-empty", "group_size 0", {"cpca"}, put(group_field("group_size"), 0), ErrorKind::kOutOfRange,
                             "group_size", kNoPlane));
-    suite.push_back(invalid("x-137-cpca-group-cluster-beyond", "a group's first refinement for cluster 4 of 4", {"cpca"},
-                            put(group_field("group_cluster"), 4), ErrorKind::kOutOfRange, "group_cluster", kNoPlane));
+    // Version 4's lists in fields (from version 5 the list is in bins).
+    const std::vector<uint8_t> fourth_version = stream_of(valid, "cpca-28-groups-version-4");
+    auto put_v4 = [&](FieldBytes at, uint64_t value) {
+      return edited(fourth_version, [&, at, value](ContainerParts& p) { put_field(first_group(p).payload, at, value); });
+    };
+    suite.push_back(invalid("x-137-cpca-group-cluster-beyond", "a version 4 group's first refinement for cluster 4 of 4", {"cpca"},
+                            put_v4(group_field("group_cluster", 4), 4), ErrorKind::kOutOfRange, "group_cluster", kNoPlane));
     // Kinds and shifts out of their range: a version 2 list's bytes hold them, version 3's 2 and 6 bits do not.
     const std::vector<uint8_t> second_version = stream_of(valid, "cpca-26-groups-version-2");
     auto put_v2 = [&](FieldBytes at, uint64_t value) {
@@ -761,8 +831,8 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
     suite.push_back(invalid("x-139-cpca-group-shift-range", "a version 2 group's first refinement at group_shift 64", {"cpca"},
                             put_v2(group_field("group_shift", 2), kCpcaMaxShift + 1), ErrorKind::kOutOfRange, "group_shift", kNoPlane));
     // A start of the group made a component: its cluster has not started.
-    suite.push_back(invalid("x-140-cpca-group-not-started", "a group's first start made a component (unit_kind 1) of a cluster not started",
-                            {"cpca"}, edited(groups,
+    suite.push_back(invalid("x-140-cpca-group-not-started", "a version 4 group's first start made a component (unit_kind 1) of a cluster not started",
+                            {"cpca"}, edited(fourth_version,
                                              [&](ContainerParts& p) {
                                                edit_group_list(first_group(p), [](std::vector<CpcaRefinementHeader>& entries) {
                                                  size_t j = 0;
@@ -772,8 +842,8 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                                              }),
                             ErrorKind::kStructure, "group_kind", kNoPlane));
     // A component of the group made a start: its cluster started earlier in the group.
-    suite.push_back(invalid("x-141-cpca-group-second-start", "a group's component made a second start of a cluster the group started",
-                            {"cpca"}, edited(groups,
+    suite.push_back(invalid("x-141-cpca-group-second-start", "a version 4 group's component made a second start of a cluster the group started",
+                            {"cpca"}, edited(fourth_version,
                                              [&](ContainerParts& p) {
                                                edit_group_list(first_group(p), [](std::vector<CpcaRefinementHeader>& entries) {
                                                  for (size_t j = 0; j < entries.size(); ++j)
@@ -795,14 +865,16 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
     suite.push_back(invalid("x-142-cpca-group-beyond-components", "a group of two more components of cluster 0, which has room for one",
                             {"cpca"}, edited(limits,
                                              [](ContainerParts& p) {
-                                               syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
-                                               syntax::CpcaCoders coders;
-                                               for (int k = 0; k < 2; ++k) {
-                                                 std::vector<int32_t> basis{1, 1, 1}, coefficients{1, 1};
-                                                 syntax::describe_operator(symbols, coders.component, basis, coefficients);
-                                               }
+                                               std::vector<uint8_t> started(kCpcaMaxClusters, 1);
                                                const std::vector<uint8_t> unit = group_bytes(
-                                                   {{0, kCpcaComponent, kCpcaShiftBias}, {0, kCpcaComponent, kCpcaShiftBias}}, symbols);
+                                                   {{0, kCpcaComponent, kCpcaShiftBias}, {0, kCpcaComponent, kCpcaShiftBias}}, started,
+                                                   kLatestVersion, [](syntax::EntropyWriteIO<false>& symbols) {
+                                                     syntax::CpcaCoders coders;
+                                                     for (int k = 0; k < 2; ++k) {
+                                                       std::vector<int32_t> basis{1, 1, 1}, coefficients{1, 1};
+                                                       syntax::describe_operator(symbols, coders.component, basis, coefficients);
+                                                     }
+                                                   });
                                                p.units.push_back(ContainerUnit{0, 0, unit});
                                              }),
                             ErrorKind::kStructure, "group_cluster", kNoPlane));
@@ -810,10 +882,36 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                             {"cpca"},
                             edited(limits, [](ContainerParts& p) { p.units[refinement_unit(p, 2)].payload.push_back(0x00); }),
                             ErrorKind::kStructure, "trajectory_coefficient", kNoPlane));
-    suite.push_back(invalid("x-144-cpca-group-cluster-255", "a group's first refinement for cluster 255, one past the most clusters",
+    const std::vector<uint8_t> fourth_limits = stream_of(valid, "cpca-29-group-limits-version-4");
+    suite.push_back(invalid("x-144-cpca-group-cluster-255", "a version 4 group's first refinement for cluster 255, one past the most clusters",
                             {"cpca"},
-                            edited(limits, [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, group_field("group_cluster"), 255); }),
+                            edited(fourth_limits,
+                                   [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, group_field("group_cluster", 4), 255); }),
                             ErrorKind::kOutOfRange, "group_cluster", kNoPlane));
+    // Version 5's list in bins: the first group of cpca-21 replaced by one
+    // whose first refinement is written symbol by symbol.
+    auto first_list = [&](const std::function<void(syntax::EntropyWriteIO<false>&)>& symbols_of) {
+      return edited(limits, [&](ContainerParts& p) {
+        syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+        symbols_of(symbols);
+        p.units[refinement_unit(p, 0)].payload = refinement_unit_bytes(CpcaRefinement{0, kCpcaGroup, 0, {CpcaRefinementHeader{}}, 0, {}, {}}, symbols);
+      });
+    };
+    suite.push_back(invalid("x-154-cpca-group-list-cluster-255", "a version 5 group's first group_cluster 255 (8 raw bits of 255 clusters)",
+                            {"cpca"}, first_list([](syntax::EntropyWriteIO<false>& symbols) {
+                              uint32_t cluster = kCpcaMaxClusters;
+                              symbols.raw("group_cluster", 8, cluster);
+                            }),
+                            ErrorKind::kOutOfRange, "group_cluster", kNoPlane));
+    suite.push_back(invalid("x-155-cpca-group-list-shift", "a version 5 group's first start at group_shift 16 − 17", {"cpca"},
+                            first_list([](syntax::EntropyWriteIO<false>& symbols) {
+                              uint32_t cluster = 0;
+                              symbols.raw("group_cluster", 8, cluster);
+                              syntax::CpcaGroupContexts contexts;
+                              int32_t difference = -static_cast<int32_t>(kCpcaShiftBias) - 1;
+                              contexts.shift.describe(symbols, 0, difference, syntax::kCpcaGroupShift);
+                            }),
+                            ErrorKind::kOutOfRange, "group_shift", kNoPlane));
   }
   return suite;
 }

@@ -72,10 +72,10 @@ class CpcaDecoder final : public CodecDecoder3d {
                                      object_.version};
     if (trace_) {
       syntax::EntropyReadIO<true> symbols(r.bins, r.raw, place, trace_);
-      read_refinements(symbols, r.refinements());
+      read_refinements(symbols, r);
     } else {
       syntax::EntropyReadIO<false> symbols(r.bins, r.raw, place);
-      read_refinements(symbols, r.refinements());
+      read_refinements(symbols, r);
     }
     for (uint32_t f = 0; f < object_.frame_count; ++f) decoded.push_back(f);
   }
@@ -102,7 +102,8 @@ class CpcaDecoder final : public CodecDecoder3d {
   // A refinement's rules, checked as soon as its fields are read (the
   // unit's own, or a group's `group_*`), and counted: the later ones of a
   // group see the earlier ones as decoded.
-  void admit(syntax::ReadIO& io, const CpcaRefinementHeader& h, bool grouped) {
+  template <class IO>
+  void admit(IO& io, const CpcaRefinementHeader& h, bool grouped) {
     const char* cluster_field = grouped ? "group_cluster" : "cluster";
     const char* kind_field = grouped ? "group_kind" : "unit_kind";
     if (h.cluster >= header_.cluster_count)
@@ -123,10 +124,18 @@ class CpcaDecoder final : public CodecDecoder3d {
     ++count;
   }
 
-  // The unit's refinements in order, each applied once its symbols are
-  // read, with one set of coders; then the end of the sections.
+  // A version 5 group's list, then the unit's refinements in order, each
+  // applied once its symbols are read, with one set of coders; then the end
+  // of the sections.
   template <class IO>
-  void read_refinements(IO& io, const std::vector<CpcaRefinementHeader>& refinements) {
+  void read_refinements(IO& io, CpcaRefinement& r) {
+    if (r.kind == kCpcaGroup && cpca_group_list_in_bins(r.version)) {
+      syntax::CpcaGroupContexts contexts;
+      syntax::describe_group_list(
+          io, contexts, r.group, header_.cluster_count, [&](uint32_t cluster) { return started_[cluster] != 0; },
+          [&](const CpcaRefinementHeader& h, bool grouped) { admit(io, h, grouped); });
+    }
+    const std::vector<CpcaRefinementHeader> refinements = r.refinements();
     syntax::CpcaCoders coders;
     for (const CpcaRefinementHeader& h : refinements) {
       const size_t members = members_[h.cluster].size(), frames = object_.frame_count;

@@ -40,8 +40,9 @@ constexpr int kTrajectoryBasisFiner = 1;
 
 // The bytes of a refinement unit an operator in a group does not pay: the
 // start code, the unit header, the refinement fields less its entry in the
-// group's list, and the arithmetic coder's flush (about 4 bytes).
-constexpr uint64_t shared_in_group(uint32_t version) { return 4 + 5 + 7 - (version >= 3 ? 2 : 3) + 4; }
+// group's list (about a byte from version 5), and the arithmetic coder's
+// flush (about 4 bytes).
+constexpr uint64_t shared_in_group(uint32_t version) { return 4 + 5 + 7 - (version >= 5 ? 1 : version >= 3 ? 2 : 3) + 4; }
 
 class CpcaEncoder final : public CodecEncoder3d {
  public:
@@ -106,6 +107,7 @@ class CpcaEncoder final : public CodecEncoder3d {
       throw usage_error("--max-bytes " + std::to_string(max_bytes_) + " is below the " + std::to_string(sink.stream_bytes()) +
                         " bytes of the header and the base mesh (cpca-wpt)");
     CpcaAnimation animation(header_, mean_, static_cast<uint32_t>(s.frames.size()));
+    std::vector<uint8_t> started(header_.cluster_count, 0);
     size_t sent = 0;
     double group_bytes = static_cast<double>(group_bytes_);
     while (sent < plan_.sent) {
@@ -113,9 +115,9 @@ class CpcaEncoder final : public CodecEncoder3d {
       group_bytes = std::min(group_bytes * group_growth_, kMaxGroupGrowth * static_cast<double>(group_bytes_));
       const size_t planned = unit.size();
       if (max_bytes_ > 0)
-        while (!unit.empty() && sink.stream_bytes() + unit_bytes(unit) > max_bytes_) unit.pop_back();
+        while (!unit.empty() && sink.stream_bytes() + unit_bytes(unit, started) > max_bytes_) unit.pop_back();
       if (unit.empty()) break;
-      sink.unit(UnitType::kRefinement, 0, [&](syntax::WriteIO& io) { write_refinements(io, unit, *mesh_, header_.version); });
+      sink.unit(UnitType::kRefinement, 0, [&](syntax::WriteIO& io) { write_refinements(io, unit, *mesh_, header_.version, started); });
       for (const Operator* op : unit) apply(animation, members_[op->cluster], *op);
       sent += unit.size();
       sink.progress(sent, plan_.sent);
@@ -387,32 +389,36 @@ class CpcaEncoder final : public CodecEncoder3d {
   // operators in the units `encode` makes.
   uint64_t coded_bytes() {
     uint64_t bytes = fixed_bytes_;
+    std::vector<uint8_t> started(header_.cluster_count, 0);
     double group_bytes = static_cast<double>(group_bytes_);
     for (size_t sent = 0; sent < plan_.sent;) {
       const std::vector<Operator*> unit = next_unit(sent, static_cast<uint64_t>(group_bytes));
       group_bytes = std::min(group_bytes * group_growth_, kMaxGroupGrowth * static_cast<double>(group_bytes_));
-      bytes += unit_bytes(unit);
+      bytes += unit_bytes(unit, started);
+      for (const Operator* op : unit)
+        if (op->kind == kCpcaStart) started[op->cluster] = 1;
       sent += unit.size();
     }
     return bytes;
   }
 
-  // The bytes of the unit of these operators in the stream.
-  uint64_t unit_bytes(std::span<Operator* const> operators) const {
+  // The bytes of the unit of these operators in the stream, after the
+  // starts `started` lists.
+  uint64_t unit_bytes(std::span<Operator* const> operators, std::vector<uint8_t> started) const {
     BitWriter writer;
     syntax::WriteIO io(writer);
     UnitHeader header{static_cast<uint32_t>(UnitType::kRefinement), 0};
     syntax::describe(io, header);
-    write_refinements(io, operators, *mesh_, header_.version);
+    write_refinements(io, operators, *mesh_, header_.version, started);
     return ContainerWriter::unit_size(writer.bytes());
   }
 
   // An operator's bytes in the stream: its own unit's, or with groups
   // (estimated) those less the unit's framing and fields, which a group
-  // shares, plus its three bytes in the group's list.
+  // shares, plus its entry in the group's list.
   uint64_t operator_bytes(Operator& op) const {
     Operator* const alone[] = {&op};
-    const uint64_t bytes = unit_bytes(alone);
+    const uint64_t bytes = unit_bytes(alone, std::vector<uint8_t>(header_.cluster_count, 0));
     const uint64_t shared = shared_in_group(header_.version);
     return group_bytes_ > 0 ? std::max<uint64_t>(bytes, shared + 1) - shared : bytes;
   }

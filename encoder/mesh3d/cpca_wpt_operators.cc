@@ -30,15 +30,24 @@ std::vector<int32_t> scaled(const Eigen::VectorXd& values, int half_exponent) {
 
 template <class SymbolIO>
 void write_refinements(syntax::WriteIO& io, SymbolIO& symbols, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh,
-                       uint32_t version) {
-  syntax::CpcaCoders coders;
+                       uint32_t version, std::vector<uint8_t>& started) {
   CpcaRefinement r;
   r.version = version;
-  for (Operator* op : operators) {
-    const CpcaRefinementHeader h{op->cluster, op->kind, op->shift};
-    describe_refinement(symbols, coders, mesh, h, op->translation, op->basis, op->coefficients);
-    r.group.push_back(h);
+  for (const Operator* op : operators) r.group.push_back({op->cluster, op->kind, op->shift});
+  auto start = [&](const CpcaRefinementHeader& h, bool) {
+    if (h.kind == kCpcaStart) started[h.cluster] = 1;
+  };
+  if (r.group.size() > 1 && cpca_group_list_in_bins(version)) {
+    syntax::CpcaGroupContexts contexts;
+    syntax::describe_group_list(
+        symbols, contexts, std::span(r.group), static_cast<uint32_t>(started.size()), [&](uint32_t cluster) { return started[cluster] != 0; },
+        start);
+  } else {
+    for (const CpcaRefinementHeader& h : r.group) start(h, false);
   }
+  syntax::CpcaCoders coders;
+  for (size_t i = 0; i < operators.size(); ++i)
+    describe_refinement(symbols, coders, mesh, r.group[i], operators[i]->translation, operators[i]->basis, operators[i]->coefficients);
   if (r.group.size() == 1) {
     r.cluster = r.group[0].cluster;
     r.kind = r.group[0].kind;
@@ -121,14 +130,15 @@ double estimated_gain(const Component& c, const Operator& op) {
   return c.sigma * c.sigma - noise;
 }
 
-void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh, uint32_t version) {
+void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh, uint32_t version,
+                       std::vector<uint8_t>& started) {
   const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane(), version};
   if (io.trace()) {
     syntax::EntropyWriteIO<true> symbols(place, io.trace());
-    write_refinements(io, symbols, operators, mesh, version);
+    write_refinements(io, symbols, operators, mesh, version, started);
   } else {
     syntax::EntropyWriteIO<false> symbols(place);
-    write_refinements(io, symbols, operators, mesh, version);
+    write_refinements(io, symbols, operators, mesh, version, started);
   }
 }
 

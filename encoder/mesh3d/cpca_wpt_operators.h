@@ -56,7 +56,9 @@ double estimated_gain(const Translation& t, size_t members, const Operator& op);
 double estimated_gain(const Component& c, const Operator& op);
 
 // A refinement unit's data in the stream's version: one operator's
-// (unit_kind 0 … 3), or a group of several (unit_kind 4).
-void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh, uint32_t version);
+// (unit_kind 0 … 3), or a group of several (unit_kind 4). `started` holds
+// per cluster whether its start was sent before; the unit's starts set it.
+void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh, uint32_t version,
+                       std::vector<uint8_t>& started);
 
 }  // namespace m4mesh::cpca_wpt

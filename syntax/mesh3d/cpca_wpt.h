@@ -10,6 +10,7 @@
 #include <bit>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "common/bit_cast.h"
@@ -42,6 +43,9 @@ inline constexpr uint32_t kCpcaMeshComponent = 2;  // unit_kind: one, its basis 
 inline constexpr uint32_t kCpcaTrajectory = 3;     // unit_kind: one of the members' trajectories, predicted over the base mesh
 inline constexpr uint32_t kCpcaGroup = 4;          // unit_kind: several refinements of kinds 0 … 3 in one unit
 inline constexpr uint32_t kCpcaMaxGroupSize = 255;
+// From version 5 a group's list is coded at the start of its unit's
+// arithmetic-coded section; before, in the unit's fields.
+inline bool cpca_group_list_in_bins(uint32_t version) { return version >= 5; }
 // A unit_kind as tools name it.
 inline const char* cpca_unit_kind_name(uint32_t kind) {
   static constexpr const char* kNames[] = {"start", "component", "mesh component", "trajectory component", "group"};
@@ -86,7 +90,7 @@ struct CpcaRefinement {
   uint32_t arithmetic_bytes = 0;
   std::span<const uint8_t> bins;
   std::span<const uint8_t> raw;
-  uint32_t version = kLatestVersion;  // the object header's: from version 3 a group lists each refinement in 2 bytes
+  uint32_t version = kLatestVersion;  // the object header's: from version 3 a group lists each refinement in 2 bytes, from 5 in bins
 
   // The refinements the unit carries, in order.
   std::vector<CpcaRefinementHeader> refinements() const {
@@ -137,12 +141,14 @@ void describe(IO& io, CpcaRefinement& r, Check&& check) {
     io.require(r.shift == 0, ErrorKind::kStructure, "shift", "a group's shift field is not 0");
     uint32_t size = static_cast<uint32_t>(r.group.size());
     io.field_in("group_size", 8, size, 1, kCpcaMaxGroupSize);
-    io.resize(r.group, size, "group_size", 24);
+    const bool in_fields = !cpca_group_list_in_bins(r.version) || kTableOf<IO>;
+    io.resize(r.group, size, "group_size", in_fields ? 24 : 1);  // from version 5 read with the symbols
     if constexpr (kTableOf<IO>) {
+      io.open("if (version <= 4)");
       io.open("for (each refinement of the group)");
       r.group.resize(1);
     }
-    for (CpcaRefinementHeader& h : r.group) {
+    for (CpcaRefinementHeader& h : in_fields ? std::span(r.group) : std::span<CpcaRefinementHeader>()) {
       io.field_in("group_cluster", 8, h.cluster, 0, kCpcaMaxClusters - 1);
       if (r.version >= 3 || kTableOf<IO>) {
         if constexpr (kTableOf<IO>) io.open("if (version >= 3)");
@@ -159,6 +165,7 @@ void describe(IO& io, CpcaRefinement& r, Check&& check) {
       check(h, true);
     }
     if constexpr (kTableOf<IO>) {
+      io.close();
       io.close();
       io.close();
     }
@@ -259,6 +266,57 @@ struct CpcaCoders {
   ResidualCoder<7> mesh_component;  // 2D + 3/D channels, D = 3
   ResidualCoder<5> trajectory;      // D = 1
 };
+
+inline constexpr ResidualNames kCpcaGroupShift = M4MESH_RESIDUAL_NAMES("group_shift", "group_shift");
+
+// The contexts of a version 5 group's list, fresh in every unit.
+struct CpcaGroupContexts {
+  BinContext trajectory, mesh;
+  ResidualCoder<2> shift;  // channel 0: starts, 1: components
+};
+
+// Version 5: a group's list, first in its unit's arithmetic-coded section.
+// Each refinement's cluster in bit_width(cluster_count − 1) raw bits (below
+// cluster_count); its kind a start when started(cluster) is false, else a
+// trajectory component (bin group_trajectory), a component over the mesh
+// (bin group_mesh) or a component; its shift the difference to the previous
+// shift of its class in the list (starts, components; 16 before the first),
+// 0 … 63. `check` sees each refinement as soon as it is read; it is what
+// makes started() true for a cluster the group starts.
+template <class IO, class Started, class Check>
+void describe_group_list(IO& io, CpcaGroupContexts& c, std::span<CpcaRefinementHeader> group, uint32_t cluster_count, Started&& started,
+                         Check&& check) {
+  const int cluster_bits = std::bit_width(cluster_count - 1);
+  std::array<int64_t, 2> previous_shift{kCpcaShiftBias, kCpcaShiftBias};
+  for (CpcaRefinementHeader& h : group) {
+    if (cluster_bits > 0)
+      io.raw("group_cluster", cluster_bits, h.cluster);
+    else if constexpr (IO::kReading)
+      h.cluster = 0;
+    if (h.cluster >= cluster_count)
+      io.fail(ErrorKind::kOutOfRange, "group_cluster", "cluster " + std::to_string(h.cluster) + " of " + std::to_string(cluster_count));
+    const bool start = !started(h.cluster);
+    if constexpr (!IO::kReading)
+      if (start != (h.kind == kCpcaStart)) io.fail(ErrorKind::kStructure, "group_kind", "a start only, and only, of a cluster not started");
+    if (!start) {
+      bool trajectory = h.kind == kCpcaTrajectory;
+      io.bin("group_trajectory", c.trajectory, 0, trajectory);
+      bool mesh = h.kind == kCpcaMeshComponent;
+      if (!trajectory) io.bin("group_mesh", c.mesh, 0, mesh);
+      if constexpr (IO::kReading) h.kind = trajectory ? kCpcaTrajectory : mesh ? kCpcaMeshComponent : kCpcaComponent;
+    } else if constexpr (IO::kReading) {
+      h.kind = kCpcaStart;
+    }
+    const int lane = start ? 0 : 1;
+    int32_t difference = static_cast<int32_t>(int64_t{h.shift} - previous_shift[lane]);
+    c.shift.describe(io, lane, difference, kCpcaGroupShift);
+    const int64_t shift = previous_shift[lane] + difference;
+    if (shift < 0 || shift > kCpcaMaxShift) io.fail(ErrorKind::kOutOfRange, "group_shift", "a shift beyond 0 … 63");
+    h.shift = static_cast<uint32_t>(shift);
+    previous_shift[lane] = shift;
+    check(h, true);
+  }
+}
 
 // The element a refinement's end-of-section errors name.
 inline const char* cpca_last_element(uint32_t kind) {
