@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 
 namespace m4mesh {
@@ -27,11 +28,12 @@ double steps_of(int bits) { return std::ldexp(1.0, bits) - 1; }
 
 }  // namespace
 
+double power_of_sqrt2(int half) { return half % 2 == 0 ? std::ldexp(1.0, half / 2) : std::ldexp(std::numbers::sqrt2, (half - 1) / 2); }
+
 Grid Grid::over(const std::vector<Vec3>& frame, int bits, bool equal_steps) { return over_box(box_of(frame), steps_of(bits), equal_steps); }
 
 Grid Grid::over_half_bits(const std::vector<Vec3>& frame, int half_bits, bool equal_steps) {
-  // √2 is correctly rounded, so every platform's encoder lays the same grid.
-  return over_box(box_of(frame), std::ldexp(half_bits % 2 != 0 ? std::sqrt(2.0) : 1.0, half_bits / 2) - 1, equal_steps);
+  return over_box(box_of(frame), power_of_sqrt2(half_bits) - 1, equal_steps);
 }
 
 Grid Grid::covering(const MeshSequence& s, int bits, bool equal_steps) {

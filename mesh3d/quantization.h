@@ -16,6 +16,10 @@ namespace m4mesh {
 // fit 32 bits with any prediction.
 inline constexpr int64_t kMaxQuantized = int64_t{1} << 26;
 
+// 2^(half / 2), the same on every platform (√2 correctly rounded, then an
+// exact power of two).
+double power_of_sqrt2(int half);
+
 struct Grid {
   std::array<float, 3> origin{};
   std::array<float, 3> step{};

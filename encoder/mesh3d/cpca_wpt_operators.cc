@@ -2,18 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "common/error.h"
+#include "mesh3d/quantization.h"
 #include "syntax/mesh3d/cpca_wpt.h"
 #include "syntax/mesh3d/entropy_io.h"
 
 namespace m4mesh::cpca_wpt {
 
 namespace {
-
-// 2^(half / 2), the same on every platform (√2 is a constant).
-double power_of_two(int half) { return half % 2 == 0 ? std::ldexp(1.0, half / 2) : std::ldexp(std::numbers::sqrt2, (half - 1) / 2); }
 
 // Exponent e such that |largest| · 2^e < 2^bits.
 int exponent_for(double largest, int bits) { return largest > 0 ? bits - 1 - std::ilogb(largest) : bits; }
@@ -22,7 +19,7 @@ int exponent_for(double largest, int bits) { return largest > 0 ? bits - 1 - std
 int half_of(int value) { return value >= 0 ? value / 2 : -((1 - value) / 2); }
 
 std::vector<int32_t> scaled(const Eigen::VectorXd& values, int half_exponent) {
-  const double scale = power_of_two(half_exponent);
+  const double scale = power_of_sqrt2(half_exponent);
   std::vector<int32_t> out(static_cast<size_t>(values.size()));
   for (Eigen::Index i = 0; i < values.size(); ++i) out[static_cast<size_t>(i)] = static_cast<int32_t>(std::nearbyint(values(i) * scale));
   return out;
@@ -108,7 +105,7 @@ Operator quantize_start(const Translation& t, uint32_t cluster, size_t members, 
 double estimated_gain(const Translation& t, size_t members, const Operator& op) {
   double removed = 0;
   for (Eigen::Index j = 0; j < t.size(); ++j) {
-    const double q = op.translation[static_cast<size_t>(j)] / power_of_two(op.coefficient_exponent);
+    const double q = op.translation[static_cast<size_t>(j)] / power_of_sqrt2(op.coefficient_exponent);
     removed += t(j) * t(j) - (q - t(j)) * (q - t(j));
   }
   return static_cast<double>(members) * removed;
@@ -117,12 +114,12 @@ double estimated_gain(const Translation& t, size_t members, const Operator& op) 
 double estimated_gain(const Component& c, const Operator& op) {
   double bb = 0, bq = 0, ww = 0, wq = 0;
   for (Eigen::Index j = 0; j < c.basis.size(); ++j) {
-    const double b = op.basis[static_cast<size_t>(j)] / power_of_two(op.basis_exponent);
+    const double b = op.basis[static_cast<size_t>(j)] / power_of_sqrt2(op.basis_exponent);
     bb += b * b;
     bq += b * c.basis(j);
   }
   for (Eigen::Index n = 0; n < c.coefficients.size(); ++n) {
-    const double w = op.coefficients[static_cast<size_t>(n)] / power_of_two(op.coefficient_exponent);
+    const double w = op.coefficients[static_cast<size_t>(n)] / power_of_sqrt2(op.coefficient_exponent);
     ww += w * w;
     wq += w * c.sigma * c.coefficients(n);
   }
