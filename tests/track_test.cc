@@ -536,6 +536,23 @@ TEST(Track, GlobalMotionFindsAKnownAffineMap) {
   }
 }
 
+// A window cut from a picture at a fractional point is found there, between
+// the half pixels a descent compares; a flat picture or a point out of
+// reach gives none.
+TEST(Track, SubpixelFitFindsAWindowBetweenHalfPixels) {
+  const Luma picture = luma_of(pattern(120, 100, 7));
+  const std::array<double, 2> truth{60.3, 49.8};
+  Window window;
+  for (int j = -8; j <= 8; ++j)
+    for (int i = -8; i <= 8; ++i) window.push_back({double(i), double(j), picture.sample(truth[0] + i, truth[1] + j)});
+  const std::optional<std::array<double, 2>> fit = subpixel_fit(picture, window, {60.5, 50.0});
+  ASSERT_TRUE(fit);
+  EXPECT_NEAR((*fit)[0], truth[0], 0.02);
+  EXPECT_NEAR((*fit)[1], truth[1], 0.02);
+  EXPECT_FALSE(subpixel_fit(picture, window, {62.5, 50.0}));
+  EXPECT_FALSE(subpixel_fit(Luma(120, 100, 128), window, {60.5, 50.0}));
+}
+
 TEST(Track, OneFrameIsAStillTexture) {
   const Workspace folder("one");
   write_frames(folder, {pattern(64, 48, 3)});

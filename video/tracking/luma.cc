@@ -36,4 +36,28 @@ double psnr(const Luma& a, const Luma& b, const std::vector<uint8_t>& counted) {
   return 10 * std::log10(255.0 * 255.0 * static_cast<double>(count) / sum);
 }
 
+std::optional<std::array<double, 2>> subpixel_fit(const Luma& picture, const Window& window, const std::array<double, 2>& from) {
+  constexpr int kSteps = 8;
+  constexpr double kReach = 0.75, kConverged = 0.01;  // pixels
+  std::array<double, 2> at = from;
+  for (int step = 0; step < kSteps; ++step) {
+    double hxx = 0, hxy = 0, hyy = 0, bx = 0, by = 0;
+    for (const auto& [dx, dy, value] : window) {
+      const double x = at[0] + dx, y = at[1] + dy;
+      if (x < 1 || y < 1 || x > picture.width - 1.0 || y > picture.height - 1.0) continue;
+      const double gx = picture.sample(x + 0.5, y) - picture.sample(x - 0.5, y);
+      const double gy = picture.sample(x, y + 0.5) - picture.sample(x, y - 0.5);
+      const double e = picture.sample(x, y) - value;
+      hxx += gx * gx, hxy += gx * gy, hyy += gy * gy, bx += gx * e, by += gy * e;
+    }
+    const double det = hxx * hyy - hxy * hxy;
+    if (!(det > 0)) return std::nullopt;
+    const double ux = (hxy * by - hyy * bx) / det, uy = (hxy * bx - hxx * by) / det;
+    at = {at[0] + ux, at[1] + uy};
+    if (std::abs(at[0] - from[0]) > kReach || std::abs(at[1] - from[1]) > kReach) return std::nullopt;
+    if (std::abs(ux) + std::abs(uy) < kConverged) break;
+  }
+  return at;
+}
+
 }  // namespace m4mesh

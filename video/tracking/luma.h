@@ -5,8 +5,10 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace m4mesh {
@@ -42,5 +44,15 @@ std::vector<Luma> pyramid(const Luma& picture, int levels);
 // PSNR in dB of b against a (peak 255) over the pixels where `counted` is
 // non-zero (all when empty); +inf when they agree.
 double psnr(const Luma& a, const Luma& b, const std::vector<uint8_t>& counted = {});
+
+// A window to match: each pixel's offset from the point matched, and the
+// value it should find there.
+using Window = std::vector<std::array<double, 3>>;
+
+// The window's position of least squared difference in the picture near
+// `from`, by Gauss–Newton steps on the picture's bilinear samples (the
+// Lucas–Kanade fit); none where the window's gradients do not fix both
+// axes or the fit leaves `from` by over 0.75 pixels.
+std::optional<std::array<double, 2>> subpixel_fit(const Luma& picture, const Window& window, const std::array<double, 2>& from);
 
 }  // namespace m4mesh

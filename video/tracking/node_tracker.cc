@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "common/error.h"
 
@@ -306,7 +307,6 @@ void NodeTracker::place_on_content(std::vector<Position>& p, const std::vector<P
   // The mean absolute difference over the window's pixels that land in the frame: content leaving the frame neither
   // holds a node back nor pushes it out. A position where under half of them land in the frame is not taken. Infinite
   // as soon as the sum shows the cost is above `bound` (the mean over the pixels in the frame is at least sum / size).
-  using Window = std::vector<std::array<double, 3>>;  // offsets from the node now, and the reference's values
   auto cost_at = [&](const Window& window, const Position& to, double bound = std::numeric_limits<double>::infinity()) {
     const double most = bound * static_cast<double>(window.size());
     double sum = 0;
@@ -407,6 +407,17 @@ void NodeTracker::place_on_content(std::vector<Position>& p, const std::vector<P
         }
     }
     if (!moved) break;
+  }
+  // The descent's half-pixel grid is coarser than what the window can say: each node goes to the half pixel nearest
+  // its window's sub-pixel fit.
+  for (uint32_t n = 0; n < p.size(); ++n) {
+    if (windows[n].empty()) continue;
+    const std::optional<Position> fit = subpixel_fit(picture, windows[n], p[n]);
+    if (!fit) continue;
+    const NodeFreedom f = freedom(n);
+    const Position to{f == NodeFreedom::kAlongY ? p[n][0] : std::round((*fit)[0] * 2) * 0.5,
+                      f == NodeFreedom::kAlongX ? p[n][1] : std::round((*fit)[1] * 2) * 0.5};
+    if (to != p[n] && allowed(n, to, 1.0) && keeps_shape(n, to, p, 1.0)) p[n] = to;
   }
 }
 
