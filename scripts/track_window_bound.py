@@ -22,9 +22,7 @@ import track_corpus as corpus
 
 RADIUS = 8  # pixels, as the tracker's step 5
 SEARCH = 1.5  # pixels around the truth
-
-
-STEPS = np.arange(-SEARCH, SEARCH + 0.01, 0.5)
+STEPS = np.arange(-SEARCH, SEARCH + 0.01, 0.5)  # the half-pixel offsets searched
 
 
 def nearest_match(picture, values, sx, sy, truth):
