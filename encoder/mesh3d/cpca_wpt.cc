@@ -115,7 +115,11 @@ class CpcaEncoder final : public CodecEncoder3d {
       group_bytes = std::min(group_bytes * group_growth_, kMaxGroupGrowth * static_cast<double>(group_bytes_));
       const size_t planned = unit.size();
       if (max_bytes_ > 0)
-        while (!unit.empty() && sink.stream_bytes() + unit_bytes(unit, started) > max_bytes_) unit.pop_back();
+        while (!unit.empty()) {
+          std::vector<uint8_t> after = started;
+          if (sink.stream_bytes() + unit_bytes(unit, after) <= max_bytes_) break;
+          unit.pop_back();
+        }
       if (unit.empty()) break;
       sink.unit(UnitType::kRefinement, 0, [&](syntax::WriteIO& io) { write_refinements(io, unit, *mesh_, header_.version, started); });
       for (const Operator* op : unit) apply(animation, members_[op->cluster], *op);
@@ -395,16 +399,14 @@ class CpcaEncoder final : public CodecEncoder3d {
       const std::vector<Operator*> unit = next_unit(sent, static_cast<uint64_t>(group_bytes));
       group_bytes = std::min(group_bytes * group_growth_, kMaxGroupGrowth * static_cast<double>(group_bytes_));
       bytes += unit_bytes(unit, started);
-      for (const Operator* op : unit)
-        if (op->kind == kCpcaStart) started[op->cluster] = 1;
       sent += unit.size();
     }
     return bytes;
   }
 
   // The bytes of the unit of these operators in the stream, after the
-  // starts `started` lists.
-  uint64_t unit_bytes(std::span<Operator* const> operators, std::vector<uint8_t> started) const {
+  // starts `started` lists; the unit's starts are added to it.
+  uint64_t unit_bytes(std::span<Operator* const> operators, std::vector<uint8_t>& started) const {
     BitWriter writer;
     syntax::WriteIO io(writer);
     UnitHeader header{static_cast<uint32_t>(UnitType::kRefinement), 0};
@@ -418,7 +420,8 @@ class CpcaEncoder final : public CodecEncoder3d {
   // shares, plus its entry in the group's list.
   uint64_t operator_bytes(Operator& op) const {
     Operator* const alone[] = {&op};
-    const uint64_t bytes = unit_bytes(alone, std::vector<uint8_t>(header_.cluster_count, 0));
+    std::vector<uint8_t> none_started(header_.cluster_count, 0);
+    const uint64_t bytes = unit_bytes(alone, none_started);
     const uint64_t shared = shared_in_group(header_.version);
     return group_bytes_ > 0 ? std::max<uint64_t>(bytes, shared + 1) - shared : bytes;
   }

@@ -33,6 +33,9 @@ float sample_cost(const Luma& picture, double x, double y, float value) {
   return std::abs(picture.sample(x, y) - value);
 }
 
+// The nearest position on the half-pixel grid the syntax carries.
+double on_half_pixel(double v) { return std::round(v * 2) * 0.5; }
+
 }  // namespace
 
 NodeTracker::NodeTracker(TrackingMesh mesh, const Luma& first, const TrackerOptions& options)
@@ -213,14 +216,13 @@ std::vector<NodeTracker::Position> NodeTracker::start(const Affine& global) cons
   for (size_t n = 0; n < positions_.size(); ++n) {
     const Point& q = positions_[n];
     // On the half-pixel grid the syntax carries: the moves keep them there, and no rounding at the end folds a triangle.
-    auto on_grid = [](double v) { return std::round(v * 2) * 0.5; };
     if (from_first) {
       const Point& origin = mesh_.nodes[n];
       const std::array<double, 2> now = global(origin.x * 0.5, origin.y * 0.5), before = global_(origin.x * 0.5, origin.y * 0.5);
-      carried[n] = {on_grid(now[0] + q.x * 0.5 - before[0]), on_grid(now[1] + q.y * 0.5 - before[1])};
+      carried[n] = {on_half_pixel(now[0] + q.x * 0.5 - before[0]), on_half_pixel(now[1] + q.y * 0.5 - before[1])};
     }
     const std::array<double, 2> changed = change(q.x * 0.5, q.y * 0.5);
-    moved[n] = {on_grid(changed[0]), on_grid(changed[1])};
+    moved[n] = {on_half_pixel(changed[0]), on_half_pixel(changed[1])};
     for (std::vector<Position>* p : {&carried, &moved}) {
       const NodeFreedom f = freedom(static_cast<uint32_t>(n));
       if (f == NodeFreedom::kFixed || f == NodeFreedom::kAlongY) (*p)[n][0] = q.x * 0.5;
@@ -415,8 +417,8 @@ void NodeTracker::place_on_content(std::vector<Position>& p, const std::vector<P
     const std::optional<Position> fit = subpixel_fit(picture, windows[n], p[n]);
     if (!fit) continue;
     const NodeFreedom f = freedom(n);
-    const Position to{f == NodeFreedom::kAlongY ? p[n][0] : std::round((*fit)[0] * 2) * 0.5,
-                      f == NodeFreedom::kAlongX ? p[n][1] : std::round((*fit)[1] * 2) * 0.5};
+    const Position to{f == NodeFreedom::kAlongY ? p[n][0] : on_half_pixel((*fit)[0]),
+                      f == NodeFreedom::kAlongX ? p[n][1] : on_half_pixel((*fit)[1])};
     if (to != p[n] && allowed(n, to, 1.0) && keeps_shape(n, to, p, 1.0)) p[n] = to;
   }
 }
