@@ -9,7 +9,8 @@ M_t from frame 0 to frame t, and coded by FFmpeg's libx264 at two
 qualities. Two sets draw from different seeds: `tune` (for whoever adjusts
 the tracker) and `eval` (the one the figures and targets are read on).
 
-    /usr/bin/python3 scripts/track_corpus.py [--set eval|tune|both] [--build build] [--work DIR] [--json OUT] [--only NAME] [--figures DIR]
+    /usr/bin/python3 scripts/track_corpus.py [--set eval|tune|both] [--build build] [--work DIR] [--json OUT] [--only NAME] [--crf 18,28]
+        [--figures DIR]
 
 For each clip and mesh (the default uniform 16 x 16 cells, and `--nodes 60`)
 it reports the mean and 95th-percentile node error in pixels (over nodes
@@ -251,6 +252,22 @@ def video_lag(motion, video):
     return float(np.mean(lags))
 
 
+def held_still(video):
+    """The share of the coded video's 16 x 16 blocks (libx264's macroblocks, away from the frame's edge) that are a
+    whole-pixel copy, within 2 px, of the previous coded frame: content the encoder held still or moved by whole pixels
+    (mean absolute difference under 0.05 grey levels)."""
+    frames = [luma(f.astype(float)) for f in decoded_frames(video)]
+    copies = blocks = 0
+    for before, now in zip(frames, frames[1:]):
+        for y in range(16, HEIGHT - 31, 16):
+            for x in range(16, WIDTH - 31, 16):
+                block = now[y:y + 16, x:x + 16]
+                copies += any(np.abs(before[y + dy:y + dy + 16, x + dx:x + dx + 16] - block).mean() < 0.05
+                              for dy in range(-2, 3) for dx in range(-2, 3))
+                blocks += 1
+    return copies / blocks
+
+
 def decoded_planes(m4mesh, stream):
     """Every plane's (intra, nodes in half pixels, triangles of an I-plane), from `m4mesh decode`'s text."""
     text = os.path.splitext(stream)[0] + ".decoded.txt"
@@ -330,6 +347,10 @@ def summary(rows, planes):
                 bits_per_p_plane=sum(bits) / max(1, len(bits)), i_planes=sum(intra for intra, _, _ in planes), nodes=len(planes[0][1]))
 
 
+def crf_list(text):
+    return tuple(int(v) for v in text.split(","))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--set", choices=("eval", "tune", "both"), default="eval")
@@ -337,6 +358,7 @@ def main():
     parser.add_argument("--work", help="where the clips and streams go (kept); default a temporary folder")
     parser.add_argument("--json", help="write every figure here")
     parser.add_argument("--only", help="clips whose name holds this")
+    parser.add_argument("--crf", type=crf_list, default=QUALITIES, help="libx264 qualities, comma-separated (default 18,28; 0 is lossless)")
     parser.add_argument("--figures", help="draw docs/tracking.md's figures into this folder")
     args = parser.parse_args()
     m4mesh = os.path.join(os.path.abspath(args.build), "cli", "m4mesh")
@@ -349,7 +371,7 @@ def main():
     for which in sets:
         for kind in KINDS:
             for seed in SEEDS[which]:
-                for crf in QUALITIES:
+                for crf in args.crf:
                     name = f"{which}-{kind}-{seed}-crf{crf}"
                     if args.only and args.only not in name:
                         continue

@@ -8,9 +8,11 @@ the true local motion's linear part (what no tracker knows, its best case).
 The half-pixel rounding of the truth is the floor of both. The same rigid
 window at points 16 px apart on the frame's edges (the tracker's border
 nodes), holding only the pixels in the frame, shows what the coded video
-lets a border node reach.
+lets a border node reach. Last, the share of the coded video's 16 x 16
+blocks that are whole-pixel copies of the previous coded frame: content
+libx264 held still while the drawn clip moved it.
 
-    /usr/bin/python3 scripts/track_window_bound.py [--set eval|tune] [--only NAME] [--work DIR]
+    /usr/bin/python3 scripts/track_window_bound.py [--set eval|tune] [--only NAME] [--work DIR] [--crf 18,28]
 """
 import argparse
 import os
@@ -110,14 +112,16 @@ def main():
     parser.add_argument("--set", choices=("eval", "tune"), default="eval")
     parser.add_argument("--only", default="warp-", help="clips whose name holds this (default: the warp clips)")
     parser.add_argument("--work", help="where the clips go (kept); default a temporary folder")
+    parser.add_argument("--crf", type=corpus.crf_list, default=corpus.QUALITIES, help="libx264 qualities, comma-separated (default 18,28)")
     args = parser.parse_args()
     work = args.work or tempfile.mkdtemp(prefix="m4mesh-track-bound-")
     os.makedirs(work, exist_ok=True)
-    print("| clip | rigid window (px) | shaped by the true motion (px) | half-pixel rounding (px) | rigid window at the frame's edges (px) |")
-    print("|---|---|---|---|---|")
+    print("| clip | rigid window (px) | shaped by the true motion (px) | half-pixel rounding (px) | rigid window at the frame's edges (px) "
+          "| blocks held still |")
+    print("|---|---|---|---|---|---|")
     for kind in corpus.KINDS:
         for seed in corpus.SEEDS[args.set]:
-            for crf in corpus.QUALITIES:
+            for crf in args.crf:
                 name = f"{args.set}-{kind}-{seed}-crf{crf}"
                 if args.only not in name:
                     continue
@@ -126,7 +130,7 @@ def main():
                 if not os.path.exists(video):
                     corpus.write_clip(motion, crf, video)
                 rigid, shaped, rounding, edges = bound(motion, video)
-                print(f"| {name} | {rigid:.2f} | {shaped:.2f} | {rounding:.2f} | {edges:.2f} |", flush=True)
+                print(f"| {name} | {rigid:.2f} | {shaped:.2f} | {rounding:.2f} | {edges:.2f} | {100 * corpus.held_still(video):.0f} % |", flush=True)
 
 
 if __name__ == "__main__":
