@@ -37,15 +37,16 @@ int run_info3d(const std::string& input) {
   std::printf("%s: %zu bytes, mesh3d container version %u, codec_id %u (%s), %u vertices, %u faces, %u frames at %u/%u fps\n",
               input.c_str(), stream.size(), h.version, h.codec_id, decoder.codec().name.c_str(), h.vertex_count, h.face_count,
               h.frame_count, h.frame_rate_num, h.frame_rate_den);
-  std::printf("  contexts: %s\n", adaptation_of(h.version) == Adaptation::kWarmUp ? "warm-up (versions 3 to 5)" : "fixed rate (versions 1 and 2)");
-  std::printf("  residual signs: %s\n", residual_sign_in_bins(h.version) ? "in bins, with the suffix's top bit (versions 4 and 5)" : "raw (versions 1 to 3)");
+  std::printf("  contexts: %s\n", adaptation_of(h.version) == Adaptation::kWarmUp ? "warm-up (from version 3)" : "fixed rate (versions 1 and 2)");
+  std::printf("  residual signs: %s\n", residual_sign_in_bins(h.version) ? "in bins, with the suffix's top bit (from version 4)" : "raw (versions 1 to 3)");
   if (h.codec_id == kCpcaWptId)
-    std::printf("  group lists: %s\n", cpca_group_list_in_bins(h.version) ? "in bins (version 5)" : "in the unit's fields (versions 1 to 4)");
+    std::printf("  group lists: %s\n", cpca_group_list_in_bins(h.version) ? "in bins (from version 5)" : "in the unit's fields (versions 1 to 4)");
   if (const std::optional<uint32_t> order = decoder.vertex_order())
     std::printf("  vertex order: %s\n", vertex_order_name(*order));
   if (const std::optional<uint32_t> blend = decoder.position_blend())
-    std::printf("  positions: parallelograms blended with the neighbours' mean by %u/16%s\n", *blend,
-                h.version == 1 ? " (version 1: no blend)" : "");
+    std::printf("  positions: parallelograms blended with the neighbours' mean by %u/16%s, %s\n", *blend,
+                h.version == 1 ? " (version 1: no blend)" : "",
+                h.version >= kPositionOrderVersion ? "in the position order (from version 6)" : "in coding order (versions 1 to 5)");
   const UnitSizes unit = unit_sizes(parts, stream.size());
   const uint64_t* sizes = unit.bytes;
   const uint64_t* counts = unit.count;

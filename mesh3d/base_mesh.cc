@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <bit>
+#include <numeric>
 
+#include "mesh3d/position_order.h"
 #include "mesh3d/quantization.h"
 #include "syntax/mesh3d/entropy_io.h"
 
@@ -77,9 +79,16 @@ void describe_positions(IO& io, syntax::BaseMeshContexts& contexts, std::span<co
                         std::vector<IntPoint3>& positions) {
   const uint32_t count = static_cast<uint32_t>(positions.size());
   const MeshPredictor predictor(faces, count);
+  std::vector<uint32_t> order(count);
+  std::iota(order.begin(), order.end(), 0u);
+  if (io.version() >= kPositionOrderVersion) order = PositionOrder(predictor, count).of(order);
+  std::vector<uint32_t> place(count);
+  for (uint32_t i = 0; i < count; ++i) place[order[i]] = i;
   std::array<int64_t, 3> p{}, neighbours{};
-  for (uint32_t v = 0; v < count; ++v) {
-    const auto known = [v](uint32_t u) { return u < v; };
+  const IntPoint3* previous = nullptr;
+  for (uint32_t i = 0; i < count; ++i) {
+    const uint32_t v = order[i];
+    const auto known = [&place, i](uint32_t u) { return place[u] < i; };
     const auto value = [&](uint32_t u) { return positions[u]; };
     int channel = predictor.predict(v, known, value, p);
     // A parallelogram's corners are known neighbours: the mean exists.
@@ -87,7 +96,7 @@ void describe_positions(IO& io, syntax::BaseMeshContexts& contexts, std::span<co
       for (int a = 0; a < 3; ++a)
         p[a] = floor_div((kPositionBlendUnit - blend) * p[a] + blend * neighbours[a], kPositionBlendUnit);
     if (channel < 0) {
-      for (int a = 0; a < 3; ++a) p[a] = v > 0 ? positions[v - 1][a] : 0;
+      for (int a = 0; a < 3; ++a) p[a] = previous ? (*previous)[a] : 0;
       channel = syntax::kNeighbourChannel;
     }
     for (int a = 0; a < 3; ++a) {
@@ -98,6 +107,7 @@ void describe_positions(IO& io, syntax::BaseMeshContexts& contexts, std::span<co
       if (q > kMaxQuantized || q < -kMaxQuantized) io.fail(ErrorKind::kOutOfRange, "position", "a position leaves ±2^26 grid steps");
       positions[v][a] = static_cast<int32_t>(q);
     }
+    previous = &positions[v];
   }
 }
 

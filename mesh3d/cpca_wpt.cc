@@ -2,6 +2,8 @@
 
 #include <type_traits>
 
+#include "mesh3d/position_order.h"
+
 namespace m4mesh {
 
 std::vector<std::vector<NodeIndex>> cpca_members(std::span<const uint32_t> cluster_of, uint32_t cluster_count) {
@@ -11,17 +13,19 @@ std::vector<std::vector<NodeIndex>> cpca_members(std::span<const uint32_t> clust
 }
 
 CpcaMeshPrediction::CpcaMeshPrediction(std::span<const Triangle> faces, std::span<const uint32_t> coding_order,
-                                       std::span<const uint32_t> cluster_of, uint32_t cluster_count)
+                                       std::span<const uint32_t> cluster_of, uint32_t cluster_count, uint32_t version)
     : predictor_(faces, static_cast<uint32_t>(cluster_of.size())),
       rank_(cluster_of.size()),
       slot_(cluster_of.size()),
       cluster_of_(cluster_of.begin(), cluster_of.end()),
-      in_coding_order_(cluster_count) {
+      in_order_(cluster_count) {
   std::vector<uint32_t> members(cluster_count, 0);
   for (NodeIndex v = 0; v < cluster_of.size(); ++v) slot_[v] = members[cluster_of[v]]++;
-  for (uint32_t i = 0; i < coding_order.size(); ++i) {
-    rank_[coding_order[i]] = i;
-    in_coding_order_[cluster_of[coding_order[i]]].push_back(coding_order[i]);
+  for (const uint32_t v : coding_order) in_order_[cluster_of[v]].push_back(v);
+  PositionOrder by_support(predictor_, static_cast<uint32_t>(cluster_of.size()));
+  for (std::vector<uint32_t>& order : in_order_) {
+    if (version >= kPositionOrderVersion) order = by_support.of(order);
+    for (uint32_t i = 0; i < order.size(); ++i) rank_[order[i]] = i;
   }
 }
 

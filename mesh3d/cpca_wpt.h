@@ -103,21 +103,23 @@ inline uint64_t cpca_component_limit(uint32_t kind, size_t members, uint32_t fra
   return kind == kCpcaTrajectory ? std::min<uint64_t>(members, 3 * uint64_t{frames}) : std::min<uint64_t>(3 * uint64_t{members}, frames);
 }
 
-// The prediction of a component's basis over the base mesh (unit_kind 2):
-// a cluster's members in the base mesh's coding order, each predicted by
-// the base mesh's parallelograms (MeshPredictor) from the members before it.
+// The prediction of a component's basis over the base mesh (unit_kind 2
+// and 3): a cluster's members in its member order, each predicted by the
+// base mesh's parallelograms (MeshPredictor) from the members before it.
 class CpcaMeshPrediction {
  public:
   // faces: the base mesh's, coding_order: its vertices in coding order.
+  // The member order is coding order, from version 6 the position order
+  // over the cluster (docs/codec_cpca_wpt.md).
   CpcaMeshPrediction(std::span<const Triangle> faces, std::span<const uint32_t> coding_order, std::span<const uint32_t> cluster_of,
-                     uint32_t cluster_count);
+                     uint32_t cluster_count, uint32_t version);
 
   // A component over the mesh: D basis values per member (unit_kind 2:
   // D = 3, x, y, z; unit_kind 3: D = 1) at basis[D·i + a], i the member's
-  // slot in the cluster's index order, for the members in coding order:
+  // slot in the cluster's index order, for the members in member order:
   // the residual from the prediction, on channel a after a parallelogram,
   // D + a after a mean of neighbours, else (no neighbour known) D + a from
-  // the member before in coding order (0 for the first); |basis| ≤ 2^15.
+  // the member before (0 for the first); |basis| ≤ 2^15.
   // Then the coefficients (3/D per frame) as the differences to the same
   // lane the frame before, on channels 2D + lane; |coefficient| ≤ 2^23.
   template <size_t D, class IO>
@@ -127,7 +129,7 @@ class CpcaMeshPrediction {
     const syntax::ResidualNames& basis_names = D == 3 ? syntax::kCpcaMeshBasis : syntax::kCpcaTrajectoryBasis;
     const syntax::ResidualNames& coefficient_names = D == 3 ? syntax::kCpcaCoefficient : syntax::kCpcaTrajectoryCoefficient;
     std::array<int64_t, D> p{}, previous{};
-    for (const uint32_t v : in_coding_order_[cluster]) {
+    for (const uint32_t v : in_order_[cluster]) {
       const uint32_t rank = rank_[v];
       const auto known = [&](uint32_t u) { return rank_[u] < rank && cluster_of_[u] == cluster; };
       const auto value = [&](uint32_t u) {
@@ -155,10 +157,10 @@ class CpcaMeshPrediction {
 
  private:
   MeshPredictor predictor_;
-  std::vector<uint32_t> rank_;                         // per vertex: its place in coding order
+  std::vector<uint32_t> rank_;                         // per vertex: its place in its cluster's member order
   std::vector<uint32_t> slot_;                         // per vertex: its index among its cluster's members
   std::vector<uint32_t> cluster_of_;
-  std::vector<std::vector<uint32_t>> in_coding_order_;  // per cluster: its members in coding order
+  std::vector<std::vector<uint32_t>> in_order_;        // per cluster: its members in member order
 };
 
 // One refinement's symbols with the unit's coders: a start's translation

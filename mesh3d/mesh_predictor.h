@@ -39,24 +39,40 @@ class MeshPredictor {
   int predict(uint32_t v, Known known, Value value, std::array<int64_t, D>& p) const {
     std::array<int64_t, D> sum{};
     int64_t n = 0;
-    for (uint32_t i = first_[v]; i < first_[v + 1]; ++i) {
-      const Triangle& t = faces_[around_[i]];
-      const int corner = t.corner_of(v);
-      const uint32_t x = t.v[(corner + 1) % 3], y = t.v[(corner + 2) % 3];
-      if (t.v[corner] != v || !known(x) || !known(y)) continue;
-      const uint32_t z = opposite(y, x);
-      if (z == kNoNode || !known(z)) continue;
+    for_each_parallelogram(v, known, [&](uint32_t x, uint32_t y, uint32_t z) {
+      if (!known(z)) return;
       const auto& vx = value(x);
       const auto& vy = value(y);
       const auto& vz = value(z);
       for (size_t a = 0; a < D; ++a) sum[a] += int64_t{vx[a]} + vy[a] - vz[a];
       ++n;
-    }
+    });
     if (n > 0) {
       for (size_t a = 0; a < D; ++a) p[a] = floor_div(sum[a], n);
       return syntax::kParallelogramChannel;
     }
     return neighbour_mean(v, known, value, p) ? syntax::kNeighbourChannel : -1;
+  }
+
+  // Calls visit(x, y, z) for every parallelogram x + y − z that may predict
+  // v: each face (v, x, y) around v whose neighbour across x–y (the first
+  // face with the directed edge y → x) has the third vertex z; only those
+  // whose x and y pass the filter (which spares looking z up).
+  template <class Filter, class Visit>
+  void for_each_parallelogram(uint32_t v, Filter filter, Visit visit) const {
+    for (uint32_t i = first_[v]; i < first_[v + 1]; ++i) {
+      const Triangle& t = faces_[around_[i]];
+      const int corner = t.corner_of(v);
+      const uint32_t x = t.v[(corner + 1) % 3], y = t.v[(corner + 2) % 3];
+      if (!filter(x) || !filter(y)) continue;
+      if (const uint32_t z = opposite(y, x); z != kNoNode) visit(x, y, z);
+    }
+  }
+
+  // Calls visit(face) for every face around v, once per corner of v.
+  template <class Visit>
+  void for_each_face(uint32_t v, Visit visit) const {
+    for (uint32_t i = first_[v]; i < first_[v + 1]; ++i) visit(faces_[around_[i]]);
   }
 
   // The mean (floor) of the known corners of the faces around v, each

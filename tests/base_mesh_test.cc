@@ -8,11 +8,13 @@
 #include <algorithm>
 #include <filesystem>
 #include <numeric>
+#include <optional>
 
 #include "anchors/draco_reference.h"
 #include "codecs3d/codec_decoder.h"
 #include "codecs3d/codec_encoder.h"
 #include "encoder/mesh3d/base_mesh.h"
+#include "mesh3d/position_order.h"
 #include "mesh3d/quantization.h"
 #include "test_util.h"
 
@@ -91,6 +93,70 @@ TEST(BaseMesh, RoundTripsAwkwardMeshesInTheInputVertexOrder) {
     ASSERT_EQ(base.positions, m.positions) << "seed " << seed;
     ASSERT_EQ(base.faces, plan.faces) << "seed " << seed;
   }
+}
+
+// docs/base_mesh.md, "Position order", read literally: at each step every
+// candidate's parallelograms and known corners counted again, the most taken.
+std::vector<uint32_t> order_as_written(std::span<const Triangle> faces, const std::vector<uint32_t>& candidates, uint32_t vertex_count) {
+  const auto opposite = [&](uint32_t from, uint32_t to) -> std::optional<uint32_t> {
+    for (const Triangle& t : faces)
+      for (int i = 0; i < 3; ++i)
+        if (t.v[i] == from && t.v[(i + 1) % 3] == to) return t.v[(i + 2) % 3];
+    return std::nullopt;
+  };
+  std::vector<uint8_t> known(vertex_count, 0);
+  std::vector<uint32_t> order;
+  while (order.size() < candidates.size()) {
+    std::optional<uint32_t> best;
+    std::array<uint32_t, 2> best_support{};
+    for (const uint32_t v : candidates) {
+      if (known[v]) continue;
+      std::array<uint32_t, 2> support{};
+      for (const Triangle& t : faces)
+        for (const NodeIndex corner_vertex : t.v) {
+          if (corner_vertex != v) continue;  // the face once per corner of v
+          const int corner = t.corner_of(v);
+          const uint32_t x = t.v[(corner + 1) % 3], y = t.v[(corner + 2) % 3];
+          const std::optional<uint32_t> z = opposite(y, x);
+          support[0] += known[x] && known[y] && z && known[*z];
+          for (const NodeIndex u : t.v) support[1] += u != v && known[u];
+        }
+      if (!best || support > best_support) best = v, best_support = support;
+    }
+    known[*best] = 1;
+    order.push_back(*best);
+  }
+  return order;
+}
+
+TEST(PositionOrder, IsTheDefinitionsOrder) {
+  for (uint64_t seed = 1; seed <= 10; ++seed) {
+    const TestMesh m = awkward_mesh(seed);
+    const std::vector<Triangle> faces = plan_base_mesh(m.faces, m.vertex_count, false).faces;
+    const MeshPredictor predictor(faces, m.vertex_count);
+    std::vector<uint32_t> all(m.vertex_count);
+    std::iota(all.begin(), all.end(), 0u);
+    ASSERT_EQ(PositionOrder(predictor, m.vertex_count).of(all), order_as_written(faces, all, m.vertex_count)) << "seed " << seed;
+    // A cluster's members, in the order that breaks ties: the others are never known.
+    std::vector<uint32_t> some;
+    for (uint32_t v = m.vertex_count; v-- > 0;)
+      if (v % 3 != 0) some.push_back(v);
+    ASSERT_EQ(PositionOrder(predictor, m.vertex_count).of(some), order_as_written(faces, some, m.vertex_count)) << "seed " << seed;
+  }
+}
+
+// Two faces on the edge 1 – 2 and a vertex in no face, candidates given
+// from the highest number: 4 and 3 come first as given (no support), 2 and
+// 1 then tie on one corner each, so 2 as given earlier; 1 follows with
+// three corners and 0 last, the only one with a parallelogram (1 + 2 − 3).
+TEST(PositionOrder, SupportThenTheCandidatesOrder) {
+  const std::vector<Triangle> faces = {{{0, 1, 2}}, {{2, 1, 3}}};
+  const MeshPredictor predictor(faces, 5);
+  EXPECT_EQ(PositionOrder(predictor, 5).of(std::vector<uint32_t>{4, 3, 2, 1, 0}), (std::vector<uint32_t>{4, 3, 2, 1, 0}));
+  // Given in increasing order, 3 waits for its parallelogram (2 + 1 − 0) after 2's three corners.
+  EXPECT_EQ(PositionOrder(predictor, 5).of(std::vector<uint32_t>{0, 1, 2, 3, 4}), (std::vector<uint32_t>{0, 1, 2, 3, 4}));
+  // 3 given first: 2 and 1 tie on its corner; 0 then has a parallelogram (1 + 2 − 3) and 4 nothing.
+  EXPECT_EQ(PositionOrder(predictor, 5).of(std::vector<uint32_t>{3, 4, 2, 1, 0}), (std::vector<uint32_t>{3, 2, 1, 0, 4}));
 }
 
 TEST(BaseMesh, ReorderNumbersVerticesInCodingOrder) {

@@ -128,6 +128,17 @@ std::vector<SuiteCase> base_mesh_cases(bool traced) {
     second_version.version = 2;
     suite.push_back(valid("base-22-version-2", "base-19's spiky sheet, position_blend 5, in a version 2 stream: contexts at the fixed rate",
                           {"base-mesh"}, spiky, second_version, traced));
+    // A degenerate face (v, v, u) from the middle of the sheet to the first vertex coded.
+    MeshSequence repeated_corner = spiky;
+    repeated_corner.faces.push_back({{544, 544, spiky.faces.front().v[0]}});
+    Encode3dOptions blend5 = bits24;
+    blend5.position_blend = 5;
+    suite.push_back(valid("base-25-repeated-corner", "base-19's spiky sheet and a loose face (v, v, u) to the first vertex coded: u "
+                          "counted twice in v's neighbours' mean, position_blend 5", {"base-mesh"}, repeated_corner, blend5, traced));
+    Encode3dOptions fifth_version = second_version;
+    fifth_version.version = 5;
+    suite.push_back(valid("base-24-version-5", "base-19's spiky sheet, position_blend 5, in a version 5 stream: positions in coding order",
+                          {"base-mesh"}, spiky, fifth_version, traced));
     // Its second frame moved below the first frame's box, an intra base mesh of negative positions.
     MeshSequence below = spiky;
     for (size_t v = 0; v < below.frames[1].size(); ++v) {

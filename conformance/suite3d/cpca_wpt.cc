@@ -273,7 +273,7 @@ std::vector<uint8_t> cpca_mesh_written_stream() {
   ContainerWriter writer = cpca_written_start(s, cluster_of, clusters, std::nullopt);
 
   const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false);
-  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, clusters);
+  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, clusters, kLatestVersion);
   const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, clusters);
   // One value per member (every axis alike), one per frame (every lane alike).
   auto component = [&](uint32_t kind, uint32_t cluster, const std::vector<int32_t>& values, std::pair<int32_t, int32_t> frames) {
@@ -351,7 +351,7 @@ struct OneVertexClusters {
   }();
   BaseMeshPlan plan = plan_base_mesh(sequence.faces, sequence.vertex_count, false);
   ContainerWriter writer = cpca_written_start(sequence, cluster_of, kCpcaMaxClusters, std::nullopt, version);
-  CpcaMeshPrediction mesh{plan.faces, plan.input_of, cluster_of, kCpcaMaxClusters};
+  CpcaMeshPrediction mesh{plan.faces, plan.input_of, cluster_of, kCpcaMaxClusters, version};
 };
 
 // A clustered-PCA stream of 2 frames written symbol by symbol (no hash
@@ -484,7 +484,7 @@ std::vector<uint8_t> cpca_over_mesh_stream(const MeshSequence& s, uint32_t kind,
   for (uint32_t v = 0; v < s.vertex_count; ++v) cluster_of[v] = v < s.vertex_count / 2 ? 0 : 1;
   ContainerWriter writer = cpca_written_start(s, cluster_of, 2, std::nullopt);
   const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false, untraversed);
-  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, 2);
+  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, 2, kLatestVersion);
   const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, 2);
   const size_t per_member = kind == kCpcaTrajectory ? 1 : 3, frames = s.frames.size();
   for (uint32_t c = 0; c < 2; ++c) {
@@ -596,6 +596,15 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
                                cpca_group_limits_stream(4)));
   suite.push_back(written_case("cpca-30-group-shifts", "version 5 group lists whose shifts walk 0 … 63 at random: 255 starts, then the "
                                "components of unit_kind 1, 2 and 3 of every cluster, a group each", {"cpca"}, cpca_group_shifts_stream()));
+  // Version 5's members in coding order.
+  Encode3dOptions fifth_version = cpca({{"clusters", "4"}, {"basis", "mesh"}});
+  fifth_version.version = 5;
+  suite.push_back(valid("cpca-31-mesh-basis-version-5", "cpca-11's components over the mesh in a version 5 stream: members in coding order",
+                        {"cpca"}, flag, fifth_version, traced));
+  Encode3dOptions fifth_version_trajectories = cpca({{"clusters", "4"}, {"model", "trajectory"}});
+  fifth_version_trajectories.version = 5;
+  suite.push_back(valid("cpca-32-trajectories-version-5", "cpca-12's trajectory components in a version 5 stream: members in coding order",
+                        {"cpca"}, flag, fifth_version_trajectories, traced));
   return suite;
 }
 

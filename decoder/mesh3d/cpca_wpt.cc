@@ -55,7 +55,7 @@ class CpcaDecoder final : public CodecDecoder3d {
           throw in_object_payload(e);
         }
       }
-      mesh_.emplace(base.faces, base.coding_order, cluster_of_, header_.cluster_count);
+      mesh_.emplace(base.faces, base.coding_order, cluster_of_, header_.cluster_count, object_.version);
       faces_ = std::move(base.faces);
       animation_.emplace(header_, base.positions, object_.frame_count);
       for (uint32_t f = 0; f < object_.frame_count; ++f) decoded.push_back(f);
@@ -124,7 +124,7 @@ class CpcaDecoder final : public CodecDecoder3d {
     ++count;
   }
 
-  // A version 5 group's list, then the unit's refinements in order, each
+  // A group's list (from version 5), then the unit's refinements in order, each
   // applied once its symbols are read, with one set of coders; then the end
   // of the sections.
   template <class IO>

@@ -179,7 +179,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     cluster_of_ = cluster_of;
     header_.cluster_count = *std::max_element(cluster_of_.begin(), cluster_of_.end()) + 1;
     members_ = cpca_members(cluster_of_, header_.cluster_count);
-    mesh_.emplace(s.faces, coding_order, cluster_of_, header_.cluster_count);
+    mesh_.emplace(s.faces, coding_order, cluster_of_, header_.cluster_count, header_.version);
     faces_ = s.faces;
     choose_cluster_map();
     auto start = std::chrono::steady_clock::now();

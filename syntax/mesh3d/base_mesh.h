@@ -25,6 +25,8 @@ inline constexpr uint32_t kVertexOrderFromParallelogram = 2;
 // The weight, in sixteenths, of the known neighbours' mean in a position
 // predicted by parallelograms (docs/base_mesh.md, "Positions").
 inline constexpr uint32_t kPositionBlendUnit = 16;
+// From this version the positions are coded in the position order (docs/base_mesh.md).
+inline constexpr uint32_t kPositionOrderVersion = 6;
 
 struct BaseMeshData {
   uint32_t version = kLatestVersion;  // the object header's: version 1 has no position_blend

@@ -26,9 +26,11 @@ const char* unit_type_name(UnitType type);
 // every context (docs/container3d.md, "Contexts") and cpca-wpt's group
 // lists in 2 bytes a refinement; version 4 a residual's sign and the top
 // bit of its suffix in bins (docs/container3d.md, "Residuals"); version 5
-// cpca-wpt's group lists in bins (docs/codec_cpca_wpt.md, "Groups").
+// cpca-wpt's group lists in bins (docs/codec_cpca_wpt.md, "Groups");
+// version 6 the position order of the base mesh's positions and cpca-wpt's
+// bases over the mesh (docs/base_mesh.md, "Position order").
 inline constexpr uint32_t kFirstVersion = 1;
-inline constexpr uint32_t kLatestVersion = 5;
+inline constexpr uint32_t kLatestVersion = 6;
 
 inline Adaptation adaptation_of(uint32_t version) { return version >= 3 ? Adaptation::kWarmUp : Adaptation::kFixedRate; }
 inline bool residual_sign_in_bins(uint32_t version) { return version >= 4; }
@@ -73,7 +75,7 @@ namespace syntax {
 template <class IO>
 void describe(IO& io, ObjectHeader& h) {
   io.field("version", 8, h.version);
-  io.require(h.version >= kFirstVersion && h.version <= kLatestVersion, ErrorKind::kReservedValue, "version", "only versions 1 to 5 are defined");
+  io.require(h.version >= kFirstVersion && h.version <= kLatestVersion, ErrorKind::kReservedValue, "version", "only versions 1 to 6 are defined");
   io.field("codec_id", 8, h.codec_id);  // checked against the registry (codecs3d/registry.h)
   io.field_in("vertex_count", 32, h.vertex_count, 3, kMaxVertices3d);
   io.field_in("face_count", 32, h.face_count, 1, kMaxFaces3d);

@@ -269,13 +269,13 @@ struct CpcaCoders {
 
 inline constexpr ResidualNames kCpcaGroupShift = M4MESH_RESIDUAL_NAMES("group_shift", "group_shift");
 
-// The contexts of a version 5 group's list, fresh in every unit.
+// The contexts of a group's list (from version 5), fresh in every unit.
 struct CpcaGroupContexts {
   BinContext trajectory, mesh;
   ResidualCoder<2> shift;  // channel 0: starts, 1: components
 };
 
-// Version 5: a group's list, first in its unit's arithmetic-coded section.
+// From version 5: a group's list, first in its unit's arithmetic-coded section.
 // Each refinement's cluster in bit_width(cluster_count − 1) raw bits (below
 // cluster_count); its kind a start when started(cluster) is false, else a
 // trajectory component (bin group_trajectory), a component over the mesh
