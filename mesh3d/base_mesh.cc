@@ -74,14 +74,18 @@ void describe_vertex_order(IO& io, syntax::BaseMeshContexts& contexts, uint32_t 
   }
 }
 
+PositionCoding::PositionCoding(std::span<const Triangle> faces, uint32_t vertex_count, uint32_t version)
+    : predictor(faces, vertex_count), order(vertex_count) {
+  std::iota(order.begin(), order.end(), 0u);
+  if (version >= kPositionOrderVersion) order = PositionOrder(predictor, vertex_count).of(order);
+}
+
 template <class IO>
-void describe_positions(IO& io, syntax::BaseMeshContexts& contexts, std::span<const Triangle> faces, uint32_t blend,
+void describe_positions(IO& io, syntax::BaseMeshContexts& contexts, const PositionCoding& coding, uint32_t blend,
                         std::vector<IntPoint3>& positions) {
   const uint32_t count = static_cast<uint32_t>(positions.size());
-  const MeshPredictor predictor(faces, count);
-  std::vector<uint32_t> order(count);
-  std::iota(order.begin(), order.end(), 0u);
-  if (io.version() >= kPositionOrderVersion) order = PositionOrder(predictor, count).of(order);
+  const MeshPredictor& predictor = coding.predictor;
+  const std::vector<uint32_t>& order = coding.order;
   std::vector<uint32_t> place(count);
   for (uint32_t i = 0; i < count; ++i) place[order[i]] = i;
   std::array<int64_t, 3> p{}, neighbours{};
@@ -113,7 +117,7 @@ void describe_positions(IO& io, syntax::BaseMeshContexts& contexts, std::span<co
 
 #define M4MESH_BASE_MESH_IO(IO)                                                                                        \
   template void describe_vertex_order<IO>(IO&, syntax::BaseMeshContexts&, uint32_t, std::span<const Triangle>, std::vector<uint32_t>&); \
-  template void describe_positions<IO>(IO&, syntax::BaseMeshContexts&, std::span<const Triangle>, uint32_t, std::vector<IntPoint3>&);
+  template void describe_positions<IO>(IO&, syntax::BaseMeshContexts&, const PositionCoding&, uint32_t, std::vector<IntPoint3>&);
 M4MESH_BASE_MESH_IO(syntax::EntropyReadIO<false>)
 M4MESH_BASE_MESH_IO(syntax::EntropyReadIO<true>)
 M4MESH_BASE_MESH_IO(syntax::EntropyWriteIO<false>)

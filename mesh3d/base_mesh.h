@@ -101,11 +101,20 @@ template <class IO>
 void describe_vertex_order(IO& io, syntax::BaseMeshContexts& contexts, uint32_t method, std::span<const Triangle> parents,
                            std::vector<uint32_t>& input_of);
 
-// The first frame's positions in coding order: each the residual from the
-// prediction by the vertices before it, a parallelogram prediction blended
-// with the known neighbours' mean by `blend` sixteenths.
+// What the positions' coding takes from the faces alone, built once per
+// base mesh: the parallelograms and the position order of the stream's
+// version (coding order before version 6).
+struct PositionCoding {
+  PositionCoding(std::span<const Triangle> faces, uint32_t vertex_count, uint32_t version);
+  MeshPredictor predictor;
+  std::vector<uint32_t> order;  // the vertices in the order their positions are coded
+};
+
+// The first frame's positions in the position order: each the residual
+// from the prediction by the vertices before it, a parallelogram
+// prediction blended with the known neighbours' mean by `blend` sixteenths.
 template <class IO>
-void describe_positions(IO& io, syntax::BaseMeshContexts& contexts, std::span<const Triangle> faces, uint32_t blend,
+void describe_positions(IO& io, syntax::BaseMeshContexts& contexts, const PositionCoding& coding, uint32_t blend,
                         std::vector<IntPoint3>& positions);
 
 }  // namespace m4mesh

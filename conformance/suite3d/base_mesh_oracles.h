@@ -97,7 +97,7 @@ std::vector<uint8_t> written_base_mesh_stream(uint32_t vertex_count, uint32_t fa
   for (int32_t& d : order_differences) contexts.order.describe(symbols, 0, d, syntax::kOrderNames);
   positions.resize(vertex_count);
   try {
-    describe_positions(symbols, contexts, traversal.faces(), 0, positions);
+    describe_positions(symbols, contexts, PositionCoding(traversal.faces(), vertex_count, symbols.version()), 0, positions);
   } catch (const Error&) {
   }
   const FieldBytes faces = object_field<Bfs3dHeader>(encoded, "face_count");

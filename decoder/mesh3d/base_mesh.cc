@@ -28,7 +28,7 @@ BaseMesh read_symbols(IO& symbols, const BaseMeshData& data, const ObjectHeader&
   std::vector<uint32_t> input_of(header.vertex_count);
   describe_vertex_order(symbols, contexts, data.vertex_order, traversal.parents(), input_of);
   base.positions.resize(header.vertex_count);
-  describe_positions(symbols, contexts, base.faces, data.position_blend, base.positions);
+  describe_positions(symbols, contexts, PositionCoding(base.faces, header.vertex_count, header.version), data.position_blend, base.positions);
   symbols.finish("base_mesh");
   if (data.vertex_order == kVertexOrderCoding) {
     base.coding_order.resize(header.vertex_count);

@@ -152,22 +152,22 @@ size_t vertex_order_bytes(uint32_t method, const Connectivity& c, uint32_t versi
 }
 
 // The bytes the positions take with a blend, alone.
-size_t position_bytes(std::span<const Triangle> faces, const std::vector<IntPoint3>& coded, uint32_t blend, uint32_t version) {
+size_t position_bytes(const PositionCoding& position_coding, const std::vector<IntPoint3>& coded, uint32_t blend, uint32_t version) {
   syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.version = version});
   syntax::BaseMeshContexts contexts;
   std::vector<IntPoint3> positions = coded;
-  describe_positions(symbols, contexts, faces, blend, positions);
+  describe_positions(symbols, contexts, position_coding, blend, positions);
   return symbols.finish_bins().size() + symbols.finish_raw().size();
 }
 
 // The coding's blend, else the smallest of 0 … 16 (the lowest of equals).
-uint32_t chosen_blend(const BaseMeshCoding& coding, std::span<const Triangle> faces, const std::vector<IntPoint3>& coded) {
+uint32_t chosen_blend(const BaseMeshCoding& coding, const PositionCoding& position_coding, const std::vector<IntPoint3>& coded) {
   if (coding.version < 2) return 0;
   if (coding.position_blend) return *coding.position_blend;
   uint32_t best = 0;
-  size_t best_bytes = position_bytes(faces, coded, 0, coding.version);
+  size_t best_bytes = position_bytes(position_coding, coded, 0, coding.version);
   for (uint32_t blend = 1; blend <= kPositionBlendUnit; ++blend)
-    if (const size_t bytes = position_bytes(faces, coded, blend, coding.version); bytes < best_bytes) {
+    if (const size_t bytes = position_bytes(position_coding, coded, blend, coding.version); bytes < best_bytes) {
       best = blend;
       best_bytes = bytes;
     }
@@ -216,8 +216,9 @@ void write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> face
   data.vertex_order = chosen_vertex_order(c, coding.version).method;
   describe_vertex_order(symbols, contexts, data.vertex_order, c.parents, c.input_of);
   std::vector<IntPoint3> coded = in_coding_numbers(positions, c);
-  data.position_blend = chosen_blend(coding, c.faces, coded);
-  describe_positions(symbols, contexts, c.faces, data.position_blend, coded);
+  const PositionCoding position_coding(c.faces, vertex_count, coding.version);
+  data.position_blend = chosen_blend(coding, position_coding, coded);
+  describe_positions(symbols, contexts, position_coding, data.position_blend, coded);
   symbols.finish(io, data);
 }
 
@@ -271,7 +272,8 @@ BaseMeshParts base_mesh_parts(std::span<const Triangle> faces, std::span<const I
   parts.connectivity = symbols.finish_bins().size() + symbols.finish_raw().size();
   parts.vertex_order = chosen_vertex_order(c, coding.version).bytes;
   const std::vector<IntPoint3> coded = in_coding_numbers(positions, c);
-  parts.positions = position_bytes(c.faces, coded, chosen_blend(coding, c.faces, coded), coding.version);
+  const PositionCoding position_coding(c.faces, static_cast<uint32_t>(positions.size()), coding.version);
+  parts.positions = position_bytes(position_coding, coded, chosen_blend(coding, position_coding, coded), coding.version);
   return parts;
 }
 
