@@ -39,8 +39,11 @@ int run_info3d(const std::string& input) {
               h.frame_count, h.frame_rate_num, h.frame_rate_den);
   std::printf("  contexts: %s\n", adaptation_of(h.version) == Adaptation::kWarmUp ? "warm-up (from version 3)" : "fixed rate (versions 1 and 2)");
   std::printf("  residual signs: %s\n", residual_sign_in_bins(h.version) ? "in bins, with the suffix's top bit (from version 4)" : "raw (versions 1 to 3)");
-  if (h.codec_id == kCpcaWptId)
+  if (h.codec_id == kCpcaWptId) {
     std::printf("  group lists: %s\n", cpca_group_list_in_bins(h.version) ? "in bins (from version 5)" : "in the unit's fields (versions 1 to 4)");
+    std::printf("  bases over the mesh: %s\n", h.version >= kCpcaAffineFitVersion ? "by an affine fit over the mean shape (from version 7)"
+                                                                                 : "by parallelograms (versions 1 to 6)");
+  }
   if (const std::optional<uint32_t> order = decoder.vertex_order())
     std::printf("  vertex order: %s\n", vertex_order_name(*order));
   if (const std::optional<uint32_t> blend = decoder.position_blend())

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -14,6 +15,7 @@
 
 #include "common/point3.h"
 #include "mesh/topology.h"
+#include "mesh3d/affine_fit.h"
 #include "mesh3d/base_mesh.h"
 #include "mesh3d/mesh_predictor.h"
 #include "syntax/mesh3d/cpca_wpt.h"
@@ -104,22 +106,25 @@ inline uint64_t cpca_component_limit(uint32_t kind, size_t members, uint32_t fra
 }
 
 // The prediction of a component's basis over the base mesh (unit_kind 2
-// and 3): a cluster's members in its member order, each predicted by the
-// base mesh's parallelograms (MeshPredictor) from the members before it.
+// and 3): a cluster's members in its member order, each predicted from the
+// members before it: by the base mesh's parallelograms (MeshPredictor), or
+// from version 7 by an affine fit over the mean shape (AffineFit).
 class CpcaMeshPrediction {
  public:
-  // faces: the base mesh's, coding_order: its vertices in coding order.
-  // The member order is coding order, from version 6 the position order
-  // over the cluster (docs/codec_cpca_wpt.md).
+  // faces: the base mesh's, coding_order: its vertices in coding order,
+  // mean_shape: its decoded positions. The member order is coding order,
+  // from version 6 the position order over the cluster
+  // (docs/codec_cpca_wpt.md).
   CpcaMeshPrediction(std::span<const Triangle> faces, std::span<const uint32_t> coding_order, std::span<const uint32_t> cluster_of,
-                     uint32_t cluster_count, uint32_t version);
+                     uint32_t cluster_count, uint32_t version, std::span<const IntPoint3> mean_shape);
 
   // A component over the mesh: D basis values per member (unit_kind 2:
   // D = 3, x, y, z; unit_kind 3: D = 1) at basis[D·i + a], i the member's
   // slot in the cluster's index order, for the members in member order:
   // the residual from the prediction, on channel a after a parallelogram,
-  // D + a after a mean of neighbours, else (no neighbour known) D + a from
-  // the member before (0 for the first); |basis| ≤ 2^15.
+  // D + a after a mean of neighbours (from version 7 an affine fit
+  // without a parallelogram), else (no neighbour known) D + a from the
+  // member before (0 for the first); |basis| ≤ 2^15.
   // Then the coefficients (3/D per frame) as the differences to the same
   // lane the frame before, on channels 2D + lane; |coefficient| ≤ 2^23.
   template <size_t D, class IO>
@@ -129,15 +134,9 @@ class CpcaMeshPrediction {
     const syntax::ResidualNames& basis_names = D == 3 ? syntax::kCpcaMeshBasis : syntax::kCpcaTrajectoryBasis;
     const syntax::ResidualNames& coefficient_names = D == 3 ? syntax::kCpcaCoefficient : syntax::kCpcaTrajectoryCoefficient;
     std::array<int64_t, D> p{}, previous{};
+    std::vector<uint32_t> points;
     for (const uint32_t v : in_order_[cluster]) {
-      const uint32_t rank = rank_[v];
-      const auto known = [&](uint32_t u) { return rank_[u] < rank && cluster_of_[u] == cluster; };
-      const auto value = [&](uint32_t u) {
-        std::array<int32_t, D> values;
-        for (size_t a = 0; a < D; ++a) values[a] = basis[D * slot_[u] + a];
-        return values;
-      };
-      int channel = predictor_.predict(v, known, value, p);
+      int channel = predict<D>(cluster, v, basis, points, p);
       if (channel < 0) p = previous;
       channel = channel == syntax::kParallelogramChannel ? 0 : static_cast<int>(D);
       for (size_t a = 0; a < D; ++a) {
@@ -155,8 +154,45 @@ class CpcaMeshPrediction {
                                  "a coefficient beyond ±2^23");
   }
 
+  // The encoder's basis values nearest `target` (the real values in basis
+  // steps), each residual from its prediction rounded towards 0 when its
+  // fraction is below 1 − `rounding` (0.5: to nearest).
+  template <size_t D>
+  void quantize(uint32_t cluster, std::span<const double> target, double rounding, std::span<int32_t> basis) const {
+    std::array<int64_t, D> p{}, previous{};
+    std::vector<uint32_t> points;
+    for (const uint32_t v : in_order_[cluster]) {
+      if (predict<D>(cluster, v, basis, points, p) < 0) p = previous;
+      for (size_t a = 0; a < D; ++a) {
+        const size_t i = D * size_t{slot_[v]} + a;
+        const double x = target[i] - static_cast<double>(p[a]);
+        const int64_t residual = static_cast<int64_t>(std::copysign(std::floor(std::abs(x) + rounding), x));
+        previous[a] = std::clamp<int64_t>(p[a] + residual, -kCpcaMaxBasis, kCpcaMaxBasis);
+        basis[i] = static_cast<int32_t>(previous[a]);
+      }
+    }
+  }
+
  private:
+  // Member v's prediction from the members of `cluster` before it; the
+  // channel as MeshPredictor::predict's.
+  template <size_t D>
+  int predict(uint32_t cluster, uint32_t v, std::span<const int32_t> basis, std::vector<uint32_t>& points, std::array<int64_t, D>& p) const {
+    const uint32_t rank = rank_[v];
+    const auto known = [&](uint32_t u) { return rank_[u] < rank && cluster_of_[u] == cluster; };
+    const auto value = [&](uint32_t u) {
+      std::array<int32_t, D> values;
+      for (size_t a = 0; a < D; ++a) values[a] = basis[D * slot_[u] + a];
+      return values;
+    };
+    if (mean_shape_.empty()) return predictor_.predict(v, known, value, p);
+    const int channel = affine_fit_support(predictor_, v, known, points);
+    if (channel >= 0) affine_fit(mean_shape_, v, points, value, p);
+    return channel;
+  }
+
   MeshPredictor predictor_;
+  std::vector<IntPoint3> mean_shape_;                  // from version 7, else empty
   std::vector<uint32_t> rank_;                         // per vertex: its place in its cluster's member order
   std::vector<uint32_t> slot_;                         // per vertex: its index among its cluster's members
   std::vector<uint32_t> cluster_of_;

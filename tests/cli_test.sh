@@ -200,9 +200,9 @@ grep -q "progressive needs a progressive codec" "$work/err" || fail "progressive
 grep -q "^note: .* numbers its vertices in coding order" "$work/err" || fail "decode3d note: $(cat "$work/err")"
 "$m4mesh" info "$work/t.m4m" | grep -q "vertex order: the input's" || fail "info of an input-order stream"
 # The version, the contexts' adaptation and the base mesh's blend, in every version.
-"$m4mesh" info conformance/mesh3d/streams/base-19-blend-5.m4m > "$work/info" && grep -q "container version 6, .*" "$work/info" && grep -q "contexts: warm-up" "$work/info" &&
+"$m4mesh" info conformance/mesh3d/streams/base-19-blend-5.m4m > "$work/info" && grep -q "container version 7, .*" "$work/info" && grep -q "contexts: warm-up" "$work/info" &&
   grep -q "residual signs: in bins" "$work/info" && grep -q "neighbours' mean by 5/16, in the position order" "$work/info" ||
-  fail "info of a version 6 stream: $(cat "$work/info")"
+  fail "info of a version 7 stream: $(cat "$work/info")"
 "$m4mesh" info conformance/mesh3d/streams/base-24-version-5.m4m > "$work/info" && grep -q "container version 5, .*" "$work/info" &&
   grep -q "neighbours' mean by 5/16, in coding order" "$work/info" || fail "info of a version 5 stream: $(cat "$work/info")"
 "$m4mesh" info conformance/mesh3d/streams/cpca-18-groups.m4m | grep -q "group lists: in bins (from version 5)" || fail "info of a version 6 cpca-wpt stream"
@@ -219,11 +219,15 @@ grep -q "^note: .* numbers its vertices in coding order" "$work/err" || fail "de
 "$m4mesh" info "$work/v3.m4m" | grep -q "container version 3, " || fail "--container-version 3 wrote: $("$m4mesh" info "$work/v3.m4m")"
 "$m4mesh" encode3d tests/data/tetra-frames --container-version 4 -o "$work/v4.m4m" > /dev/null || fail "encode3d --container-version 4"
 "$m4mesh" encode3d tests/data/tetra-frames --container-version 5 -o "$work/v5.m4m" > /dev/null || fail "encode3d --container-version 5"
-"$m4mesh" decode3d "$work/t.m4m" -o "$work/v6.m4seq" > /dev/null || fail "decode3d of a version 6 stream"
-for v in 2 3 4 5; do
-  "$m4mesh" decode3d "$work/v$v.m4m" -o "$work/v$v.m4seq" > /dev/null && cmp -s "$work/v$v.m4seq" "$work/v6.m4seq" ||
-    fail "a version $v stream decodes to other frames than version 6's"
+"$m4mesh" encode3d tests/data/tetra-frames --container-version 6 -o "$work/v6.m4m" > /dev/null || fail "encode3d --container-version 6"
+"$m4mesh" decode3d "$work/t.m4m" -o "$work/v7.m4seq" > /dev/null || fail "decode3d of a version 7 stream"
+for v in 2 3 4 5 6; do
+  "$m4mesh" decode3d "$work/v$v.m4m" -o "$work/v$v.m4seq" > /dev/null && cmp -s "$work/v$v.m4seq" "$work/v7.m4seq" ||
+    fail "a version $v stream decodes to other frames than version 7's"
 done
+"$m4mesh" info conformance/mesh3d/streams/cpca-34-trajectories-version-6.m4m | grep -q "bases over the mesh: by parallelograms (versions 1 to 6)" &&
+  "$m4mesh" info conformance/mesh3d/streams/cpca-12-trajectories.m4m | grep -q "bases over the mesh: by an affine fit over the mean shape" ||
+  fail "info of cpca-wpt's bases over the mesh: $("$m4mesh" info conformance/mesh3d/streams/cpca-12-trajectories.m4m)"
 if "$m4mesh" encode3d tests/data/tetra-frames --container-version 1 --position-blend 5 -o "$work/v1.m4m" 2> "$work/err"; then fail "version 1 with a blend accepted"; fi
 grep -q "a version 1 stream has no position blend" "$work/err" || fail "version 1 with a blend: $(cat "$work/err")"
 [ ! -e "$work/v1.m4m" ] || fail "a refused encode3d wrote its output"

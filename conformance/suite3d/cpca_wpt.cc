@@ -132,6 +132,15 @@ ContainerWriter cpca_written_start(const MeshSequence& s, const std::vector<uint
   return writer;
 }
 
+// The mean shape a stream of cpca_written_start() decodes (what its
+// components over the mesh are predicted from, from version 7).
+std::vector<IntPoint3> cpca_written_mean_shape(const MeshSequence& s, uint32_t version = kLatestVersion) {
+  Encode3dOptions o = cpca({{"clusters", "1"}});
+  o.hashes = false;
+  o.version = version;
+  return base_mesh_of(split_container(encode_mesh3d(s, o).stream)).positions;
+}
+
 // What a rewritten clustered-PCA header starts from: the stream's map and
 // its base mesh's faces (which predict a map by neighbours).
 struct CpcaMap {
@@ -273,7 +282,7 @@ std::vector<uint8_t> cpca_mesh_written_stream() {
   ContainerWriter writer = cpca_written_start(s, cluster_of, clusters, std::nullopt);
 
   const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false);
-  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, clusters, kLatestVersion);
+  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, clusters, kLatestVersion, cpca_written_mean_shape(s));
   const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, clusters);
   // One value per member (every axis alike), one per frame (every lane alike).
   auto component = [&](uint32_t kind, uint32_t cluster, const std::vector<int32_t>& values, std::pair<int32_t, int32_t> frames) {
@@ -351,7 +360,7 @@ struct OneVertexClusters {
   }();
   BaseMeshPlan plan = plan_base_mesh(sequence.faces, sequence.vertex_count, false);
   ContainerWriter writer = cpca_written_start(sequence, cluster_of, kCpcaMaxClusters, std::nullopt, version);
-  CpcaMeshPrediction mesh{plan.faces, plan.input_of, cluster_of, kCpcaMaxClusters, version};
+  CpcaMeshPrediction mesh{plan.faces, plan.input_of, cluster_of, kCpcaMaxClusters, version, cpca_written_mean_shape(sequence, version)};
 };
 
 // A clustered-PCA stream of 2 frames written symbol by symbol (no hash
@@ -484,7 +493,7 @@ std::vector<uint8_t> cpca_over_mesh_stream(const MeshSequence& s, uint32_t kind,
   for (uint32_t v = 0; v < s.vertex_count; ++v) cluster_of[v] = v < s.vertex_count / 2 ? 0 : 1;
   ContainerWriter writer = cpca_written_start(s, cluster_of, 2, std::nullopt);
   const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false, untraversed);
-  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, 2, kLatestVersion);
+  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, 2, kLatestVersion, cpca_written_mean_shape(s));
   const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, 2);
   const size_t per_member = kind == kCpcaTrajectory ? 1 : 3, frames = s.frames.size();
   for (uint32_t c = 0; c < 2; ++c) {
@@ -605,6 +614,28 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
   fifth_version_trajectories.version = 5;
   suite.push_back(valid("cpca-32-trajectories-version-5", "cpca-12's trajectory components in a version 5 stream: members in coding order",
                         {"cpca"}, flag, fifth_version_trajectories, traced));
+  {
+    // Frame 1 the flag's frame 0, its first half through the origin: the
+    // mean shape holds that half at the origin.
+    MeshSequence collapsed = flag;
+    collapsed.frames = {flag.frames[0], flag.frames[0]};
+    for (size_t v = 0; v < collapsed.vertex_count / 2; ++v) {
+      const Vec3 p = collapsed.frames[1][v];
+      collapsed.frames[1][v] = {-p.x, -p.y, -p.z};
+    }
+    suite.push_back(valid("cpca-35-trajectories-collapsed", "trajectory components over a mean shape half collapsed to one point: fits "
+                          "without spread, the mean of the known values", {"cpca"}, collapsed,
+                          cpca({{"clusters", "2"}, {"model", "trajectory"}, {"noise", "-4"}}), traced));
+  }
+  // Version 6's bases predicted by parallelograms.
+  Encode3dOptions sixth_version = cpca({{"clusters", "4"}, {"basis", "mesh"}});
+  sixth_version.version = 6;
+  suite.push_back(valid("cpca-33-mesh-basis-version-6", "cpca-11's components over the mesh in a version 6 stream: bases predicted by "
+                        "parallelograms", {"cpca"}, flag, sixth_version, traced));
+  Encode3dOptions sixth_version_trajectories = cpca({{"clusters", "4"}, {"model", "trajectory"}});
+  sixth_version_trajectories.version = 6;
+  suite.push_back(valid("cpca-34-trajectories-version-6", "cpca-12's trajectory components in a version 6 stream: bases predicted by "
+                        "parallelograms", {"cpca"}, flag, sixth_version_trajectories, traced));
   return suite;
 }
 

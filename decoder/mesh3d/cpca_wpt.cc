@@ -55,7 +55,7 @@ class CpcaDecoder final : public CodecDecoder3d {
           throw in_object_payload(e);
         }
       }
-      mesh_.emplace(base.faces, base.coding_order, cluster_of_, header_.cluster_count, object_.version);
+      mesh_.emplace(base.faces, base.coding_order, cluster_of_, header_.cluster_count, object_.version, base.positions);
       faces_ = std::move(base.faces);
       animation_.emplace(header_, base.positions, object_.frame_count);
       for (uint32_t f = 0; f < object_.frame_count; ++f) decoded.push_back(f);

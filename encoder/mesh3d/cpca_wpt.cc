@@ -37,6 +37,10 @@ using namespace cpca_wpt;
 // same KG on the cow and the horse (the basis is predicted over the mesh,
 // the coefficients are not).
 constexpr int kTrajectoryBasisFiner = 1;
+// A trajectory basis value's residual rounds to the one nearer 0 unless its
+// fraction reaches 0.55: the smaller residual saves more bits than its
+// error costs (FAMC and tune clips, docs/rate_distortion.md).
+constexpr double kTrajectoryBasisRounding = 0.45;
 
 // The bytes of a refinement unit an operator in a group does not pay: the
 // start code, the unit header, the refinement fields less its entry in the
@@ -179,7 +183,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     cluster_of_ = cluster_of;
     header_.cluster_count = *std::max_element(cluster_of_.begin(), cluster_of_.end()) + 1;
     members_ = cpca_members(cluster_of_, header_.cluster_count);
-    mesh_.emplace(s.faces, coding_order, cluster_of_, header_.cluster_count, header_.version);
+    mesh_.emplace(s.faces, coding_order, cluster_of_, header_.cluster_count, header_.version, mean_);
     faces_ = s.faces;
     choose_cluster_map();
     auto start = std::chrono::steady_clock::now();
@@ -266,7 +270,13 @@ class CpcaEncoder final : public CodecEncoder3d {
       sequence.push_back(std::move(start));
       for (const Component& component : components_of_[c]) {
         Operator op = quantize(component, c, q, static_cast<int>(header_.fraction_bits), trajectories_ ? kTrajectoryBasisFiner : 0);
-        if (trajectories_) op.kind = kCpcaTrajectory;
+        if (trajectories_) {
+          op.kind = kCpcaTrajectory;
+          const double scale = power_of_sqrt2(op.basis_exponent);
+          std::vector<double> target(static_cast<size_t>(component.basis.size()));
+          for (size_t i = 0; i < target.size(); ++i) target[i] = component.basis(static_cast<Eigen::Index>(i)) * scale;
+          mesh_->quantize<1>(c, target, kTrajectoryBasisRounding, op.basis);
+        }
         measure(op, estimated_gain(component, op));
         if (!(op.gain > 0)) break;  // quantization ate the component: the later ones are smaller still
         sequence.push_back(std::move(op));

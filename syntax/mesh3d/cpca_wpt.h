@@ -46,6 +46,9 @@ inline constexpr uint32_t kCpcaMaxGroupSize = 255;
 // From version 5 a group's list is coded at the start of its unit's
 // arithmetic-coded section; before, in the unit's fields.
 inline bool cpca_group_list_in_bins(uint32_t version) { return version >= 5; }
+// From version 7 a component's basis over the mesh (unit_kind 2 and 3) is
+// predicted by an affine fit over the mean shape (mesh3d/affine_fit.h).
+inline constexpr uint32_t kCpcaAffineFitVersion = 7;
 // A unit_kind as tools name it.
 inline const char* cpca_unit_kind_name(uint32_t kind) {
   static constexpr const char* kNames[] = {"start", "component", "mesh component", "trajectory component", "group"};
