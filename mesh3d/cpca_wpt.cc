@@ -16,8 +16,7 @@ CpcaMeshPrediction::CpcaMeshPrediction(std::span<const Triangle> faces, std::spa
                                        std::span<const uint32_t> cluster_of, uint32_t cluster_count, uint32_t version,
                                        std::span<const IntPoint3> mean_shape)
     : predictor_(faces, static_cast<uint32_t>(cluster_of.size())),
-      mean_shape_(version >= kCpcaAffineFitVersion ? std::vector<IntPoint3>(mean_shape.begin(), mean_shape.end())
-                                                          : std::vector<IntPoint3>{}),
+      mean_shape_(version >= kCpcaAffineFitVersion ? std::vector<IntPoint3>(mean_shape.begin(), mean_shape.end()) : std::vector<IntPoint3>{}),
       rank_(cluster_of.size()),
       slot_(cluster_of.size()),
       cluster_of_(cluster_of.begin(), cluster_of.end()),

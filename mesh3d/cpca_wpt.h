@@ -108,7 +108,7 @@ inline uint64_t cpca_component_limit(uint32_t kind, size_t members, uint32_t fra
 // The prediction of a component's basis over the base mesh (unit_kind 2
 // and 3): a cluster's members in its member order, each predicted from the
 // members before it: by the base mesh's parallelograms (MeshPredictor), or
-// from version 7 by an affine fit over the mean shape (AffineFit).
+// from version 7 by an affine fit over the mean shape (mesh3d/affine_fit.h).
 class CpcaMeshPrediction {
  public:
   // faces: the base mesh's, coding_order: its vertices in coding order,
