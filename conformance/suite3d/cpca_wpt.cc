@@ -106,16 +106,22 @@ std::vector<uint8_t> crafted_refinement(uint32_t cluster, uint32_t kind, const s
   return refinement_bytes(cluster, kind, kCpcaShiftBias, symbols);
 }
 
+// The encoder's stream of `s` in one cluster, without hash units: what the
+// streams written symbol by symbol start from.
+ContainerParts cpca_one_cluster_parts(const MeshSequence& s, uint32_t version) {
+  Encode3dOptions o = cpca({{"clusters", "1"}});
+  o.hashes = false;
+  o.version = version;
+  return split_container(encode_mesh3d(s, o).stream);
+}
+
 // The start of a clustered-PCA stream written symbol by symbol: the
 // encoder's object header and base mesh for `s` (one cluster, no hash
 // units), the header's cluster map replaced by `cluster_of` (and F by
 // `fraction_bits` when given); refinement units follow.
 ContainerWriter cpca_written_start(const MeshSequence& s, const std::vector<uint32_t>& cluster_of, uint32_t clusters,
                                    std::optional<uint32_t> fraction_bits, uint32_t version = kLatestVersion) {
-  Encode3dOptions o = cpca({{"clusters", "1"}});
-  o.hashes = false;
-  o.version = version;
-  ContainerParts parts = split_container(encode_mesh3d(s, o).stream);
+  ContainerParts parts = cpca_one_cluster_parts(s, version);
   auto [object, header] = read_headers<CpcaHeader>(parts);
   header.cluster_count = clusters;
   header.map_prediction = kCpcaMapByDifference;
@@ -135,10 +141,7 @@ ContainerWriter cpca_written_start(const MeshSequence& s, const std::vector<uint
 // The mean shape a stream of cpca_written_start() decodes (what its
 // components over the mesh are predicted from, from version 7).
 std::vector<IntPoint3> cpca_written_mean_shape(const MeshSequence& s, uint32_t version = kLatestVersion) {
-  Encode3dOptions o = cpca({{"clusters", "1"}});
-  o.hashes = false;
-  o.version = version;
-  return base_mesh_of(split_container(encode_mesh3d(s, o).stream)).positions;
+  return base_mesh_of(cpca_one_cluster_parts(s, version)).positions;
 }
 
 // What a rewritten clustered-PCA header starts from: the stream's map and
@@ -614,6 +617,15 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
   fifth_version_trajectories.version = 5;
   suite.push_back(valid("cpca-32-trajectories-version-5", "cpca-12's trajectory components in a version 5 stream: members in coding order",
                         {"cpca"}, flag, fifth_version_trajectories, traced));
+  // Version 6's bases predicted by parallelograms.
+  Encode3dOptions sixth_version = cpca({{"clusters", "4"}, {"basis", "mesh"}});
+  sixth_version.version = 6;
+  suite.push_back(valid("cpca-33-mesh-basis-version-6", "cpca-11's components over the mesh in a version 6 stream: bases predicted by "
+                        "parallelograms", {"cpca"}, flag, sixth_version, traced));
+  Encode3dOptions sixth_version_trajectories = cpca({{"clusters", "4"}, {"model", "trajectory"}});
+  sixth_version_trajectories.version = 6;
+  suite.push_back(valid("cpca-34-trajectories-version-6", "cpca-12's trajectory components in a version 6 stream: bases predicted by "
+                        "parallelograms", {"cpca"}, flag, sixth_version_trajectories, traced));
   {
     // Frame 1 the flag's frame 0, its first half through the origin: the
     // mean shape holds that half at the origin.
@@ -627,15 +639,6 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
                           "without spread, the mean of the known values", {"cpca"}, collapsed,
                           cpca({{"clusters", "2"}, {"model", "trajectory"}, {"noise", "-4"}}), traced));
   }
-  // Version 6's bases predicted by parallelograms.
-  Encode3dOptions sixth_version = cpca({{"clusters", "4"}, {"basis", "mesh"}});
-  sixth_version.version = 6;
-  suite.push_back(valid("cpca-33-mesh-basis-version-6", "cpca-11's components over the mesh in a version 6 stream: bases predicted by "
-                        "parallelograms", {"cpca"}, flag, sixth_version, traced));
-  Encode3dOptions sixth_version_trajectories = cpca({{"clusters", "4"}, {"model", "trajectory"}});
-  sixth_version_trajectories.version = 6;
-  suite.push_back(valid("cpca-34-trajectories-version-6", "cpca-12's trajectory components in a version 6 stream: bases predicted by "
-                        "parallelograms", {"cpca"}, flag, sixth_version_trajectories, traced));
   return suite;
 }
 
