@@ -115,14 +115,15 @@ ContainerParts cpca_one_cluster_parts(const MeshSequence& s, uint32_t version) {
   return split_container(encode_mesh3d(s, o).stream);
 }
 
-// The start of a clustered-PCA stream written symbol by symbol: the
-// encoder's object header and base mesh for `s` (one cluster, no hash
-// units), the header's cluster map replaced by `cluster_of` (and F by
-// `fraction_bits` when given); refinement units follow.
-ContainerWriter cpca_written_start(const MeshSequence& s, const std::vector<uint32_t>& cluster_of, uint32_t clusters,
-                                   std::optional<uint32_t> fraction_bits, uint32_t version = kLatestVersion) {
-  ContainerParts parts = cpca_one_cluster_parts(s, version);
+// The start of a clustered-PCA stream written symbol by symbol: the object
+// header and base mesh of `parts` (cpca_one_cluster_parts()), the header's
+// cluster map replaced by `cluster_of` (and F by `fraction_bits` when
+// given); refinement units follow. The base mesh's positions (base_mesh_of)
+// predict the components over the mesh from version 7.
+ContainerWriter cpca_written_start(ContainerParts parts, const std::vector<uint32_t>& cluster_of, uint32_t clusters,
+                                   std::optional<uint32_t> fraction_bits) {
   auto [object, header] = read_headers<CpcaHeader>(parts);
+  const uint32_t version = object.version;
   header.cluster_count = clusters;
   header.map_prediction = kCpcaMapByDifference;
   if (fraction_bits) header.fraction_bits = *fraction_bits;
@@ -136,12 +137,6 @@ ContainerWriter cpca_written_start(const MeshSequence& s, const std::vector<uint
   writer.object(payload.take_bytes());
   writer.unit(unit_of(parts, UnitType::kBaseMesh, 0).payload);
   return writer;
-}
-
-// The mean shape a stream of cpca_written_start() decodes (what its
-// components over the mesh are predicted from, from version 7).
-std::vector<IntPoint3> cpca_written_mean_shape(const MeshSequence& s, uint32_t version = kLatestVersion) {
-  return base_mesh_of(cpca_one_cluster_parts(s, version)).positions;
 }
 
 // What a rewritten clustered-PCA header starts from: the stream's map and
@@ -219,7 +214,8 @@ std::vector<uint8_t> cpca_written_stream() {
   });
   const int loose = static_cast<int>(cluster_of.size()) - 11;  // designed_loose()'s sheet and box hold 11
   ContainerWriter writer =
-      cpca_written_start(designed_loose(2, loose, [](int, int) { return 0; }), cluster_of, kClusters, kCpcaMaxFractionBits);
+      cpca_written_start(cpca_one_cluster_parts(designed_loose(2, loose, [](int, int) { return 0; }), kLatestVersion), cluster_of, kClusters,
+                         kCpcaMaxFractionBits);
 
   const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, kClusters);
   auto start = [&](uint32_t cluster, std::vector<int32_t> translation) {
@@ -282,10 +278,11 @@ std::vector<uint8_t> cpca_mesh_written_stream() {
   for (uint32_t p = 0; p < patterns.size(); ++p) cluster_of[quads_end + schedule.size() + p] = 2 + p;
   const uint32_t clusters = 2 + static_cast<uint32_t>(patterns.size());
 
-  ContainerWriter writer = cpca_written_start(s, cluster_of, clusters, std::nullopt);
+  const ContainerParts start = cpca_one_cluster_parts(s, kLatestVersion);
+  ContainerWriter writer = cpca_written_start(start, cluster_of, clusters, std::nullopt);
 
   const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false);
-  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, clusters, kLatestVersion, cpca_written_mean_shape(s));
+  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, clusters, kLatestVersion, base_mesh_of(start).positions);
   const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, clusters);
   // One value per member (every axis alike), one per frame (every lane alike).
   auto component = [&](uint32_t kind, uint32_t cluster, const std::vector<int32_t>& values, std::pair<int32_t, int32_t> frames) {
@@ -362,8 +359,9 @@ struct OneVertexClusters {
     return each;
   }();
   BaseMeshPlan plan = plan_base_mesh(sequence.faces, sequence.vertex_count, false);
-  ContainerWriter writer = cpca_written_start(sequence, cluster_of, kCpcaMaxClusters, std::nullopt, version);
-  CpcaMeshPrediction mesh{plan.faces, plan.input_of, cluster_of, kCpcaMaxClusters, version, cpca_written_mean_shape(sequence, version)};
+  ContainerParts start = cpca_one_cluster_parts(sequence, version);
+  ContainerWriter writer = cpca_written_start(start, cluster_of, kCpcaMaxClusters, std::nullopt);
+  CpcaMeshPrediction mesh{plan.faces, plan.input_of, cluster_of, kCpcaMaxClusters, version, base_mesh_of(start).positions};
 };
 
 // A clustered-PCA stream of 2 frames written symbol by symbol (no hash
@@ -494,9 +492,10 @@ std::vector<uint8_t> cpca_group_shifts_stream() {
 std::vector<uint8_t> cpca_over_mesh_stream(const MeshSequence& s, uint32_t kind, std::span<const uint32_t> untraversed) {
   std::vector<uint32_t> cluster_of(s.vertex_count);
   for (uint32_t v = 0; v < s.vertex_count; ++v) cluster_of[v] = v < s.vertex_count / 2 ? 0 : 1;
-  ContainerWriter writer = cpca_written_start(s, cluster_of, 2, std::nullopt);
+  const ContainerParts start = cpca_one_cluster_parts(s, kLatestVersion);
+  ContainerWriter writer = cpca_written_start(start, cluster_of, 2, std::nullopt);
   const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false, untraversed);
-  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, 2, kLatestVersion, cpca_written_mean_shape(s));
+  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, 2, kLatestVersion, base_mesh_of(start).positions);
   const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, 2);
   const size_t per_member = kind == kCpcaTrajectory ? 1 : 3, frames = s.frames.size();
   for (uint32_t c = 0; c < 2; ++c) {
