@@ -41,8 +41,8 @@ std::vector<uint8_t> base_unit(const MeshSequence& s, const std::vector<IntPoint
 }
 
 // Counters: bits per vertex, m4mesh in input order and reordered (and so
-// in version 5, before the base mesh's last change: version 6's position
-// order), Draco edgebreaker and sequential on the same grid positions.
+// in version 7, before the base mesh's last change: version 8's fronts),
+// Draco edgebreaker and sequential on the same grid positions.
 void BM_BaseMeshRate(benchmark::State& state) {
   const MeshSequence& s = bench::sequence(kSequences[state.range(0)]);
   const int bits = static_cast<int>(state.range(1));
@@ -52,7 +52,7 @@ void BM_BaseMeshRate(benchmark::State& state) {
   const double v = s.vertex_count;
   state.counters["m4mesh"] = 8.0 * static_cast<double>(ordered) / v;
   state.counters["m4mesh_reorder"] = 8.0 * static_cast<double>(base_unit(s, q, true).size()) / v;
-  const BaseMeshCoding previous = BaseMeshCoding::of(5, std::nullopt);
+  const BaseMeshCoding previous = BaseMeshCoding::of(kFrontVersion - 1, std::nullopt);
   state.counters["m4mesh_previous"] = 8.0 * static_cast<double>(base_unit(s, q, false, previous).size()) / v;
   state.counters["m4mesh_reorder_previous"] = 8.0 * static_cast<double>(base_unit(s, q, true, previous).size()) / v;
   state.counters["draco_eb"] = 8.0 * static_cast<double>(draco_grid_size(s.faces, q, true)) / v;
@@ -62,7 +62,8 @@ void BM_BaseMeshRate(benchmark::State& state) {
 BENCHMARK(BM_BaseMeshRate)->ArgsProduct({{0, 1, 2, 3, 4, 5}, {10, 12, 14}})->Unit(benchmark::kMillisecond)->Iterations(1);
 
 // Bits per vertex of each part at 12 bits in the input order, each coded
-// alone, in versions 1 to 4 and 6 (version 5's base mesh is version 4's).
+// alone, in versions 1 to 4, 6 and 8 (version 5's base mesh is version 4's,
+// version 7's version 6's).
 void BM_BaseMeshParts(benchmark::State& state) {
   const MeshSequence& s = bench::sequence(kSequences[state.range(0)]);
   const uint32_t version = static_cast<uint32_t>(state.range(1));
@@ -77,11 +78,12 @@ void BM_BaseMeshParts(benchmark::State& state) {
   state.counters["positions"] = 8.0 * static_cast<double>(parts.positions) / v;
   state.SetLabel(bench::label(kSequences[state.range(0)]) + " version " + std::to_string(version));
 }
-BENCHMARK(BM_BaseMeshParts)->ArgsProduct({{0, 1, 2, 3, 4, 5}, {1, 2, 3, 4, 6}})->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_BaseMeshParts)->ArgsProduct({{0, 1, 2, 3, 4, 5}, {1, 2, 3, 4, 6, 8}})->Unit(benchmark::kMillisecond)->Iterations(1);
 
 // Each version in one run: 1 (no blend, contexts at the fixed rate), 2
 // (the blend the encoder chooses), 3 (contexts warming up as well), 4
-// (residual signs and top bits in bins) and 6 (the position order).
+// (residual signs and top bits in bins), 6 (the position order) and 8
+// (far vertices on the front by their index).
 void BM_BaseMeshDecode(benchmark::State& state) {
   const MeshSequence& s = bench::sequence(kSequences[state.range(0)]);
   const uint32_t version = static_cast<uint32_t>(state.range(1));
@@ -97,7 +99,7 @@ void BM_BaseMeshDecode(benchmark::State& state) {
                  std::to_string(coding.version == 1 ? 0 : unit[1]));
   state.counters["vertices/s"] = benchmark::Counter(static_cast<double>(state.iterations()) * s.vertex_count, benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_BaseMeshDecode)->ArgsProduct({{0, 2}, {1, 2, 3, 4, 6}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BaseMeshDecode)->ArgsProduct({{0, 2}, {1, 2, 3, 4, 6, 8}})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace m4mesh

@@ -103,7 +103,7 @@ int run_m4mesh(int argc, const char* const* argv) {
   encode3d_cmd->add_option("--container-version", encode3d_args.container_version,
                            "the stream's version, for older decoders: 1 (no position blend), 2 (contexts at a fixed rate), 3 (residual "
                            "signs raw), 4 (cpca-wpt's group lists in fields), 5 (positions in coding order), 6 (cpca-wpt's bases by "
-                           "parallelograms) or 7 (default: 7, or 1 with --position-blend 0)")
+                           "parallelograms), 7 (far vertices by their difference) or 8 (default: 8, or 1 with --position-blend 0)")
       ->check(CLI::Range(1u, kLatestVersion));
   encode3d_cmd->add_option("--hash-group", encode3d_args.hash_group, "frames per group hash unit (1: an MD5 hash unit per frame)")
       ->check(CLI::Range(1, 65535))

@@ -44,8 +44,11 @@ int run_info3d(const std::string& input) {
     std::printf("  bases over the mesh: %s\n", h.version >= kCpcaAffineFitVersion ? "by an affine fit over the mean shape (from version 7)"
                                                                                  : "by parallelograms (versions 1 to 6)");
   }
-  if (const std::optional<uint32_t> order = decoder.vertex_order())
+  if (const std::optional<uint32_t> order = decoder.vertex_order()) {
     std::printf("  vertex order: %s\n", vertex_order_name(*order));
+    std::printf("  far vertices: %s\n", h.version >= kFrontVersion ? "by their index on the gate's front where they are on it (from version 8)"
+                                                                   : "by their difference from the gate's vertex (versions 1 to 7)");
+  }
   if (const std::optional<uint32_t> blend = decoder.position_blend())
     std::printf("  positions: parallelograms blended with the neighbours' mean by %u/16%s, %s\n", *blend,
                 h.version == 1 ? " (version 1: no blend)" : "",

@@ -5,6 +5,7 @@
 
 #include "codecs3d/registry.h"
 #include "decoder/mesh3d/container_decoder.h"
+#include "syntax/mesh3d/base_mesh.h"
 #include "syntax/mesh3d/residual.h"
 
 namespace m4mesh {
@@ -69,7 +70,7 @@ std::string codec_area(uint32_t codec_id) {
 }
 
 bool is_base_mesh_symbol(const std::string& name) {
-  for (const char* prefix : {"gate_", "candidate_index", "seed_", "position_", "order_", "far_", "loose_vertex"})
+  for (const char* prefix : {"gate_", "candidate_index", "seed_", "position_", "order_", "far_", "front_index", "loose_vertex"})
     if (name.starts_with(prefix)) return true;
   return false;
 }
@@ -155,6 +156,9 @@ std::map<std::string, std::set<std::string>> coverage_catalog3d() {
     for (int later = 64; later <= 67; ++later) base.insert(bin_item("base-mesh", "candidate_index", later, v));
     for (int border = 0; border < 2; ++border) base.insert(bin_item("base-mesh", "gate_border", border, v));
     base.insert(bin_item("base-mesh", "seed_new_vertex", 0, v));
+    // Version 8: whether a far vertex is on the gate's front, and its index there (contexts by bin, the last for bins 3 on).
+    base.insert(bin_item("base-mesh", "far_on_front", 0, v));
+    for (int slot = 0; slot < syntax::BaseMeshContexts::kFrontSlots; ++slot) base.insert(bin_item("base-mesh", "front_index", slot, v));
   }
   residual_family(base, "base-mesh", "position", {0, 1, 2, 3, 4, 5});
   residual_family(base, "base-mesh", "order", {0});

@@ -42,6 +42,28 @@ void GateTraversal::candidates(HalfEdge gate, std::vector<uint32_t>& out) const 
   }
 }
 
+void GateTraversal::front(HalfEdge gate, std::span<const uint32_t> candidates, std::vector<uint32_t>& out) const {
+  out.clear();
+  const auto add = [&](uint32_t v) {
+    if (v != gate.from && v != gate.to && std::find(candidates.begin(), candidates.end(), v) == candidates.end() &&
+        std::find(out.begin(), out.end(), v) == out.end())
+      out.push_back(v);
+  };
+  uint32_t ahead = gate.to, behind = gate.from;
+  for (uint32_t step = 0; step < kFrontSteps; ++step) {
+    if (ahead != kNone) {
+      const uint32_t e = out_head_[ahead];
+      ahead = e == kNone ? kNone : edges_[e].to;
+      if (ahead != kNone) add(ahead);
+    }
+    if (behind != kNone) {
+      const uint32_t e = in_head_[behind];
+      behind = e == kNone ? kNone : edges_[e].from;
+      if (behind != kNone) add(behind);
+    }
+  }
+}
+
 syntax::GateContext GateTraversal::context(HalfEdge gate, uint32_t candidates) const {
   const uint32_t from = std::min<uint32_t>(degree_[gate.from], 7), to = std::min<uint32_t>(degree_[gate.to], 7);
   return {static_cast<int>(std::min<uint32_t>(candidates, 3) * 8 + std::max(from, to)), static_cast<int>(to * 8 + from)};

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "mesh/topology.h"
@@ -21,6 +22,10 @@ class GateTraversal {
  public:
   // At most this many candidates are offered for a gate.
   static constexpr uint32_t kMaxCandidates = 8;
+  // Steps a front walks each way, and the most vertices it lists: each
+  // way's first step reaches a candidate or the gate's other vertex.
+  static constexpr uint32_t kFrontSteps = 8;
+  static constexpr uint32_t kMaxFront = 2 * (kFrontSteps - 1);
 
   // Room for the faces the traversal will hold, up to 2^20 of them (a
   // header's count is a hint, not a promise).
@@ -40,6 +45,11 @@ class GateTraversal {
   // the ends of open half-edges leaving gate.to, then the starts of open
   // half-edges entering gate.from, newest first.
   void candidates(HalfEdge gate, std::vector<uint32_t>& out) const;
+  // The vertices a far vertex is looked for among first: up to kFrontSteps
+  // along the open half-edges from gate.to and, backwards, from
+  // gate.from, alternately, without the gate's vertices, the candidates
+  // and repeats.
+  void front(HalfEdge gate, std::span<const uint32_t> candidates, std::vector<uint32_t>& out) const;
   // The contexts of the gate's bins.
   syntax::GateContext context(HalfEdge gate, uint32_t candidates) const;
 

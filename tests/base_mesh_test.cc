@@ -14,6 +14,7 @@
 #include "codecs3d/codec_decoder.h"
 #include "codecs3d/codec_encoder.h"
 #include "encoder/mesh3d/base_mesh.h"
+#include "mesh3d/gate_traversal.h"
 #include "mesh3d/position_order.h"
 #include "mesh3d/quantization.h"
 #include "test_util.h"
@@ -127,6 +128,73 @@ std::vector<uint32_t> order_as_written(std::span<const Triangle> faces, const st
     order.push_back(*best);
   }
   return order;
+}
+
+// A seed (0, 1, 2) and new vertices 3 … behind the gates, first in first
+// out, until `faces` faces; the next gate goes to `gate`.
+GateTraversal strip(uint32_t faces, HalfEdge& gate) {
+  GateTraversal t(faces);
+  for (int corner = 0; corner < 3; ++corner) t.new_vertex();
+  EXPECT_TRUE(t.seed({{0, 1, 2}}));
+  while (t.next_gate(gate) && t.faces().size() < faces) EXPECT_TRUE(t.attach(gate, t.new_vertex()));
+  return t;
+}
+
+TEST(GateTraversal, FrontAlternatesBothWaysWithoutGateCandidatesOrRepeats) {
+  // Faces (1, 0, 3), (2, 1, 4), (0, 2, 5), (3, 0, 6): the open loop
+  // 0 → 6 → 3 → 1 → 4 → 2 → 5 → 0, the next gate 3 → 1. Candidates 4 (after
+  // 1) and 6 (before 3); ahead of 1: 4, 2, 5, 0; behind 3: 6, 0, 5, 2.
+  HalfEdge gate{};
+  const GateTraversal t = strip(5, gate);
+  ASSERT_EQ(gate.from, 3u);
+  ASSERT_EQ(gate.to, 1u);
+  std::vector<uint32_t> candidates, front;
+  t.candidates(gate, candidates);
+  EXPECT_EQ(candidates, (std::vector<uint32_t>{4, 6}));
+  t.front(gate, candidates, front);
+  EXPECT_EQ(front, (std::vector<uint32_t>{2, 0, 5}));
+}
+
+TEST(GateTraversal, FrontWalksEightStepsEachWay) {
+  // A long loop: steps 2 … 8 each way, the first steps being the candidates.
+  HalfEdge gate{};
+  const GateTraversal t = strip(60, gate);
+  std::vector<uint32_t> candidates, front;
+  t.candidates(gate, candidates);
+  t.front(gate, candidates, front);
+  EXPECT_EQ(candidates.size(), 2u);
+  EXPECT_EQ(front.size(), GateTraversal::kMaxFront);
+}
+
+TEST(BaseMesh, FarVerticesOnTheFrontRoundTripInEveryVersion) {
+  // A torus of 16 × 12 cells, diagonals at random: the front meets itself around it.
+  constexpr uint32_t kAround = 16, kAcross = 12;
+  test::Random random(7);
+  std::vector<Triangle> faces;
+  for (uint32_t y = 0; y < kAcross; ++y)
+    for (uint32_t x = 0; x < kAround; ++x) {
+      const uint32_t a = y * kAround + x, b = y * kAround + (x + 1) % kAround, c = (y + 1) % kAcross * kAround + (x + 1) % kAround,
+                     d = (y + 1) % kAcross * kAround + x;
+      if (random.uniform(0, 1)) {
+        faces.push_back({{a, b, c}});
+        faces.push_back({{a, c, d}});
+      } else {
+        faces.push_back({{a, b, d}});
+        faces.push_back({{b, c, d}});
+      }
+    }
+  std::vector<IntPoint3> positions(kAround * kAcross);
+  for (IntPoint3& p : positions) p = {random.uniform(0, 99), random.uniform(0, 99), random.uniform(0, 99)};
+  const BaseMeshPlan plan = plan_base_mesh(faces, kAround * kAcross, false);
+  size_t bytes[2] = {};
+  for (const uint32_t version : {kFrontVersion - 1, kFrontVersion}) {
+    const std::vector<uint8_t> unit = write_unit(plan.faces, positions, BaseMeshCoding::of(version, std::nullopt));
+    const BaseMesh base = read_unit(unit, kAround * kAcross, static_cast<uint32_t>(plan.faces.size()), version);
+    EXPECT_EQ(base.faces, plan.faces);
+    EXPECT_EQ(base.positions, positions);
+    bytes[version - kFrontVersion + 1] = unit.size();
+  }
+  EXPECT_LT(bytes[1], bytes[0]);
 }
 
 TEST(PositionOrder, IsTheDefinitionsOrder) {

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -12,6 +13,7 @@
 #include "common/atomic_file.h"
 #include "conformance/checker.h"
 #include "conformance/coverage.h"
+#include "conformance/suite3d/base_mesh_oracles.h"
 #include "conformance/suite_files.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "decoder/mesh_object_decoder.h"
@@ -48,6 +50,18 @@ TEST(Conformance, RegenerationGivesIdenticalBytes) {
     EXPECT_EQ(committed, regenerated.entries.size()) << sub << "/streams holds files the manifest does not list";
   }
   fs::remove_all(folder);
+}
+
+// base-26-front gives every answer its description lists before its cap of gates.
+TEST(Conformance, FrontStreamGivesEveryAnswerItLists) {
+  suite3d::FrontOracle oracle;
+  suite3d::BinRecorder recorder;
+  syntax::BaseMeshContexts contexts;
+  GateTraversal traversal(0);
+  oracle.watch(traversal);
+  constexpr uint32_t kUnbounded = std::numeric_limits<uint32_t>::max();
+  EXPECT_THROW(describe_traversal(recorder, contexts, traversal, kUnbounded, kUnbounded, &oracle), std::out_of_range);
+  EXPECT_TRUE(oracle.done()) << oracle.left();
 }
 
 // The rule of docs/container3d.md ("Errors") and docs/decisions.md (3): an

@@ -103,6 +103,19 @@ std::vector<SuiteCase> base_mesh_cases(bool traced) {
                                 "prefix length 0 … 13 after a residual of length 0 and of length 1 (written symbol by symbol)", {"base-mesh"},
                                 written_base_mesh_stream(size.vertices, size.faces, oracle)));
   }
+  {
+    FrontOracle oracle;
+    const Traversed size = traversed(oracle);
+    suite.push_back(written_case("base-26-front", "a disc grown by new vertices and far vertices on the gate's front: every index 0 … 14 with more "
+                                "after it, the last index of fronts of 1 … 16 vertices, and a far vertex off a front (written symbol by symbol)",
+                                {"base-mesh"}, written_base_mesh_stream(size.vertices, size.faces, oracle)));
+  }
+  {
+    Encode3dOptions version7;
+    version7.version = 7;
+    suite.push_back(valid("base-27-far-chain-version-7", "base-08's chain in a version 7 stream: far vertices by their difference alone, "
+                          "on the gate's front too", {"base-mesh"}, far_chain(3000, 51), version7, traced));
+  }
   suite.push_back(valid("base-16-all-loose", "every face loose (degenerate), no traversal: loose_face_count equal to face_count", {"base-mesh"},
                         all_loose(), Encode3dOptions{}, traced));
   {
@@ -295,6 +308,10 @@ std::vector<SuiteCase> base_mesh_rules_rejected(const std::vector<SuiteCase>& va
   below_zero.answer = {GateSymbol::kFarVertex, 0, ~uint32_t{0}};
   suite.push_back(invalid("x-129-base-far-below-zero", "a far vertex of −1", {"base-mesh"}, broken("ao-01-me1-k16", below_zero),
                           ErrorKind::kOutOfRange, "far_vertex", 0));
+  BrokenBaseMesh front_repeats;  // gates 0 → 1 and 1 → 2 new vertices 3 and 4, gate 2 → 0 vertex 1, its front's one vertex: 2 → 1 again
+  front_repeats.script = {{GateSymbol::kNewVertex, 0, 0}, {GateSymbol::kNewVertex, 0, 0}, {GateSymbol::kFarVertex, 0, 1}};
+  suite.push_back(invalid("x-156-base-front-repeats", "a face on a far vertex on the gate's front that repeats a directed edge", {"base-mesh"},
+                          broken("ao-01-me1-k16", front_repeats), ErrorKind::kStructure, "front_index", 0));
   BrokenBaseMesh far_repeats;  // gate 0 → 1 answered by vertex 0: the face (1, 0, 0)
   far_repeats.answer = {GateSymbol::kFarVertex, 0, 0};
   suite.push_back(invalid("x-130-base-far-repeats", "a face on a far vertex that repeats a vertex", {"base-mesh"}, broken("ao-01-me1-k16", far_repeats),

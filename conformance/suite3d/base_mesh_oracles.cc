@@ -63,6 +63,46 @@ std::vector<uint64_t> covering_component_seeds() {
   }
 }
 
+FrontOracle::FrontOracle() {
+  for (uint32_t i = 0; i + 1 < GateTraversal::kMaxFront; ++i) inner_indices_.insert(i);
+  for (uint32_t size = 1; size <= GateTraversal::kMaxFront; ++size) last_sizes_.insert(size);
+}
+
+std::optional<uint32_t> FrontOracle::far_vertex(HalfEdge gate, std::span<const uint32_t> candidates, bool any) {
+  traversal_->front(gate, candidates, front_);
+  const uint32_t size = static_cast<uint32_t>(front_.size());
+  if (last_sizes_.count(size) && can_attach(gate, front_.back())) {
+    last_sizes_.erase(size);
+    return front_.back();
+  }
+  if (!any) return std::nullopt;
+  for (const uint32_t i : inner_indices_)
+    if (i + 1 < size && can_attach(gate, front_[i])) {
+      inner_indices_.erase(i);
+      return front_[i];
+    }
+  if (off_front_ && size > 0)
+    for (uint32_t v = 0; v < visited_; ++v)
+      if (std::find(front_.begin(), front_.end(), v) == front_.end() && std::find(candidates.begin(), candidates.end(), v) == candidates.end() &&
+          can_attach(gate, v)) {
+        off_front_ = false;
+        return v;
+      }
+  return std::nullopt;
+}
+
+GateAnswer FrontOracle::gate(HalfEdge gate, std::span<const uint32_t> candidates) {
+  if (++gates_ > kGates || done()) throw std::out_of_range("front oracle done");
+  GateAnswer answer{GateSymbol::kNewVertex, 0, 0};
+  if (visited_ >= kDisc) {
+    if (const std::optional<uint32_t> c = far_vertex(gate, candidates, gates_ % 3 == 0)) answer = {GateSymbol::kFarVertex, 0, *c};
+    else if (gates_ % 3 != 2 && !candidates.empty() && can_attach(gate, candidates[0])) answer = {GateSymbol::kCandidate, 0, 0};
+  }
+  if (answer.symbol == GateSymbol::kNewVertex && !can_attach(gate, visited_)) answer.symbol = GateSymbol::kBorder;
+  add(gate, answer, candidates, visited_);
+  return answer;
+}
+
 std::vector<int32_t> order_schedule(uint32_t count) {
   std::vector<uint32_t> unused(count);
   for (uint32_t i = 0; i < count; ++i) unused[i] = i;

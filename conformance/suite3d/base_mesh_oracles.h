@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <set>
 #include <span>
 #include <stdexcept>
@@ -92,6 +93,7 @@ std::vector<uint8_t> written_base_mesh_stream(uint32_t vertex_count, uint32_t fa
   syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
   syntax::BaseMeshContexts contexts;
   GateTraversal traversal(face_count);
+  if constexpr (requires { oracle.watch(traversal); }) oracle.watch(traversal);
   describe_traversal(symbols, contexts, traversal, vertex_count, face_count, &oracle);
   describe_loose_faces(symbols, vertex_count, std::span<Triangle>());
   for (int32_t& d : order_differences) contexts.order.describe(symbols, 0, d, syntax::kOrderNames);
@@ -223,11 +225,47 @@ class ComponentOracle : public FaceTracker {
   uint32_t odds_[4] = {};
   uint32_t first_ = 0, first_face_ = 0;  // the component's first vertex and face
 };
-// Writes nothing: records the (element, context, value) of every bin.
+// Answers for a disc of new vertices, then far vertices on the gate's
+// front (version 8) where the face is valid: at the last index of fronts
+// of each size 1 … 14 at any gate, and at every third gate each index
+// 0 … 12 with more after it and one off a front that has vertices; the
+// first candidate at two gates of three otherwise (loops shrink), else a
+// new vertex. Until each far vertex is answered or kGates gates, then
+// std::out_of_range. The traversal is watched for the fronts.
+class FrontOracle : public FaceTracker {
+ public:
+  static constexpr uint32_t kDisc = 40;  // vertices numbered before the first far vertex
+  static constexpr uint32_t kGates = 20000;
+  FrontOracle();
+  void watch(const GateTraversal& traversal) { traversal_ = &traversal; }
+  GateAnswer gate(HalfEdge gate, std::span<const uint32_t> candidates);
+  // Whether every answer listed was given (rather than kGates reached).
+  bool done() const { return inner_indices_.empty() && last_sizes_.empty() && !off_front_; }
+  std::string left() const {
+    std::string s;
+    for (uint32_t i : inner_indices_) s += " index " + std::to_string(i);
+    for (uint32_t n : last_sizes_) s += " last of " + std::to_string(n);
+    return s + (off_front_ ? " off" : "");
+  }
+
+ private:
+  // The far vertex for a gate: the last of its front where a front of this
+  // size has had none, else (when `any`) one still to answer.
+  std::optional<uint32_t> far_vertex(HalfEdge gate, std::span<const uint32_t> candidates, bool any);
+  const GateTraversal* traversal_ = nullptr;
+  std::set<uint32_t> inner_indices_, last_sizes_;
+  bool off_front_ = true;
+  uint32_t gates_ = 0;
+  std::vector<uint32_t> front_;
+};
+
+// Writes nothing: records the (element, context, value) of every bin, far
+// vertices as version 7 codes them (so that the components chosen stay
+// those of earlier suites; base-26 reaches the fronts).
 class BinRecorder {
  public:
   static constexpr bool kReading = false;
-  uint32_t version() const { return kLatestVersion; }
+  uint32_t version() const { return kFrontVersion - 1; }
   void bin(const char* name, BinContext&, int context, bool& value) { bins.insert({name, context, value}); }
   void raw(const char*, int, uint32_t&) {}
   [[noreturn]] void fail(ErrorKind kind, const char* element, const std::string& message) const {
@@ -248,6 +286,7 @@ Traversed traversed(Oracle oracle) {
   BinRecorder recorder;
   syntax::BaseMeshContexts contexts;
   GateTraversal traversal(0);
+  if constexpr (requires { oracle.watch(traversal); }) oracle.watch(traversal);
   try {
     constexpr uint32_t kUnbounded = std::numeric_limits<uint32_t>::max();
     describe_traversal(recorder, contexts, traversal, kUnbounded, kUnbounded, &oracle);

@@ -142,9 +142,10 @@ std::vector<SuiteCase> container_cases(bool traced) {
   // Every codec in the versions before the latest: 1 and 2, whose contexts
   // adapt at the fixed rate, 3, whose residual signs are raw, 4, whose
   // cpca-wpt group lists are in the units' fields, 5, whose base mesh
-  // codes its positions in coding order, and 6, whose cpca-wpt bases over
-  // the mesh are predicted by parallelograms (cpca-wpt's and the base
-  // mesh's version 1 have their own streams).
+  // codes its positions in coding order, 6, whose cpca-wpt bases over the
+  // mesh are predicted by parallelograms, and 7, whose far vertices are
+  // coded by their difference alone (cpca-wpt's and the base mesh's
+  // version 1 have their own streams).
   MeshSequence waving = waving_flag(6, 8, false);
   waving.frames.erase(waving.frames.begin());
   const struct {
@@ -171,6 +172,7 @@ std::vector<SuiteCase> container_cases(bool traced) {
   for (const auto& c : codecs) add(c, 4, "cpca-wpt's group lists in the units' fields");
   for (const auto& c : codecs) add(c, 5, "the base mesh's positions in coding order");
   for (const auto& c : codecs) add(c, 6, "cpca-wpt's bases over the mesh by parallelograms");
+  for (const auto& c : codecs) add(c, 7, "far vertices by their difference alone");
   return suite;
 }
 

@@ -28,7 +28,7 @@ struct Encode3dOptions {
   bool keep_decoded = false;     // the decoder's output in the result
   bool reorder = false;          // vertices renumbered in coding order (docs/base_mesh.md)
   std::optional<uint32_t> position_blend;  // base meshes' blend (0 … 16); none: each mesh's smallest
-  std::optional<uint32_t> version;         // the container's (1 … 3); none: 1 for a blend of 0, else the latest
+  std::optional<uint32_t> version;         // the container's; none: 1 for a blend of 0, else the latest
   std::function<void(size_t done, size_t total)> progress;
   unsigned threads = 0;  // a search's trials at once (--codec auto, a codec's own search); 0: every core
 };

@@ -4,6 +4,7 @@
 // position residuals. The traversal that calls them is mesh3d/base_mesh.h.
 #pragma once
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <span>
@@ -27,6 +28,8 @@ inline constexpr uint32_t kVertexOrderFromParallelogram = 2;
 inline constexpr uint32_t kPositionBlendUnit = 16;
 // From this version the positions are coded in the position order (docs/base_mesh.md).
 inline constexpr uint32_t kPositionOrderVersion = 6;
+// From this version a far vertex on the gate's front is coded by its index there (docs/base_mesh.md).
+inline constexpr uint32_t kFrontVersion = 8;
 
 struct BaseMeshData {
   uint32_t version = kLatestVersion;  // the object header's: version 1 has no position_blend
@@ -71,12 +74,15 @@ struct BaseMeshContexts {
   static constexpr int kGateContexts = 32;
   static constexpr int kChoiceContexts = 64;
   static constexpr int kCandidateSlots = 4;
+  static constexpr int kFrontSlots = 4;
   BinContext new_vertex[kGateContexts];
   BinContext candidate[kGateContexts];
   BinContext first_candidate[kChoiceContexts];
   BinContext candidate_index[kCandidateSlots];
   BinContext border[2];
   BinContext seed_new;
+  BinContext on_front;
+  BinContext front_index[kFrontSlots];
   ResidualCoder<6> positions;
   ResidualCoder<1> order;
   ResidualCoder<1> far;
@@ -96,12 +102,11 @@ struct GateContext {
 };
 
 // A gate's symbol. `candidates` is the number of vertices a face behind the
-// gate can close on, `visited` the vertices numbered so far. The symbol's
-// value goes to `candidate` (an index below `candidates`) or `far_vertex`
-// (below `visited`, coded as its difference from the gate's `from` vertex).
+// gate can close on; the index of the one it closes on goes to `candidate`.
+// A far vertex follows as describe_far_vertex.
 template <class IO>
-void describe_gate(IO& io, BaseMeshContexts& c, GateContext context, uint32_t candidates, uint32_t visited, uint32_t from,
-                   GateSymbol& symbol, uint32_t& candidate, uint32_t& far_vertex) {
+void describe_gate(IO& io, BaseMeshContexts& c, GateContext context, uint32_t candidates, GateSymbol& symbol,
+                   uint32_t& candidate) {
   bool is_new = symbol == GateSymbol::kNewVertex;
   io.bin("gate_new_vertex", c.new_vertex[context.gate], context.gate, is_new);
   if (is_new) {
@@ -131,11 +136,30 @@ void describe_gate(IO& io, BaseMeshContexts& c, GateContext context, uint32_t ca
   bool border = symbol == GateSymbol::kBorder;
   const int border_context = candidates > 0 ? 1 : 0;
   io.bin("gate_border", c.border[border_context], border_context, border);
-  if (border) {
-    symbol = GateSymbol::kBorder;
+  symbol = border ? GateSymbol::kBorder : GateSymbol::kFarVertex;
+}
+
+// A far vertex, below `visited`: its index in the gate's `front` when it
+// is there, else its difference from the gate's `from` vertex. Before
+// version 8 the front is empty, and for an empty front nothing says which.
+template <class IO>
+void describe_far_vertex(IO& io, BaseMeshContexts& c, std::span<const uint32_t> front, uint32_t visited, uint32_t from,
+                         uint32_t& far_vertex) {
+  const auto listed = std::find(front.begin(), front.end(), far_vertex);
+  bool on_front = listed != front.end();
+  if (!front.empty()) io.bin("far_on_front", c.on_front, 0, on_front);
+  if (on_front) {
+    const uint32_t wanted = static_cast<uint32_t>(listed - front.begin());
+    uint32_t index = 0;
+    for (; index + 1 < front.size(); ++index) {
+      const int slot = static_cast<int>(std::min<uint32_t>(index, BaseMeshContexts::kFrontSlots - 1));
+      bool more = wanted > index;
+      io.bin("front_index", c.front_index[slot], slot, more);
+      if (!more) break;
+    }
+    far_vertex = front[index];
     return;
   }
-  symbol = GateSymbol::kFarVertex;
   int32_t difference = 0;
   if constexpr (!IO::kReading) difference = static_cast<int32_t>(int64_t{far_vertex} - from);
   c.far.describe(io, 0, difference, kFarNames);

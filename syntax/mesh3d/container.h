@@ -30,7 +30,7 @@ const char* unit_type_name(UnitType type);
 // version 6 the position order of the base mesh's positions and cpca-wpt's
 // bases over the mesh (docs/base_mesh.md, "Position order").
 inline constexpr uint32_t kFirstVersion = 1;
-inline constexpr uint32_t kLatestVersion = 7;
+inline constexpr uint32_t kLatestVersion = 8;
 
 inline Adaptation adaptation_of(uint32_t version) { return version >= 3 ? Adaptation::kWarmUp : Adaptation::kFixedRate; }
 inline bool residual_sign_in_bins(uint32_t version) { return version >= 4; }
@@ -75,7 +75,7 @@ namespace syntax {
 template <class IO>
 void describe(IO& io, ObjectHeader& h) {
   io.field("version", 8, h.version);
-  io.require(h.version >= kFirstVersion && h.version <= kLatestVersion, ErrorKind::kReservedValue, "version", "only versions 1 to 7 are defined");
+  io.require(h.version >= kFirstVersion && h.version <= kLatestVersion, ErrorKind::kReservedValue, "version", "only versions 1 to 8 are defined");
   io.field("codec_id", 8, h.codec_id);  // checked against the registry (codecs3d/registry.h)
   io.field_in("vertex_count", 32, h.vertex_count, 3, kMaxVertices3d);
   io.field_in("face_count", 32, h.face_count, 1, kMaxFaces3d);
