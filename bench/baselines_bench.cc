@@ -12,14 +12,19 @@
 // on its lower convex hull of (bpvf, KG) (linear between its points), and
 // writes that hull with STED as CSV rows to the file named by
 // M4MESH_BASELINES_CSV, if set (`python3 -m m4mesh.plot rd.csv that.csv
-// --sequence NAME` draws them beside a sweep).
+// --sequence NAME` draws them beside a sweep). M4MESH_BASELINES_SEQUENCES,
+// if set, lists other sequences to run instead (paths, ':' between).
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "anchors/draco_reference.h"
 #include "bench/sequences.h"
@@ -205,25 +210,48 @@ void report(benchmark::State& state, const std::string& name, const char* coder,
   state.counters[std::string(coder) + "_bpvf_kg0.1"] = rate_at(hull, 0.1);
 }
 
-void BM_Coddyac(benchmark::State &state) {
-  const std::string name = kSequences[state.range(0)];
+void BM_Coddyac(benchmark::State &state, const std::string& name) {
   std::vector<RatePoint> points;
   for (auto _ : state) points = coddyac_points(bench::sequence(name));
   state.SetLabel(bench::label(name));
   report(state, name, "coddyac-style", std::move(points));
 }
-BENCHMARK(BM_Coddyac)->DenseRange(0, 5)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
-void BM_DracoEveryFrame(benchmark::State &state) {
-  const std::string name = kSequences[state.range(0)];
+void BM_DracoEveryFrame(benchmark::State &state, const std::string& name) {
   std::vector<RatePoint> points;
   for (auto _ : state) points = draco_points(bench::sequence(name));
   state.SetLabel(bench::label(name));
   report(state, name, "draco-every-frame", std::move(points));
 }
-BENCHMARK(BM_DracoEveryFrame)->DenseRange(0, 5)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+
+// ../shared/data's sequences, or those M4MESH_BASELINES_SEQUENCES lists.
+std::vector<std::string> sequence_names() {
+  const char* list = std::getenv("M4MESH_BASELINES_SEQUENCES");
+  if (!list) return {std::begin(kSequences), std::end(kSequences)};
+  std::vector<std::string> names;
+  std::string text = list;
+  for (size_t start = 0; start <= text.size();) {
+    const size_t end = std::min(text.find(':', start), text.size());
+    if (end > start) names.push_back(text.substr(start, end - start));
+    start = end + 1;
+  }
+  return names;
+}
 
 }  // namespace
 }  // namespace m4mesh
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  const std::vector<std::string> names = m4mesh::sequence_names();
+  for (const auto& [coder, run] : {std::pair{"BM_Coddyac", &m4mesh::BM_Coddyac}, std::pair{"BM_DracoEveryFrame", &m4mesh::BM_DracoEveryFrame}})
+    for (size_t i = 0; i < names.size(); ++i)
+      benchmark::RegisterBenchmark((std::string(coder) + "/" + std::to_string(i)).c_str(), run, names[i])
+          ->Unit(benchmark::kSecond)
+          ->Iterations(1)
+          ->UseRealTime();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
