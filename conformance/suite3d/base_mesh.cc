@@ -106,8 +106,8 @@ std::vector<SuiteCase> base_mesh_cases(bool traced) {
   {
     FrontOracle oracle;
     const Traversed size = traversed(oracle);
-    suite.push_back(written_case("base-26-front", "a disc grown by new vertices and far vertices on the gate's front: every index 0 … 14 with more "
-                                "after it, the last index of fronts of 1 … 16 vertices, and a far vertex off a front (written symbol by symbol)",
+    suite.push_back(written_case("base-26-front", "a disc grown by new vertices and far vertices on the gate's front: every index 0 … 12 with more "
+                                "after it, the last index of fronts of 1 … 14 vertices, and a far vertex off a front (written symbol by symbol)",
                                 {"base-mesh"}, written_base_mesh_stream(size.vertices, size.faces, oracle)));
   }
   {
