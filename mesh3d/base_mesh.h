@@ -6,7 +6,6 @@
 // encoder adds an oracle that says what the mesh has behind each gate.
 #pragma once
 
-#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -31,12 +30,6 @@ struct GateAnswer {
   uint32_t candidate = 0;
   uint32_t far_vertex = 0;
 };
-
-// The element that named the vertex a face behind a gate closes on.
-inline const char* attached_by(const GateAnswer& answer, uint32_t c, std::span<const uint32_t> front) {
-  if (answer.symbol == GateSymbol::kCandidate) return "candidate_index";
-  return std::find(front.begin(), front.end(), c) != front.end() ? "front_index" : "far_vertex";
-}
 
 // The connectivity: `traversal_faces` faces by the traversal, numbering
 // vertices as they appear. The oracle (writing only) answers gate() and
@@ -69,9 +62,10 @@ void describe_traversal(IO& io, syntax::BaseMeshContexts& contexts, GateTraversa
     GateAnswer answer;
     if constexpr (!IO::kReading) answer = oracle->gate(gate, candidates);
     syntax::describe_gate(io, contexts, traversal.context(gate, count), count, answer.symbol, answer.candidate);
+    bool on_front = false;
     if (answer.symbol == GateSymbol::kFarVertex) {
       if (io.version() >= kFrontVersion) traversal.front(gate, candidates, front);
-      syntax::describe_far_vertex(io, contexts, front, traversal.visited(), gate.from, answer.far_vertex);
+      on_front = syntax::describe_far_vertex(io, contexts, front, traversal.visited(), gate.from, answer.far_vertex);
     }
     uint32_t c = 0;
     switch (answer.symbol) {
@@ -91,7 +85,9 @@ void describe_traversal(IO& io, syntax::BaseMeshContexts& contexts, GateTraversa
         break;
     }
     if (!traversal.attach(gate, c))
-      io.fail(ErrorKind::kStructure, attached_by(answer, c, front), "a face that repeats a vertex or a directed edge");
+      io.fail(ErrorKind::kStructure,
+              answer.symbol == GateSymbol::kCandidate ? "candidate_index" : on_front ? "front_index" : "far_vertex",
+              "a face that repeats a vertex or a directed edge");
   }
 }
 

@@ -142,14 +142,18 @@ void describe_gate(IO& io, BaseMeshContexts& c, GateContext context, uint32_t ca
 // A far vertex, below `visited`: its index in the gate's `front` when it
 // is there, else its difference from the gate's `from` vertex. Before
 // version 8 the front is empty, and for an empty front nothing says which.
+// True when the front named it.
 template <class IO>
-void describe_far_vertex(IO& io, BaseMeshContexts& c, std::span<const uint32_t> front, uint32_t visited, uint32_t from,
+bool describe_far_vertex(IO& io, BaseMeshContexts& c, std::span<const uint32_t> front, uint32_t visited, uint32_t from,
                          uint32_t& far_vertex) {
-  const auto listed = std::find(front.begin(), front.end(), far_vertex);
-  bool on_front = listed != front.end();
+  bool on_front = false;
+  uint32_t wanted = 0;  // its index in the front (writing)
+  if constexpr (!IO::kReading) {
+    wanted = static_cast<uint32_t>(std::find(front.begin(), front.end(), far_vertex) - front.begin());
+    on_front = wanted < front.size();
+  }
   if (!front.empty()) io.bin("far_on_front", c.on_front, 0, on_front);
   if (on_front) {
-    const uint32_t wanted = static_cast<uint32_t>(listed - front.begin());
     uint32_t index = 0;
     for (; index + 1 < front.size(); ++index) {
       const int slot = static_cast<int>(std::min<uint32_t>(index, BaseMeshContexts::kFrontSlots - 1));
@@ -158,7 +162,7 @@ void describe_far_vertex(IO& io, BaseMeshContexts& c, std::span<const uint32_t> 
       if (!more) break;
     }
     far_vertex = front[index];
-    return;
+    return true;
   }
   int32_t difference = 0;
   if constexpr (!IO::kReading) difference = static_cast<int32_t>(int64_t{far_vertex} - from);
@@ -166,6 +170,7 @@ void describe_far_vertex(IO& io, BaseMeshContexts& c, std::span<const uint32_t> 
   const int64_t vertex = int64_t{from} + difference;
   if (vertex < 0 || vertex >= visited) io.fail(ErrorKind::kOutOfRange, "far_vertex", "a vertex not numbered yet");
   far_vertex = static_cast<uint32_t>(vertex);
+  return false;
 }
 
 // A seed face's corner: a new vertex, or one numbered before.
