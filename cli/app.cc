@@ -143,13 +143,14 @@ int run_m4mesh(int argc, const char* const* argv) {
   metrics_cmd->add_flag("--csv", metrics_args.csv, "print CSV: a header and one row (with --per-frame, one row per frame)");
   metrics_cmd->add_flag("--per-frame", metrics_args.per_frame, "RMSE, max error and PSNR of every frame too");
 
-  std::string convert_input, convert_output;
+  std::string convert_input, convert_output, convert_frames;
   double convert_fps = 25;
   CLI::App* convert_cmd = app.add_subcommand("convert", "Convert a frame sequence to .m4seq, .pc2 (+ .obj), PLY frames, a glTF animation or OBJ frames");
   convert_cmd->add_option("input", convert_input, "frames or .m4seq")->required();
   convert_cmd->add_option("output", convert_output, "a .m4seq file, a .pc2 file (with its .obj), PLY frames ('frames/*.ply'), a .glb or .gltf animation, or a folder")
       ->required();
   convert_cmd->add_option("--fps", convert_fps, "a glTF animation's frames per second")->check(CLI::Range(0.001, 1000.0))->capture_default_str();
+  convert_cmd->add_option("--frames", convert_frames, "the input's frames A … B only, counted from 0 (A:B, A: or :B): a clip cut from a sequence");
 
   DemoOptions demo_options;
   RenderArgs render_args;
@@ -277,7 +278,7 @@ int run_m4mesh(int argc, const char* const* argv) {
     if (*decode3d_cmd) return console::set_input(decode3d_args.input), run_decode3d(decode3d_args);
     if (*metrics_cmd) return run_metrics(metrics_args);  // names each input as it reads it
     if (*progressive_cmd) return run_progressive(progressive_args);
-    if (*convert_cmd) return console::set_input(convert_input), run_convert(convert_input, convert_output, convert_fps);
+    if (*convert_cmd) return console::set_input(convert_input), run_convert(convert_input, convert_output, convert_fps, convert_frames);
     if (*demo_cmd) return run_demo(demo_options);
     if (*rd_cmd) return console::set_input(rd_args.input), run_rd(rd_args);
     if (*render_cmd) return console::set_input(render_args.input), run_render(render_args);

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <filesystem>
 
 #include "cli/convert.h"
@@ -17,10 +18,16 @@ using console::say;
 
 }  // namespace
 
-int run_convert(const std::string& input, const std::string& output, double fps) {
+int run_convert(const std::string& input, const std::string& output, double fps, const std::string& frames) {
   refuse_overwriting(input, output);
   const SequenceOutput form = sequence_output(output, false);
-  const MeshSequence sequence = load_frames(input);
+  const auto [first, last] = frame_range(frames);
+  MeshSequence sequence = load_frames(input);
+  const size_t count = sequence.frames.size();
+  if (first >= count || (last != UINT32_MAX && last >= count))
+    throw usage_error("--frames " + frames + ": " + input + " has " + std::to_string(count) + " frames, 0 … " + std::to_string(count - 1));
+  sequence.frames.erase(sequence.frames.begin() + std::min<size_t>(size_t{last} + 1, count), sequence.frames.end());
+  sequence.frames.erase(sequence.frames.begin(), sequence.frames.begin() + first);
   if (form == SequenceOutput::kObjFolder) {
     const fs::path staging = staging_folder(output);
     try {

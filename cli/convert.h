@@ -5,7 +5,8 @@
 
 namespace m4mesh {
 
-// `fps`: a glTF animation's frames per second.
-int run_convert(const std::string& input, const std::string& output, double fps);
+// `fps`: a glTF animation's frames per second; `frames`: A:B, the input's
+// frames A … B only (from 0; A: or :B), or empty for all.
+int run_convert(const std::string& input, const std::string& output, double fps, const std::string& frames);
 
 }  // namespace m4mesh

@@ -247,6 +247,14 @@ cp "$work/one.obj" "$work/one-before.obj"
 status=0; "$m4mesh" convert "$work/one.obj" "$work/one.pc2" > /dev/null 2> "$work/err" || status=$?
 [ "$status" = 2 ] && cmp -s "$work/one.obj" "$work/one-before.obj" && [ ! -e "$work/one.pc2" ] || fail "convert x.obj x.pc2: exit $status, $(cat "$work/err")"
 
+# convert --frames cuts a clip: frames 1 … 2 are the input's second and third; a range beyond the input is refused and writes nothing.
+mkdir "$work/second-third" && cp tests/data/tetra-frames/2.obj tests/data/tetra-frames/3.obj "$work/second-third/"
+"$m4mesh" convert tests/data/tetra-frames "$work/cut.m4seq" --frames 1:2 2> "$work/err" && grep -q "2 frames of 5 vertices" "$work/err" || fail "convert --frames 1:2: $(cat "$work/err")"
+"$m4mesh" convert "$work/second-third" "$work/second-third.m4seq" 2> /dev/null || fail "convert of two frames"
+cmp -s "$work/cut.m4seq" "$work/second-third.m4seq" || fail "convert --frames 1:2 differs from the frames 2.obj and 3.obj"
+status=0; "$m4mesh" convert tests/data/tetra-frames "$work/beyond.m4seq" --frames 2:4 2> "$work/err" || status=$?
+[ "$status" = 2 ] && grep -q "has 4 frames, 0 … 3" "$work/err" && [ ! -e "$work/beyond.m4seq" ] || fail "convert --frames 2:4: exit $status, $(cat "$work/err")"
+
 # --frames from the nearest intra refresh gives the frames a whole decoding gives.
 "$m4mesh" encode3d tests/data/tetra-frames --intra-period 2 -o "$work/intra.m4m" 2> /dev/null || fail "encode3d --intra-period"
 "$m4mesh" decode3d "$work/intra.m4m" -o "$work/intra-all.f32" 2> /dev/null || fail "decode3d of an intra stream"
