@@ -12,8 +12,9 @@ coder's (the mark is 0.8).
 `tune` holds the windows rate choices were made on, `unseen` those no
 choice was made on. --window replaces both by clips of your own: the
 frames A ... B (from 0) of any sequence `m4mesh convert` reads. Prints a
-Markdown table and the targets met; exits 1 if a tool fails or the data
-is absent (a clip is cut with `m4mesh convert --frames`).
+Markdown table and the targets met; exits 1 if a tool fails, a stream
+misses its KG or the data is absent, 2 on a malformed --window (a clip
+is cut with `m4mesh convert --frames`).
 """
 import argparse
 import json
@@ -43,17 +44,19 @@ def run(command, env=None):
     return done.stdout
 
 
-def clips(args):
+def clips(args, parser):
     if args.window:
         out = []
         for spec in args.window:
             name, _, rest = spec.partition("=")
-            path, first, last = rest.rsplit(":", 2)
-            out.append((name, path, f"{first}:{last}"))
+            parts = rest.rsplit(":", 2)
+            if not name or len(parts) != 3:
+                parser.error(f"--window {spec}: NAME=PATH:A:B")
+            out.append((name, parts[0], f"{parts[1]}:{parts[2]}"))
         return out
     chosen = {"tune": TUNE, "unseen": UNSEEN, "all": TUNE + UNSEEN}[args.set]
     if not os.path.isdir(args.data):
-        sys.exit(f"{args.data}: no such folder (the real sequences: see the brief)")
+        sys.exit(f"{args.data}: no such folder (the real sequences; --data names another)")
     return [(name, os.path.join(args.data, sequence), f"{first}:{first + FRAMES - 1}") for name, sequence, first in chosen]
 
 
@@ -72,7 +75,7 @@ def main():
         work = args.work or temporary
         os.makedirs(work, exist_ok=True)
         rows = []
-        for index, (name, path, frames) in enumerate(clips(args)):
+        for index, (name, path, frames) in enumerate(clips(args, parser)):
             clip = os.path.join(work, f"clip{index}.m4seq")
             run([m4mesh, "-q", "-y", "convert", path, clip, "--frames", frames])
             rates = {}

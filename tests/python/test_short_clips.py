@@ -45,3 +45,9 @@ def test_frames_beyond_the_sequence_fail_with_the_reason(tmp_path):
     done = short_clips("--window", "tetra=" + FRAMES + ":2:12", "--work", str(tmp_path))
     assert done.returncode != 0
     assert "has 4 frames, 0 … 3" in done.stderr
+
+
+def test_a_malformed_window_is_a_usage_error(tmp_path):
+    done = short_clips("--window", "tetra=" + FRAMES, "--work", str(tmp_path))
+    assert done.returncode == 2
+    assert "NAME=PATH:A:B" in done.stderr
