@@ -69,13 +69,17 @@ def main():
     parser.add_argument("--window", action="append", help="NAME=PATH:A:B, frames A ... B of PATH (repeatable)")
     parser.add_argument("--mark", type=float, default=0.8)
     args = parser.parse_args()
+    wanted = clips(args, parser)
     m4mesh = os.path.join(args.build, "cli", "m4mesh")
     bench = os.path.join(args.build, "bench", "m4mesh_baselines_bench")
+    for tool in (m4mesh, bench):
+        if not os.access(tool, os.X_OK):
+            sys.exit(f"{tool}: not built (cmake --build {args.build} --target m4mesh m4mesh_baselines_bench)")
     with tempfile.TemporaryDirectory() as temporary:
         work = args.work or temporary
         os.makedirs(work, exist_ok=True)
         rows = []
-        for index, (name, path, frames) in enumerate(clips(args, parser)):
+        for index, (name, path, frames) in enumerate(wanted):
             clip = os.path.join(work, f"clip{index}.m4seq")
             run([m4mesh, "-q", "-y", "convert", path, clip, "--frames", frames])
             rates = {}
