@@ -44,7 +44,9 @@ Mesh3dDecoder::Mesh3dDecoder(std::span<const uint8_t> stream, const Decode3dOpti
   } catch (const Error& e) {
     throw located(e, 0, kNoPlane, kNoUnit);
   }
-  decoded_.resize(header_.frame_count);
+  // A progressive codec's header bounds its frames; other codecs' frames are counted as their units arrive, not
+  // from frame_count (up to 2^32 in a few bytes).
+  if (codec_->holds_all_frames()) decoded_.resize(header_.frame_count);
 }
 
 void Mesh3dDecoder::fail(ErrorKind kind, size_t index, int64_t frame, const char* element, const std::string& message) const {
@@ -226,7 +228,7 @@ void Mesh3dDecoder::finish() {
   finished_ = true;
   if (parts_.units.empty()) throw Error(ErrorKind::kTruncated, "base_mesh", 0, kNoOffset, "the stream has no base mesh unit").in_mesh3d(kNoUnit);
   for (uint32_t f = 0; f < header_.frame_count; ++f)
-    if (!decoded_[f])
+    if (f >= decoded_.size() || !decoded_[f])
       throw Error(ErrorKind::kTruncated, "mesh3d_unit_start_code", f, kNoOffset,
                   "the stream ends before frame " + std::to_string(f) + " of " + std::to_string(header_.frame_count) + " is decoded")
           .in_mesh3d(kNoUnit);
