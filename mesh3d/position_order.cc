@@ -53,8 +53,10 @@ std::vector<uint32_t> PositionOrder::of(std::span<const uint32_t> candidates) {
   std::vector<uint64_t> support(count, 0);
   std::vector<uint32_t> grown;  // the candidates whose support grew at this step, queued once each after it
   std::vector<uint8_t> in_grown(count, 0);
+  // Candidates with support, queued again whenever it grows (only the latest entry counts). Those without come
+  // after them in the candidates' order, which first_unknown walks: no queue of every vertex.
   std::priority_queue<Entry> queue;
-  for (uint32_t i = 0; i < count; ++i) queue.push({0, i});
+  uint32_t first_unknown = 0;
   const auto grow = [&](uint32_t i, uint64_t part) {
     if (i == kNotCandidate || known[i]) return;
     support[i] += part;
@@ -63,11 +65,15 @@ std::vector<uint32_t> PositionOrder::of(std::span<const uint32_t> candidates) {
   std::vector<uint32_t> order;
   order.reserve(count);
   while (order.size() < count) {
-    // A candidate is queued again whenever its support grows; only its latest entry counts.
-    const Entry top = queue.top();
-    queue.pop();
-    const uint32_t i = top.tie;
-    if (known[i] || top.support != support[i]) continue;
+    while (!queue.empty() && (known[queue.top().tie] || queue.top().support != support[queue.top().tie])) queue.pop();
+    uint32_t i;
+    if (!queue.empty()) {
+      i = queue.top().tie;
+      queue.pop();
+    } else {
+      while (known[first_unknown]) ++first_unknown;
+      i = first_unknown;
+    }
     known[i] = 1;
     order.push_back(candidates[i]);
     predictor_.for_each_face(candidates[i], [&](const Triangle& face) {
