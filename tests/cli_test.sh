@@ -167,30 +167,11 @@ status=0; "$m4mesh" decode3d "$source/conformance/mesh3d/streams/x-06-frame-cut.
 status=0; "$m4mesh" decode3d "$source/conformance/mesh3d/streams/x-06-frame-cut.m4m" -o "$work/not-kept.m4seq" 2> /dev/null || status=$?
 [ "$status" = 1 ] && [ ! -e "$work/not-kept.m4seq" ] || fail "decode3d without --keep-going left an output"
 
-# frame_count 2^32 − 1 in a 2 KB stream: the first frame missing is named within 300 MB of address space (frames
-# are counted as units arrive, not allocated from frame_count). The limit is left out under ASan, which reserves more.
-/usr/bin/python3 - "$bfs" "$work/frames-2-32.m4m" <<'PY'
-import sys
-def unescape(b):
-    out, zeros = bytearray(), 0
-    for x in b:
-        if zeros >= 2 and x == 3: zeros = 0; continue
-        out.append(x); zeros = zeros + 1 if x == 0 else 0
-    return out
-def escape(b):
-    out, zeros = bytearray(), 0
-    for x in b:
-        if zeros >= 2 and x <= 3: out.append(3); zeros = 0
-        out.append(x); zeros = zeros + 1 if x == 0 else 0
-    return out + (b"\x03" if zeros >= 2 else b"")
-stream = open(sys.argv[1], "rb").read()
-end = stream.find(b"\x00\x00\x01", 4)  # the object payload, between the first two start codes
-payload = unescape(stream[4:end])
-payload[10:14] = (2**32 - 1).to_bytes(4, "big")  # frame_count, after version, codec_id, vertex_count, face_count
-open(sys.argv[2], "wb").write(stream[:4] + escape(payload) + stream[end:])
-PY
+# frame_count 2^32 − 1 in a 2 KB stream (bfs3d-01-average's, that field changed): the first frame missing is named
+# within 300 MB of address space (frames are counted as units arrive, not allocated from frame_count). The limit is
+# left out under ASan, which reserves more.
 limit=300000; case "$(ldd "$m4mesh")" in *libasan*) limit=unlimited ;; esac
-status=0; (ulimit -v "$limit"; "$m4mesh" decode3d "$work/frames-2-32.m4m" -o "$work/frames-2-32.m4seq") > /dev/null 2> "$work/err" || status=$?
+status=0; (ulimit -v "$limit"; "$m4mesh" decode3d tests/data/frame-count-4294967295.m4m -o "$work/frames-2-32.m4seq") > /dev/null 2> "$work/err" || status=$?
 [ "$status" = 1 ] && grep -q "the stream ends before frame 6 of 4294967295 is decoded" "$work/err" ||
   fail "decode3d of frame_count 2^32 - 1: exit $status, $(cat "$work/err")"
 
