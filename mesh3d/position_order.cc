@@ -57,6 +57,7 @@ std::vector<uint32_t> PositionOrder::of(std::span<const uint32_t> candidates) {
   // after them in the candidates' order, which first_unknown walks: no queue of every vertex.
   std::priority_queue<Entry> queue;
   uint32_t first_unknown = 0;
+  const auto is_stale = [&](const Entry& entry) { return known[entry.tie] || entry.support != support[entry.tie]; };
   const auto grow = [&](uint32_t i, uint64_t part) {
     if (i == kNotCandidate || known[i]) return;
     support[i] += part;
@@ -65,7 +66,7 @@ std::vector<uint32_t> PositionOrder::of(std::span<const uint32_t> candidates) {
   std::vector<uint32_t> order;
   order.reserve(count);
   while (order.size() < count) {
-    while (!queue.empty() && (known[queue.top().tie] || queue.top().support != support[queue.top().tie])) queue.pop();
+    while (!queue.empty() && is_stale(queue.top())) queue.pop();
     uint32_t i;
     if (!queue.empty()) {
       i = queue.top().tie;
