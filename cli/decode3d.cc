@@ -1,11 +1,12 @@
 #include "cli/decode3d.h"
 
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "cli/console.h"
 #include "cli/sequence_files.h"
+#include "cli/sequence_writer.h"
 #include "codecs3d/registry.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
@@ -17,7 +18,6 @@ namespace m4mesh {
 
 namespace {
 
-namespace fs = std::filesystem;
 using console::say;
 
 }  // namespace
@@ -27,31 +27,40 @@ int run_decode3d(const Decode3dArgs& args) {
   if (!writes && !args.md5) throw usage_error("decode3d needs -o OUTPUT, or --md5");
   if (writes) refuse_overwriting(args.input, args.output);
   const auto [first, last] = frame_range(args.frames);
-  std::vector<uint8_t> stream = read_file(args.input);
-  if (args.max_bytes > 0) {
-    const ContainerPrefix prefix = container_prefix(split_container(stream), stream.size(), args.max_bytes);
-    if (prefix.units == 0)
-      throw usage_error("--max-bytes " + std::to_string(args.max_bytes) + " holds no unit: the first ends later");
-    say("prefix: %zu units, %llu of %zu bytes", prefix.units, static_cast<unsigned long long>(prefix.bytes), stream.size());
-    stream.resize(prefix.bytes);
+  // A file is read unit by unit; standard input and a prefix are read whole.
+  std::vector<uint8_t> whole;
+  std::optional<ContainerSource> source;
+  if (args.input == "-" || args.max_bytes > 0) {
+    whole = read_file(args.input);
+    if (args.max_bytes > 0) {
+      const ContainerPrefix prefix = container_prefix(split_container(whole), whole.size(), args.max_bytes);
+      if (prefix.units == 0)
+        throw usage_error("--max-bytes " + std::to_string(args.max_bytes) + " holds no unit: the first ends later");
+      say("prefix: %zu units, %llu of %zu bytes", prefix.units, static_cast<unsigned long long>(prefix.bytes), whole.size());
+      whole.resize(prefix.bytes);
+    }
+    source.emplace(whole);
+  } else {
+    source = ContainerSource::open_file(args.input);
   }
   Decode3dOptions options;
   options.verify = args.verify;
   const SequenceOutput form = writes ? sequence_output(args.output, true, args.format) : SequenceOutput::kF32;
-  Mesh3dDecoder decoder(stream, options);
-  console::detail("%s: codec %s, %u vertices, %u faces, %u frames", args.input.c_str(), decoder.codec().name.c_str(),
-                  decoder.header().vertex_count, decoder.header().face_count, decoder.header().frame_count);
+  Mesh3dDecoder decoder(std::move(*source), options);
+  const ObjectHeader& header = decoder.header();
+  console::detail("%s: codec %s, %u vertices, %u faces, %u frames", args.input.c_str(), decoder.codec().name.c_str(), header.vertex_count,
+                  header.face_count, header.frame_count);
   if (decoder.vertex_order() == kVertexOrderCoding)
     say("note: %s numbers its vertices in coding order (encode3d --reorder), not necessarily the input's", args.input.c_str());
   if (const uint32_t start = first > 0 ? decoder.seek(first) : 0; start > 0)
     console::detail("%s: decoding from the intra refresh at frame %u", args.input.c_str(), start);
-  const bool to_folder = writes && form == SequenceOutput::kObjFolder;
   Md5 md5;  // of every frame's binary32 bytes: the 3D conformance hash
-  // Frames go to a staging folder that gives the output its frames only when all are decoded.
-  const fs::path temporary = staging_folder(args.output);
-  console::Progress progress("decoding frame", decoder.header().frame_count);
-  MeshSequence sequence;
-  sequence.vertex_count = decoder.header().vertex_count;
+  console::Progress progress("decoding frame", header.frame_count);
+  // The frames in the range, when the header tells how many (and no error may cut them short).
+  std::optional<uint32_t> count;
+  if (header.frame_count != 0 && !args.keep_going)
+    count = first < header.frame_count ? std::min(last, header.frame_count - 1) - first + 1 : 0;
+  std::unique_ptr<SequenceWriter> writer;  // made at the first frame written
   std::vector<uint32_t> written;
   bool failed = false;
   try {
@@ -65,28 +74,17 @@ int run_decode3d(const Decode3dArgs& args) {
       }
       written.push_back(decoder.frame_index());
       if (!writes) continue;
-      std::vector<Vec3> frame;
-      frame.reserve(decoder.positions().size());
-      for (const Float3& p : decoder.positions()) frame.push_back({p[0], p[1], p[2]});
-      if (to_folder) {
-        fs::create_directories(temporary);
-        write_obj_frame(frame, decoder.faces(), (temporary / obj_frame_name(decoder.frame_index())).string());
-      } else {
-        sequence.frames.push_back(std::move(frame));
-      }
+      if (!writer)
+        writer = sequence_writer(form, args.output,
+                                 {header.vertex_count, decoder.faces(), count, static_cast<double>(header.frame_rate_num) / header.frame_rate_den});
+      writer->frame(decoder.frame_index(), decoder.positions());
       // Past the range nothing is written; without --verify nothing more is needed.
       if (decoder.frame_index() == last && !args.verify) break;
     }
   } catch (const Error& e) {
-    if (!args.keep_going) {
-      fs::remove_all(temporary);
-      throw;
-    }
+    if (!args.keep_going) throw;
     std::fprintf(stderr, "error: %s: %s\n", args.input.c_str(), e.what());
     failed = true;
-  } catch (...) {
-    fs::remove_all(temporary);
-    throw;
   }
   progress.finish();
   if (written.empty() && failed) {
@@ -94,21 +92,7 @@ int run_decode3d(const Decode3dArgs& args) {
     return 1;
   }
   if (written.empty()) throw usage_error("--frames " + args.frames + ": the stream has no frame there");
-  if (to_folder) {
-    install_obj_frames(temporary, fs::path(args.output));
-  } else if (writes && form == SequenceOutput::kF32) {
-    std::string bytes;
-    for (const std::vector<Vec3>& frame : sequence.frames) {
-      std::vector<Float3> positions;
-      for (const Vec3& v : frame) positions.push_back({static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)});
-      const std::vector<uint8_t> b = frame_bytes(positions);
-      bytes.append(b.begin(), b.end());
-    }
-    write_file_atomically(args.output, bytes);
-  } else if (writes) {
-    sequence.faces = decoder.faces();
-    write_sequence_file(form, sequence, args.output, static_cast<double>(decoder.header().frame_rate_num) / decoder.header().frame_rate_den);
-  }
+  if (writer) writer->commit();
   if (failed) {
     std::fprintf(stderr, "%s: decoded %zu frames before the error; %s holds them\n", args.input.c_str(), written.size(), args.output.c_str());
     return 1;

@@ -32,12 +32,19 @@ class CodecDecoder3d {
   // The connectivity, known after the first unit.
   virtual const std::vector<Triangle>& faces() const = 0;
   // A frame's decoded positions. Valid for the frames the last unit
-  // reported; with holds_all_frames(), for every frame reported so far.
+  // reported; with holds_frames(), for every frame it holds.
   virtual void frame(uint32_t index, std::span<Float3> positions) const = 0;
-  // Whether the codec keeps every frame (a progressive codec, whose units
-  // refine frames already decoded); otherwise the container copies each
-  // reported frame out before the next unit.
-  virtual bool holds_all_frames() const { return false; }
+  // Whether the codec keeps frames after the unit that decoded them (a
+  // progressive codec, whose units refine frames already decoded);
+  // otherwise the container copies each reported frame out before the
+  // next unit.
+  virtual bool holds_frames() const { return false; }
+  // With holds_frames(): frames 0 … this − 1 are decoded.
+  virtual uint32_t frames_decoded() const { return 0; }
+  // With holds_frames(): the first frame the codec holds once `next` (a
+  // unit whose container rules hold) is decoded. The frames before it are
+  // final, and the container copies them out before `next` is decoded.
+  virtual uint32_t first_held_frame(const UnitHeader& /*next*/) const { return 0; }
   // Before any unit: makes the codec's first unit the base mesh unit of
   // `frame`, an intra refresh; false when the codec cannot start there.
   virtual bool start_at(uint32_t frame) { return frame == 0; }

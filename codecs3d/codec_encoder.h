@@ -1,6 +1,6 @@
 // The encoding half of a 3D codec, unit by unit, mirroring
-// codecs3d/codec_decoder.h: the codec sees the whole sequence and emits its
-// units through a UnitSink, which the container encoder
+// codecs3d/codec_decoder.h: the codec reads the frames it needs from a
+// FrameSource (mesh3d/frame_source.h) and emits its units through a UnitSink, which the container encoder
 // (encoder/mesh3d/container_encoder.h) implements: it writes the unit headers, the hash
 // units of the frames the codec reports decoded, and the trace.
 #pragma once
@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "common/point3.h"
-#include "mesh3d/sequence.h"
+#include "mesh3d/frame_source.h"
 #include "syntax/io.h"
 #include "syntax/mesh3d/container.h"
 
@@ -30,6 +30,10 @@ class UnitSink {
   // The decoder's state of a frame after the last unit (the closed loop):
   // hashed when the stream carries hash units.
   virtual void decoded(uint32_t frame, std::span<const Float3> positions) = 0;
+  // The frames reported so far are final (a progressive codec's segment
+  // ends): hash units cover them now, a group hash the ones still waiting
+  // for the rest of their group; later groups count from the next frame.
+  virtual void end_segment() = 0;
   virtual void progress(size_t done, size_t total) = 0;
   // The stream's bytes so far: start codes, escaping and hash units included.
   virtual uint64_t stream_bytes() const = 0;
@@ -44,7 +48,7 @@ class CodecEncoder3d {
   // The codec header after the object header.
   virtual void write_header(syntax::WriteIO& io) = 0;
   // Emits every unit of the sequence.
-  virtual void encode(const MeshSequence& sequence, UnitSink& sink) = 0;
+  virtual void encode(const FrameSource& frames, UnitSink& sink) = 0;
   virtual std::vector<CodecStatistic> statistics() const { return {}; }
 };
 

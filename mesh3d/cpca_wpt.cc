@@ -32,28 +32,43 @@ CpcaMeshPrediction::CpcaMeshPrediction(std::span<const Triangle> faces, std::spa
 }
 
 CpcaAnimation::CpcaAnimation(const CpcaHeader& header, std::span<const IntPoint3> mean_shape, uint32_t frames)
-    : vertex_count_(mean_shape.size()), frames_(frames) {
+    : mean_shape_(mean_shape.begin(), mean_shape.end()), fraction_bits_(header.fraction_bits) {
   const double scale = 1.0 / static_cast<double>(uint64_t{1} << header.fraction_bits);
   for (int axis = 0; axis < 3; ++axis) {
     origin_[axis] = header.origin_value(axis);
     unit_[axis] = static_cast<double>(header.step_value(axis)) * scale;
   }
-  fixed_.resize(size_t{frames} * vertex_count_ * 3);
-  positions_.resize(size_t{frames} * vertex_count_);
+  reset(frames);
+}
+
+void CpcaAnimation::reset(uint32_t frames) {
+  frames_ = frames;
+  fixed_.resize(size_t{frames} * mean_shape_.size() * 3);
   for (uint32_t f = 0; f < frames; ++f)
-    for (size_t v = 0; v < vertex_count_; ++v) {
-      const size_t element = (size_t{f} * vertex_count_ + v) * 3;
+    for (size_t v = 0; v < mean_shape_.size(); ++v) {
+      const size_t element = (size_t{f} * mean_shape_.size() + v) * 3;
       for (int axis = 0; axis < 3; ++axis)
-        fixed_[element + static_cast<size_t>(axis)] = static_cast<uint64_t>(int64_t{mean_shape[v][axis]}) << header.fraction_bits;
-      positions_[element / 3] = position_of(element);
+        fixed_[element + static_cast<size_t>(axis)] = static_cast<uint64_t>(int64_t{mean_shape_[v][axis]}) << fraction_bits_;
     }
 }
 
-Float3 CpcaAnimation::position_of(size_t element) const {
+Float3 CpcaAnimation::position(uint32_t f, NodeIndex v) const {
+  const size_t element = (size_t{f} * mean_shape_.size() + v) * 3;
   Float3 p;
   for (int axis = 0; axis < 3; ++axis)
     p[axis] = static_cast<float>(origin_[axis] + static_cast<double>(static_cast<int64_t>(fixed_[element + static_cast<size_t>(axis)])) * unit_[axis]);
   return p;
+}
+
+void CpcaAnimation::frame(uint32_t f, std::span<Float3> positions) const {
+  for (NodeIndex v = 0; v < positions.size(); ++v) positions[v] = position(f, v);
+}
+
+void CpcaAnimation::mean_frame(std::span<Float3> positions) const {
+  for (size_t v = 0; v < positions.size(); ++v)
+    for (int axis = 0; axis < 3; ++axis)
+      positions[v][axis] = static_cast<float>(
+          origin_[axis] + static_cast<double>(static_cast<int64_t>(static_cast<uint64_t>(int64_t{mean_shape_[v][axis]}) << fraction_bits_)) * unit_[axis]);
 }
 
 namespace {
@@ -63,44 +78,52 @@ int64_t scaled(int64_t value, int t) { return t > 0 ? (value + (int64_t{1} << (t
 
 }  // namespace
 
-void CpcaAnimation::translate(std::span<const NodeIndex> members, std::span<const int32_t> translation, uint32_t shift) {
+void CpcaAnimation::translate(std::span<const NodeIndex> members, std::span<const int32_t> translation, uint32_t shift, bool undo) {
   const int t = static_cast<int>(shift) - static_cast<int>(kCpcaShiftBias);
   for (uint32_t f = 0; f < frames_; ++f) {
     uint64_t term[3];
-    for (size_t axis = 0; axis < 3; ++axis) term[axis] = static_cast<uint64_t>(scaled(translation[3 * size_t{f} + axis], t));
+    for (size_t axis = 0; axis < 3; ++axis) {
+      term[axis] = static_cast<uint64_t>(scaled(translation[3 * size_t{f} + axis], t));
+      if (undo) term[axis] = 0 - term[axis];
+    }
     for (NodeIndex m : members) {
-      const size_t at = size_t{f} * vertex_count_ + m;
+      const size_t at = size_t{f} * mean_shape_.size() + m;
       for (size_t axis = 0; axis < 3; ++axis) fixed_[3 * at + axis] += term[axis];
-      positions_[at] = position_of(3 * at);
     }
   }
 }
 
 void CpcaAnimation::refine(std::span<const NodeIndex> members, std::span<const int32_t> basis, std::span<const int32_t> coefficients,
-                           uint32_t shift, bool trajectory) {
+                           uint32_t shift, bool trajectory, bool undo) {
   const int t = static_cast<int>(shift) - static_cast<int>(kCpcaShiftBias);
-  // One pass per kind, its indexing known at compile time (the decoder's hot loop).
-  const auto pass = [&](auto kind) {
-    constexpr bool kTrajectory = decltype(kind)::value;
+  // One pass per kind and direction, its indexing known at compile time (the decoder's hot loop).
+  const auto pass = [&](auto kind, auto subtract) {
+    constexpr bool kTrajectory = decltype(kind)::value, kSubtract = decltype(subtract)::value;
     // Member i's basis value on an axis is basis[i · per_member + axis · per_axis].
     constexpr size_t per_member = kTrajectory ? 1 : 3, per_axis = kTrajectory ? 0 : 1;
     for (uint32_t f = 0; f < frames_; ++f) {
       int64_t c[3];
       for (size_t axis = 0; axis < 3; ++axis) c[axis] = kTrajectory ? coefficients[3 * size_t{f} + axis] : coefficients[f];
       for (size_t i = 0; i < members.size(); ++i) {
-        const size_t at = size_t{f} * vertex_count_ + members[i];
+        const size_t at = size_t{f} * mean_shape_.size() + members[i];
         for (size_t axis = 0; axis < 3; ++axis) {
-          const int64_t product = basis[i * per_member + axis * per_axis] * c[axis];
-          fixed_[3 * at + axis] += static_cast<uint64_t>(scaled(product, t));
+          const uint64_t term = static_cast<uint64_t>(scaled(basis[i * per_member + axis * per_axis] * c[axis], t));
+          if constexpr (kSubtract)
+            fixed_[3 * at + axis] -= term;
+          else
+            fixed_[3 * at + axis] += term;
         }
-        positions_[at] = position_of(3 * at);
       }
     }
   };
-  if (trajectory)
-    pass(std::true_type{});
+  if (trajectory && undo)
+    pass(std::true_type{}, std::true_type{});
+  else if (trajectory)
+    pass(std::true_type{}, std::false_type{});
+  else if (undo)
+    pass(std::false_type{}, std::true_type{});
   else
-    pass(std::false_type{});
+    pass(std::false_type{}, std::false_type{});
 }
 
 }  // namespace m4mesh

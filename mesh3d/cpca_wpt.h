@@ -201,49 +201,59 @@ class CpcaMeshPrediction {
 
 // One refinement's symbols with the unit's coders: a start's translation
 // (3N values), or a component's basis (3 or, for unit_kind 3, 1 per member
-// of its cluster) and coefficients (N or 3N), each span of that size.
+// of its cluster) and coefficients (N or 3N), each span of that size; a
+// continued component (unit_kind 5) its coefficients alone, N or, when it
+// continues a trajectory component (`trajectory`), 3N. A start's and a
+// continued component's first differences are to `before` (cpca_carried).
 template <class IO>
-void describe_refinement(IO& io, syntax::CpcaCoders& coders, const CpcaMeshPrediction& mesh, const CpcaRefinementHeader& h,
-                         std::span<int32_t> translation, std::span<int32_t> basis, std::span<int32_t> coefficients) {
+void describe_refinement(IO& io, syntax::CpcaCoders& coders, const CpcaMeshPrediction& mesh, const CpcaRefinementHeader& h, bool trajectory,
+                         std::array<int64_t, 3> before, std::span<int32_t> translation, std::span<int32_t> basis,
+                         std::span<int32_t> coefficients) {
   if (h.kind == kCpcaStart)
-    syntax::describe_start(io, coders.start, translation);
+    syntax::describe_start(io, coders.start, translation, before);
   else if (h.kind == kCpcaMeshComponent)
     mesh.describe_operator<3>(io, coders.mesh_component, h.cluster, basis, coefficients);
   else if (h.kind == kCpcaTrajectory)
     mesh.describe_operator<1>(io, coders.trajectory, h.cluster, basis, coefficients);
+  else if (h.kind == kCpcaContinued)
+    syntax::describe_continued(io, coders.continued, trajectory, coefficients, before);
   else
     syntax::describe_operator(io, coders.component, basis, coefficients);
 }
 
-// The animation as decoded so far: per frame, vertex and axis a 64-bit
-// integer in steps of 2^−F grid units, starting at the mean shape's grid
-// index × 2^F (arithmetic modulo 2^64), and its positions in binary32.
+// The animation of a segment's frames as decoded so far: per frame, vertex
+// and axis a 64-bit integer in steps of 2^−F grid units, starting at the
+// mean shape's grid index × 2^F (arithmetic modulo 2^64), and its
+// positions in binary32 as they are asked for.
 class CpcaAnimation {
  public:
   CpcaAnimation(const CpcaHeader& header, std::span<const IntPoint3> mean_shape, uint32_t frames);
 
   uint32_t frames() const { return frames_; }
-  size_t vertex_count() const { return vertex_count_; }
+  size_t vertex_count() const { return mean_shape_.size(); }
 
   // Adds round(translation[3n + a] × 2^−(shift − 16)) to frame n, axis a
-  // of every member, and updates those positions (a cluster's start).
-  void translate(std::span<const NodeIndex> members, std::span<const int32_t> translation, uint32_t shift);
+  // of every member (a cluster's start); `undo` subtracts the same terms.
+  void translate(std::span<const NodeIndex> members, std::span<const int32_t> translation, uint32_t shift, bool undo = false);
   // Adds round(basis[3i + a] × coefficients[n] × 2^−(shift − 16)) to
-  // frame n, vertex members[i], axis a, and updates those positions.
-  // With `trajectory`, basis[i] × coefficients[3n + a] instead.
+  // frame n, vertex members[i], axis a. With `trajectory`,
+  // basis[i] × coefficients[3n + a] instead; `undo` subtracts the same terms.
   void refine(std::span<const NodeIndex> members, std::span<const int32_t> basis, std::span<const int32_t> coefficients, uint32_t shift,
-              bool trajectory = false);
+              bool trajectory = false, bool undo = false);
+  // The mean shape again, in `frames` frames (the next segment's).
+  void reset(uint32_t frames);
 
-  std::span<const Float3> frame(uint32_t f) const { return {positions_.data() + size_t{f} * vertex_count_, vertex_count_}; }
+  Float3 position(uint32_t f, NodeIndex v) const;
+  void frame(uint32_t f, std::span<Float3> positions) const;
+  // A frame no refinement has reached: the mean shape.
+  void mean_frame(std::span<Float3> positions) const;
 
  private:
-  Float3 position_of(size_t element) const;
-
-  size_t vertex_count_;
-  uint32_t frames_;
+  std::vector<IntPoint3> mean_shape_;
+  uint32_t fraction_bits_;
+  uint32_t frames_ = 0;
   std::array<double, 3> origin_, unit_;  // unit: the grid step × 2^−F
   std::vector<uint64_t> fixed_;          // frame-major, then vertex, then axis
-  std::vector<Float3> positions_;
 };
 
 }  // namespace m4mesh

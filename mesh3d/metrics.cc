@@ -89,6 +89,47 @@ double kg_error(const MeshSequence& a, const MeshSequence& b) {
   return kg_of(a, b);
 }
 
+void QualityMeter::add(uint32_t frame, std::span<const Float3> decoded) {
+  if (frame != next_) {
+    waiting_[frame].assign(decoded.begin(), decoded.end());
+    return;
+  }
+  measure(frame, decoded);
+  for (auto it = waiting_.find(next_); it != waiting_.end(); it = waiting_.find(next_)) {
+    measure(next_, it->second);
+    waiting_.erase(it);
+  }
+}
+
+void QualityMeter::measure(uint32_t frame, std::span<const Float3> decoded) {
+  const std::span<const Vec3> o = reader_.get(frame);
+  Vec3 mean;
+  for (const Vec3& v : o) {
+    mean.x += v.x;
+    mean.y += v.y;
+    mean.z += v.z;
+  }
+  const double n = static_cast<double>(o.size());
+  mean = {mean.x / n, mean.y / n, mean.z / n};
+  for (size_t i = 0; i < o.size(); ++i) {
+    const Vec3 d{decoded[i][0], decoded[i][1], decoded[i][2]};
+    if (!std::isfinite(d.x) || !std::isfinite(d.y) || !std::isfinite(d.z))
+      throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
+                  "the decoded sequence: frame " + std::to_string(frame) + ", vertex " + std::to_string(i) + " is not a finite point");
+    error_ += (o[i].x - d.x) * (o[i].x - d.x) + (o[i].y - d.y) * (o[i].y - d.y) + (o[i].z - d.z) * (o[i].z - d.z);
+    spread_ += (o[i].x - mean.x) * (o[i].x - mean.x) + (o[i].y - mean.y) * (o[i].y - mean.y) + (o[i].z - mean.z) * (o[i].z - mean.z);
+    const double e = distance(o[i], d);
+    squared_distances_ += e * e;
+  }
+  ++next_;
+}
+
+double QualityMeter::kg() const { return spread_ > 0 ? 100.0 * std::sqrt(error_) / std::sqrt(spread_) : 0.0; }
+
+double QualityMeter::psnr() const {
+  return psnr_of(original_.scan().largest_frame_diagonal, squared_distances_ / (static_cast<double>(next_) * original_.vertex_count()));
+}
+
 double psnr(const MeshSequence& a, const MeshSequence& b) {
   require_comparable(a, b);
   double squared = 0;

@@ -6,6 +6,10 @@
 #include <string>
 #include <vector>
 
+#include <map>
+
+#include "common/point3.h"
+#include "mesh3d/frame_source.h"
 #include "mesh3d/sequence.h"
 
 namespace m4mesh {
@@ -66,6 +70,29 @@ std::vector<FrameMetrics> per_frame_metrics(const MeshSequence& original, const 
 std::vector<std::string> metrics_warnings(const MeshSequence& original);
 
 double kg_error(const MeshSequence& original, const MeshSequence& decoded);
+
+// The KG error and PSNR of decoded frames against a source's frames,
+// measured as the frames come (each once, in any order): a frame waits for
+// the earlier ones, so that the sums run in frame order and give exactly
+// what kg_error() and psnr() give for the whole sequences.
+class QualityMeter {
+ public:
+  // `original` must outlive the meter.
+  explicit QualityMeter(const FrameSource& original) : original_(original), reader_(original) {}
+  void add(uint32_t frame, std::span<const Float3> decoded);
+  // Once every frame is added.
+  double kg() const;
+  double psnr() const;
+
+ private:
+  void measure(uint32_t frame, std::span<const Float3> decoded);
+
+  const FrameSource& original_;
+  FrameReader reader_;
+  std::map<uint32_t, std::vector<Float3>> waiting_;
+  uint32_t next_ = 0;
+  double error_ = 0, spread_ = 0, squared_distances_ = 0;
+};
 // The largest distance between two points (exact; fast unless many points
 // lie near the sphere about their box's centre that holds them all).
 double diameter(std::span<const Vec3> points);

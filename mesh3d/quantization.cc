@@ -30,21 +30,19 @@ double steps_of(int bits) { return std::ldexp(1.0, bits) - 1; }
 
 double power_of_sqrt2(int half) { return half % 2 == 0 ? std::ldexp(1.0, half / 2) : std::ldexp(std::numbers::sqrt2, (half - 1) / 2); }
 
-Grid Grid::over(const std::vector<Vec3>& frame, int bits, bool equal_steps) { return over_box(box_of(frame), steps_of(bits), equal_steps); }
+Grid Grid::over(std::span<const Vec3> frame, int bits, bool equal_steps) { return over_box(box_of(frame), steps_of(bits), equal_steps); }
 
-Grid Grid::over_half_bits(const std::vector<Vec3>& frame, int half_bits, bool equal_steps) {
+Grid Grid::over_half_bits(std::span<const Vec3> frame, int half_bits, bool equal_steps) {
   return over_box(box_of(frame), power_of_sqrt2(half_bits) - 1, equal_steps);
 }
 
-Grid Grid::covering(const MeshSequence& s, int bits, bool equal_steps) {
-  const Grid first = over(s.frames[0], bits, equal_steps);
+Grid Grid::covering(const FrameSource& source, int bits, bool equal_steps) {
+  FrameReader first_frame(source);
+  const Grid first = over(first_frame.get(0), bits, equal_steps);
+  // Quantizing is monotonic per axis: every position fits when the box's corners do.
+  const Box3& box = source.scan().box;
   IntPoint3 q;
-  bool fits = true;
-  for (const std::vector<Vec3>& frame : s.frames)
-    for (const Vec3& v : frame) fits = fits && first.quantize(v, q);
-  if (fits) return first;
-  Box3 box;
-  for (const std::vector<Vec3>& frame : s.frames) box.add(frame);
+  if (first.quantize(box.lo, q) && first.quantize(box.hi, q)) return first;
   return over_box(box, steps_of(bits), equal_steps);
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/point3.h"
+#include "mesh3d/frame_source.h"
 #include "mesh3d/sequence.h"
 
 namespace m4mesh {
@@ -28,12 +29,12 @@ struct Grid {
   // (an axis without extent borrows the largest one); with `equal_steps`,
   // every axis takes the step of the largest extent, so that grid units
   // are the same length on every axis.
-  static Grid over(const std::vector<Vec3>& frame, int bits, bool equal_steps = false);
+  static Grid over(std::span<const Vec3> frame, int bits, bool equal_steps = false);
   // The same with 2^(half_bits / 2) − 1 steps: a grid between two of whole bits.
-  static Grid over_half_bits(const std::vector<Vec3>& frame, int half_bits, bool equal_steps = false);
+  static Grid over_half_bits(std::span<const Vec3> frame, int half_bits, bool equal_steps = false);
   // The grid over the first frame, unless a vertex of some frame lies
   // beyond ±kMaxQuantized steps on it: then the grid over every frame's box.
-  static Grid covering(const MeshSequence& sequence, int bits, bool equal_steps = false);
+  static Grid covering(const FrameSource& source, int bits, bool equal_steps = false);
 
   // Decoding: origin + q · step in binary64, rounded to binary32.
   float position(int axis, int64_t q) const {

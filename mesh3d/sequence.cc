@@ -1,5 +1,6 @@
 #include "mesh3d/sequence.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cctype>
@@ -15,6 +16,7 @@
 #include "common/error.h"
 #include "common/parse_number.h"
 #include "mesh/obj.h"
+#include "mesh3d/frame_source.h"
 #include "mesh3d/little_endian.h"
 #include "mesh3d/ply.h"
 
@@ -99,6 +101,13 @@ MeshFrame read_obj_frame(const std::string& path) {
   frame.faces = std::move(obj.faces);
   frame.dropped = std::move(obj.dropped);
   return frame;
+}
+
+// An OBJ, OFF or PLY frame, by its extension.
+MeshFrame read_frame_file(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".off" ? read_off(path) : extension == ".ply" ? read_ply(path) : read_obj_frame(path);
 }
 
 }  // namespace
@@ -198,7 +207,7 @@ MeshSequence load_sequence(const std::string& path, bool progress) {
   const bool report_progress = progress && files.size() > 10 && isatty(fileno(stderr));
   MeshSequence sequence;
   for (size_t k = 0; k < files.size(); ++k) {
-    MeshFrame frame = extension == ".off" ? read_off(files[k]) : extension == ".ply" ? read_ply(files[k]) : read_obj_frame(files[k]);
+    MeshFrame frame = read_frame_file(files[k]);
     if (k == 0) {
       if (frame.vertices.size() < 3 || frame.faces.empty()) throw input_error(files[k], 0, "a mesh needs vertices and faces");
       if (const std::string note = dropped_records_note(files[k], frame.dropped, "positions and faces"); progress && !note.empty())
@@ -297,6 +306,158 @@ void write_pc2_sequence(const MeshSequence& s, const std::string& path) {
   put_positions(out, s.frames);
   write_obj_frame(s.frames.at(0), s.faces, pc2_faces_path(path));
   write_file_atomically(path, out);
+}
+
+namespace {
+
+// A file read at offsets (pread: safe from several threads at once).
+class PositionedFile {
+ public:
+  explicit PositionedFile(const std::string& path) : path_(path), fd_(::open(path.c_str(), O_RDONLY | O_CLOEXEC)) {
+    if (fd_ < 0) throw io(path, "cannot open");
+  }
+  ~PositionedFile() { ::close(fd_); }
+  PositionedFile(const PositionedFile&) = delete;
+  PositionedFile& operator=(const PositionedFile&) = delete;
+
+  uint64_t size() const {
+    const off_t end = ::lseek(fd_, 0, SEEK_END);
+    if (end < 0) throw io(path_, "cannot tell its size");
+    return static_cast<uint64_t>(end);
+  }
+  void read(uint64_t offset, std::span<uint8_t> out) const {
+    size_t done = 0;
+    while (done < out.size()) {
+      const ssize_t n = ::pread(fd_, out.data() + done, out.size() - done, static_cast<off_t>(offset + done));
+      if (n <= 0) throw io(path_, n == 0 ? "truncated" : "read error");
+      done += static_cast<size_t>(n);
+    }
+  }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  int fd_;
+};
+
+// Frames stored as binary32 x, y, z per vertex, one after the other from
+// `first_frame` (a .m4seq or .pc2 file).
+class PackedFramesSource final : public FrameSource {
+ public:
+  PackedFramesSource(std::unique_ptr<PositionedFile> file, uint64_t first_frame, uint32_t vertex_count, uint32_t frame_count,
+                     std::vector<Triangle> faces)
+      : file_(std::move(file)), first_frame_(first_frame), vertex_count_(vertex_count), frame_count_(frame_count), faces_(std::move(faces)) {}
+
+  uint32_t vertex_count() const override { return vertex_count_; }
+  std::span<const Triangle> faces() const override { return faces_; }
+  uint32_t frame_count() const override { return frame_count_; }
+  void read(uint32_t index, std::span<Vec3> out) const override {
+    std::vector<uint8_t> bytes(size_t{vertex_count_} * 12);
+    file_->read(first_frame_ + uint64_t{index} * bytes.size(), bytes);
+    ByteReader r(bytes, file_->path(), "frame");
+    for (Vec3& v : out.first(vertex_count_)) {
+      v.x = r.f32();
+      v.y = r.f32();
+      v.z = r.f32();
+    }
+  }
+
+ private:
+  std::unique_ptr<PositionedFile> file_;
+  uint64_t first_frame_;
+  uint32_t vertex_count_, frame_count_;
+  std::vector<Triangle> faces_;
+};
+
+// One frame file per frame, parsed when read; each must have the first's
+// vertex count and faces.
+class FrameFilesSource final : public FrameSource {
+ public:
+  FrameFilesSource(std::vector<std::string> files, MeshFrame first) : files_(std::move(files)) {
+    shape_.vertex_count = static_cast<uint32_t>(first.vertices.size());
+    shape_.faces = std::move(first.faces);
+  }
+
+  uint32_t vertex_count() const override { return shape_.vertex_count; }
+  std::span<const Triangle> faces() const override { return shape_.faces; }
+  uint32_t frame_count() const override { return static_cast<uint32_t>(files_.size()); }
+  void read(uint32_t index, std::span<Vec3> out) const override {
+    const MeshFrame frame = read_frame_file(files_.at(index));
+    check_same_connectivity(shape_, frame, files_[index]);
+    std::copy(frame.vertices.begin(), frame.vertices.end(), out.begin());
+  }
+
+ private:
+  std::vector<std::string> files_;
+  MeshSequence shape_;  // the vertex count and faces, no frames
+};
+
+// A .m4seq file's frames where it holds more than kInMemoryVertexFrames.
+std::unique_ptr<FrameSource> open_m4seq(const std::string& path) {
+  auto file = std::make_unique<PositionedFile>(path);
+  std::vector<uint8_t> head(kMagicSize + 12);
+  if (file->size() < head.size()) throw io(path, "truncated .m4seq file");
+  file->read(0, head);
+  if (std::memcmp(head.data(), kMagic, kMagicSize) != 0) throw io(path, "not a .m4seq file");
+  ByteReader r(head, path, ".m4seq");
+  r.skip(kMagicSize);
+  const uint32_t vertices = r.u32(), face_count = r.u32(), frames = r.u32();
+  if (vertices < 3 || vertices > kMaxVertices) throw io(path, "vertex count out of range");
+  const uint64_t first_frame = head.size() + uint64_t{face_count} * 12;
+  const uint64_t expected = first_frame + uint64_t{frames} * vertices * 12;
+  if (file->size() < expected) throw io(path, "truncated .m4seq file");
+  if (file->size() > expected) throw io(path, "bytes after the last frame");
+  if (uint64_t{frames} * vertices <= kInMemoryVertexFrames) return nullptr;
+  std::vector<uint8_t> face_bytes(size_t{face_count} * 12);
+  file->read(head.size(), face_bytes);
+  ByteReader f(face_bytes, path, ".m4seq");
+  std::vector<Triangle> faces(face_count);
+  for (Triangle& t : faces)
+    for (NodeIndex& v : t.v) {
+      v = f.u32();
+      if (v >= vertices) throw io(path, "face index out of range");
+    }
+  return std::make_unique<PackedFramesSource>(std::move(file), first_frame, vertices, frames, std::move(faces));
+}
+
+// A .pc2 file's frames where it holds more than kInMemoryVertexFrames.
+std::unique_ptr<FrameSource> open_pc2(const std::string& path) {
+  auto file = std::make_unique<PositionedFile>(path);
+  constexpr size_t kHeader = 32;
+  std::vector<uint8_t> head(kHeader);
+  if (file->size() < kHeader || (file->read(0, head), std::memcmp(head.data(), "POINTCACHE2", 12) != 0)) return nullptr;
+  ByteReader r(head, path, "PC2");
+  r.skip(20);
+  const uint32_t points = r.u32();
+  r.skip(4);
+  const uint32_t samples = r.u32();
+  if (uint64_t{samples} * points <= kInMemoryVertexFrames || file->size() != kHeader + uint64_t{samples} * points * 12) return nullptr;
+  const std::string obj = pc2_faces_path(path);
+  if (!std::filesystem::is_regular_file(obj)) return nullptr;
+  MeshFrame first = read_obj_frame(obj);
+  if (first.vertices.size() != points || first.faces.empty()) return nullptr;  // read_pc2_sequence names the error
+  return std::make_unique<PackedFramesSource>(std::move(file), kHeader, points, samples, std::move(first.faces));
+}
+
+}  // namespace
+
+std::unique_ptr<FrameSource> open_sequence(const std::string& path, bool progress) {
+  namespace fs = std::filesystem;
+  if (path != "-" && fs::is_regular_file(path)) {
+    refuse_mesh_stream(path);
+    const std::string extension = fs::path(path).extension().string();
+    std::unique_ptr<FrameSource> large = extension == ".m4seq" ? open_m4seq(path) : extension == ".pc2" ? open_pc2(path) : nullptr;
+    if (large) return large;
+  } else if (path != "-") {
+    std::vector<std::string> files = frame_files(path, {".obj", ".off", ".ply"});
+    MeshFrame first = read_frame_file(files.front());
+    if (uint64_t{files.size()} * first.vertices.size() > kInMemoryVertexFrames && first.vertices.size() >= 3 && !first.faces.empty()) {
+      if (const std::string note = dropped_records_note(files.front(), first.dropped, "positions and faces"); progress && !note.empty())
+        std::fprintf(stderr, "note: %s\n", note.c_str());
+      return std::make_unique<FrameFilesSource>(std::move(files), std::move(first));
+    }
+  }
+  return std::make_unique<SequenceSource>(load_sequence(path, progress));
 }
 
 std::string pc2_faces_path(const std::string& path) { return std::filesystem::path(path).replace_extension(".obj").string(); }

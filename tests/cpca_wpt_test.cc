@@ -195,7 +195,7 @@ std::vector<CpcaRefinementHeader> refinements(const std::vector<uint8_t>& stream
       syntax::EntropyReadIO<false> symbols(r.bins, r.raw, syntax::SectionPlace{.version = r.version});
       syntax::CpcaGroupContexts contexts;
       syntax::describe_group_list(symbols, contexts, std::span(r.group), header.cluster_count, [&](uint32_t c) { return started[c] != 0; },
-                                  [&](const CpcaRefinementHeader& h, bool) { started[h.cluster] |= h.kind == kCpcaStart; });
+                                  [](uint32_t) { return 0u; }, [&](const CpcaRefinementHeader& h, bool) { started[h.cluster] |= h.kind == kCpcaStart; });
     }
     for (const CpcaRefinementHeader& h : r.refinements()) {
       if (h.kind == kCpcaStart) started[h.cluster] = 1;

@@ -67,7 +67,8 @@ class ToyDecoder final : public CodecDecoder3d {
     for (size_t v = 0; v < positions.size(); ++v)
       for (int axis = 0; axis < 3; ++axis) positions[v][axis] = toy_position(q_[(size_t{index} * header_.vertex_count + v) * 3 + axis]);
   }
-  bool holds_all_frames() const override { return true; }
+  bool holds_frames() const override { return true; }
+  uint32_t frames_decoded() const override { return levels_ > 0 ? header_.frame_count : 0; }
 
  private:
   ObjectHeader header_;
@@ -80,12 +81,13 @@ class ToyEncoder final : public CodecEncoder3d {
  public:
   ToyEncoder(int levels, const BaseMeshCoding& base_mesh) : levels_(static_cast<uint32_t>(levels)), base_mesh_(base_mesh) {}
   void write_header(syntax::WriteIO&) override {}
-  void encode(const MeshSequence& s, UnitSink& sink) override {
-    const std::vector<IntPoint3> zeros(s.vertex_count, IntPoint3{0, 0, 0});
-    sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, zeros, base_mesh_); });
+  void encode(const FrameSource& s, UnitSink& sink) override {
+    const std::vector<IntPoint3> zeros(s.vertex_count(), IntPoint3{0, 0, 0});
+    sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces(), zeros, base_mesh_); });
     std::vector<uint32_t> q;
-    for (const std::vector<Vec3>& frame : s.frames)
-      for (const Vec3& p : frame)
+    FrameReader reader(s);
+    for (uint32_t f = 0; f < s.frame_count(); ++f)
+      for (const Vec3& p : reader.get(f))
         for (double c : {p.x, p.y, p.z}) q.push_back(toy_quantized(c));
     for (uint32_t level = 0; level < levels_; ++level)
       sink.unit(UnitType::kRefinement, 0, [&](syntax::WriteIO& io) {
@@ -93,8 +95,8 @@ class ToyEncoder final : public CodecEncoder3d {
         for (uint32_t v : q) r.bytes.push_back(level == 0 ? v >> 8 : v & 0xFF);
         describe(io, r, static_cast<uint32_t>(q.size()));
       });
-    std::vector<Float3> decoded(s.vertex_count);
-    for (uint32_t f = 0; f < s.frames.size(); ++f) {
+    std::vector<Float3> decoded(s.vertex_count());
+    for (uint32_t f = 0; f < s.frame_count(); ++f) {
       for (size_t v = 0; v < decoded.size(); ++v)
         for (int axis = 0; axis < 3; ++axis) {
           const uint32_t value = q[(f * decoded.size() + v) * 3 + static_cast<size_t>(axis)];
@@ -149,21 +151,22 @@ class ReorderedEncoder final : public CodecEncoder3d {
  public:
   explicit ReorderedEncoder(const BaseMeshCoding& base_mesh) : base_mesh_(base_mesh) {}
   void write_header(syntax::WriteIO&) override {}
-  void encode(const MeshSequence& s, UnitSink& sink) override {
+  void encode(const FrameSource& s, UnitSink& sink) override {
     std::vector<uint32_t> order{0};
-    if (s.frames.size() > 1) order.push_back(static_cast<uint32_t>(s.frames.size() - 1));
-    for (uint32_t f = 1; f + 1 < s.frames.size(); ++f) order.push_back(f);
+    if (s.frame_count() > 1) order.push_back(s.frame_count() - 1);
+    for (uint32_t f = 1; f + 1 < s.frame_count(); ++f) order.push_back(f);
+    FrameReader reader(s);
     for (uint32_t f : order) {
       std::vector<uint32_t> q;
       std::vector<IntPoint3> grid;
       std::vector<Float3> decoded;
-      for (const Vec3& p : s.frames[f]) {
+      for (const Vec3& p : reader.get(f)) {
         grid.push_back({static_cast<int32_t>(toy_quantized(p.x)), static_cast<int32_t>(toy_quantized(p.y)), static_cast<int32_t>(toy_quantized(p.z))});
         decoded.push_back({toy_position(toy_quantized(p.x)), toy_position(toy_quantized(p.y)), toy_position(toy_quantized(p.z))});
         for (int32_t c : grid.back()) q.push_back(static_cast<uint32_t>(c));
       }
       if (f == 0)
-        sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, grid, base_mesh_); });
+        sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces(), grid, base_mesh_); });
       else
         sink.unit(UnitType::kFrame, f, [&](syntax::WriteIO& io) { describe_toy_frame(io, q, static_cast<uint32_t>(q.size())); });
       sink.decoded(f, decoded);
@@ -181,11 +184,11 @@ void register_toy() {
     register_decoder3d(kToyId, [](const ObjectHeader& h, syntax::ReadIO&) { return std::make_unique<ToyDecoder>(h); });
     register_encoder3d(kToyId, {{{"levels", "toy-progressive: refinement units to send", OptionKind::kInteger, "2", 1, 2}},
                                 {"levels", {"1", "2"}, {}},
-                                [](const MeshSequence&, const CodecSettings& s) { return std::make_unique<ToyEncoder>(s.integer("levels"), s.base_mesh()); }});
+                                [](const FrameSource&, const CodecSettings& s) { return std::make_unique<ToyEncoder>(s.integer("levels"), s.base_mesh()); }});
     register_codec3d({kToyId + 1, "toy-reordered", "a test's codec that decodes frames out of display order", "tests/registry_test.cc",
                       {UnitType::kBaseMesh, UnitType::kFrame}});
     register_decoder3d(kToyId + 1, [](const ObjectHeader& h, syntax::ReadIO&) { return std::make_unique<ReorderedDecoder>(h); });
-    register_encoder3d(kToyId + 1, {{}, {}, [](const MeshSequence&, const CodecSettings& s) { return std::make_unique<ReorderedEncoder>(s.base_mesh()); }});
+    register_encoder3d(kToyId + 1, {{}, {}, [](const FrameSource&, const CodecSettings& s) { return std::make_unique<ReorderedEncoder>(s.base_mesh()); }});
     return true;
   }();
   (void)registered;

@@ -62,7 +62,7 @@ std::vector<uint8_t> group_bytes(std::vector<CpcaRefinementHeader> group, std::v
   if (cpca_group_list_in_bins(version)) {
     syntax::CpcaGroupContexts contexts;
     syntax::describe_group_list(symbols, contexts, std::span(group), static_cast<uint32_t>(started.size()),
-                                [&](uint32_t cluster) { return started.at(cluster) != 0; }, start);
+                                [&](uint32_t cluster) { return started.at(cluster) != 0; }, [](uint32_t) { return 0u; }, start);
   } else {
     for (const CpcaRefinementHeader& h : group) start(h, false);
   }
@@ -430,7 +430,7 @@ void write_one_vertex_group(OneVertexClusters& stream, std::vector<uint8_t>& sta
           coefficients(h.kind == kCpcaStart ? 0 : 6 / per_member);
       for (std::vector<int32_t>* values : {&translation, &basis, &coefficients})
         for (size_t i = 0; i < values->size(); ++i) (*values)[i] = static_cast<int32_t>((h.cluster + 3 * i) % 5) - 2;
-      describe_refinement(symbols, coders, stream.mesh, h, translation, basis, coefficients);
+      describe_refinement(symbols, coders, stream.mesh, h, h.kind == kCpcaTrajectory, {}, translation, basis, coefficients);
     }
   }));
 }
@@ -728,8 +728,8 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                               edited(limits, [&](ContainerParts& p) { p.units[refinement_unit(p, c.unit)].payload.push_back(0x00); }),
                               ErrorKind::kStructure, c.element, kNoPlane));
   }
-  suite.push_back(invalid("x-32-cpca-unit-kind", "unit_kind 5", {"cpca"},
-                          edited(base, [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, refinement_field("unit_kind"), 5); }),
+  suite.push_back(invalid("x-32-cpca-unit-kind", "unit_kind 6", {"cpca"},
+                          edited(base, [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, refinement_field("unit_kind"), 6); }),
                           ErrorKind::kOutOfRange, "unit_kind", kNoPlane));
   // The first component unit of a kind moves before every refinement unit (they follow the base mesh).
   auto component_first = [](uint32_t kind) {

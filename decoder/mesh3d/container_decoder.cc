@@ -27,8 +27,10 @@ Error located(const Error& e, uint64_t start_code_byte, int64_t frame, int64_t u
 Error in_object_payload(const Error& e) { return located(e, 0, kNoPlane, kNoUnit); }
 
 Mesh3dDecoder::Mesh3dDecoder(std::span<const uint8_t> stream, const Decode3dOptions& options)
-    : parts_(split_container(stream)), options_(options) {
-  BitReader reader(parts_.object_payload.data(), parts_.object_payload.size());
+    : Mesh3dDecoder(ContainerSource(stream), options) {}
+
+Mesh3dDecoder::Mesh3dDecoder(ContainerSource source, const Decode3dOptions& options) : parts_(std::move(source)), options_(options) {
+  BitReader reader(parts_.object_payload().data(), parts_.object_payload().size());
   syntax::ReadIO io(reader, options_.trace);
   if (options_.trace) options_.trace->begin_payload(-1, "object", "mesh3d_object_start_code", kMesh3dObjectStartCode);
   try {
@@ -44,36 +46,34 @@ Mesh3dDecoder::Mesh3dDecoder(std::span<const uint8_t> stream, const Decode3dOpti
   } catch (const Error& e) {
     throw located(e, 0, kNoPlane, kNoUnit);
   }
-  // A progressive codec's header bounds its frames; other codecs' frames are counted as their units arrive, not
-  // from frame_count (up to 2^32 in a few bytes).
-  if (codec_->holds_all_frames()) decoded_.resize(header_.frame_count);
 }
 
 void Mesh3dDecoder::fail(ErrorKind kind, size_t index, int64_t frame, const char* element, const std::string& message) const {
-  throw Error(kind, element, frame, static_cast<int64_t>(parts_.units[index].byte_offset * 8 + syntax::unit_header_offset(element)), message)
+  throw Error(kind, element, frame, static_cast<int64_t>(parts_.unit_offset(index) * 8 + syntax::unit_header_offset(element)), message)
       .in_mesh3d(static_cast<int64_t>(index));
 }
 
 UnitHeader Mesh3dDecoder::read_unit_header(size_t index, bool traced) {
-  const ContainerUnit& unit = parts_.units[index];
-  BitReader reader(unit.payload.data(), unit.payload.size());
+  const std::vector<uint8_t>& payload = parts_.payload(index);
+  BitReader reader(payload.data(), payload.size());
   syntax::ReadIO io(reader, traced ? options_.trace : nullptr);
   UnitHeader header;
   try {
     syntax::describe(io, header);
   } catch (const Error& e) {
-    throw located(e, unit.byte_offset, kNoPlane, static_cast<int64_t>(index));  // the frame is not known before the header is read
+    throw located(e, parts_.unit_offset(index), kNoPlane, static_cast<int64_t>(index));  // the frame is not known before the header is read
   }
   return header;
 }
 
 uint32_t Mesh3dDecoder::seek(uint32_t frame) {
-  if (next_unit_ != 0 || codec_->holds_all_frames()) return 0;
+  if (next_unit_ != 0 || codec_->holds_frames()) return 0;
   size_t refresh = 0;
   uint32_t start = 0;
-  for (size_t u = 1; u < parts_.units.size(); ++u) {
+  for (size_t u = 1; u < parts_.units(); ++u) {
     if (is_hash_unit(u)) continue;
     const UnitHeader header = read_unit_header(u, false);
+    parts_.drop_before(u + 1);
     if (header.frame_index > frame) break;
     if (header.type() == UnitType::kBaseMesh) {
       refresh = u;
@@ -90,8 +90,9 @@ uint32_t Mesh3dDecoder::seek(uint32_t frame) {
 }
 
 std::optional<BaseMeshData> Mesh3dDecoder::first_base_mesh_fields() const {
-  for (const ContainerUnit& unit : parts_.units) {
-    BitReader reader(unit.payload.data(), unit.payload.size());
+  for (size_t u = 0; u < parts_.units(); ++u) {
+    const std::vector<uint8_t>& payload = parts_.payload(u);
+    BitReader reader(payload.data(), payload.size());
     syntax::ReadIO io(reader);
     try {
       UnitHeader header;
@@ -131,8 +132,8 @@ UnitHeader Mesh3dDecoder::begin_unit(size_t index) {
 
 template <class Read>
 void Mesh3dDecoder::read_unit_data(size_t index, int64_t frame, Read&& read) {
-  const ContainerUnit& unit = parts_.units[index];
-  BitReader reader(unit.payload.data(), unit.payload.size());
+  const std::vector<uint8_t>& payload = parts_.payload(index);
+  BitReader reader(payload.data(), payload.size());
   reader.seek(syntax::unit_data_offset() - 32);
   syntax::ReadIO io(reader, options_.trace);
   io.set_plane(frame);
@@ -143,7 +144,7 @@ void Mesh3dDecoder::read_unit_data(size_t index, int64_t frame, Read&& read) {
   try {
     read(io);
   } catch (const Error& e) {
-    throw located(e, unit.byte_offset, frame, static_cast<int64_t>(index));
+    throw located(e, parts_.unit_offset(index), frame, static_cast<int64_t>(index));
   }
 }
 
@@ -167,20 +168,36 @@ void Mesh3dDecoder::decode_unit(size_t index) {
     fail(ErrorKind::kStructure, index, frame, "frame_index", "more frames than the object header's frame_count");
   unit_.index = index;
   unit_.header = header;
-  unit_.byte_offset = parts_.units[index].byte_offset;
+  unit_.byte_offset = parts_.unit_offset(index);
+  if (codec_->holds_frames() && decoded_count_ > 0) release_before(codec_->first_held_frame(header));
   read_unit_data(index, frame, [&](syntax::ReadIO& io) { codec_->decode_unit(header, io, unit_.frames); });
+  if (codec_->holds_frames()) {
+    decoded_count_ = codec_->frames_decoded();
+    return;
+  }
   for (uint32_t f : unit_.frames) {
     if (f >= decoded_.size()) decoded_.resize(f + size_t{1});
     decoded_[f] = true;
   }
 }
 
+void Mesh3dDecoder::release_before(uint32_t first_held) {
+  for (uint32_t f = held_from_; f < first_held; ++f) {
+    std::vector<Float3>& slot = released_[f];
+    slot.resize(header_.vertex_count);
+    codec_->frame(f, slot);
+    unit_.released.push_back(f);
+  }
+  held_from_ = std::max(held_from_, first_held);
+}
+
+bool Mesh3dDecoder::holds(uint32_t frame) const { return frame >= held_from_ && frame < decoded_count_; }
+
 void Mesh3dDecoder::check_hash(size_t index) {
   const UnitHeader header = begin_unit(index);
   if (header.type() == UnitType::kGroupHash) return check_group_hash(index, header);
   const uint32_t frame = header.frame_index;
-  const bool covered = codec_->holds_all_frames() ? frame < decoded_.size() && decoded_[frame]
-                                                  : std::find(unit_.frames.begin(), unit_.frames.end(), frame) != unit_.frames.end();
+  const bool covered = codec_->holds_frames() ? holds(frame) : std::find(unit_.frames.begin(), unit_.frames.end(), frame) != unit_.frames.end();
   if (!covered) fail(ErrorKind::kStructure, index, frame, "frame_index", "a hash unit for a frame the unit before it did not decode");
   FrameHash hash;
   read_unit_data(index, frame, [&](syntax::ReadIO& io) { syntax::describe(io, hash); });
@@ -191,7 +208,7 @@ void Mesh3dDecoder::check_hash(size_t index) {
 }
 
 Digest Mesh3dDecoder::digest_of(uint32_t frame) const {
-  if (!codec_->holds_all_frames()) return digests_.at(frame);
+  if (!codec_->holds_frames()) return digests_.at(frame);
   std::vector<Float3> positions(header_.vertex_count);
   codec_->frame(frame, positions);
   return frame_digest(positions);
@@ -204,15 +221,19 @@ void Mesh3dDecoder::check_group_hash(size_t index, const UnitHeader& header) {
     syntax::describe(io, hash);
     const uint64_t end = uint64_t{first} + hash.group_frames;
     if (header_.frame_count != 0 && end > header_.frame_count) io.fail(ErrorKind::kStructure, "group_frames", "a group beyond frame_count");
-    for (uint64_t f = first; f < end; ++f)
-      if (f >= decoded_.size() || !decoded_[static_cast<size_t>(f)])
-        io.fail(ErrorKind::kStructure, "group_frames", "a group hash covering frame " + std::to_string(f) + ", which is not decoded yet");
+    for (uint64_t f = first; f < end; ++f) {
+      const bool decoded = codec_->holds_frames() ? holds(static_cast<uint32_t>(f)) : f < decoded_.size() && decoded_[static_cast<size_t>(f)];
+      if (!decoded)
+        io.fail(ErrorKind::kStructure, "group_frames",
+                "a group hash covering frame " + std::to_string(f) + ", which is not decoded yet" +
+                    (codec_->holds_frames() && f < held_from_ ? " (its segment is complete already)" : ""));
+    }
   });
   if (!options_.verify) return;
   std::vector<Digest> frames;
   for (uint32_t f = first; f < first + hash.group_frames; ++f) {
     // A frame that failed to decode (a check carries on past it) has no digest: the group stays unchecked.
-    if (!codec_->holds_all_frames() && !digests_.count(f)) return;
+    if (!codec_->holds_frames() && !digests_.count(f)) return;
     frames.push_back(digest_of(f));
   }
   const Digest digest = group_digest(frames);
@@ -226,28 +247,31 @@ void Mesh3dDecoder::check_group_hash(size_t index, const UnitHeader& header) {
 void Mesh3dDecoder::finish() {
   if (finished_) return;
   finished_ = true;
-  if (parts_.units.empty()) throw Error(ErrorKind::kTruncated, "base_mesh", 0, kNoOffset, "the stream has no base mesh unit").in_mesh3d(kNoUnit);
+  if (parts_.units() == 0) throw Error(ErrorKind::kTruncated, "base_mesh", 0, kNoOffset, "the stream has no base mesh unit").in_mesh3d(kNoUnit);
   for (uint32_t f = 0; f < header_.frame_count; ++f)
-    if (f >= decoded_.size() || !decoded_[f])
+    if (codec_->holds_frames() ? f >= decoded_count_ : f >= decoded_.size() || !decoded_[f])
       throw Error(ErrorKind::kTruncated, "mesh3d_unit_start_code", f, kNoOffset,
                   "the stream ends before frame " + std::to_string(f) + " of " + std::to_string(header_.frame_count) + " is decoded")
           .in_mesh3d(kNoUnit);
-  if (options_.trace && parts_.has_end_code) options_.trace->begin_payload(Trace::kEndPart, "end", "mesh_object_end_code", kMeshObjectEndCode);
+  if (options_.trace && parts_.has_end_code()) options_.trace->begin_payload(Trace::kEndPart, "end", "mesh_object_end_code", kMeshObjectEndCode);
 }
 
 bool Mesh3dDecoder::is_hash_unit(size_t index) const {
-  const std::vector<uint8_t>& payload = parts_.units[index].payload;
+  const std::vector<uint8_t>& payload = parts_.payload(index);
   return !payload.empty() && payload[0] < kUnitTypes && m4mesh::is_hash_unit(static_cast<UnitType>(payload[0]));
 }
 
 bool Mesh3dDecoder::next_unit() {
-  if (next_unit_ >= parts_.units.size()) {
+  if (next_unit_ >= parts_.units()) {
     finish();
     return false;
   }
+  parts_.drop_before(next_unit_);
   const size_t index = next_unit_++;
+  unit_.released.clear();
+  released_.clear();
   decode_unit(index);
-  if (!codec_->holds_all_frames()) {
+  if (!codec_->holds_frames()) {
     for (uint32_t f : unit_.frames) {
       std::vector<Float3>& slot = ready_[f];
       if (slot.empty() && !spare_.empty()) {
@@ -259,25 +283,26 @@ bool Mesh3dDecoder::next_unit() {
       if (options_.verify) digests_[f] = frame_digest(slot);
     }
   }
-  while (next_unit_ < parts_.units.size() && is_hash_unit(next_unit_)) check_hash(next_unit_++);
+  while (next_unit_ < parts_.units() && is_hash_unit(next_unit_)) check_hash(next_unit_++);
   return true;
 }
 
 void Mesh3dDecoder::extend(std::span<const uint8_t> received) {
-  ContainerParts parts = split_container(received);
-  if (parts.units.size() < parts_.units.size() || parts.object_payload != parts_.object_payload)
+  ContainerSource parts(received);
+  if (parts.units() < parts_.units() || parts.object_payload() != parts_.object_payload())
     throw usage_error("the bytes received do not continue those decoded so far");
   parts_ = std::move(parts);
   if (next_unit_ > 0)
-    while (next_unit_ < parts_.units.size() && is_hash_unit(next_unit_)) check_hash(next_unit_++);
+    while (next_unit_ < parts_.units() && is_hash_unit(next_unit_)) check_hash(next_unit_++);
 }
 
 void Mesh3dDecoder::resume() {
+  if (codec_->holds_frames()) unit_.frames.clear();
   for (uint32_t f : unit_.frames) {
     if (f >= decoded_.size()) decoded_.resize(f + size_t{1});
     decoded_[f] = true;
   }
-  while (next_unit_ < parts_.units.size() && is_hash_unit(next_unit_)) ++next_unit_;
+  while (next_unit_ < parts_.units() && is_hash_unit(next_unit_)) ++next_unit_;
 }
 
 std::optional<uint32_t> Mesh3dDecoder::first_mismatch() const {
@@ -302,13 +327,20 @@ bool Mesh3dDecoder::next_frame() {
       return true;
     }
     if (!next_unit()) {
-      if (!codec_->holds_all_frames() || next_display_ >= decoded_.size()) return false;
+      if (!codec_->holds_frames() || !holds(next_display_)) return false;
       positions_.resize(header_.vertex_count);
       codec_->frame(next_display_, positions_);
       frame_index_ = next_display_++;
       return true;
     }
+    ready_.merge(released_);
   }
+}
+
+void Mesh3dDecoder::frame(uint32_t index, std::span<Float3> positions) const {
+  if (!codec_->holds_frames() || holds(index)) return codec_->frame(index, positions);
+  const std::vector<Float3>& released = released_.at(index);
+  std::copy(released.begin(), released.end(), positions.begin());
 }
 
 void for_each_prefix(std::span<const uint8_t> stream,

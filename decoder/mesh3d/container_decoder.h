@@ -39,7 +39,10 @@ struct DecodedUnit {
   size_t index = 0;  // among the stream's units, hash units included
   UnitHeader header;
   uint64_t byte_offset = 0;      // of its start code
-  std::vector<uint32_t> frames;  // frames it (re)decoded
+  std::vector<uint32_t> frames;  // frames it (re)decoded (a progressive codec: those of the segment it refines)
+  // A progressive codec's frames that became final before the unit (its
+  // segment ended): frame() gives them until the next unit.
+  std::vector<uint32_t> released;
   std::vector<uint32_t> verified;  // with verify: frames the hash units after it checked
 };
 
@@ -48,18 +51,20 @@ class Mesh3dDecoder {
   // The stream is not copied: it must outlive the decoder.
   explicit Mesh3dDecoder(std::span<const uint8_t> stream, const Decode3dOptions& options = {});
   Mesh3dDecoder(std::vector<uint8_t>&&, const Decode3dOptions& = {}) = delete;
+  // A stream in memory or read from its file unit by unit (ContainerSource::open_file).
+  explicit Mesh3dDecoder(ContainerSource source, const Decode3dOptions& options = {});
 
   const ObjectHeader& header() const { return header_; }
   const Codec3d& codec() const { return *codec_row_; }
   const std::vector<Triangle>& faces() const { return codec_->faces(); }
-  bool has_end_code() const { return parts_.has_end_code; }
+  bool has_end_code() const { return parts_.has_end_code(); }
   // The first base mesh unit's vertex_order and position_blend
   // (syntax/mesh3d/base_mesh.h); none when the stream has no readable base
   // mesh unit.
   std::optional<uint32_t> vertex_order() const;
   std::optional<uint32_t> position_blend() const;
-  // Whether every unit refines every frame (a progressive codec).
-  bool progressive() const { return codec_->holds_all_frames(); }
+  // Whether units refine frames decoded before (a progressive codec).
+  bool progressive() const { return codec_->holds_frames(); }
 
   // Before the first unit: starts at the last intra refresh (a base mesh
   // unit) at or before `frame`, when the stream has one and the codec can;
@@ -83,13 +88,13 @@ class Mesh3dDecoder {
   // after the last unit taken are checked now, as next_unit() would have.
   void extend(std::span<const uint8_t> received);
   // Units the decoder holds, taken or not, hash units included.
-  size_t units_received() const { return parts_.units.size(); }
+  size_t units_received() const { return parts_.units(); }
   // Units taken so far, hash units included (after an error in a unit, the
   // failed one is the last taken).
   size_t units_taken() const { return next_unit_; }
-  // A frame the last unit decoded (or, for a codec that holds every
-  // frame, any frame decoded so far).
-  void frame(uint32_t index, std::span<Float3> positions) const { codec_->frame(index, positions); }
+  // A frame the last unit decoded; of a progressive codec, any frame it
+  // holds (its segment's and the later ones) or the last unit released.
+  void frame(uint32_t index, std::span<Float3> positions) const;
   // Each frame's last hash check: absent when no hash unit covered it
   // (or verification is off), else whether it matched. A group hash unit
   // checks its frames after the last of them is decoded: a frame's result
@@ -118,24 +123,31 @@ class Mesh3dDecoder {
   bool is_hash_unit(size_t index) const;
   // A decoded frame's MD5 digest (with verify).
   Digest digest_of(uint32_t frame) const;
+  // A progressive codec's frames before `first_held` become final: copied out.
+  void release_before(uint32_t first_held);
+  // Whether a progressive codec holds the frame (decoded, not released).
+  bool holds(uint32_t frame) const;
   void finish();
   // An error of a unit header's element (unit_type, frame_index).
   [[noreturn]] void fail(ErrorKind kind, size_t index, int64_t frame, const char* element, const std::string& message) const;
 
-  ContainerParts parts_;
+  ContainerSource parts_;
   Decode3dOptions options_;
   ObjectHeader header_;
   const Codec3d* codec_row_ = nullptr;
   std::unique_ptr<CodecDecoder3d> codec_;
   size_t next_unit_ = 0;
   DecodedUnit unit_;
-  std::vector<bool> decoded_;  // frames decoded at least once
+  std::vector<bool> decoded_;  // frames decoded at least once (frame by frame codecs)
+  uint32_t decoded_count_ = 0;  // a progressive codec's frames decoded: 0 … this − 1
+  uint32_t held_from_ = 0;      // the first frame a progressive codec holds
   std::map<uint32_t, bool> hash_results_;
   // With verify, the MD5 of every frame as it was decoded (a codec that
   // holds every frame is hashed when a group hash is read).
   std::map<uint32_t, Digest> digests_;
   // Display order: frames copied out of the codec until their turn.
   std::map<uint32_t, std::vector<Float3>> ready_;
+  std::map<uint32_t, std::vector<Float3>> released_;  // by the last unit
   std::vector<std::vector<Float3>> spare_;
   uint32_t next_display_ = 0;
   uint32_t frame_index_ = 0;

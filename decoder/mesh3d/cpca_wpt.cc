@@ -5,6 +5,9 @@
 // of its operators to every frame.
 #include "decoder/mesh3d/cpca_wpt.h"
 
+#include <algorithm>
+#include <array>
+#include <memory>
 #include <optional>
 
 #include "codecs3d/codec_decoder.h"
@@ -24,6 +27,33 @@ struct MapSections {
   uint64_t cluster_count_offset = 0;  // where an empty cluster is reported
 };
 
+// A segment's last value per lane (a translation's 3 axes, a component's
+// 1 or 3 coefficient lanes) and its shift: the base of the next segment's
+// first differences.
+struct Carried {
+  std::array<int32_t, 3> last{};
+  uint32_t shift = 0;
+
+  std::array<int64_t, 3> at(uint32_t shift_to, int64_t limit) const {
+    std::array<int64_t, 3> before{};
+    for (size_t l = 0; l < 3; ++l) before[l] = syntax::cpca_carried(last[l], shift, shift_to, limit);
+    return before;
+  }
+  // The last frame's lanes of `values`, `lanes` per frame.
+  static Carried of(std::span<const int32_t> values, size_t lanes, uint32_t shift) {
+    Carried c{{}, shift};
+    for (size_t l = 0; l < lanes; ++l) c.last[l] = values[values.size() - lanes + l];
+    return c;
+  }
+};
+
+// A component decoded in a segment, which the next segment may continue.
+struct ListedComponent {
+  std::shared_ptr<const std::vector<int32_t>> basis;
+  bool trajectory = false;  // a component of the members' trajectories (unit_kind 3, or one continuing it)
+  Carried coefficients;
+};
+
 class CpcaDecoder final : public CodecDecoder3d {
  public:
   // header_trace: where the header's symbols are traced (the map of prediction 0).
@@ -33,7 +63,11 @@ class CpcaDecoder final : public CodecDecoder3d {
         map_(std::move(map)),
         started_(header.cluster_count, 0),
         components_(header.cluster_count, 0),
-        trajectories_(header.cluster_count, 0) {
+        trajectories_(header.cluster_count, 0),
+        listed_(header.cluster_count),
+        previous_(header.cluster_count),
+        start_(header.cluster_count),
+        previous_start_(header.cluster_count) {
     header_.map_bins = map_.bins;
     header_.map_raw = map_.raw;
     if (header_.map_prediction == kCpcaMapByDifference) read_map({}, header_trace);
@@ -57,12 +91,12 @@ class CpcaDecoder final : public CodecDecoder3d {
       }
       mesh_.emplace(base.faces, base.coding_order, cluster_of_, header_.cluster_count, object_.version, base.positions);
       faces_ = std::move(base.faces);
-      animation_.emplace(header_, base.positions, object_.frame_count);
-      for (uint32_t f = 0; f < object_.frame_count; ++f) decoded.push_back(f);
+      animation_.emplace(header_, base.positions, frames_of(0));
+      report(decoded);
       return;
     }
     if (!animation_) io.fail(ErrorKind::kStructure, "unit_type", "a refinement unit before the base mesh");
-    if (unit.frame_index != 0) io.fail(ErrorKind::kStructure, "frame_index", "a refinement unit refines every frame and names frame 0");
+    enter_segment(io, unit.frame_index);
     CpcaRefinement r;
     r.version = object_.version;
     syntax::describe(io, r, [&](const CpcaRefinementHeader& h, bool grouped) { admit(io, h, grouped); });
@@ -77,17 +111,60 @@ class CpcaDecoder final : public CodecDecoder3d {
       syntax::EntropyReadIO<false> symbols(r.bins, r.raw, place);
       read_refinements(symbols, r);
     }
-    for (uint32_t f = 0; f < object_.frame_count; ++f) decoded.push_back(f);
+    report(decoded);
   }
 
   const std::vector<Triangle>& faces() const override { return faces_; }
   void frame(uint32_t index, std::span<Float3> positions) const override {
-    const std::span<const Float3> frame = animation_->frame(index);
-    std::copy(frame.begin(), frame.end(), positions.begin());
+    if (index < first_frame_ + animation_->frames())
+      animation_->frame(index - first_frame_, positions);
+    else
+      animation_->mean_frame(positions);
   }
-  bool holds_all_frames() const override { return true; }
+  bool holds_frames() const override { return true; }
+  uint32_t frames_decoded() const override { return animation_ ? object_.frame_count : 0; }
+  uint32_t first_held_frame(const UnitHeader& next) const override {
+    const uint32_t first = next.frame_index - next.frame_index % header_.segment_frames;
+    return next.type() == UnitType::kRefinement && animation_ && first > first_frame_ ? first : first_frame_;
+  }
 
  private:
+  // The frames of the segment that starts at `first`.
+  uint32_t frames_of(uint32_t first) const { return std::min(header_.segment_frames, object_.frame_count - first); }
+
+  void report(std::vector<uint32_t>& decoded) const {
+    for (uint32_t f = first_frame_; f < first_frame_ + animation_->frames(); ++f) decoded.push_back(f);
+  }
+
+  // A refinement unit refines the segment its frame_index starts: the
+  // current one, or a later one (the frames before it are then final).
+  void enter_segment(syntax::ReadIO& io, uint32_t frame_index) {
+    if (frame_index % header_.segment_frames != 0)
+      io.fail(ErrorKind::kStructure, "frame_index",
+              object_.version >= kCpcaSegmentVersion
+                  ? "a refinement unit names the first frame of its segment, a multiple of segment_frames (" +
+                        std::to_string(header_.segment_frames) + ")"
+                  : "a refinement unit refines every frame and names frame 0");
+    if (frame_index < first_frame_)
+      io.fail(ErrorKind::kStructure, "frame_index",
+              "a refinement unit of the segment at frame " + std::to_string(frame_index) + " after one of the segment at frame " +
+                  std::to_string(first_frame_) + ": segments come in order");
+    if (frame_index == first_frame_) return;
+    // Components may continue those of the segment just before, when it had units.
+    const bool adjacent = frame_index - first_frame_ == header_.segment_frames;
+    first_frame_ = frame_index;
+    animation_->reset(frames_of(frame_index));
+    for (uint32_t c = 0; c < header_.cluster_count; ++c) {
+      previous_[c] = adjacent ? std::move(listed_[c]) : std::vector<ListedComponent>();
+      listed_[c].clear();
+      previous_start_[c] = adjacent ? start_[c] : std::nullopt;
+      start_[c].reset();
+    }
+    std::fill(started_.begin(), started_.end(), 0);
+    std::fill(components_.begin(), components_.end(), 0);
+    std::fill(trajectories_.begin(), trajectories_.end(), 0);
+  }
+
   // The cluster map's symbols, placed in the object payload; every cluster must have a vertex.
   void read_map(std::span<const Triangle> faces, Trace* trace) {
     cluster_of_ = trace ? read_cluster_map<true>(header_, faces, object_.vertex_count, map_.place, trace)
@@ -115,9 +192,18 @@ class CpcaDecoder final : public CodecDecoder3d {
       return;
     }
     if (!started_[h.cluster]) io.fail(ErrorKind::kStructure, kind_field, "a component of cluster " + cluster + ", whose basis has not started");
-    const bool trajectory = h.kind == kCpcaTrajectory;
+    bool trajectory = h.kind == kCpcaTrajectory;
+    if (h.kind == kCpcaContinued) {
+      const std::vector<ListedComponent>& previous = previous_[h.cluster];
+      if (previous.empty())
+        io.fail(ErrorKind::kStructure, kind_field, "a continued component of cluster " + cluster + ", which has none in the previous segment");
+      if (h.reference >= previous.size())
+        io.fail(ErrorKind::kOutOfRange, "reference",
+                "component " + std::to_string(h.reference) + " of the " + std::to_string(previous.size()) + " the previous segment sent");
+      trajectory = previous[h.reference].trajectory;
+    }
     uint64_t& count = trajectory ? trajectories_[h.cluster] : components_[h.cluster];
-    const uint64_t limit = cpca_component_limit(h.kind, members_[h.cluster].size(), object_.frame_count);
+    const uint64_t limit = cpca_component_limit(trajectory ? kCpcaTrajectory : kCpcaComponent, members_[h.cluster].size(), animation_->frames());
     if (count >= limit)
       io.fail(ErrorKind::kStructure, cluster_field,
               "a refinement beyond cluster " + cluster + "'s " + std::to_string(limit) + (trajectory ? " trajectory components" : " components"));
@@ -133,21 +219,32 @@ class CpcaDecoder final : public CodecDecoder3d {
       syntax::CpcaGroupContexts contexts;
       syntax::describe_group_list(
           io, contexts, r.group, header_.cluster_count, [&](uint32_t cluster) { return started_[cluster] != 0; },
+          [&](uint32_t cluster) { return static_cast<uint32_t>(previous_[cluster].size()); },
           [&](const CpcaRefinementHeader& h, bool grouped) { admit(io, h, grouped); });
     }
     const std::vector<CpcaRefinementHeader> refinements = r.refinements();
     syntax::CpcaCoders coders;
     for (const CpcaRefinementHeader& h : refinements) {
-      const size_t members = members_[h.cluster].size(), frames = object_.frame_count;
-      const size_t per_member = h.kind == kCpcaTrajectory ? 1 : 3;
+      const size_t members = members_[h.cluster].size(), frames = animation_->frames();
+      const ListedComponent* continued = h.kind == kCpcaContinued ? &previous_[h.cluster][h.reference] : nullptr;
+      const bool trajectory = h.kind == kCpcaTrajectory || (continued && continued->trajectory);
+      const size_t lanes = trajectory ? 3 : 1;
       translation_.resize(h.kind == kCpcaStart ? 3 * frames : 0);
-      basis_.resize(h.kind == kCpcaStart ? 0 : per_member * members);
-      coefficients_.resize(h.kind == kCpcaStart ? 0 : 3 / per_member * frames);
-      describe_refinement(io, coders, *mesh_, h, translation_, basis_, coefficients_);
-      if (h.kind == kCpcaStart)
+      basis_.resize(h.kind == kCpcaStart || continued ? 0 : (trajectory ? 1 : 3) * members);
+      coefficients_.resize(h.kind == kCpcaStart ? 0 : lanes * frames);
+      std::array<int64_t, 3> before{};
+      if (h.kind == kCpcaStart && previous_start_[h.cluster]) before = previous_start_[h.cluster]->at(h.shift, kCpcaMaxTranslation);
+      if (continued) before = continued->coefficients.at(h.shift, kCpcaMaxCoefficient);
+      describe_refinement(io, coders, *mesh_, h, trajectory, before, translation_, basis_, coefficients_);
+      if (h.kind == kCpcaStart) {
         animation_->translate(members_[h.cluster], translation_, h.shift);
-      else
-        animation_->refine(members_[h.cluster], basis_, coefficients_, h.shift, h.kind == kCpcaTrajectory);
+        start_[h.cluster] = Carried::of(translation_, 3, h.shift);
+        continue;
+      }
+      ListedComponent listed{continued ? continued->basis : std::make_shared<const std::vector<int32_t>>(basis_), trajectory,
+                             Carried::of(coefficients_, lanes, h.shift)};
+      animation_->refine(members_[h.cluster], *listed.basis, coefficients_, h.shift, trajectory);
+      listed_[h.cluster].push_back(std::move(listed));
     }
     io.finish(syntax::cpca_last_element(refinements.back().kind));
   }
@@ -157,9 +254,17 @@ class CpcaDecoder final : public CodecDecoder3d {
   MapSections map_;
   std::vector<uint32_t> cluster_of_;
   std::vector<std::vector<NodeIndex>> members_;
-  std::vector<uint8_t> started_;      // per cluster: its start decoded
-  std::vector<uint64_t> components_;    // per cluster: its components of unit_kind 1 and 2 decoded
-  std::vector<uint64_t> trajectories_;  // per cluster: its components of unit_kind 3 decoded
+  // The segment being refined: its first frame; per cluster, whether it
+  // has started and its components of unit_kind 1 and 2 (and 5 continuing
+  // them) and of unit_kind 3 (and 5 continuing them) decoded.
+  uint32_t first_frame_ = 0;
+  std::vector<uint8_t> started_;
+  std::vector<uint64_t> components_;
+  std::vector<uint64_t> trajectories_;
+  // Per cluster, the components of this segment and of the one before, in
+  // the order decoded, and the starts of both.
+  std::vector<std::vector<ListedComponent>> listed_, previous_;
+  std::vector<std::optional<Carried>> start_, previous_start_;
   std::vector<Triangle> faces_;
   std::optional<CpcaAnimation> animation_;
   std::optional<CpcaMeshPrediction> mesh_;
@@ -173,8 +278,13 @@ std::unique_ptr<CodecDecoder3d> make_cpca_wpt_decoder(const ObjectHeader& object
   header.version = object.version;
   syntax::describe(io, header);
   if (object.frame_count == 0) io.fail(ErrorKind::kStructure, "frame_count", "the clustered-PCA codec needs the frame count");
-  if (uint64_t{object.vertex_count} * object.frame_count > kCpcaMaxVertexFrames)
-    io.fail(ErrorKind::kLimit, "frame_count", "more than 2^22 vertex-frames");
+  if (object.version < kCpcaSegmentVersion) {
+    if (uint64_t{object.vertex_count} * object.frame_count > kCpcaMaxVertexFrames)
+      io.fail(ErrorKind::kLimit, "frame_count", "more than 2^22 vertex-frames");
+    header.segment_frames = object.frame_count;
+  } else if (uint64_t{object.vertex_count} * std::min(header.segment_frames, object.frame_count) > kCpcaMaxVertexFrames) {
+    io.fail(ErrorKind::kLimit, "segment_frames", "a segment of more than 2^22 vertex-frames");
+  }
   const uint8_t* payload = io.reader().data();
   MapSections map{{header.map_bins.begin(), header.map_bins.end()},
                   {header.map_raw.begin(), header.map_raw.end()},

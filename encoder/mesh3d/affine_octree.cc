@@ -23,7 +23,7 @@ int32_t clamp_to(double value, int32_t lo, int32_t hi) {
 
 class AffineOctreeEncoder final : public GridFrameEncoder {
  public:
-  AffineOctreeEncoder(const MeshSequence& s, const CodecSettings& settings)
+  AffineOctreeEncoder(const FrameSource& s, const CodecSettings& settings)
       : GridFrameEncoder(Grid::covering(s, settings.integer("bits"), true), settings.integer("intra-period"), settings.base_mesh()),
         max_error_(settings.number("me") / 100) {
     header_.bits = static_cast<uint32_t>(settings.integer("bits"));
@@ -217,7 +217,7 @@ std::vector<CodecOption> affine_octree_options() {
           intra_period_option()};
 }
 
-std::unique_ptr<CodecEncoder3d> make_affine_octree_encoder(const MeshSequence& sequence, const CodecSettings& settings) {
+std::unique_ptr<CodecEncoder3d> make_affine_octree_encoder(const FrameSource& sequence, const CodecSettings& settings) {
   return std::make_unique<AffineOctreeEncoder>(sequence, settings);
 }
 

@@ -26,16 +26,16 @@ void encode_axis(std::span<int32_t> residuals, const syntax::SectionPlace& place
 
 class Bfs3dEncoder final : public GridFrameEncoder {
  public:
-  Bfs3dEncoder(const MeshSequence& s, const CodecSettings& settings)
+  Bfs3dEncoder(const FrameSource& s, const CodecSettings& settings)
       : GridFrameEncoder(Grid::covering(s, settings.integer("bits")), settings.integer("intra-period"), settings.base_mesh()),
-        order_(bfs3d_order(s.faces, s.vertex_count)),
-        motion_(s.vertex_count + size_t{1}) {
+        order_(bfs3d_order(s.faces(), s.vertex_count())),
+        motion_(s.vertex_count() + size_t{1}) {
     header_.bits = static_cast<uint32_t>(settings.integer("bits"));
     header_.prediction = settings.flag("parallelogram") ? kPredictParallelogram : kPredictAverage;
     for (int axis = 0; axis < 3; ++axis) {
       header_.origin[axis] = bit_cast<uint32_t>(grid_.origin[axis]);
       header_.step[axis] = bit_cast<uint32_t>(grid_.step[axis]);
-      residuals_[axis].resize(s.vertex_count);
+      residuals_[axis].resize(s.vertex_count());
     }
   }
 
@@ -88,7 +88,7 @@ std::vector<CodecOption> bfs3d_options() {
           intra_period_option()};
 }
 
-std::unique_ptr<CodecEncoder3d> make_bfs3d_encoder(const MeshSequence& sequence, const CodecSettings& settings) {
+std::unique_ptr<CodecEncoder3d> make_bfs3d_encoder(const FrameSource& sequence, const CodecSettings& settings) {
   return std::make_unique<Bfs3dEncoder>(sequence, settings);
 }
 

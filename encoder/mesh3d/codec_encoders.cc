@@ -7,13 +7,13 @@
 namespace m4mesh {
 
 // Defined in each codec's files.
-std::unique_ptr<CodecEncoder3d> make_bfs3d_encoder(const MeshSequence&, const CodecSettings&);
+std::unique_ptr<CodecEncoder3d> make_bfs3d_encoder(const FrameSource&, const CodecSettings&);
 std::vector<CodecOption> bfs3d_options();
-std::unique_ptr<CodecEncoder3d> make_affine_octree_encoder(const MeshSequence&, const CodecSettings&);
+std::unique_ptr<CodecEncoder3d> make_affine_octree_encoder(const FrameSource&, const CodecSettings&);
 std::vector<CodecOption> affine_octree_options();
-std::unique_ptr<CodecEncoder3d> make_lcc_encoder(const MeshSequence&, const CodecSettings&);
+std::unique_ptr<CodecEncoder3d> make_lcc_encoder(const FrameSource&, const CodecSettings&);
 std::vector<CodecOption> lcc_options();
-std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence&, const CodecSettings&);
+std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const FrameSource&, const CodecSettings&);
 std::vector<CodecOption> cpca_wpt_options();
 
 namespace {

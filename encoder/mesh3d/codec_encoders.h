@@ -23,7 +23,7 @@ struct QualityKnob {
   CodecOptionValues beside;  // set with the knob in sweeps and searches, unless given
 };
 
-using MakeEncoder3d = std::function<std::unique_ptr<CodecEncoder3d>(const MeshSequence&, const CodecSettings&)>;
+using MakeEncoder3d = std::function<std::unique_ptr<CodecEncoder3d>(const FrameSource&, const CodecSettings&)>;
 
 struct CodecEncoding {
   std::vector<CodecOption> options;

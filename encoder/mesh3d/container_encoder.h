@@ -7,11 +7,13 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "codecs3d/codec_encoder.h"
 #include "encoder/mesh3d/codec_options.h"
+#include "mesh3d/frame_source.h"
 #include "mesh3d/sequence.h"
 #include "syntax/trace.h"
 
@@ -25,21 +27,26 @@ struct Encode3dOptions {
   uint32_t frame_rate_num = 25;
   uint32_t frame_rate_den = 1;
   Trace* trace = nullptr;        // every element written, as `m4mesh trace` prints it
-  bool keep_decoded = false;     // the decoder's output in the result
+  bool keep_decoded = false;     // the decoder's output in the result (a sequence in memory)
+  bool measure = false;          // the decoder's output's KG error and PSNR in the result
   bool reorder = false;          // vertices renumbered in coding order (docs/base_mesh.md)
   std::optional<uint32_t> position_blend;  // base meshes' blend (0 … 16); none: each mesh's smallest
   std::optional<uint32_t> version;         // the container's; none: 1 for a blend of 0, else the latest
   std::function<void(size_t done, size_t total)> progress;
   unsigned threads = 0;  // a search's trials at once (--codec auto, a codec's own search); 0: every core
+  // The stream's bytes as they are written (then not kept in the result).
+  std::function<void(std::span<const uint8_t>)> output;
 };
 
 struct Encode3dResult {
-  std::vector<uint8_t> stream;
+  std::vector<uint8_t> stream;           // unless written to an output
+  uint64_t stream_bytes = 0;
   uint64_t unit_bytes[kUnitTypes] = {};  // per unit_type, start codes included
   uint64_t unit_count[kUnitTypes] = {};
   uint64_t other_bytes = 0;              // object payload and end code
   std::vector<CodecStatistic> statistics;  // the codec's own
   MeshSequence decoded;                    // with keep_decoded: every frame as the decoder outputs it
+  double kg = 0, psnr = 0;                 // with measure: of the decoder's output against the input
   std::vector<uint32_t> input_of;          // with reorder: the input number of each output vertex
 
   uint64_t base_bytes() const { return unit_bytes[static_cast<uint32_t>(UnitType::kBaseMesh)]; }
@@ -48,9 +55,13 @@ struct Encode3dResult {
 
 // An input error unless the sequence can be coded: frames, at least 3
 // vertices and a face, within the container's limits, every frame of
-// vertex_count finite positions, every face naming vertices that exist.
+// vertex_count finite positions, every face naming vertices that exist
+// (FrameSource::scan).
 void check_sequence(const MeshSequence& sequence);
 
+// The frames are read as the codec needs them: memory depends on the mesh
+// and the codec, not on the frame count (docs/rate_distortion.md, "Scale").
+Encode3dResult encode_mesh3d(const FrameSource& frames, const Encode3dOptions& options = {});
 Encode3dResult encode_mesh3d(const MeshSequence& sequence, const Encode3dOptions& options = {});
 
 }  // namespace m4mesh

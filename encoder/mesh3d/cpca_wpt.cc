@@ -48,12 +48,76 @@ constexpr double kTrajectoryBasisRounding = 0.45;
 // flush (about 4 bytes).
 constexpr uint64_t shared_in_group(uint32_t version) { return 4 + 5 + 7 - (version >= 5 ? 1 : version >= 3 ? 2 : 3) + 4; }
 
+// Frames first … first + count − 1 of a source, in memory (no faces).
+MeshSequence frames_of(const FrameSource& source, uint32_t first, uint32_t count) {
+  MeshSequence s;
+  s.vertex_count = source.vertex_count();
+  s.frames.resize(count);
+  for (uint32_t f = 0; f < count; ++f) {
+    s.frames[f].resize(s.vertex_count);
+    source.read(first + f, s.frames[f]);
+  }
+  return s;
+}
+
+// The frames of a segment: --segment-frames, or every frame when the
+// sequence holds at most kCpcaMaxVertexFrames vertex-frames, else as many
+// as that holds. Before version 9 a stream is one segment.
+uint32_t segment_length(const Options& options, uint32_t vertex_count, uint32_t frame_count) {
+  const uint32_t most = static_cast<uint32_t>(std::max<uint64_t>(1, kCpcaMaxVertexFrames / vertex_count));
+  if (options.base_mesh.version < kCpcaSegmentVersion) {
+    if (options.segment_frames)
+      throw usage_error("--segment-frames: container version " + std::to_string(options.base_mesh.version) + " has no segments (version " +
+                        std::to_string(kCpcaSegmentVersion) + " has)");
+    if (frame_count > most)
+      throw usage_error("cpca-wpt in container version " + std::to_string(options.base_mesh.version) +
+                        " takes at most 2^22 vertex-frames (vertices × frames); version " + std::to_string(kCpcaSegmentVersion) +
+                        " codes longer sequences in segments");
+    return frame_count;
+  }
+  if (options.segment_frames) {
+    if (*options.segment_frames > most)
+      throw usage_error("--segment-frames " + std::to_string(*options.segment_frames) + ": a segment holds at most 2^22 vertex-frames, " +
+                        std::to_string(most) + " frames of " + std::to_string(vertex_count) + " vertices");
+    return std::min(*options.segment_frames, frame_count);
+  }
+  return std::min(most, frame_count);
+}
+
+// A segment's last value per lane and its shift: the base of the next
+// segment's first differences of the same start or component.
+struct Carried {
+  std::array<int32_t, 3> last{};
+  uint32_t shift = 0;
+
+  std::array<int64_t, 3> at(uint32_t shift_to, int64_t limit) const {
+    std::array<int64_t, 3> before{};
+    for (size_t l = 0; l < 3; ++l) before[l] = syntax::cpca_carried(last[l], shift, shift_to, limit);
+    return before;
+  }
+  static Carried of(std::span<const int32_t> values, size_t lanes, uint32_t shift) {
+    Carried c{{}, shift};
+    for (size_t l = 0; l < lanes; ++l) c.last[l] = values[values.size() - lanes + l];
+    return c;
+  }
+};
+
+// A component a segment sent, which the next one may continue: its basis
+// as coded, and its coefficients' last values.
+struct ListedBasis {
+  std::vector<int32_t> basis;
+  int exponent = 0;  // the basis is the real one × 2^(exponent / 2)
+  Carried coefficients;
+};
+
 class CpcaEncoder final : public CodecEncoder3d {
  public:
-  // coding_order: the base mesh's vertices in coding order. The mean
-  // shape's grid has 2^(half_bits / 2) − 1 steps.
-  CpcaEncoder(const MeshSequence& s, const Options& options, int half_bits, const Clustering& clustering, bool trajectories,
-              std::span<const uint32_t> coding_order)
+  // `first`: the first segment's frames, with the faces; the stream has
+  // `frame_count` frames in segments of `segment_frames`. coding_order:
+  // the base mesh's vertices in coding order. The mean shape (of the first
+  // segment) has a grid of 2^(half_bits / 2) − 1 steps.
+  CpcaEncoder(const MeshSequence& first, uint32_t frame_count, uint32_t segment_frames, const Options& options, int half_bits,
+              const Clustering& clustering, bool trajectories, std::span<const uint32_t> coding_order)
       : components_(options.components),
         max_bytes_(options.max_bytes),
         group_bytes_(options.group_bytes),
@@ -63,9 +127,9 @@ class CpcaEncoder final : public CodecEncoder3d {
         basis_prediction_(options.basis),
         trajectories_(trajectories),
         noise_(options.noise),
-        base_mesh_(options.base_mesh) {
-    if (uint64_t{s.vertex_count} * s.frames.size() > kCpcaMaxVertexFrames)
-      throw usage_error("cpca-wpt takes at most 2^22 vertex-frames (vertices × frames)");
+        base_mesh_(options.base_mesh),
+        frame_count_(frame_count) {
+    const MeshSequence& s = first;
     std::vector<Vec3> mean(s.vertex_count);
     for (const std::vector<Vec3>& frame : s.frames)
       for (size_t v = 0; v < s.vertex_count; ++v) mean[v] = {mean[v].x + frame[v].x, mean[v].y + frame[v].y, mean[v].z + frame[v].z};
@@ -81,13 +145,16 @@ class CpcaEncoder final : public CodecEncoder3d {
       header_.step[axis] = bit_cast<uint32_t>(grid_.step[axis]);
     }
     header_.fraction_bits = static_cast<uint32_t>(std::clamp(24 - bits, 0, 8));
+    header_.segment_frames = segment_frames;
     mean_.resize(s.vertex_count);
     for (size_t v = 0; v < s.vertex_count; ++v)
       if (!grid_.quantize(mean[v], mean_[v]))
         throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "the mean of vertex " + std::to_string(v) + " lies outside the grid");
     requested_clusters_ = clustering.requested;
     kmeans_seconds_ = clustering.seconds;
-    prepare(s, clustering.cluster_of, coding_order);
+    set_up(s, clustering.cluster_of, coding_order);
+    prepare(s, 0, fixed_bytes_, segment_limit(fixed_bytes_, 0, static_cast<uint32_t>(s.frames.size())));
+    first_segment_bytes_ = plan_.bytes;
   }
 
   // The map's symbols are traced where the decoder reads them: after the
@@ -102,45 +169,32 @@ class CpcaEncoder final : public CodecEncoder3d {
     if (header_.map_prediction == kCpcaMapByDifference) map_trace_->stream() << std::exchange(map_trace_text_, {});
   }
 
-  // The base mesh, then the plan's operators while the stream through the
-  // last refinement stays within --max-bytes, then the frames' hashes.
-  void encode(const MeshSequence& s, UnitSink& sink) override {
-    sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, mean_, base_mesh_); });
+  // The base mesh, then segment after segment the plan's operators while
+  // the stream through the last refinement stays within the segment's
+  // share of --max-bytes, then the segment's frames' hashes.
+  void encode(const FrameSource& frames, UnitSink& sink) override {
+    sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, faces_, mean_, base_mesh_); });
     if (map_trace_) map_trace_->stream() << std::exchange(map_trace_text_, {});
     if (max_bytes_ > 0 && sink.stream_bytes() > max_bytes_)
       throw usage_error("--max-bytes " + std::to_string(max_bytes_) + " is below the " + std::to_string(sink.stream_bytes()) +
                         " bytes of the header and the base mesh (cpca-wpt)");
-    CpcaAnimation animation(header_, mean_, static_cast<uint32_t>(s.frames.size()));
-    std::vector<uint8_t> started(header_.cluster_count, 0);
-    size_t sent = 0;
-    double group_bytes = static_cast<double>(group_bytes_);
-    while (sent < plan_.sent) {
-      std::vector<Operator*> unit = next_unit(sent, static_cast<uint64_t>(group_bytes));
-      group_bytes = std::min(group_bytes * group_growth_, kMaxGroupGrowth * static_cast<double>(group_bytes_));
-      const size_t planned = unit.size();
-      if (max_bytes_ > 0)
-        while (!unit.empty()) {
-          std::vector<uint8_t> after = started;
-          if (sink.stream_bytes() + unit_bytes(unit, after) <= max_bytes_) break;
-          unit.pop_back();
-        }
-      if (unit.empty()) break;
-      sink.unit(UnitType::kRefinement, 0, [&](syntax::WriteIO& io) { write_refinements(io, unit, *mesh_, header_.version, started); });
-      for (const Operator* op : unit) apply(animation, members_[op->cluster], *op);
-      sent += unit.size();
-      sink.progress(sent, plan_.sent);
-      if (unit.size() < planned) break;  // --max-bytes reached
+    QualityMeter meter(frames);
+    sent_total_ = 0;
+    for (uint32_t first = 0; first < frame_count_; first += header_.segment_frames) {
+      const uint32_t count = std::min(header_.segment_frames, frame_count_ - first);
+      // The first segment was planned when the stream's model was chosen.
+      const MeshSequence segment = frames_of(frames, first, count);
+      const uint64_t limit = segment_limit(sink.stream_bytes(), first, count);
+      if (first > 0) prepare(segment, first, sink.stream_bytes(), limit);
+      emit(segment, first, limit, sink, meter);
     }
-    plan_.sent = sent;
-    kg_ = kg_of_prefix(s, sent);
-    if (target_kg_ > 0 && kg_ > target_kg_)
-      throw usage_error("--target-kg " + std::to_string(target_kg_) + " is out of reach within --max-bytes (cpca-wpt)");
-    for (uint32_t f = 0; f < s.frames.size(); ++f) sink.decoded(f, animation.frame(f));
+    kg_ = meter.kg();
   }
 
-  // The stream's bytes before its hash units: as coded with --target-kg,
-  // else estimated (every operator's bytes and the fixed part).
-  uint64_t planned_bytes() const { return plan_.bytes; }
+  // The stream's bytes through the first segment before its hash units: as
+  // coded with --target-kg, else estimated (every operator's bytes and the
+  // fixed part).
+  uint64_t planned_bytes() const { return first_segment_bytes_; }
   int clusters() const { return requested_clusters_; }
   int half_bits() const { return half_bits_; }
   bool trajectory_model() const { return trajectories_; }
@@ -149,9 +203,10 @@ class CpcaEncoder final : public CodecEncoder3d {
     return {{"mean shape bits", half_bits_ / 2.0},
             {"clusters", header_.cluster_count},
             {"trajectory model", trajectories_ ? 1.0 : 0.0},
+            {"segment frames", header_.segment_frames},
             {"noise step log2", plan_.noise / 2.0},
-            {"operators sent", static_cast<double>(plan_.sent)},
-            {"operators computed", static_cast<double>(plan_.operators.size())},
+            {"operators sent", static_cast<double>(sent_total_)},
+            {"operators computed", static_cast<double>(computed_total_)},
             {"KG error", kg_},
             {"k-means seconds", kmeans_seconds_},
             {"SVD seconds", svd_seconds_},
@@ -160,6 +215,15 @@ class CpcaEncoder final : public CodecEncoder3d {
 
  private:
   syntax::SectionPlace map_place() const { return {"cluster_map_bins", "cluster_map_raw", 0, 0, kNoPlane, header_.version}; }
+
+  // With --max-bytes, the most bytes of the stream through a segment of
+  // `count` frames from `first`, the stream holding `so_far` before it: it
+  // adds the bytes left in proportion to its frames; else no limit (0).
+  uint64_t segment_limit(uint64_t so_far, uint32_t first, uint32_t count) const {
+    if (max_bytes_ == 0) return 0;
+    const uint64_t left = max_bytes_ > so_far ? max_bytes_ - so_far : 0;
+    return so_far + (first + count == frame_count_ ? left : left * count / (frame_count_ - first));
+  }
 
   // Version 2: the map's prediction of fewer bytes (by the differences of equals).
   void choose_cluster_map() {
@@ -176,29 +240,47 @@ class CpcaEncoder final : public CodecEncoder3d {
     map_raw_ = std::move(raw);
   }
 
-  // Clusters, components, then the plan of the noise step given, or of the
-  // best one for --max-bytes (the smallest KG error within it) or
-  // --target-kg (the fewest bytes that reach it), else of the default.
-  void prepare(const MeshSequence& s, const std::vector<uint32_t>& cluster_of, std::span<const uint32_t> coding_order) {
+  // What the stream fixes once: the clusters, the prediction over the
+  // mesh, the cluster map, the bytes before the first refinement.
+  void set_up(const MeshSequence& s, const std::vector<uint32_t>& cluster_of, std::span<const uint32_t> coding_order) {
     cluster_of_ = cluster_of;
     header_.cluster_count = *std::max_element(cluster_of_.begin(), cluster_of_.end()) + 1;
     members_ = cpca_members(cluster_of_, header_.cluster_count);
-    mesh_.emplace(s.faces, coding_order, cluster_of_, header_.cluster_count, header_.version, mean_);
     faces_ = s.faces;
+    mesh_.emplace(faces_, coding_order, cluster_of_, header_.cluster_count, header_.version, mean_);
     choose_cluster_map();
+    fixed_bytes_ = fixed_bytes(s);
+  }
+
+  // A segment's analysis, then the plan of the noise step given, or of the
+  // best one for --max-bytes (the smallest KG error within `limit`, the
+  // stream's bytes through the segment, which holds `start_bytes` before
+  // it) or --target-kg (the fewest bytes that reach it), else of the
+  // default.
+  void prepare(const MeshSequence& s, uint32_t first, uint64_t start_bytes, uint64_t limit) {
+    limit_ = limit;
+    segment_start_bytes_ = start_bytes;
+    // A basis serves the segments left (continued), each adding its quantization error: finer by √ of their count.
+    const double segments_left = std::ceil(static_cast<double>(frame_count_ - first) / header_.segment_frames);
+    reuse_finer_ = static_cast<int>(std::lround(std::log2(segments_left)));
+    translations_.clear();
+    components_of_.clear();
+    continued_.clear();
+    mean_error_.clear();
     auto start = std::chrono::steady_clock::now();
     for (uint32_t c = 0; c < header_.cluster_count; ++c) {
       Eigen::MatrixXd d = motion(s, c);
       translations_.push_back(translation_of(d));
       for (Eigen::Index row = 0; row < d.rows(); ++row) d.row(row) -= translations_[c](Eigen::seqN(row % 3, d.cols(), 3)).transpose();
-      components_of_.push_back(principal_components(trajectories_ ? as_trajectories(d) : d, components_));
+      Eigen::MatrixXd m = trajectories_ ? as_trajectories(d) : d;
+      continued_.push_back(continue_listed(c, m));
+      components_of_.push_back(principal_components(m, components_));
     }
-    svd_seconds_ = seconds_since(start);
+    svd_seconds_ += seconds_since(start);
     start = std::chrono::steady_clock::now();
     const CpcaAnimation mean_only(header_, mean_, static_cast<uint32_t>(s.frames.size()));
     for (uint32_t c = 0; c < header_.cluster_count; ++c) mean_error_.push_back(squared_error(s, mean_only, c));
     spread_ = squared_spread(s);
-    fixed_bytes_ = fixed_bytes(s);
     int q = noise_.value_or(kDefaultNoise);
     if (!noise_ && (max_bytes_ > 0 || target_kg_ > 0)) {
       // From the default, towards the better neighbour while it improves
@@ -226,7 +308,88 @@ class CpcaEncoder final : public CodecEncoder3d {
       reach_target(s);
       plan_.bytes = coded_bytes();
     }
-    order_seconds_ = seconds_since(start);
+    computed_total_ += plan_.operators.size();
+    order_seconds_ += seconds_since(start);
+  }
+
+  // The segment's units: the plan's operators while the stream stays
+  // within `limit` (0: none), then the decoded frames and their hashes;
+  // the components sent are the ones the next segment may continue.
+  void emit(const MeshSequence& s, uint32_t first, uint64_t limit, UnitSink& sink, QualityMeter& meter) {
+    const uint32_t count = static_cast<uint32_t>(s.frames.size());
+    CpcaAnimation animation(header_, mean_, count);
+    std::vector<uint8_t> started(header_.cluster_count, 0);
+    const std::vector<uint32_t> continuable = continuable_counts();
+    std::vector<std::vector<ListedBasis>> listed(header_.cluster_count);
+    std::vector<std::optional<Carried>> started_last(header_.cluster_count);
+    size_t sent = 0;
+    double group_bytes = static_cast<double>(group_bytes_);
+    while (sent < plan_.sent) {
+      std::vector<Operator*> unit = next_unit(sent, static_cast<uint64_t>(group_bytes));
+      group_bytes = std::min(group_bytes * group_growth_, kMaxGroupGrowth * static_cast<double>(group_bytes_));
+      const size_t planned = unit.size();
+      if (limit > 0)
+        while (!unit.empty()) {
+          std::vector<uint8_t> after = started;
+          if (sink.stream_bytes() + unit_bytes(unit, after, continuable) <= limit) break;
+          unit.pop_back();
+        }
+      if (unit.empty()) break;
+      sink.unit(UnitType::kRefinement, first,
+                [&](syntax::WriteIO& io) { write_refinements(io, unit, *mesh_, header_.version, started, continuable); });
+      for (const Operator* op : unit) {
+        apply(animation, members_[op->cluster], *op);
+        if (op->kind == kCpcaStart)
+          started_last[op->cluster] = Carried::of(op->translation, 3, op->shift);
+        else
+          listed[op->cluster].push_back({op->basis, op->basis_exponent, Carried::of(op->coefficients, op->trajectory ? 3 : 1, op->shift)});
+      }
+      sent += unit.size();
+      sink.progress(first + count * sent / std::max<size_t>(plan_.sent, 1), frame_count_);
+      if (unit.size() < planned) break;  // --max-bytes reached
+    }
+    sent_total_ += sent;
+    if (target_kg_ > 0 && sent < plan_.sent && kg_of_prefix(s, sent) > target_kg_)
+      throw usage_error("--target-kg " + std::to_string(target_kg_) + " is out of reach within --max-bytes (cpca-wpt)");
+    std::vector<Float3> decoded(s.vertex_count);
+    for (uint32_t f = 0; f < count; ++f) {
+      animation.frame(f, decoded);
+      sink.decoded(first + f, decoded);
+      meter.add(first + f, decoded);
+    }
+    sink.end_segment();
+    listed_ = std::move(listed);
+    started_last_ = std::move(started_last);
+  }
+
+  // Whether the segment being planned may continue the previous one's starts and components.
+  bool continuing() const { return header_.version >= kCpcaSegmentVersion && !started_last_.empty(); }
+
+  std::vector<uint32_t> continuable_counts() const {
+    std::vector<uint32_t> counts(header_.cluster_count, 0);
+    if (continuing())
+      for (uint32_t c = 0; c < header_.cluster_count; ++c) counts[c] = static_cast<uint32_t>(listed_[c].size());
+    return counts;
+  }
+
+  // The least-squares coefficients of cluster c's motion `m` (a row per
+  // basis value) on the bases the previous segment sent, as components;
+  // `m` keeps what they leave.
+  std::vector<Component> continue_listed(uint32_t c, Eigen::MatrixXd& m) const {
+    if (!continuing() || listed_[c].empty()) return {};
+    const std::vector<ListedBasis>& listed = listed_[c];
+    Eigen::MatrixXd b(m.rows(), static_cast<Eigen::Index>(listed.size()));
+    for (size_t j = 0; j < listed.size(); ++j) {
+      const double scale = 1 / power_of_sqrt2(listed[j].exponent);
+      for (Eigen::Index i = 0; i < m.rows(); ++i) b(i, static_cast<Eigen::Index>(j)) = listed[j].basis[static_cast<size_t>(i)] * scale;
+    }
+    Eigen::MatrixXd gram = b.transpose() * b;
+    gram.diagonal().array() += 1e-9 * std::max(gram.trace(), 1e-30);
+    const Eigen::MatrixXd y = gram.ldlt().solve(b.transpose() * m);
+    m -= b * y;
+    std::vector<Component> continued;
+    for (Eigen::Index j = 0; j < y.rows(); ++j) continued.push_back({0, b.col(j), y.row(j).transpose()});
+    return continued;
   }
 
   // Every cluster's operators at noise step 2^(q / 2), each kept while it removes
@@ -255,23 +418,44 @@ class CpcaEncoder final : public CodecEncoder3d {
           op.gain = estimate;
         }
       };
+      // An operator that removes no error leaves the animation as it was.
+      auto undo = [&](const Operator& op) {
+        if (!animation) return;
+        apply(*animation, members_[c], op, true);
+        error = squared_error(s, *animation, c);
+      };
       Operator start = quantize_start(translations_[c], c, members, q, static_cast<int>(header_.fraction_bits));
+      if (continuing() && started_last_[c]) start.before = started_last_[c]->at(start.shift, kCpcaMaxTranslation);
       if (!(estimated_gain(translations_[c], members, start) > 0)) std::fill(start.translation.begin(), start.translation.end(), 0);
       measure(start, estimated_gain(translations_[c], members, start));
       if (start.gain < 0) {  // the output's rounding: undo (exactly: no shift rounds), and move nothing
-        if (animation) {
-          for (int32_t& v : start.translation) v = -v;
-          apply(*animation, members_[c], start);
-          error = squared_error(s, *animation, c);
-        }
+        undo(start);
         std::fill(start.translation.begin(), start.translation.end(), 0);
         start.gain = 0;
       }
       sequence.push_back(std::move(start));
+      for (size_t j = 0; j < continued_[c].size(); ++j) {
+        const ListedBasis& listed = listed_[c][j];
+        const Component& component = continued_[c][j];
+        Operator op = quantize_continued(listed.basis, listed.exponent, component.coefficients, c, static_cast<uint32_t>(j), trajectories_, q,
+                                         static_cast<int>(header_.fraction_bits));
+        op.before = listed.coefficients.at(op.shift, kCpcaMaxCoefficient);
+        Component unit{component.basis.norm() * component.coefficients.norm(), component.basis.normalized(),
+                       component.coefficients.normalized()};
+        measure(op, unit.sigma > 0 ? estimated_gain(unit, op) : 0);
+        if (!(op.gain > 0)) {
+          undo(op);
+          continue;
+        }
+        op.bytes = operator_bytes(op);
+        sequence.push_back(std::move(op));
+      }
       for (const Component& component : components_of_[c]) {
-        Operator op = quantize(component, c, q, static_cast<int>(header_.fraction_bits), trajectories_ ? kTrajectoryBasisFiner : 0);
+        Operator op =
+            quantize(component, c, q, static_cast<int>(header_.fraction_bits), (trajectories_ ? kTrajectoryBasisFiner : 0) + reuse_finer_);
         if (trajectories_) {
           op.kind = kCpcaTrajectory;
+          op.trajectory = true;
           const double scale = power_of_sqrt2(op.basis_exponent);
           std::vector<double> target(static_cast<size_t>(component.basis.size()));
           for (size_t i = 0; i < target.size(); ++i) target[i] = component.basis(static_cast<Eigen::Index>(i)) * scale;
@@ -283,10 +467,10 @@ class CpcaEncoder final : public CodecEncoder3d {
       }
       if (sequence.size() == 1 && !(sequence[0].gain > 0)) continue;
       for (Operator& op : sequence) {
-        if (op.kind != kCpcaComponent)
-          op.bytes = operator_bytes(op);
-        else
+        if (op.kind == kCpcaComponent)
           choose_kind(op);
+        else if (op.kind != kCpcaContinued)
+          op.bytes = operator_bytes(op);
         per_cluster[c].push_back(plan.operators.size());
         plan.operators.push_back(std::move(op));
       }
@@ -294,10 +478,10 @@ class CpcaEncoder final : public CodecEncoder3d {
     plan.order = round_robin_ ? round_robin(per_cluster) : by_weight(plan.operators, per_cluster);
     double error = 0;
     for (double e : mean_error_) error += e;
-    plan.bytes = fixed_bytes_;
+    plan.bytes = segment_start_bytes_;
     for (size_t i = 0; i < plan.order.size(); ++i) {
       const Operator& op = plan.operators[plan.order[i]];
-      if (max_bytes_ > 0 && plan.bytes + op.bytes > max_bytes_) break;
+      if (limit_ > 0 && plan.bytes + op.bytes > limit_) break;
       if (target_kg_ > 0 && kg_of(error) <= target_kg_) break;
       plan.bytes += op.bytes;
       error -= op.gain;
@@ -324,7 +508,7 @@ class CpcaEncoder final : public CodecEncoder3d {
   // target (the estimate's sums differ in rounding).
   void reach_target(const MeshSequence& s) {
     while (kg_of_prefix(s, plan_.sent) > target_kg_) {
-      if (plan_.sent == plan_.order.size() || (max_bytes_ > 0 && plan_.bytes + plan_.operators[plan_.order[plan_.sent]].bytes > max_bytes_))
+      if (plan_.sent == plan_.order.size() || (limit_ > 0 && plan_.bytes + plan_.operators[plan_.order[plan_.sent]].bytes > limit_))
         throw usage_error("--target-kg " + std::to_string(target_kg_) +
                           " is out of reach (cpca-wpt: raise --components, --max-bytes or lower --noise)");
       plan_.bytes += plan_.operators[plan_.order[plan_.sent++]].bytes;
@@ -358,14 +542,13 @@ class CpcaEncoder final : public CodecEncoder3d {
   double squared_error(const MeshSequence& s, const CpcaAnimation& animation, uint32_t c) const {
     double sum = 0;
     const double unit = static_cast<double>(grid_.step[0]);
-    for (uint32_t f = 0; f < s.frames.size(); ++f) {
-      const std::span<const Float3> decoded = animation.frame(f);
+    for (uint32_t f = 0; f < s.frames.size(); ++f)
       for (NodeIndex v : members_[c]) {
         const Vec3& p = s.frames[f][v];
-        const double dx = (p.x - decoded[v][0]) / unit, dy = (p.y - decoded[v][1]) / unit, dz = (p.z - decoded[v][2]) / unit;
+        const Float3 decoded = animation.position(f, v);
+        const double dx = (p.x - decoded[0]) / unit, dy = (p.y - decoded[1]) / unit, dz = (p.z - decoded[2]) / unit;
         sum += dx * dx + dy * dy + dz * dz;
       }
-    }
     return sum;
   }
 
@@ -399,16 +582,17 @@ class CpcaEncoder final : public CodecEncoder3d {
     return unit;
   }
 
-  // The bytes before the hash units of the stream that sends the plan, its
-  // operators in the units `encode` makes.
+  // The bytes before the segment's hash units of the stream that sends the
+  // plan, its operators in the units `encode` makes.
   uint64_t coded_bytes() {
-    uint64_t bytes = fixed_bytes_;
+    uint64_t bytes = segment_start_bytes_;
     std::vector<uint8_t> started(header_.cluster_count, 0);
+    const std::vector<uint32_t> continuable = continuable_counts();
     double group_bytes = static_cast<double>(group_bytes_);
     for (size_t sent = 0; sent < plan_.sent;) {
       const std::vector<Operator*> unit = next_unit(sent, static_cast<uint64_t>(group_bytes));
       group_bytes = std::min(group_bytes * group_growth_, kMaxGroupGrowth * static_cast<double>(group_bytes_));
-      bytes += unit_bytes(unit, started);
+      bytes += unit_bytes(unit, started, continuable);
       sent += unit.size();
     }
     return bytes;
@@ -416,12 +600,12 @@ class CpcaEncoder final : public CodecEncoder3d {
 
   // The bytes of the unit of these operators in the stream, after the
   // starts `started` lists; the unit's starts are added to it.
-  uint64_t unit_bytes(std::span<Operator* const> operators, std::vector<uint8_t>& started) const {
+  uint64_t unit_bytes(std::span<Operator* const> operators, std::vector<uint8_t>& started, std::span<const uint32_t> continuable) const {
     BitWriter writer;
     syntax::WriteIO io(writer);
     UnitHeader header{static_cast<uint32_t>(UnitType::kRefinement), 0};
     syntax::describe(io, header);
-    write_refinements(io, operators, *mesh_, header_.version, started);
+    write_refinements(io, operators, *mesh_, header_.version, started, continuable);
     return ContainerWriter::unit_size(writer.bytes());
   }
 
@@ -431,7 +615,7 @@ class CpcaEncoder final : public CodecEncoder3d {
   uint64_t operator_bytes(Operator& op) const {
     Operator* const alone[] = {&op};
     std::vector<uint8_t> none_started(header_.cluster_count, 0);
-    const uint64_t bytes = unit_bytes(alone, none_started);
+    const uint64_t bytes = unit_bytes(alone, none_started, continuable_counts());
     const uint64_t shared = shared_in_group(header_.version);
     return group_bytes_ > 0 ? std::max<uint64_t>(bytes, shared + 1) - shared : bytes;
   }
@@ -452,7 +636,7 @@ class CpcaEncoder final : public CodecEncoder3d {
   uint64_t fixed_bytes(const MeshSequence& s) {
     BitWriter object, base;
     syntax::WriteIO object_io(object), base_io(base);
-    ObjectHeader header{base_mesh_.version, 4, s.vertex_count, static_cast<uint32_t>(s.faces.size()), static_cast<uint32_t>(s.frames.size()), 25, 1};
+    ObjectHeader header{base_mesh_.version, 4, s.vertex_count, static_cast<uint32_t>(s.faces.size()), frame_count_, 25, 1};
     syntax::describe(object_io, header);
     write_header(object_io);
     UnitHeader unit{static_cast<uint32_t>(UnitType::kBaseMesh), 0};
@@ -461,29 +645,28 @@ class CpcaEncoder final : public CodecEncoder3d {
     return ContainerWriter::unit_size(object.bytes()) + ContainerWriter::unit_size(base.bytes());
   }
 
-  // The KG error of the decoder's output after the plan's first `count`
-  // operators, as `m4mesh metrics` measures it.
+  // The KG error of the decoder's output of the segment after the plan's
+  // first `count` operators, as `m4mesh metrics` measures it.
   double kg_of_prefix(const MeshSequence& s, size_t count) const {
     CpcaAnimation animation(header_, mean_, static_cast<uint32_t>(s.frames.size()));
     for (size_t i = 0; i < count; ++i) {
       const Operator& op = plan_.operators[plan_.order[i]];
       apply(animation, members_[op.cluster], op);
     }
-    MeshSequence decoded;
-    decoded.vertex_count = s.vertex_count;
-    decoded.faces = s.faces;
+    const SequenceSource original(s);
+    QualityMeter meter(original);
+    std::vector<Float3> decoded(s.vertex_count);
     for (uint32_t f = 0; f < s.frames.size(); ++f) {
-      std::vector<Vec3> frame;
-      for (const Float3& p : animation.frame(f)) frame.push_back({p[0], p[1], p[2]});
-      decoded.frames.push_back(std::move(frame));
+      animation.frame(f, decoded);
+      meter.add(f, decoded);
     }
-    return kg_error(s, decoded);
+    return meter.kg();
   }
 
   size_t components_ = 0;
   int requested_clusters_ = 0;
   uint64_t max_bytes_;
-  uint64_t group_bytes_;  // the first group's; 0: a unit per operator
+  uint64_t group_bytes_;  // each segment's first group's; 0: a unit per operator
   double group_growth_;
   double target_kg_;
   bool round_robin_;
@@ -491,6 +674,7 @@ class CpcaEncoder final : public CodecEncoder3d {
   bool trajectories_;  // components of the members' trajectories (unit_kind 3), else of their shapes
   std::optional<int> noise_;  // log2 of the noise step in half steps; none: auto
   BaseMeshCoding base_mesh_;
+  uint32_t frame_count_;
   Grid grid_;
   CpcaHeader header_;
   std::vector<IntPoint3> mean_;
@@ -501,21 +685,38 @@ class CpcaEncoder final : public CodecEncoder3d {
   std::vector<Triangle> faces_;  // the base mesh's, which predict the map
   Trace* map_trace_ = nullptr;
   std::string map_trace_text_;  // the map's symbols, traced after the base mesh with prediction 1
+  uint64_t fixed_bytes_ = 0;
+  uint64_t first_segment_bytes_ = 0;
+  // The segment being planned: per cluster its translation, the components
+  // continuing the previous segment's (as listed_), its own components;
+  // its frames' spread, the bytes of the stream before it and the most
+  // through it (0: no limit); its plan.
   std::vector<Translation> translations_;
+  std::vector<std::vector<Component>> continued_;
   std::vector<std::vector<Component>> components_of_;
   std::vector<double> mean_error_;  // per cluster, of the mean shape alone
   double spread_ = 0;
-  uint64_t fixed_bytes_ = 0;
+  uint64_t segment_start_bytes_ = 0, limit_ = 0;
+  int reuse_finer_ = 0;  // half steps finer the segment's new bases are quantized
   Plan plan_;
+  // Per cluster, the components the segment before sent, in stream order,
+  // and its start's last translation (empty before the second segment).
+  std::vector<std::vector<ListedBasis>> listed_;
+  std::vector<std::optional<Carried>> started_last_;
+  size_t sent_total_ = 0, computed_total_ = 0;
   int half_bits_ = 0;
   double kg_ = 0, kmeans_seconds_ = 0, svd_seconds_ = 0, order_seconds_ = 0;
 };
 
 }  // namespace
 
-std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequence, const CodecSettings& settings) {
+std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const FrameSource& source, const CodecSettings& settings) {
   using namespace cpca_wpt;
   const Options options = parse_options(settings);
+  const uint32_t frame_count = source.frame_count(), segment_frames = segment_length(options, source.vertex_count(), frame_count);
+  // The first segment chooses the stream's model; the vertices in the base mesh's coding order, once for every candidate.
+  MeshSequence sequence = frames_of(source, 0, std::min(segment_frames, frame_count));
+  sequence.faces.assign(source.faces().begin(), source.faces().end());
   const bool target = options.target_kg > 0;
   const bool bits_auto = !options.bits;
   const int half_bits = 2 * options.bits.value_or(kDefaultBits);
@@ -525,11 +726,10 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequen
   const std::vector<bool> trajectory_models = options.model == "shape" ? std::vector<bool>{false}
                                               : options.model == "trajectory" || !target ? std::vector<bool>{true}
                                                                                           : std::vector<bool>{true, false};
-  // The vertices in the base mesh's coding order, once for every candidate.
   const std::vector<uint32_t> coding_order = plan_base_mesh(sequence.faces, sequence.vertex_count, false).input_of;
   if (cluster_counts.size() == 1 && trajectory_models.size() == 1 && !(bits_auto && target))
-    return std::make_unique<CpcaEncoder>(sequence, options, half_bits, clustering(sequence, cluster_counts[0]), trajectory_models[0],
-                                         coding_order);
+    return std::make_unique<CpcaEncoder>(sequence, frame_count, segment_frames, options, half_bits, clustering(sequence, cluster_counts[0]),
+                                         trajectory_models[0], coding_order);
   // The cluster count and model whose plan reaches the target in the fewest
   // bytes, then the counts √2 either side of it, then the mean shape's bits
   // from 12 towards the smaller plan, then half a bit either side, then the
@@ -561,8 +761,8 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const MeshSequence& sequen
         candidates.size(), settings.threads(),
         [&](size_t i) {
           try {
-            built[i] = std::make_unique<CpcaEncoder>(sequence, options, candidates[i].half_bits, clusterings.at(candidates[i].clusters),
-                                                     candidates[i].trajectories, coding_order);
+            built[i] = std::make_unique<CpcaEncoder>(sequence, frame_count, segment_frames, options, candidates[i].half_bits,
+                                                     clusterings.at(candidates[i].clusters), candidates[i].trajectories, coding_order);
           } catch (const Error& e) {
             if (e.kind() != ErrorKind::kUsage) throw;
             failed[i] = e;

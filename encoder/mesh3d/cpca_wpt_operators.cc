@@ -27,10 +27,10 @@ std::vector<int32_t> scaled(const Eigen::VectorXd& values, int half_exponent) {
 
 template <class SymbolIO>
 void write_refinements(syntax::WriteIO& io, SymbolIO& symbols, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh,
-                       uint32_t version, std::vector<uint8_t>& started) {
+                       uint32_t version, std::vector<uint8_t>& started, std::span<const uint32_t> continuable) {
   CpcaRefinement r;
   r.version = version;
-  for (const Operator* op : operators) r.group.push_back({op->cluster, op->kind, op->shift});
+  for (const Operator* op : operators) r.group.push_back({op->cluster, op->kind, op->shift, op->reference});
   auto start = [&](const CpcaRefinementHeader& h, bool) {
     if (h.kind == kCpcaStart) started[h.cluster] = 1;
   };
@@ -38,17 +38,19 @@ void write_refinements(syntax::WriteIO& io, SymbolIO& symbols, std::span<Operato
     syntax::CpcaGroupContexts contexts;
     syntax::describe_group_list(
         symbols, contexts, std::span(r.group), static_cast<uint32_t>(started.size()), [&](uint32_t cluster) { return started[cluster] != 0; },
-        start);
+        [&](uint32_t cluster) { return continuable[cluster]; }, start);
   } else {
     for (const CpcaRefinementHeader& h : r.group) start(h, false);
   }
   syntax::CpcaCoders coders;
   for (size_t i = 0; i < operators.size(); ++i)
-    describe_refinement(symbols, coders, mesh, r.group[i], operators[i]->translation, operators[i]->basis, operators[i]->coefficients);
+    describe_refinement(symbols, coders, mesh, r.group[i], operators[i]->trajectory, operators[i]->before, operators[i]->translation,
+                        operators[i]->basis, operators[i]->coefficients);
   if (r.group.size() == 1) {
     r.cluster = r.group[0].cluster;
     r.kind = r.group[0].kind;
     r.shift = r.group[0].shift;
+    r.reference = r.group[0].reference;
     r.group.clear();
   } else {
     r.cluster = 0;
@@ -60,11 +62,11 @@ void write_refinements(syntax::WriteIO& io, SymbolIO& symbols, std::span<Operato
 
 }  // namespace
 
-void apply(CpcaAnimation& animation, std::span<const NodeIndex> members, const Operator& op) {
+void apply(CpcaAnimation& animation, std::span<const NodeIndex> members, const Operator& op, bool undo) {
   if (op.kind == kCpcaStart)
-    animation.translate(members, op.translation, op.shift);
+    animation.translate(members, op.translation, op.shift, undo);
   else
-    animation.refine(members, op.basis, op.coefficients, op.shift, op.kind == kCpcaTrajectory);
+    animation.refine(members, op.basis, op.coefficients, op.shift, op.trajectory, undo);
 }
 
 Operator quantize(const Component& c, uint32_t cluster, int noise, int fraction_bits, int basis_finer) {
@@ -102,6 +104,32 @@ Operator quantize_start(const Translation& t, uint32_t cluster, size_t members, 
   return op;
 }
 
+Operator quantize_continued(std::span<const int32_t> basis, int basis_exponent, const Eigen::VectorXd& weighted, uint32_t cluster,
+                            uint32_t reference, bool trajectory, int noise, int fraction_bits) {
+  double norm = 0;
+  for (int32_t b : basis) norm += static_cast<double>(b) * static_cast<double>(b);
+  norm = std::sqrt(norm) / power_of_sqrt2(basis_exponent);
+  // The coefficients of the unit basis are weighted × norm, in steps of Δ.
+  const int wanted = std::min(-noise + static_cast<int>(std::lround(2 * std::log2(std::max(norm, 0x1p-30)))),
+                              2 * exponent_for(weighted.cwiseAbs().maxCoeff(), 23));
+  const int shift = std::clamp(half_of(basis_exponent + wanted) - fraction_bits, -static_cast<int>(kCpcaShiftBias),
+                               static_cast<int>(kCpcaMaxShift - kCpcaShiftBias));
+  Operator op;
+  op.cluster = cluster;
+  op.kind = kCpcaContinued;
+  op.reference = reference;
+  op.trajectory = trajectory;
+  op.shift = static_cast<uint32_t>(shift + static_cast<int>(kCpcaShiftBias));
+  op.basis_exponent = basis_exponent;
+  op.coefficient_exponent = 2 * (shift + fraction_bits) - basis_exponent;
+  op.basis.assign(basis.begin(), basis.end());
+  op.coefficients = scaled(weighted, op.coefficient_exponent);
+  for (int32_t v : op.coefficients)
+    if (v > kCpcaMaxCoefficient || v < -kCpcaMaxCoefficient)
+      throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "a motion too large for the fixed point of cpca-wpt: use fewer --bits");
+  return op;
+}
+
 double estimated_gain(const Translation& t, size_t members, const Operator& op) {
   double removed = 0;
   for (Eigen::Index j = 0; j < t.size(); ++j) {
@@ -128,14 +156,14 @@ double estimated_gain(const Component& c, const Operator& op) {
 }
 
 void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh, uint32_t version,
-                       std::vector<uint8_t>& started) {
+                       std::vector<uint8_t>& started, std::span<const uint32_t> continuable) {
   const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane(), version};
   if (io.trace()) {
     syntax::EntropyWriteIO<true> symbols(place, io.trace());
-    write_refinements(io, symbols, operators, mesh, version, started);
+    write_refinements(io, symbols, operators, mesh, version, started, continuable);
   } else {
     syntax::EntropyWriteIO<false> symbols(place);
-    write_refinements(io, symbols, operators, mesh, version, started);
+    write_refinements(io, symbols, operators, mesh, version, started, continuable);
   }
 }
 

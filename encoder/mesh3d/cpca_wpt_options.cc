@@ -60,6 +60,8 @@ Options parse_options(const CodecSettings& settings) {
   o.noise = parse_noise(settings.text("noise"));
   o.group_bytes = static_cast<uint64_t>(settings.number("group-bytes"));
   o.group_growth = settings.number("group-growth");
+  if (settings.text("segment-frames") != "auto")
+    o.segment_frames = static_cast<uint32_t>(parse_count(settings.text("segment-frames"), "--segment-frames", UINT32_MAX));
   return o;
 }
 
@@ -95,7 +97,11 @@ std::vector<CodecOption> cpca_wpt_options() {
                            "of about --group-bytes); later refinements remove less error per byte, so coarser steps cost little",
            OptionKind::kNumber, "1.5", 1, 16},
           {"target-kg", "cpca-wpt: stop at the first operator whose decoded KG error is at most this (0: off)", OptionKind::kNumber, "0", 0,
-           100}};
+           100},
+          {"segment-frames", "cpca-wpt: frames per segment, each refined by its own units and its components continuing the previous "
+                             "segment's, or auto (every frame in one segment up to 2^22 vertex-frames, else as many frames as 2^22 "
+                             "vertex-frames hold)",
+           OptionKind::kText, "auto", 0, 0}};
 }
 
 }  // namespace m4mesh

@@ -39,6 +39,7 @@ struct Options {
   uint64_t group_bytes = 0;    // the first group's unit closes at about this many bytes; 0: a unit per refinement
   double group_growth = 1;     // each group's bytes this many times the one before's, up to kMaxGroupGrowth × group_bytes
   double target_kg = 0;        // 0: none
+  std::optional<uint32_t> segment_frames;  // none: auto
   BaseMeshCoding base_mesh;    // the container's
 };
 

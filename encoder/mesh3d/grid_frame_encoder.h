@@ -17,7 +17,7 @@ class GridFrameEncoder : public CodecEncoder3d {
   GridFrameEncoder(const Grid& grid, int intra_period, const BaseMeshCoding& base_mesh)
       : grid_(grid), intra_period_(intra_period), base_mesh_(base_mesh) {}
 
-  void encode(const MeshSequence& sequence, UnitSink& sink) final;
+  void encode(const FrameSource& frames, UnitSink& sink) final;
 
  protected:
   // Writes a frame unit's data for `frame` (original positions) against

@@ -101,7 +101,7 @@ std::vector<Float3> as_floats(std::span<const Vec3> positions) {
 
 class LccEncoder final : public CodecEncoder3d {
  public:
-  LccEncoder(const MeshSequence& s, const CodecSettings& settings)
+  LccEncoder(const FrameSource& s, const CodecSettings& settings)
       : grid_(Grid::covering(s, settings.integer("bits"))), target_kg_(settings.number("target-kg")), base_mesh_(settings.base_mesh()) {
     header_.bits = static_cast<uint32_t>(settings.integer("bits"));
     for (int axis = 0; axis < 3; ++axis) {
@@ -111,10 +111,11 @@ class LccEncoder final : public CodecEncoder3d {
     header_.mode = settings.text("mode") == "download" ? kLccDownloadMode : kLccStreamMode;
     if (settings.text("mode") != "stream" && settings.text("mode") != "download") throw usage_error("--mode is stream or download (lcc)");
     // The reference: frame 0, or a rest shape with the same connectivity.
-    std::vector<Vec3> reference = s.frames[0];
+    std::vector<Vec3> reference(s.vertex_count());
+    s.read(0, reference);
     if (!settings.text("reference").empty()) {
       const MeshSequence rest = load_sequence(settings.text("reference"));
-      if (rest.vertex_count != s.vertex_count || !same_faces(rest.faces, s.faces))
+      if (rest.vertex_count != s.vertex_count() || !same_faces(rest.faces, s.faces()))
         throw usage_error(settings.text("reference") + ": the reference must have the sequence's vertices and faces (lcc)");
       reference = rest.frames[0];
       header_.reference = kLccReferenceIsRestShape;
@@ -135,8 +136,8 @@ class LccEncoder final : public CodecEncoder3d {
 
   void write_header(syntax::WriteIO& io) override { syntax::describe(io, header_); }
 
-  void encode(const MeshSequence& s, UnitSink& sink) override {
-    sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces, reference_grid_, base_mesh_); });
+  void encode(const FrameSource& s, UnitSink& sink) override {
+    sink.unit(UnitType::kBaseMesh, 0, [&](syntax::WriteIO& io) { write_base_mesh(io, s.faces(), reference_grid_, base_mesh_); });
     const LccModel model = model_of(s);
     if (header_.reference == kLccReferenceIsFrame0) sink.decoded(0, as_floats(reference_));
     size_t done = 0;
@@ -153,7 +154,7 @@ class LccEncoder final : public CodecEncoder3d {
         }
       });
       sink.decoded(coded.frame, as_floats(positions));
-      sink.progress(++done, s.frames.size());
+      sink.progress(++done, s.frame_count());
     });
   }
 
@@ -177,10 +178,12 @@ class LccEncoder final : public CodecEncoder3d {
   // of its original triangle), with 5 % to spare, as a binary32. The
   // height is along b → c and the radius follows from |d − O|² − height²,
   // without the rest of the frame.
-  float measured_range(const MeshSequence& s) const {
-    const LccModel model(s.faces, reference_, 2, 1, 1);
+  float measured_range(const FrameSource& s) const {
+    const LccModel model(s.faces(), reference_, 2, 1, 1);
     double largest = 0;
-    for (const std::vector<Vec3>& frame : s.frames) {
+    FrameReader reader(s);
+    for (uint32_t f = 0; f < s.frame_count(); ++f) {
+      const std::span<const Vec3> frame = reader.get(f);
       prefetch(frame);
       for (size_t k = 0; k < model.order().steps.size(); ++k) {
         const LccStep& step = model.order().steps[k];
@@ -207,7 +210,7 @@ class LccEncoder final : public CodecEncoder3d {
   // (ascending) the smallest b_rh up to two above Eq. 1's that reaches it,
   // measured on the closed loop and its coded symbols; the ascent stops
   // once two b_θ in a row coded larger than the best.
-  void choose_bits(const MeshSequence& s) {
+  void choose_bits(const FrameSource& s) {
     uint64_t best_bytes = UINT64_MAX;
     uint32_t best_theta = 0, best_rh = 0;
     int worse = 0;
@@ -242,47 +245,41 @@ class LccEncoder final : public CodecEncoder3d {
 
   // The closed loop over the whole sequence at the header's bits: the KG
   // error of its reconstruction and the size of its coded symbols.
-  Trial run_trial(const MeshSequence& s) const {
+  Trial run_trial(const FrameSource& s) const {
     const LccModel model = model_of(s);
-    MeshSequence decoded;
-    decoded.vertex_count = s.vertex_count;
-    decoded.faces = s.faces;
-    decoded.frames.resize(s.frames.size());
-    auto set = [&](uint32_t f, const std::vector<Vec3>& positions) {
-      decoded.frames[f].clear();
-      for (const Float3& p : as_floats(positions)) decoded.frames[f].push_back({p[0], p[1], p[2]});
-    };
-    if (header_.reference == kLccReferenceIsFrame0) set(0, reference_);
+    QualityMeter meter(s);
+    if (header_.reference == kLccReferenceIsFrame0) meter.add(0, as_floats(reference_));
     Trial trial;
     closed_loop(s, model, [&](const LccCodedFrame& coded, syntax::ResidualCoder<syntax::kLccChannels>& coder, LccIndices& residuals,
                               const std::vector<Vec3>& positions) {
       syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.version = base_mesh_.version});
       syntax::describe_symbols(symbols, coder, !coded.anchor(), residuals.direct, residuals.steps, model.theta_limit(), model.rh_limit());
       trial.bytes += symbols.finish_bins().size() + symbols.finish_raw().size();
-      set(coded.frame, positions);
+      meter.add(coded.frame, as_floats(positions));
     });
-    trial.kg = kg_error(s, decoded);
+    trial.kg = meter.kg();
     return trial;
   }
 
-  LccModel model_of(const MeshSequence& s) const {
-    return LccModel(s.faces, reference_, static_cast<int>(header_.theta_bits), static_cast<int>(header_.rh_bits), header_.rh_range_value());
+  LccModel model_of(const FrameSource& s) const {
+    return LccModel(s.faces(), reference_, static_cast<int>(header_.theta_bits), static_cast<int>(header_.rh_bits), header_.rh_range_value());
   }
 
   // The closed loop over the coded frames at the header's bits, in coding
   // order: each frame's residuals (the coder reset first in stream mode)
   // and reconstruction go to frame_coded(coded, coder, residuals, positions).
   template <class FrameCoded>
-  void closed_loop(const MeshSequence& s, const LccModel& model, FrameCoded&& frame_coded) const {
+  void closed_loop(const FrameSource& s, const LccModel& model, FrameCoded&& frame_coded) const {
     const LccLoop loop(model, header_);
     LccPredictor predictor(header_, model.order(), reference_grid_);
-    LccFrameOrder order(header_.reference == kLccReferenceIsFrame0 ? 1 : 0, static_cast<uint32_t>(s.frames.size()), header_.gop);
+    LccFrameOrder order(header_.reference == kLccReferenceIsFrame0 ? 1 : 0, s.frame_count(), header_.gop);
     std::vector<Vec3> positions = reference_;
+    FrameReader reader(s);
     syntax::ResidualCoder<syntax::kLccChannels> coder;
     LccIndices indices, residuals;
     while (!order.done()) {
       const LccCodedFrame coded = order.next();
-      loop.code(s.frames[coded.frame], coded.frame, grid_, indices, positions);
+      loop.code(reader.get(coded.frame), coded.frame, grid_, indices, positions);
       residuals_of(indices, predictor.predict(coded), model.theta_limit(), residuals);
       predictor.keep(coded, indices);
       if (header_.mode == kLccStreamMode) coder = {};
@@ -315,7 +312,7 @@ std::vector<CodecOption> lcc_options() {
            OptionKind::kNumber, "0", 0, 100}};
 }
 
-std::unique_ptr<CodecEncoder3d> make_lcc_encoder(const MeshSequence& sequence, const CodecSettings& settings) {
+std::unique_ptr<CodecEncoder3d> make_lcc_encoder(const FrameSource& sequence, const CodecSettings& settings) {
   return std::make_unique<LccEncoder>(sequence, settings);
 }
 

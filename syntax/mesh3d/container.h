@@ -5,6 +5,10 @@
 #pragma once
 
 #include <cstdint>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <memory>
 #include <span>
 #include <string>
 #include <utility>
@@ -28,9 +32,12 @@ const char* unit_type_name(UnitType type);
 // bit of its suffix in bins (docs/container3d.md, "Residuals"); version 5
 // cpca-wpt's group lists in bins (docs/codec_cpca_wpt.md, "Groups");
 // version 6 the position order of the base mesh's positions and cpca-wpt's
-// bases over the mesh (docs/base_mesh.md, "Position order").
+// bases over the mesh (docs/base_mesh.md, "Position order"); version 7
+// cpca-wpt's bases predicted by an affine fit; version 8 the base mesh's
+// far vertices on the gate's front; version 9 cpca-wpt's segments
+// (docs/codec_cpca_wpt.md, "Segments").
 inline constexpr uint32_t kFirstVersion = 1;
-inline constexpr uint32_t kLatestVersion = 8;
+inline constexpr uint32_t kLatestVersion = 9;
 
 inline Adaptation adaptation_of(uint32_t version) { return version >= 3 ? Adaptation::kWarmUp : Adaptation::kFixedRate; }
 inline bool residual_sign_in_bins(uint32_t version) { return version >= 4; }
@@ -75,7 +82,7 @@ namespace syntax {
 template <class IO>
 void describe(IO& io, ObjectHeader& h) {
   io.field("version", 8, h.version);
-  io.require(h.version >= kFirstVersion && h.version <= kLatestVersion, ErrorKind::kReservedValue, "version", "only versions 1 to 8 are defined");
+  io.require(h.version >= kFirstVersion && h.version <= kLatestVersion, ErrorKind::kReservedValue, "version", "only versions 1 to 9 are defined");
   io.field("codec_id", 8, h.codec_id);  // checked against the registry (codecs3d/registry.h)
   io.field_in("vertex_count", 32, h.vertex_count, 3, kMaxVertices3d);
   io.field_in("face_count", 32, h.face_count, 1, kMaxFaces3d);
@@ -137,6 +144,42 @@ struct ContainerParts {
 };
 ContainerParts split_container(std::span<const uint8_t> stream);
 
+// A container's payloads as a decoder takes them, read from its bytes in
+// memory or from a file: one pass checks the framing (split_container's
+// errors, in its order) and finds the units; a unit's payload is read and
+// unescaped when asked for, and kept until dropped, so that a decoder
+// holds the units it works on, not the stream.
+class ContainerSource {
+ public:
+  // The bytes must outlive the source.
+  explicit ContainerSource(std::span<const uint8_t> stream);
+  static ContainerSource open_file(const std::string& path);
+
+  const std::vector<uint8_t>& object_payload() const { return object_payload_; }
+  size_t units() const { return offsets_.size(); }
+  uint64_t unit_offset(size_t index) const { return offsets_.at(index); }
+  bool has_end_code() const { return has_end_code_; }
+  // The stream's size in bytes.
+  uint64_t size() const { return size_; }
+  const std::vector<uint8_t>& payload(size_t index) const;
+  // Drops the payloads read before unit `index`.
+  void drop_before(size_t index) const;
+
+ private:
+  ContainerSource() = default;
+  // Bytes first … first + count − 1 of the stream.
+  std::vector<uint8_t> read(uint64_t first, uint64_t count) const;
+
+  std::span<const uint8_t> memory_;
+  std::shared_ptr<std::ifstream> file_;
+  uint64_t size_ = 0;
+  std::vector<uint8_t> object_payload_;
+  std::vector<uint64_t> offsets_;  // each unit's start code
+  uint64_t units_end_ = 0;         // the end code's offset, or the stream's end
+  bool has_end_code_ = false;
+  mutable std::map<size_t, std::vector<uint8_t>> payloads_;
+};
+
 // The longest prefix of a container of at most `max_bytes` bytes that ends
 // at a unit boundary (where a unit's start code or the end code begins; the
 // whole stream when it fits), and the units it holds: 0 when not even the
@@ -151,19 +194,29 @@ ContainerPrefix container_prefix(const ContainerParts& parts, uint64_t stream_si
 // up to the last start code received (0 before the second start code).
 size_t whole_payloads_size(std::span<const uint8_t> received);
 
-// Assembles a container from payloads (escaped here).
+// Assembles a container from payloads (escaped here): in memory, or handed
+// to `output` payload by payload as they come.
 class ContainerWriter {
  public:
+  using Output = std::function<void(std::span<const uint8_t>)>;
+  ContainerWriter() = default;
+  explicit ContainerWriter(Output output) : output_(std::move(output)) {}
+
   void object(std::span<const uint8_t> payload);
   void unit(std::span<const uint8_t> payload);
+  // The stream in memory (empty with an output); nothing is written after it.
   std::vector<uint8_t> finish(bool with_end_code = true);
-  size_t size() const { return bytes_.size(); }
+  // The stream's bytes so far.
+  uint64_t size() const { return written_ + bytes_.size(); }
   // The bytes a unit of this payload takes: its start code and the escaped payload.
   static uint64_t unit_size(std::span<const uint8_t> payload);
 
  private:
   void start_code(uint32_t code);
+  void flush();
+  Output output_;
   std::vector<uint8_t> bytes_;
+  uint64_t written_ = 0;  // handed to the output
 };
 
 // A stream's object header and codec header, read from its object payload

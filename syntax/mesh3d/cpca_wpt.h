@@ -41,7 +41,8 @@ inline constexpr uint32_t kCpcaStart = 0;      // unit_kind: the cluster's mean 
 inline constexpr uint32_t kCpcaComponent = 1;  // unit_kind: one principal component
 inline constexpr uint32_t kCpcaMeshComponent = 2;  // unit_kind: one, its basis predicted over the base mesh
 inline constexpr uint32_t kCpcaTrajectory = 3;     // unit_kind: one of the members' trajectories, predicted over the base mesh
-inline constexpr uint32_t kCpcaGroup = 4;          // unit_kind: several refinements of kinds 0 … 3 in one unit
+inline constexpr uint32_t kCpcaGroup = 4;          // unit_kind: several refinements of kinds 0 … 3 and 5 in one unit
+inline constexpr uint32_t kCpcaContinued = 5;      // unit_kind: a component of the previous segment, with new coefficients
 inline constexpr uint32_t kCpcaMaxGroupSize = 255;
 // From version 5 a group's list is coded at the start of its unit's
 // arithmetic-coded section; before, in the unit's fields.
@@ -49,12 +50,20 @@ inline bool cpca_group_list_in_bins(uint32_t version) { return version >= 5; }
 // From version 7 a component's basis over the mesh (unit_kind 2 and 3) is
 // predicted by an affine fit over the mean shape (mesh3d/affine_fit.h).
 inline constexpr uint32_t kCpcaAffineFitVersion = 7;
+// From version 9 the frames come in segments, each refined by its own
+// units, and a component may continue one of the previous segment's
+// (unit_kind 5; docs/codec_cpca_wpt.md, "Segments").
+inline constexpr uint32_t kCpcaSegmentVersion = 9;
 // A unit_kind as tools name it.
 inline const char* cpca_unit_kind_name(uint32_t kind) {
-  static constexpr const char* kNames[] = {"start", "component", "mesh component", "trajectory component", "group"};
-  return kind <= kCpcaGroup ? kNames[kind] : "unknown";
+  static constexpr const char* kNames[] = {"start", "component", "mesh component", "trajectory component", "group", "continued component"};
+  return kind <= kCpcaContinued ? kNames[kind] : "unknown";
 }
-// The decoder holds 36 bytes per vertex and frame: at most 2^22 of them.
+// The highest unit_kind of a version.
+inline uint32_t cpca_last_unit_kind(uint32_t version) { return version >= kCpcaSegmentVersion ? kCpcaContinued : kCpcaGroup; }
+// The decoder holds 24 bytes per vertex and frame of a segment (before
+// version 9: of the stream), and the bases of two segments: at most 2^22
+// vertex-frames.
 inline constexpr uint64_t kCpcaMaxVertexFrames = uint64_t{1} << 22;
 
 struct CpcaHeader {
@@ -65,6 +74,7 @@ struct CpcaHeader {
   uint32_t cluster_count = 1;
   uint32_t fraction_bits = 8;  // F: positions accumulate in steps of 2^−F grid units
   uint32_t map_prediction = kCpcaMapByDifference;
+  uint32_t segment_frames = 1;  // from version 9; before, the frame count (one segment)
   uint32_t map_bins_bytes = 0;
   std::span<const uint8_t> map_bins;
   uint32_t map_raw_bytes = 0;
@@ -80,6 +90,7 @@ struct CpcaRefinementHeader {
   uint32_t cluster = 0;
   uint32_t kind = kCpcaComponent;
   uint32_t shift = kCpcaShiftBias;
+  uint32_t reference = 0;  // unit_kind 5: the component continued, in the cluster's list of the previous segment
 };
 
 // A refinement unit's data: one refinement, or a group of them (unit_kind
@@ -94,10 +105,11 @@ struct CpcaRefinement {
   std::span<const uint8_t> bins;
   std::span<const uint8_t> raw;
   uint32_t version = kLatestVersion;  // the object header's: from version 3 a group lists each refinement in 2 bytes, from 5 in bins
+  uint32_t reference = 0;             // unit_kind 5
 
   // The refinements the unit carries, in order.
   std::vector<CpcaRefinementHeader> refinements() const {
-    return kind == kCpcaGroup ? group : std::vector<CpcaRefinementHeader>{{cluster, kind, shift}};
+    return kind == kCpcaGroup ? group : std::vector<CpcaRefinementHeader>{{cluster, kind, shift, reference}};
   }
 };
 
@@ -110,6 +122,7 @@ inline constexpr ResidualNames kCpcaMeshBasis = M4MESH_RESIDUAL_NAMES("mesh_basi
 inline constexpr ResidualNames kCpcaTrajectoryBasis = M4MESH_RESIDUAL_NAMES("trajectory_basis", "trajectory_basis");
 inline constexpr ResidualNames kCpcaTrajectoryCoefficient = M4MESH_RESIDUAL_NAMES("trajectory_coefficient", "trajectory_coefficient");
 inline constexpr ResidualNames kCpcaTranslation = M4MESH_RESIDUAL_NAMES("translation", "translation");
+inline constexpr ResidualNames kCpcaContinuedCoefficient = M4MESH_RESIDUAL_NAMES("continued_coefficient", "continued_coefficient");
 inline constexpr int kCpcaCoefficientChannel = 3;  // the basis uses 0 … 2 (x, y, z)
 
 template <class IO>
@@ -121,6 +134,11 @@ void describe(IO& io, CpcaHeader& h) {
   if (h.version >= 2 || kTableOf<IO>) {
     if constexpr (kTableOf<IO>) io.open("if (version >= 2)");
     io.field_in("cluster_map_prediction", 8, h.map_prediction, kCpcaMapByDifference, kCpcaMapByNeighbours);
+    if constexpr (kTableOf<IO>) io.close();
+  }
+  if (h.version >= kCpcaSegmentVersion || kTableOf<IO>) {
+    if constexpr (kTableOf<IO>) io.open("if (version >= 9)");
+    io.field_in("segment_frames", 32, h.segment_frames, 1, UINT32_MAX);
     if constexpr (kTableOf<IO>) io.close();
   }
   io.field("cluster_map_bins_bytes", 32, h.map_bins_bytes);
@@ -136,8 +154,13 @@ void describe(IO& io, CpcaHeader& h) {
 template <class IO, class Check>
 void describe(IO& io, CpcaRefinement& r, Check&& check) {
   io.field_in("cluster", 8, r.cluster, 0, kCpcaMaxClusters - 1);
-  io.field_in("unit_kind", 8, r.kind, kCpcaStart, kCpcaGroup);
+  io.field_in("unit_kind", 8, r.kind, kCpcaStart, cpca_last_unit_kind(r.version));
   io.field_in("shift", 8, r.shift, 0, kCpcaMaxShift);
+  if (r.kind == kCpcaContinued || kTableOf<IO>) {
+    if constexpr (kTableOf<IO>) io.open("if (unit_kind == 5)");
+    io.field("reference", 32, r.reference);
+    if constexpr (kTableOf<IO>) io.close();
+  }
   if (r.kind == kCpcaGroup || kTableOf<IO>) {
     if constexpr (kTableOf<IO>) io.open("if (unit_kind == 4)");
     io.require(r.cluster == 0, ErrorKind::kStructure, "cluster", "a group's cluster field is not 0");
@@ -173,7 +196,7 @@ void describe(IO& io, CpcaRefinement& r, Check&& check) {
       io.close();
     }
   } else {
-    check(CpcaRefinementHeader{r.cluster, r.kind, r.shift}, false);
+    check(CpcaRefinementHeader{r.cluster, r.kind, r.shift, r.reference}, false);
   }
   io.field("arithmetic_bytes", 32, r.arithmetic_bytes);
   io.require_length("arithmetic_bytes", r.arithmetic_bytes);
@@ -186,13 +209,13 @@ void describe(IO& io, CpcaRefinement& r) {
   describe(io, r, [](const CpcaRefinementHeader&, bool) {});
 }
 
-// values[j] as the difference to values[j − stride] (0 for the first
-// stride), on channel first_channel + j mod stride, each within [lo, hi]
-// (else out-of-range, named names.element).
+// values[j] as the difference to values[j − stride] (`before` for the
+// first stride), on channel first_channel + j mod stride, each within
+// [lo, hi] (else out-of-range, named names.element).
 template <class IO, int kChannels>
 void describe_differences(IO& io, ResidualCoder<kChannels>& coder, std::span<int32_t> values, int first_channel, size_t stride, int64_t lo,
-                          int64_t hi, const ResidualNames& names, const char* beyond) {
-  std::array<int64_t, 3> previous{};
+                          int64_t hi, const ResidualNames& names, const char* beyond, std::array<int64_t, 3> before = {}) {
+  std::array<int64_t, 3> previous = before;
   for (size_t j = 0; j < values.size(); ++j) {
     const size_t lane = j % stride;
     int32_t difference = 0;
@@ -268,27 +291,31 @@ struct CpcaCoders {
   ResidualCoder<4> component;
   ResidualCoder<7> mesh_component;  // 2D + 3/D channels, D = 3
   ResidualCoder<5> trajectory;      // D = 1
+  ResidualCoder<4> continued;       // channel 0: a shape component's coefficients, 1 … 3: a trajectory component's lanes
 };
 
 inline constexpr ResidualNames kCpcaGroupShift = M4MESH_RESIDUAL_NAMES("group_shift", "group_shift");
 
 // The contexts of a group's list (from version 5), fresh in every unit.
 struct CpcaGroupContexts {
-  BinContext trajectory, mesh;
+  BinContext trajectory, mesh, continued;
   ResidualCoder<2> shift;  // channel 0: starts, 1: components
 };
 
 // From version 5: a group's list, first in its unit's arithmetic-coded section.
 // Each refinement's cluster in bit_width(cluster_count − 1) raw bits (below
-// cluster_count); its kind a start when started(cluster) is false, else a
-// trajectory component (bin group_trajectory), a component over the mesh
-// (bin group_mesh) or a component; its shift the difference to the previous
-// shift of its class in the list (starts, components; 16 before the first),
-// 0 … 63. `check` sees each refinement as soon as it is read; it is what
-// makes started() true for a cluster the group starts.
-template <class IO, class Started, class Check>
+// cluster_count); its kind a start when started(cluster) is false, else,
+// from version 9 when previous(cluster) (the cluster's components in the
+// previous segment) is not 0, a continued component (bin group_continued,
+// then the component's place in that list, raw bits below previous), else
+// a trajectory component (bin group_trajectory), a component over the mesh
+// (bin group_mesh) or a component; its shift the difference to the
+// previous shift of its class in the list (starts, components; 16 before
+// the first), 0 … 63. `check` sees each refinement as soon as it is read;
+// it is what makes started() true for a cluster the group starts.
+template <class IO, class Started, class Previous, class Check>
 void describe_group_list(IO& io, CpcaGroupContexts& c, std::span<CpcaRefinementHeader> group, uint32_t cluster_count, Started&& started,
-                         Check&& check) {
+                         Previous&& previous, Check&& check) {
   const int cluster_bits = std::bit_width(cluster_count - 1);
   std::array<int64_t, 2> previous_shift{kCpcaShiftBias, kCpcaShiftBias};
   for (CpcaRefinementHeader& h : group) {
@@ -302,11 +329,22 @@ void describe_group_list(IO& io, CpcaGroupContexts& c, std::span<CpcaRefinementH
     if constexpr (!IO::kReading)
       if (start != (h.kind == kCpcaStart)) io.fail(ErrorKind::kStructure, "group_kind", "a start only, and only, of a cluster not started");
     if (!start) {
-      bool trajectory = h.kind == kCpcaTrajectory;
-      io.bin("group_trajectory", c.trajectory, 0, trajectory);
-      bool mesh = h.kind == kCpcaMeshComponent;
-      if (!trajectory) io.bin("group_mesh", c.mesh, 0, mesh);
-      if constexpr (IO::kReading) h.kind = trajectory ? kCpcaTrajectory : mesh ? kCpcaMeshComponent : kCpcaComponent;
+      const uint32_t continuable = previous(h.cluster);
+      bool continued = h.kind == kCpcaContinued;
+      if (continuable > 0) io.bin("group_continued", c.continued, 0, continued);
+      if (continued) {
+        io.raw("group_reference", std::bit_width(continuable - 1), h.reference);
+        if (h.reference >= continuable)
+          io.fail(ErrorKind::kOutOfRange, "group_reference",
+                  "component " + std::to_string(h.reference) + " of the " + std::to_string(continuable) + " the previous segment sent");
+        if constexpr (IO::kReading) h.kind = kCpcaContinued;
+      } else {
+        bool trajectory = h.kind == kCpcaTrajectory;
+        io.bin("group_trajectory", c.trajectory, 0, trajectory);
+        bool mesh = h.kind == kCpcaMeshComponent;
+        if (!trajectory) io.bin("group_mesh", c.mesh, 0, mesh);
+        if constexpr (IO::kReading) h.kind = trajectory ? kCpcaTrajectory : mesh ? kCpcaMeshComponent : kCpcaComponent;
+      }
     } else if constexpr (IO::kReading) {
       h.kind = kCpcaStart;
     }
@@ -323,7 +361,10 @@ void describe_group_list(IO& io, CpcaGroupContexts& c, std::span<CpcaRefinementH
 
 // The element a refinement's end-of-section errors name.
 inline const char* cpca_last_element(uint32_t kind) {
-  return kind == kCpcaStart ? "translation" : kind == kCpcaTrajectory ? "trajectory_coefficient" : "coefficient";
+  return kind == kCpcaStart        ? "translation"
+         : kind == kCpcaTrajectory ? "trajectory_coefficient"
+         : kind == kCpcaContinued  ? "continued_coefficient"
+                                   : "coefficient";
 }
 
 // An operator's symbols: the basis value of each member vertex and axis
@@ -340,11 +381,40 @@ void describe_operator(IO& io, ResidualCoder<4>& coder, std::span<int32_t> basis
 
 // A start's symbols: the cluster's translation of every frame and axis
 // (frame 0's x, y, z, then frame 1's, …), each as the difference to the
-// same axis of the frame before (the first to 0); |translation| ≤ 2^29.
+// same axis of the frame before (the first to `before`: 0, or from version
+// 9 the previous segment's last, cpca_carried); |translation| ≤ 2^29.
 template <class IO>
-void describe_start(IO& io, ResidualCoder<3>& coder, std::span<int32_t> translation) {
+void describe_start(IO& io, ResidualCoder<3>& coder, std::span<int32_t> translation, std::array<int64_t, 3> before = {}) {
   describe_differences(io, coder, translation, 0, 3, -kCpcaMaxTranslation, kCpcaMaxTranslation, kCpcaTranslation,
-                       "a translation beyond ±2^29");
+                       "a translation beyond ±2^29", before);
+}
+
+// A continued component's symbols (unit_kind 5): its coefficients alone,
+// each frame's as the difference to the frame before's (the first to
+// `before`, the component's last in the previous segment, cpca_carried):
+// one per frame on channel 0 for a component of the shapes, three per
+// frame (lanes x, y, z) on channels 1 … 3 for a trajectory component;
+// |coefficient| ≤ 2^23.
+template <class IO>
+void describe_continued(IO& io, ResidualCoder<4>& coder, bool trajectory, std::span<int32_t> coefficients, std::array<int64_t, 3> before) {
+  describe_differences(io, coder, coefficients, trajectory ? 1 : 0, trajectory ? 3 : 1, -kCpcaMaxCoefficient, kCpcaMaxCoefficient,
+                       kCpcaContinuedCoefficient, "a coefficient beyond ±2^23", before);
+}
+
+// A segment's last value of a translation or coefficient lane, coded at
+// shift `from`, as the first difference's base of the next segment's at
+// shift `to`: value × 2^(to − from), halves rounded up, within ±limit
+// (|value| ≤ 2^29).
+inline int64_t cpca_carried(int64_t value, uint32_t from, uint32_t to, int64_t limit) {
+  const int d = static_cast<int>(to) - static_cast<int>(from);
+  int64_t r = 0;
+  if (d > 30)
+    r = value > 0 ? limit : value < 0 ? -limit : 0;
+  else if (d >= 0)
+    r = value * (int64_t{1} << d);
+  else
+    r = (value + (int64_t{1} << (-d - 1))) >> -d;
+  return std::clamp(r, -limit, limit);
 }
 
 }  // namespace syntax
