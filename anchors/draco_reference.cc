@@ -52,6 +52,26 @@ size_t draco_frame_size(std::span<const Triangle> faces, std::span<const std::ar
   return buffer.size();
 }
 
+std::vector<char> draco_frame_encoded(std::span<const Triangle> faces, std::span<const std::array<float, 3>> positions, int bits) {
+  const std::unique_ptr<draco::Mesh> mesh = draco_mesh(faces, positions, draco::DT_FLOAT32);
+  draco::Encoder encoder;
+  encoder.SetEncodingMethod(draco::MESH_EDGEBREAKER_ENCODING);
+  encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, bits);
+  draco::EncoderBuffer buffer;
+  const draco::Status status = encoder.EncodeMeshToBuffer(*mesh, &buffer);
+  if (!status.ok()) throw reference_error(std::string("Draco cannot encode a frame: ") + status.error_msg());
+  return {buffer.data(), buffer.data() + buffer.size()};
+}
+
+size_t draco_frame_decode(std::span<const char> encoded) {
+  draco::DecoderBuffer input;
+  input.Init(encoded.data(), encoded.size());
+  draco::Decoder decoder;
+  auto decoded = decoder.DecodeMeshFromBuffer(&input);
+  if (!decoded.ok()) throw reference_error(std::string("Draco cannot decode its frame: ") + decoded.status().error_msg());
+  return std::move(decoded).value()->num_points();
+}
+
 std::vector<std::array<float, 3>> draco_frame_decoded(std::span<const Triangle> faces, std::span<const std::array<float, 3>> positions,
                                                       int bits) {
   const std::unique_ptr<draco::Mesh> mesh = draco_mesh(faces, positions, draco::DT_FLOAT32);

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <fstream>
 #include <cstdio>
 #include <iostream>
 #include <set>
@@ -38,15 +39,24 @@ std::pair<uint32_t, uint32_t> frame_rate_fraction(double fps) {
   return {static_cast<uint32_t>(std::max(1L, std::lround(fps * fitting))), fitting};
 }
 
-// The frames to code and their rate: a glTF animation baked, or a sequence.
-std::pair<MeshSequence, double> read_input(const Encode3dArgs& args) {
+// The frames to code and their rate: a glTF animation baked, or a sequence
+// (read frame by frame when large: open_sequence).
+std::pair<std::unique_ptr<FrameSource>, double> read_input(const Encode3dArgs& args) {
   if (is_gltf_path(args.input)) {
     GltfAnimation animation = read_gltf(args.input, {.mesh = args.gltf_mesh, .animation = args.gltf_animation, .fps = args.fps});
     console::detail("%s: animation baked at %.6g frames a second%s", args.input.c_str(), animation.fps, args.fps ? "" : " (its keyframes)");
-    return {std::move(animation.sequence), animation.fps};
+    return {std::make_unique<SequenceSource>(std::move(animation.sequence)), animation.fps};
   }
   if (!args.gltf_mesh.empty() || !args.gltf_animation.empty()) throw usage_error("--mesh and --animation choose in a glTF input (.glb or .gltf)");
-  return {load_sequence(args.input, !console::quiet()), args.fps.value_or(25)};
+  return {open_sequence(args.input, !console::quiet()), args.fps.value_or(25)};
+}
+
+// Whether a file starts as a mesh3d stream (its first 4 bytes).
+bool starts_as_stream(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  uint8_t head[4] = {};
+  in.read(reinterpret_cast<char*>(head), 4);
+  return in.gcount() == 4 && is_mesh3d_stream(head);
 }
 
 }  // namespace
@@ -82,12 +92,14 @@ void add_codec_options(CLI::App& command, Encode3dArgs& args) {
 int run_encode3d(const Encode3dArgs& args) {
   refuse_trace_to_output(args.trace, args.output);
   refuse_overwriting(args.input, args.output);
-  if (fs::is_regular_file(args.input) && is_mesh3d_stream(read_file(args.input)))
+  if (fs::is_regular_file(args.input) && starts_as_stream(args.input))
     throw usage_error(args.input + ": a mesh3d stream; encode3d takes frames (m4mesh decode3d turns a stream into frames)");
   const auto reading = std::chrono::steady_clock::now();
-  const auto [sequence, fps] = read_input(args);
-  console::detail("%s: %zu frames of %u vertices and %zu faces read in %.3f s", args.input.c_str(), sequence.frames.size(),
-                  sequence.vertex_count, sequence.faces.size(),
+  const auto [input, fps] = read_input(args);
+  const FrameSource& sequence = *input;
+  sequence.scan();
+  console::detail("%s: %u frames of %u vertices and %zu faces read in %.3f s", args.input.c_str(), sequence.frame_count(),
+                  sequence.vertex_count(), sequence.faces().size(),
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - reading).count());
   Trace trace(std::cout);
   Encode3dOptions options;
@@ -107,27 +119,46 @@ int run_encode3d(const Encode3dArgs& args) {
   std::tie(options.frame_rate_num, options.frame_rate_den) = frame_rate_fraction(fps);
   options.trace = args.trace ? &trace : nullptr;
   options.threads = args.threads;
-  // Codecs count their own steps: frames, or cpca-wpt's units.
-  console::Progress progress("encoding", sequence.frames.size());
+  // The stream goes to its file as it is written; the file appears when it is complete.
+  AtomicFile output(args.output);
+  options.output = [&](std::span<const uint8_t> bytes) { output.write({reinterpret_cast<const char*>(bytes.data()), bytes.size()}); };
+  options.restart_output = [&] { output.restart(); };
+  // Codecs count their own steps: frames.
+  console::Progress progress("encoding", sequence.frame_count());
   options.progress = [&](size_t done, size_t total) { progress.update(done, total); };
   const QualityTarget target{args.target_kg, args.target_psnr};
   const bool targeted = target.set();
   if (targeted) check_target(target);
   if (args.codec == "auto" && !targeted) throw usage_error("--codec auto needs --target-kg or --target-psnr");
   if (targeted && args.trace) throw usage_error("--trace and a quality target: trace the stream the search keeps");
-  const double bits = 8.0 / (static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size()));
+  const double vertex_frames_all = static_cast<double>(sequence.vertex_count()) * static_cast<double>(sequence.frame_count());
+  const double bits = 8.0 / vertex_frames_all;
+  std::vector<TargetTrial> trials;
   auto print_trial = [&](const TargetTrial& t) {
     progress.finish();
+    trials.push_back(t);
     say("  %-14s %-22s %10llu bytes %8.4f bpvf  KG %9.5f  PSNR %8.3f  %s", t.codec.c_str(), t.parameter.c_str(),
-                 static_cast<unsigned long long>(t.bytes), static_cast<double>(t.bytes) * bits, t.kg, t.psnr,
-                 t.meets ? "meets" : "misses");
+                 static_cast<unsigned long long>(t.bytes), t.bpvf(), t.kg, t.psnr, t.meets ? "meets" : "misses");
   };
   const auto start = std::chrono::steady_clock::now();
   Encode3dResult result;
   if (args.codec == "auto") {
-    say("every codec at the target:");
+    const bool sampled = static_cast<double>(sequence.vertex_count()) * sequence.frame_count() > static_cast<double>(kWholeSearchVertexFrames);
+    say(sampled ? "every codec at the target, on a sample of the frames, then the whole sequence with the smallest:" : "every codec at the target:");
     result = encode_smallest(sequence, options, target, print_trial, options.codec);
-    say("kept: %s", options.codec.c_str());
+    // Why: the codecs' best trials come first, one each, in registry order.
+    const TargetTrial* kept = nullptr;
+    const TargetTrial* next = nullptr;
+    for (size_t i = 0; i < std::min(trials.size(), codecs3d().size()); ++i)
+      if (trials[i].meets && trials[i].codec == options.codec)
+        kept = &trials[i];
+      else if (trials[i].meets && (!next || trials[i].bytes < next->bytes))
+        next = &trials[i];
+    std::string why;
+    if (kept) why = ": the smallest stream " + std::string(sampled ? "of the sample " : "") + "that meets the target (" + std::to_string(kept->bytes) + " bytes";
+    if (kept && next) why += "; next " + next->codec + ", " + std::to_string(next->bytes);
+    if (kept) why += ")";
+    say("kept: %s%s", options.codec.c_str(), why.c_str());
   } else if (targeted) {
     say("%s, searching its quality for the target:", args.codec.c_str());
     result = encode_to_target(sequence, options, target, print_trial);
@@ -136,13 +167,12 @@ int run_encode3d(const Encode3dArgs& args) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   progress.finish();
-  write_file_atomically(args.output, std::string_view(reinterpret_cast<const char*>(result.stream.data()), result.stream.size()));
-  const double vertex_frames = static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size() - 1);
+  output.commit();
+  const double vertex_frames = static_cast<double>(sequence.vertex_count()) * static_cast<double>(sequence.frame_count() - 1);
   char figure[160];
   // The whole stream's rate is rd's bpvf and metrics' stream rate.
-  std::snprintf(figure, sizeof figure, " (%.4f bits/vertex/frame)",
-                8.0 * static_cast<double>(result.stream.size()) / (static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size())));
-  std::string line = args.output + ": " + std::to_string(result.stream.size()) + " bytes" + figure;
+  std::snprintf(figure, sizeof figure, " (%.4f bits/vertex/frame)", static_cast<double>(result.stream_bytes) * bits);
+  std::string line = args.output + ": " + std::to_string(result.stream_bytes) + " bytes" + figure;
   for (uint32_t t = 0; t < kUnitTypes; ++t) {
     const uint64_t bytes = result.unit_bytes[t];
     if (bytes == 0) continue;
@@ -150,9 +180,9 @@ int run_encode3d(const Encode3dArgs& args) {
     line += figure;
     if (static_cast<UnitType>(t) == UnitType::kBaseMesh && result.unit_count[t] > 1)
       std::snprintf(figure, sizeof figure, " in %llu units (%.2f bits/vertex each)", static_cast<unsigned long long>(result.unit_count[t]),
-                    8.0 * static_cast<double>(bytes) / static_cast<double>(result.unit_count[t]) / sequence.vertex_count);
+                    8.0 * static_cast<double>(bytes) / static_cast<double>(result.unit_count[t]) / sequence.vertex_count());
     else if (static_cast<UnitType>(t) == UnitType::kBaseMesh)
-      std::snprintf(figure, sizeof figure, " (%.2f bits/vertex)", 8.0 * static_cast<double>(bytes) / sequence.vertex_count);
+      std::snprintf(figure, sizeof figure, " (%.2f bits/vertex)", 8.0 * static_cast<double>(bytes) / sequence.vertex_count());
     else if (static_cast<UnitType>(t) == UnitType::kFrame && vertex_frames > 0)
       std::snprintf(figure, sizeof figure, " (%.3f bits/vertex/frame)", 8.0 * static_cast<double>(bytes) / vertex_frames);
     else
@@ -170,9 +200,9 @@ int run_encode3d(const Encode3dArgs& args) {
     say("%s", figures.c_str());
   }
   // In millions, thousands or units: a slow codec's rate is far below a million.
-  const double rate = static_cast<double>(sequence.vertex_count) * static_cast<double>(sequence.frames.size()) / seconds;
+  const double rate = vertex_frames_all / seconds;
   const auto [scaled, unit] = rate >= 1e6 ? std::pair{rate / 1e6, "M "} : rate >= 1e3 ? std::pair{rate / 1e3, "k "} : std::pair{rate, ""};
-  say("encoded %zu frames of %u vertices in %.3f s (%.1f %svertices/s)", sequence.frames.size(), sequence.vertex_count, seconds, scaled, unit);
+  say("encoded %u frames of %u vertices in %.3f s (%.1f %svertices/s)", sequence.frame_count(), sequence.vertex_count(), seconds, scaled, unit);
   return 0;
 }
 

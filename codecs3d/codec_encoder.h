@@ -68,8 +68,9 @@ struct BaseMeshCoding {
 // A base mesh unit's data (docs/base_mesh.md): the faces, which must be in
 // coding order (the container encoder puts them so), and the grid
 // positions; `untraversed` as for plan_base_mesh (encoder/mesh3d/base_mesh.h).
-void write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions,
-                     const BaseMeshCoding& coding, std::span<const uint32_t> untraversed = {});
+// Returns the position_blend written.
+uint32_t write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions,
+                         const BaseMeshCoding& coding, std::span<const uint32_t> untraversed = {});
 
 // The bytes of a base mesh's parts as write_base_mesh codes them, each
 // alone in its own sections with fresh contexts (a figure, not a stream).

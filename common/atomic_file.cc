@@ -54,6 +54,12 @@ void AtomicFile::write(std::string_view data) {
     throw io_error(temp_path_.empty() ? path_ : temp_path_, "cannot write");
 }
 
+void AtomicFile::restart() {
+  if (temp_path_.empty()) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, path_ + ": what was written cannot be taken back");
+  file_ = std::freopen(temp_path_.c_str(), "wb", file_);
+  if (file_ == nullptr) throw io_error(temp_path_, "cannot create");
+}
+
 void AtomicFile::commit() {
   std::FILE* file = file_;
   file_ = nullptr;

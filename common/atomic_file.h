@@ -20,6 +20,9 @@ class AtomicFile {
   AtomicFile& operator=(const AtomicFile&) = delete;
 
   void write(std::string_view data);
+  // Drops what was written (an I/O error on standard output or a FIFO,
+  // which cannot take it back).
+  void restart();
   void commit();
 
  private:

@@ -80,29 +80,29 @@ PositionCoding::PositionCoding(std::span<const Triangle> faces, uint32_t vertex_
   if (version >= kPositionOrderVersion) order = PositionOrder(predictor, vertex_count).of(order);
 }
 
+PositionPrediction predict_position(const PositionCoding& coding, std::span<const uint32_t> place, uint32_t i, uint32_t v,
+                                    std::span<const IntPoint3> positions) {
+  const auto known = [&place, i](uint32_t u) { return place[u] < i; };
+  const auto value = [&](uint32_t u) { return positions[u]; };
+  PositionPrediction prediction;
+  prediction.channel = coding.predictor.predict(v, known, value, prediction.p);
+  // A parallelogram's corners are known neighbours: the mean exists.
+  if (prediction.channel == syntax::kParallelogramChannel) coding.predictor.neighbour_mean(v, known, value, prediction.mean);
+  return prediction;
+}
+
 template <class IO>
 void describe_positions(IO& io, syntax::BaseMeshContexts& contexts, const PositionCoding& coding, uint32_t blend,
                         std::vector<IntPoint3>& positions) {
   const uint32_t count = static_cast<uint32_t>(positions.size());
-  const MeshPredictor& predictor = coding.predictor;
   const std::vector<uint32_t>& order = coding.order;
   std::vector<uint32_t> place(count);
   for (uint32_t i = 0; i < count; ++i) place[order[i]] = i;
-  std::array<int64_t, 3> p{}, neighbours{};
+  std::array<int64_t, 3> p{};
   const IntPoint3* previous = nullptr;
   for (uint32_t i = 0; i < count; ++i) {
     const uint32_t v = order[i];
-    const auto known = [&place, i](uint32_t u) { return place[u] < i; };
-    const auto value = [&](uint32_t u) { return positions[u]; };
-    int channel = predictor.predict(v, known, value, p);
-    // A parallelogram's corners are known neighbours: the mean exists.
-    if (channel == syntax::kParallelogramChannel && blend > 0 && predictor.neighbour_mean(v, known, value, neighbours))
-      for (int a = 0; a < 3; ++a)
-        p[a] = floor_div((kPositionBlendUnit - blend) * p[a] + blend * neighbours[a], kPositionBlendUnit);
-    if (channel < 0) {
-      for (int a = 0; a < 3; ++a) p[a] = previous ? (*previous)[a] : 0;
-      channel = syntax::kNeighbourChannel;
-    }
+    const int channel = blended(predict_position(coding, place, i, v, positions), blend, previous, p);
     for (int a = 0; a < 3; ++a) {
       int32_t residual = 0;
       if constexpr (!IO::kReading) residual = static_cast<int32_t>(positions[v][a] - p[a]);
@@ -114,6 +114,26 @@ void describe_positions(IO& io, syntax::BaseMeshContexts& contexts, const Positi
     previous = &positions[v];
   }
 }
+
+template <class IO>
+void describe_predicted_positions(IO& io, syntax::BaseMeshContexts& contexts, const PositionCoding& coding, uint32_t blend,
+                                  std::span<const PositionPrediction> predictions, std::span<const IntPoint3> positions) {
+  std::array<int64_t, 3> p{};
+  const IntPoint3* previous = nullptr;
+  for (uint32_t i = 0; i < coding.order.size(); ++i) {
+    const uint32_t v = coding.order[i];
+    const int channel = blended(predictions[i], blend, previous, p);
+    for (int a = 0; a < 3; ++a) {
+      int32_t residual = static_cast<int32_t>(positions[v][a] - p[a]);
+      contexts.positions.describe(io, channel + a, residual, syntax::kPositionNames);
+    }
+    previous = &positions[v];
+  }
+}
+
+template void describe_predicted_positions<syntax::EntropyWriteIO<false>>(syntax::EntropyWriteIO<false>&, syntax::BaseMeshContexts&,
+                                                                         const PositionCoding&, uint32_t, std::span<const PositionPrediction>,
+                                                                         std::span<const IntPoint3>);
 
 #define M4MESH_BASE_MESH_IO(IO)                                                                                        \
   template void describe_vertex_order<IO>(IO&, syntax::BaseMeshContexts&, uint32_t, std::span<const Triangle>, std::vector<uint32_t>&); \

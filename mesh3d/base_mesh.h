@@ -115,11 +115,48 @@ struct PositionCoding {
   std::vector<uint32_t> order;  // the vertices in the order their positions are coded
 };
 
+// A vertex's position prediction from the known vertices, before the
+// blend: the channel and its prediction p (a parallelogram's, or the
+// known neighbours' mean; channel −1 without a known vertex), and with a
+// parallelogram the neighbours' mean too.
+struct PositionPrediction {
+  int channel = -1;
+  std::array<int64_t, 3> p{}, mean{};
+};
+
+// The prediction `blend` sixteenths of the way from the parallelogram to
+// the neighbours' mean; without a known vertex, the position coded just
+// before (`previous`, none for the first: 0) on the neighbour channel.
+// Returns the channel.
+inline int blended(const PositionPrediction& prediction, uint32_t blend, const IntPoint3* previous, std::array<int64_t, 3>& p) {
+  if (prediction.channel < 0) {
+    for (int a = 0; a < 3; ++a) p[a] = previous ? (*previous)[a] : 0;
+    return syntax::kNeighbourChannel;
+  }
+  p = prediction.p;
+  if (prediction.channel == syntax::kParallelogramChannel && blend > 0)
+    for (int a = 0; a < 3; ++a) p[a] = floor_div((kPositionBlendUnit - blend) * p[a] + blend * prediction.mean[a], kPositionBlendUnit);
+  return prediction.channel;
+}
+
+// Vertex v's prediction from the vertices whose place in the position
+// order (`place`) is below i.
+PositionPrediction predict_position(const PositionCoding& coding, std::span<const uint32_t> place, uint32_t i, uint32_t v,
+                                    std::span<const IntPoint3> positions);
+
 // The first frame's positions in the position order: each the residual
 // from the prediction by the vertices before it, a parallelogram
 // prediction blended with the known neighbours' mean by `blend` sixteenths.
 template <class IO>
 void describe_positions(IO& io, syntax::BaseMeshContexts& contexts, const PositionCoding& coding, uint32_t blend,
                         std::vector<IntPoint3>& positions);
+
+// The residuals of known positions (an encoder's) at `blend`, from their
+// predictions found once (predict_position of each in the position order):
+// what describe_positions writes, with fewer lookups when several blends
+// are tried.
+template <class IO>
+void describe_predicted_positions(IO& io, syntax::BaseMeshContexts& contexts, const PositionCoding& coding, uint32_t blend,
+                                  std::span<const PositionPrediction> predictions, std::span<const IntPoint3> positions);
 
 }  // namespace m4mesh

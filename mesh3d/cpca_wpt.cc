@@ -31,6 +31,23 @@ CpcaMeshPrediction::CpcaMeshPrediction(std::span<const Triangle> faces, std::spa
   }
 }
 
+void CpcaMeshPrediction::keep_fits() {
+  if (mean_shape_.empty() || !fits_.empty()) return;
+  fits_.resize(cluster_of_.size());
+  std::vector<uint32_t> points;
+  for (uint32_t cluster = 0; cluster < in_order_.size(); ++cluster)
+    for (const uint32_t v : in_order_[cluster]) {
+      const uint32_t rank = rank_[v];
+      KeptFit& fit = fits_[v];
+      fit.channel = affine_fit_support(predictor_, v, [&](uint32_t u) { return rank_[u] < rank && cluster_of_[u] == cluster; }, points);
+      fit.first = static_cast<uint32_t>(fit_points_.size());
+      fit.count = static_cast<uint32_t>(points.size());
+      fit_points_.insert(fit_points_.end(), points.begin(), points.end());
+      fit_q_.resize(fit_points_.size());
+      if (fit.channel >= 0) fit.shape = affine_fit_shape(mean_shape_, v, points, std::span(fit_q_.data() + fit.first, fit.count));
+    }
+}
+
 CpcaAnimation::CpcaAnimation(const CpcaHeader& header, std::span<const IntPoint3> mean_shape, uint32_t frames)
     : mean_shape_(mean_shape.begin(), mean_shape.end()), fraction_bits_(header.fraction_bits) {
   const double scale = 1.0 / static_cast<double>(uint64_t{1} << header.fraction_bits);

@@ -118,6 +118,11 @@ class CpcaMeshPrediction {
   CpcaMeshPrediction(std::span<const Triangle> faces, std::span<const uint32_t> coding_order, std::span<const uint32_t> cluster_of,
                      uint32_t cluster_count, uint32_t version, std::span<const IntPoint3> mean_shape);
 
+  // From version 7: every member's fit support and shape found once and
+  // kept (about 200 bytes a vertex), for an encoder that predicts the same
+  // members again and again; the predictions do not change.
+  void keep_fits();
+
   // A component over the mesh: D basis values per member (unit_kind 2:
   // D = 3, x, y, z; unit_kind 3: D = 1) at basis[D·i + a], i the member's
   // slot in the cluster's index order, for the members in member order:
@@ -186,10 +191,24 @@ class CpcaMeshPrediction {
       return values;
     };
     if (mean_shape_.empty()) return predictor_.predict(v, known, value, p);
+    if (!fits_.empty()) {
+      const KeptFit& fit = fits_[v];
+      const std::span<const uint32_t> support(fit_points_.data() + fit.first, fit.count);
+      if (fit.channel >= 0) affine_fit_values<D>(fit.shape, support, std::span(fit_q_.data() + fit.first, fit.count), value, p);
+      return fit.channel;
+    }
     const int channel = affine_fit_support(predictor_, v, known, points);
     if (channel >= 0) affine_fit(mean_shape_, v, points, value, p);
     return channel;
   }
+
+  // A member's fit as keep_fits() found it: its support is
+  // fit_points_[first … first + count − 1], their differences fit_q_.
+  struct KeptFit {
+    int channel = -1;
+    uint32_t first = 0, count = 0;
+    AffineFitShape shape;
+  };
 
   MeshPredictor predictor_;
   std::vector<IntPoint3> mean_shape_;                  // from version 7, else empty
@@ -197,6 +216,9 @@ class CpcaMeshPrediction {
   std::vector<uint32_t> slot_;                         // per vertex: its index among its cluster's members
   std::vector<uint32_t> cluster_of_;
   std::vector<std::vector<uint32_t>> in_order_;        // per cluster: its members in member order
+  std::vector<KeptFit> fits_;                          // per vertex, with keep_fits()
+  std::vector<uint32_t> fit_points_;
+  std::vector<std::array<int32_t, 3>> fit_q_;
 };
 
 // One refinement's symbols with the unit's coders: a start's translation

@@ -1,4 +1,5 @@
 // bfs3d (codec_id 1) decoding: breadth-first motion prediction (docs/codec_bfs3d.md).
+#include "common/parallel.h"
 #include "decoder/mesh3d/grid_frame_decoder.h"
 #include "mesh3d/bfs3d.h"
 #include "syntax/mesh3d/bfs3d.h"
@@ -7,6 +8,9 @@
 namespace m4mesh {
 
 namespace {
+
+// Frames of at least this many vertices decode their three axes on several threads.
+constexpr size_t kParallelAxesVertices = 4096;
 
 // One axis's residuals from its own sections. The state stays local so
 // that the compiler keeps it in registers.
@@ -42,7 +46,7 @@ class Bfs3dDecoder final : public GridFrameDecoder {
     Bfs3dFrame frame;
     syntax::describe(io, frame);
     const uint8_t* payload = io.reader().data();
-    for (int axis = 0; axis < 3; ++axis) {
+    const auto decode = [&](size_t axis) {
       const syntax::SectionPlace place{syntax::kAxisBins[axis], syntax::kAxisRaw[axis],
                                        8 * static_cast<uint64_t>(frame.bins[axis].data() - payload),
                                        8 * static_cast<uint64_t>(frame.raw[axis].data() - payload), io.plane(),
@@ -51,7 +55,13 @@ class Bfs3dDecoder final : public GridFrameDecoder {
         decode_axis<true>(frame.bins[axis], frame.raw[axis], place, trace_, residuals_[axis]);
       else
         decode_axis<false>(frame.bins[axis], frame.raw[axis], place, nullptr, residuals_[axis]);
-    }
+    };
+    // The axes' sections are independent: a large frame decodes them side
+    // by side (the first error in axis order is the one reported).
+    if (trace_ || order_.node.size() < kParallelAxesVertices)
+      for (size_t axis = 0; axis < 3; ++axis) decode(axis);
+    else
+      parallel_for(3, 0, decode);
     const bool parallelogram = header_.prediction == kPredictParallelogram;
     for (size_t k = 0; k < order_.node.size(); ++k) {
       const NodeIndex n = order_.node[k];

@@ -26,6 +26,13 @@ Error located(const Error& e, uint64_t start_code_byte, int64_t frame, int64_t u
 
 Error in_object_payload(const Error& e) { return located(e, 0, kNoPlane, kNoUnit); }
 
+namespace {
+
+// Frame buffers kept for reuse once their frame is handed out.
+constexpr size_t kSpareFrames = 64;
+
+}  // namespace
+
 Mesh3dDecoder::Mesh3dDecoder(std::span<const uint8_t> stream, const Decode3dOptions& options)
     : Mesh3dDecoder(ContainerSource(stream), options) {}
 
@@ -184,6 +191,10 @@ void Mesh3dDecoder::decode_unit(size_t index) {
 void Mesh3dDecoder::release_before(uint32_t first_held) {
   for (uint32_t f = held_from_; f < first_held; ++f) {
     std::vector<Float3>& slot = released_[f];
+    if (!spare_.empty()) {
+      slot = std::move(spare_.back());
+      spare_.pop_back();
+    }
     slot.resize(header_.vertex_count);
     codec_->frame(f, slot);
     unit_.released.push_back(f);
@@ -320,7 +331,8 @@ std::optional<bool> Mesh3dDecoder::hash_result(uint32_t frame) const {
 bool Mesh3dDecoder::next_frame() {
   for (;;) {
     if (auto it = ready_.find(next_display_); it != ready_.end()) {
-      spare_.push_back(std::move(positions_));
+      // A frame's buffer is kept for the frames to come, as many as one unit releases at most.
+      if (spare_.size() < kSpareFrames) spare_.push_back(std::move(positions_));
       positions_ = std::move(it->second);
       ready_.erase(it);
       frame_index_ = next_display_++;

@@ -152,22 +152,38 @@ size_t vertex_order_bytes(uint32_t method, const Connectivity& c, uint32_t versi
 }
 
 // The bytes the positions take with a blend, alone.
-size_t position_bytes(const PositionCoding& position_coding, const std::vector<IntPoint3>& coded, uint32_t blend, uint32_t version) {
+// The bytes of the positions' residuals at `blend`, from their predictions.
+size_t position_bytes(const PositionCoding& position_coding, std::span<const PositionPrediction> predictions,
+                       const std::vector<IntPoint3>& coded, uint32_t blend, uint32_t version) {
   syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.version = version});
   syntax::BaseMeshContexts contexts;
-  std::vector<IntPoint3> positions = coded;
-  describe_positions(symbols, contexts, position_coding, blend, positions);
+  describe_predicted_positions(symbols, contexts, position_coding, blend, predictions, coded);
   return symbols.finish_bins().size() + symbols.finish_raw().size();
+}
+
+// Every vertex's prediction in the position order, found once for the blends tried.
+std::vector<PositionPrediction> position_predictions(const PositionCoding& position_coding, const std::vector<IntPoint3>& coded) {
+  const uint32_t count = static_cast<uint32_t>(coded.size());
+  std::vector<uint32_t> place(count);
+  for (uint32_t i = 0; i < count; ++i) place[position_coding.order[i]] = i;
+  std::vector<PositionPrediction> predictions(count);
+  for (uint32_t i = 0; i < count; ++i) predictions[i] = predict_position(position_coding, place, i, position_coding.order[i], coded);
+  return predictions;
+}
+
+size_t position_bytes(const PositionCoding& position_coding, const std::vector<IntPoint3>& coded, uint32_t blend, uint32_t version) {
+  return position_bytes(position_coding, position_predictions(position_coding, coded), coded, blend, version);
 }
 
 // The coding's blend, else the smallest of 0 … 16 (the lowest of equals).
 uint32_t chosen_blend(const BaseMeshCoding& coding, const PositionCoding& position_coding, const std::vector<IntPoint3>& coded) {
   if (coding.version < 2) return 0;
   if (coding.position_blend) return *coding.position_blend;
+  const std::vector<PositionPrediction> predictions = position_predictions(position_coding, coded);
   uint32_t best = 0;
-  size_t best_bytes = position_bytes(position_coding, coded, 0, coding.version);
+  size_t best_bytes = position_bytes(position_coding, predictions, coded, 0, coding.version);
   for (uint32_t blend = 1; blend <= kPositionBlendUnit; ++blend)
-    if (const size_t bytes = position_bytes(position_coding, coded, blend, coding.version); bytes < best_bytes) {
+    if (const size_t bytes = position_bytes(position_coding, predictions, coded, blend, coding.version); bytes < best_bytes) {
       best = blend;
       best_bytes = bytes;
     }
@@ -199,8 +215,8 @@ std::vector<IntPoint3> in_coding_numbers(std::span<const IntPoint3> positions, c
 }
 
 template <class IO>
-void write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> faces, std::span<const IntPoint3> positions,
-                const BaseMeshCoding& coding, std::span<const uint32_t> untraversed) {
+uint32_t write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> faces, std::span<const IntPoint3> positions,
+                    const BaseMeshCoding& coding, std::span<const uint32_t> untraversed) {
   const uint32_t vertex_count = static_cast<uint32_t>(positions.size());
   syntax::BaseMeshContexts contexts;
   Connectivity c = write_connectivity(symbols, contexts, faces, vertex_count, untraversed);
@@ -220,6 +236,7 @@ void write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> face
   data.position_blend = chosen_blend(coding, position_coding, coded);
   describe_positions(symbols, contexts, position_coding, data.position_blend, coded);
   symbols.finish(io, data);
+  return data.position_blend;
 }
 
 }  // namespace
@@ -285,16 +302,15 @@ BaseMeshCoding BaseMeshCoding::of(std::optional<uint32_t> version, std::optional
   return {*version, *version == 1 ? std::optional<uint32_t>(0) : position_blend};
 }
 
-void write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions,
-                     const BaseMeshCoding& coding, std::span<const uint32_t> untraversed) {
+uint32_t write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions,
+                         const BaseMeshCoding& coding, std::span<const uint32_t> untraversed) {
   const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane(), coding.version};
   if (io.trace()) {
     syntax::EntropyWriteIO<true> symbols(place, io.trace());
-    write_data(io, symbols, faces, positions, coding, untraversed);
-  } else {
-    syntax::EntropyWriteIO<false> symbols(place);
-    write_data(io, symbols, faces, positions, coding, untraversed);
+    return write_data(io, symbols, faces, positions, coding, untraversed);
   }
+  syntax::EntropyWriteIO<false> symbols(place);
+  return write_data(io, symbols, faces, positions, coding, untraversed);
 }
 
 }  // namespace m4mesh

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -42,12 +43,17 @@ class CodecSettings {
   const std::string& text(const std::string& name) const;
   const BaseMeshCoding& base_mesh() const { return base_mesh_; }
   unsigned threads() const { return threads_; }
+  // The frames' vertices in the base mesh's coding order, when the
+  // container encoder has planned it (else empty).
+  std::span<const uint32_t> coding_order() const { return coding_order_; }
+  void set_coding_order(std::span<const uint32_t> order) { coding_order_ = order; }
 
  private:
   const std::string& value(const std::string& name) const;
   std::map<std::string, std::string> values_;
   BaseMeshCoding base_mesh_;
   unsigned threads_;
+  std::span<const uint32_t> coding_order_;
 };
 
 // The options every frame-by-frame grid codec declares.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <optional>
 
 #include "codecs3d/registry.h"
@@ -128,7 +129,11 @@ Encode3dResult encode_mesh3d(const FrameSource& input, const Encode3dOptions& op
   const Codec3d& codec = codec3d_by_name(options.codec);
   const CodecEncoding& encoding = codec_encoding(codec);
   const BaseMeshCoding base_mesh = BaseMeshCoding::of(options.version, options.position_blend);
-  const CodecSettings settings(codec.name, encoding.options, options.codec_options, base_mesh, options.threads);
+  CodecSettings settings(codec.name, encoding.options, options.codec_options, base_mesh, options.threads);
+  // The codec's frames in coding order: the plan's, or with --reorder their own numbers.
+  std::vector<uint32_t> coding_order = plan.input_of;
+  if (options.reorder) std::iota(coding_order.begin(), coding_order.end(), 0u);
+  settings.set_coding_order(coding_order);
   std::unique_ptr<CodecEncoder3d> encoder = encoding.make_encoder(s, settings);
 
   ContainerWriter container(options.output);

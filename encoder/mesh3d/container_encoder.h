@@ -34,8 +34,10 @@ struct Encode3dOptions {
   std::optional<uint32_t> version;         // the container's; none: 1 for a blend of 0, else the latest
   std::function<void(size_t done, size_t total)> progress;
   unsigned threads = 0;  // a search's trials at once (--codec auto, a codec's own search); 0: every core
-  // The stream's bytes as they are written (then not kept in the result).
+  // The stream's bytes as they are written (then not kept in the result),
+  // and how to drop them when a search codes the sequence again.
   std::function<void(std::span<const uint8_t>)> output;
+  std::function<void()> restart_output;
 };
 
 struct Encode3dResult {

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <map>
+#include <mutex>
 #include <utility>
 #include <optional>
 
@@ -20,6 +22,7 @@
 #include "encoder/mesh3d/cpca_wpt_operators.h"
 #include "encoder/mesh3d/cpca_wpt_options.h"
 #include "encoder/mesh3d/cpca_wpt_plan.h"
+#include "encoder/mesh3d/quality_target.h"
 #include "mesh3d/cpca_wpt.h"
 #include "mesh3d/metrics.h"
 #include "mesh3d/quantization.h"
@@ -37,6 +40,10 @@ using namespace cpca_wpt;
 // same KG on the cow and the horse (the basis is predicted over the mesh,
 // the coefficients are not).
 constexpr int kTrajectoryBasisFiner = 1;
+// Components are computed every one for Gram matrices up to this size,
+// else the leading kFirstComponents at first, twice as many each time a
+// plan uses them up (an eigen-decomposition costs the size cubed).
+constexpr size_t kAllComponentsSize = 192, kFirstComponents = 24;
 // A trajectory basis value's residual rounds to the one nearer 0 unless its
 // fraction reaches 0.55: the smaller residual saves more bits than its
 // error costs (FAMC and tune clips, docs/rate_distortion.md).
@@ -102,6 +109,31 @@ struct Carried {
   }
 };
 
+// The bytes of the base mesh unit per mean shape bits (half bits), found
+// once for a search's candidates, side by side.
+// The bytes and the positions' blend of a base mesh unit.
+struct BaseMeshUnit {
+  uint64_t bytes = 0;
+  uint32_t position_blend = 0;
+};
+
+class BaseMeshSizes {
+ public:
+  BaseMeshUnit of(int half_bits, const std::function<BaseMeshUnit()>& unit) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (auto it = units_.find(half_bits); it != units_.end()) return it->second;
+    }
+    const BaseMeshUnit written = unit();
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return units_.emplace(half_bits, written).first->second;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<int, BaseMeshUnit> units_;
+};
+
 // A component a segment sent, which the next one may continue: its basis
 // as coded, and its coefficients' last values.
 struct ListedBasis {
@@ -117,7 +149,7 @@ class CpcaEncoder final : public CodecEncoder3d {
   // the base mesh's vertices in coding order. The mean shape (of the first
   // segment) has a grid of 2^(half_bits / 2) − 1 steps.
   CpcaEncoder(const MeshSequence& first, uint32_t frame_count, uint32_t segment_frames, const Options& options, int half_bits,
-              const Clustering& clustering, bool trajectories, std::span<const uint32_t> coding_order)
+              const Clustering& clustering, bool trajectories, std::span<const uint32_t> coding_order, BaseMeshSizes* base_mesh_sizes = nullptr)
       : components_(options.components),
         max_bytes_(options.max_bytes),
         group_bytes_(options.group_bytes),
@@ -128,6 +160,7 @@ class CpcaEncoder final : public CodecEncoder3d {
         trajectories_(trajectories),
         noise_(options.noise),
         base_mesh_(options.base_mesh),
+        threads_(options.threads),
         frame_count_(frame_count) {
     const MeshSequence& s = first;
     std::vector<Vec3> mean(s.vertex_count);
@@ -152,7 +185,7 @@ class CpcaEncoder final : public CodecEncoder3d {
         throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "the mean of vertex " + std::to_string(v) + " lies outside the grid");
     requested_clusters_ = clustering.requested;
     kmeans_seconds_ = clustering.seconds;
-    set_up(s, clustering.cluster_of, coding_order);
+    set_up(s, clustering.cluster_of, coding_order, base_mesh_sizes);
     prepare(s, 0, fixed_bytes_, segment_limit(fixed_bytes_, 0, static_cast<uint32_t>(s.frames.size())));
     first_segment_bytes_ = plan_.bytes;
   }
@@ -242,14 +275,16 @@ class CpcaEncoder final : public CodecEncoder3d {
 
   // What the stream fixes once: the clusters, the prediction over the
   // mesh, the cluster map, the bytes before the first refinement.
-  void set_up(const MeshSequence& s, const std::vector<uint32_t>& cluster_of, std::span<const uint32_t> coding_order) {
+  void set_up(const MeshSequence& s, const std::vector<uint32_t>& cluster_of, std::span<const uint32_t> coding_order,
+              BaseMeshSizes* base_mesh_sizes) {
     cluster_of_ = cluster_of;
     header_.cluster_count = *std::max_element(cluster_of_.begin(), cluster_of_.end()) + 1;
     members_ = cpca_members(cluster_of_, header_.cluster_count);
     faces_ = s.faces;
     mesh_.emplace(faces_, coding_order, cluster_of_, header_.cluster_count, header_.version, mean_);
+    mesh_->keep_fits();
     choose_cluster_map();
-    fixed_bytes_ = fixed_bytes(s);
+    fixed_bytes_ = fixed_bytes(s, base_mesh_sizes);
   }
 
   // A segment's analysis, then the plan of the noise step given, or of the
@@ -263,53 +298,81 @@ class CpcaEncoder final : public CodecEncoder3d {
     // A basis serves the segments left (continued), each adding its quantization error: finer by √ of their count.
     const double segments_left = std::ceil(static_cast<double>(frame_count_ - first) / header_.segment_frames);
     reuse_finer_ = static_cast<int>(std::lround(std::log2(segments_left)));
-    translations_.clear();
-    components_of_.clear();
-    continued_.clear();
+    translations_.assign(header_.cluster_count, {});
+    components_of_.assign(header_.cluster_count, {});
+    continued_.assign(header_.cluster_count, {});
+    asked_.assign(header_.cluster_count, 0);
     mean_error_.clear();
     auto start = std::chrono::steady_clock::now();
-    for (uint32_t c = 0; c < header_.cluster_count; ++c) {
-      Eigen::MatrixXd d = motion(s, c);
-      translations_.push_back(translation_of(d));
-      for (Eigen::Index row = 0; row < d.rows(); ++row) d.row(row) -= translations_[c](Eigen::seqN(row % 3, d.cols(), 3)).transpose();
-      Eigen::MatrixXd m = trajectories_ ? as_trajectories(d) : d;
-      continued_.push_back(continue_listed(c, m));
-      components_of_.push_back(principal_components(m, components_));
-    }
+    parallel_for(header_.cluster_count, threads_, [&](size_t c) { analyze(s, static_cast<uint32_t>(c)); });
     svd_seconds_ += seconds_since(start);
     start = std::chrono::steady_clock::now();
     const CpcaAnimation mean_only(header_, mean_, static_cast<uint32_t>(s.frames.size()));
     for (uint32_t c = 0; c < header_.cluster_count; ++c) mean_error_.push_back(squared_error(s, mean_only, c));
     spread_ = squared_spread(s);
-    int q = noise_.value_or(kDefaultNoise);
+    int q = noise_.value_or(first > 0 ? plan_.noise : kDefaultNoise);
     if (!noise_ && (max_bytes_ > 0 || target_kg_ > 0)) {
-      // From the default, towards the better neighbour while it improves
-      // (plans from estimated gains), in whole steps, then a half step
-      // either side.
-      Plan best = plan_for(s, q, false);
+      // From the default (a later segment: the previous segment's step),
+      // towards the better neighbour while it improves (plans from
+      // estimated gains), in whole steps (a later segment: none), then a
+      // half step either side.
+      Plan best = plan(s, q, false);
       for (const int direction : {2, -2}) {
+        if (first > 0) break;
         for (int next = q + direction; next >= kMinNoise && next <= kMaxNoise; next += direction) {
-          Plan plan = plan_for(s, next, false);
-          if (!better(plan, best)) break;
-          best = std::move(plan);
+          Plan tried = plan(s, next, false);
+          if (!better(tried, best)) break;
+          best = std::move(tried);
         }
         if (best.noise != q) break;
       }
       q = best.noise;
       for (const int next : {q - 1, q + 1}) {
         if (next < kMinNoise || next > kMaxNoise) continue;
-        Plan plan = plan_for(s, next, false);
-        if (better(plan, best)) best = std::move(plan);
+        Plan tried = plan(s, next, false);
+        if (better(tried, best)) best = std::move(tried);
       }
       q = best.noise;
     }
-    plan_ = plan_for(s, q, true);
+    plan_ = plan(s, q, true);
     if (target_kg_ > 0) {
       reach_target(s);
       plan_.bytes = coded_bytes();
     }
     computed_total_ += plan_.operators.size();
     order_seconds_ += seconds_since(start);
+  }
+
+  // Cluster c's translation, its components continuing the previous
+  // segment's, and the leading components of what they leave: asked_[c]
+  // of them, first every one where that is cheap (Gram matrices up to
+  // kAllComponentsSize), else the first kFirstComponents, twice as many
+  // each time a plan runs out of them (plan()).
+  void analyze(const MeshSequence& s, uint32_t c) {
+    Eigen::MatrixXd d = motion(s, c);
+    translations_[c] = translation_of(d);
+    for (Eigen::Index row = 0; row < d.rows(); ++row) d.row(row) -= translations_[c](Eigen::seqN(row % 3, d.cols(), 3)).transpose();
+    Eigen::MatrixXd m = trajectories_ ? as_trajectories(d) : d;
+    continued_[c] = continue_listed(c, m);
+    const size_t size = static_cast<size_t>(std::min(m.rows(), m.cols()));
+    if (asked_[c] == 0) asked_[c] = size <= kAllComponentsSize ? components_ : std::min(components_, kFirstComponents);
+    components_of_[c] = principal_components(m, asked_[c]);
+  }
+
+  // plan_for, with more components for the clusters whose chain of
+  // components the plan used up while more may follow.
+  Plan plan(const MeshSequence& s, int q, bool exact) {
+    for (;;) {
+      Plan p = plan_for(s, q, exact);
+      std::vector<uint32_t> more;
+      for (uint32_t c = 0; c < header_.cluster_count; ++c)
+        if (p.chains[c] == components_of_[c].size() && components_of_[c].size() == asked_[c] && asked_[c] < components_) {
+          asked_[c] = std::min(components_, 2 * asked_[c]);
+          more.push_back(c);
+        }
+      if (more.empty()) return p;
+      parallel_for(more.size(), threads_, [&](size_t i) { analyze(s, more[i]); });
+    }
   }
 
   // The segment's units: the plan's operators while the stream stays
@@ -398,16 +461,19 @@ class CpcaEncoder final : public CodecEncoder3d {
   Plan plan_for(const MeshSequence& s, int q, bool exact) const {
     Plan plan;
     plan.noise = q;
+    plan.chains.assign(header_.cluster_count, 0);
     std::optional<CpcaAnimation> animation;
     if (exact) animation.emplace(header_, mean_, static_cast<uint32_t>(s.frames.size()));
-    std::vector<std::vector<size_t>> per_cluster(header_.cluster_count);
-    for (uint32_t c = 0; c < header_.cluster_count; ++c) {
+    // Each cluster's chain on a thread (a cluster changes its own members' positions alone), then joined in cluster order.
+    std::vector<std::vector<Operator>> sequences(header_.cluster_count);
+    parallel_for(header_.cluster_count, threads_, [&](size_t index) {
+      const uint32_t c = static_cast<uint32_t>(index);
       // The start, then the components while each removes error; a start
       // that would add error moves nothing (all zeros); a cluster whose
       // start and first component remove none is left as it is.
       const size_t members = members_[c].size();
       double error = mean_error_[c];
-      std::vector<Operator> sequence;
+      std::vector<Operator>& sequence = sequences[c];
       auto measure = [&](Operator& op, double estimate) {
         if (animation) {
           apply(*animation, members_[c], op);
@@ -464,17 +530,25 @@ class CpcaEncoder final : public CodecEncoder3d {
         measure(op, estimated_gain(component, op));
         if (!(op.gain > 0)) break;  // quantization ate the component: the later ones are smaller still
         sequence.push_back(std::move(op));
+        ++plan.chains[c];
       }
-      if (sequence.size() == 1 && !(sequence[0].gain > 0)) continue;
+      if (sequence.size() == 1 && !(sequence[0].gain > 0)) {
+        sequence.clear();
+        return;
+      }
       for (Operator& op : sequence) {
         if (op.kind == kCpcaComponent)
           choose_kind(op);
         else if (op.kind != kCpcaContinued)
           op.bytes = operator_bytes(op);
+      }
+    });
+    std::vector<std::vector<size_t>> per_cluster(header_.cluster_count);
+    for (uint32_t c = 0; c < header_.cluster_count; ++c)
+      for (Operator& op : sequences[c]) {
         per_cluster[c].push_back(plan.operators.size());
         plan.operators.push_back(std::move(op));
       }
-    }
     plan.order = round_robin_ ? round_robin(per_cluster) : by_weight(plan.operators, per_cluster);
     double error = 0;
     for (double e : mean_error_) error += e;
@@ -633,16 +707,25 @@ class CpcaEncoder final : public CodecEncoder3d {
 
   // The bytes before the first refinement unit: the object (its frame rate
   // assumed 25/1, which may change the escaping by a byte) and the base mesh.
-  uint64_t fixed_bytes(const MeshSequence& s) {
-    BitWriter object, base;
-    syntax::WriteIO object_io(object), base_io(base);
+  // The base mesh unit depends on the mean shape's bits alone: a search's
+  // candidates share it. Its blend, once chosen, is the one encode() writes.
+  uint64_t fixed_bytes(const MeshSequence& s, BaseMeshSizes* shared) {
+    BitWriter object;
+    syntax::WriteIO object_io(object);
     ObjectHeader header{base_mesh_.version, 4, s.vertex_count, static_cast<uint32_t>(s.faces.size()), frame_count_, 25, 1};
     syntax::describe(object_io, header);
     write_header(object_io);
-    UnitHeader unit{static_cast<uint32_t>(UnitType::kBaseMesh), 0};
-    syntax::describe(base_io, unit);
-    write_base_mesh(base_io, s.faces, mean_, base_mesh_);
-    return ContainerWriter::unit_size(object.bytes()) + ContainerWriter::unit_size(base.bytes());
+    const auto base_mesh_unit = [&] {
+      BitWriter base;
+      syntax::WriteIO base_io(base);
+      UnitHeader unit{static_cast<uint32_t>(UnitType::kBaseMesh), 0};
+      syntax::describe(base_io, unit);
+      const uint32_t blend = write_base_mesh(base_io, s.faces, mean_, base_mesh_);
+      return BaseMeshUnit{ContainerWriter::unit_size(base.bytes()), blend};
+    };
+    const BaseMeshUnit base = shared ? shared->of(half_bits_, base_mesh_unit) : base_mesh_unit();
+    if (base_mesh_.version >= 2) base_mesh_.position_blend = base.position_blend;
+    return ContainerWriter::unit_size(object.bytes()) + base.bytes;
   }
 
   // The KG error of the decoder's output of the segment after the plan's
@@ -674,6 +757,7 @@ class CpcaEncoder final : public CodecEncoder3d {
   bool trajectories_;  // components of the members' trajectories (unit_kind 3), else of their shapes
   std::optional<int> noise_;  // log2 of the noise step in half steps; none: auto
   BaseMeshCoding base_mesh_;
+  unsigned threads_;  // clusters analysed and planned at once (0: every core)
   uint32_t frame_count_;
   Grid grid_;
   CpcaHeader header_;
@@ -694,6 +778,7 @@ class CpcaEncoder final : public CodecEncoder3d {
   std::vector<Translation> translations_;
   std::vector<std::vector<Component>> continued_;
   std::vector<std::vector<Component>> components_of_;
+  std::vector<size_t> asked_;       // per cluster, the components asked of its analysis
   std::vector<double> mean_error_;  // per cluster, of the mean shape alone
   double spread_ = 0;
   uint64_t segment_start_bytes_ = 0, limit_ = 0;
@@ -720,16 +805,33 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const FrameSource& source,
   const bool target = options.target_kg > 0;
   const bool bits_auto = !options.bits;
   const int half_bits = 2 * options.bits.value_or(kDefaultBits);
+  // A large first segment is searched on its first frames (at least 16),
+  // with fewer candidates (the trajectory model, whole bits): they compare
+  // their plans of those frames, and the one kept codes the segment.
+  const uint32_t searched = static_cast<uint32_t>(std::clamp<uint64_t>(kWholeSearchVertexFrames / sequence.vertex_count,
+                                                                         std::min<size_t>(16, sequence.frames.size()), sequence.frames.size()));
+  const bool windowed = searched < sequence.frames.size();
   const std::vector<int> cluster_counts = options.clusters ? std::vector<int>{*options.clusters}
-                                          : target         ? std::vector<int>{5, 10, 20, 40}
-                                                           : std::vector<int>{kPaperClusters};
-  const std::vector<bool> trajectory_models = options.model == "shape" ? std::vector<bool>{false}
-                                              : options.model == "trajectory" || !target ? std::vector<bool>{true}
-                                                                                          : std::vector<bool>{true, false};
-  const std::vector<uint32_t> coding_order = plan_base_mesh(sequence.faces, sequence.vertex_count, false).input_of;
+                                          : target && windowed ? std::vector<int>{10, 20, 40}
+                                          : target             ? std::vector<int>{5, 10, 20, 40}
+                                                               : std::vector<int>{kPaperClusters};
+  const std::vector<bool> trajectory_models = options.model == "shape"                                  ? std::vector<bool>{false}
+                                              : options.model == "trajectory" || !target || windowed ? std::vector<bool>{true}
+                                                                                                      : std::vector<bool>{true, false};
+  const std::vector<uint32_t> coding_order = settings.coding_order().empty()
+                                                 ? plan_base_mesh(sequence.faces, sequence.vertex_count, false).input_of
+                                                 : std::vector<uint32_t>(settings.coding_order().begin(), settings.coding_order().end());
   if (cluster_counts.size() == 1 && trajectory_models.size() == 1 && !(bits_auto && target))
     return std::make_unique<CpcaEncoder>(sequence, frame_count, segment_frames, options, half_bits, clustering(sequence, cluster_counts[0]),
                                          trajectory_models[0], coding_order);
+  MeshSequence window;
+  if (windowed) {
+    window.vertex_count = sequence.vertex_count;
+    window.faces = sequence.faces;
+    window.frames.assign(sequence.frames.begin(), sequence.frames.begin() + searched);
+  }
+  const MeshSequence& candidate_frames = windowed ? window : sequence;
+  BaseMeshSizes base_mesh_sizes;
   // The cluster count and model whose plan reaches the target in the fewest
   // bytes, then the counts √2 either side of it, then the mean shape's bits
   // from 12 towards the smaller plan, then half a bit either side, then the
@@ -748,7 +850,7 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const FrameSource& source,
     for (const Candidate& c : candidates)
       if (!clusterings.contains(c.clusters) && std::find(counts.begin(), counts.end(), c.clusters) == counts.end()) counts.push_back(c.clusters);
     std::vector<Clustering> computed(counts.size());
-    parallel_for(counts.size(), settings.threads(), [&](size_t i) { computed[i] = clustering(sequence, counts[i]); });
+    parallel_for(counts.size(), settings.threads(), [&](size_t i) { computed[i] = clustering(candidate_frames, counts[i]); });
     for (size_t i = 0; i < counts.size(); ++i) clusterings[counts[i]] = std::move(computed[i]);
   };
   // Whether one of `candidates` beat the best so far (that one is kept).
@@ -761,8 +863,9 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const FrameSource& source,
         candidates.size(), settings.threads(),
         [&](size_t i) {
           try {
-            built[i] = std::make_unique<CpcaEncoder>(sequence, frame_count, segment_frames, options, candidates[i].half_bits,
-                                                     clusterings.at(candidates[i].clusters), candidates[i].trajectories, coding_order);
+            built[i] = std::make_unique<CpcaEncoder>(candidate_frames, frame_count, segment_frames, options, candidates[i].half_bits,
+                                                     clusterings.at(candidates[i].clusters), candidates[i].trajectories, coding_order,
+                                                     &base_mesh_sizes);
           } catch (const Error& e) {
             if (e.kind() != ErrorKind::kUsage) throw;
             failed[i] = e;
@@ -799,10 +902,10 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const FrameSource& source,
     const int whole = best->half_bits();
     std::vector<Candidate> halves;
     for (const int h : {whole - 1, whole + 1})
-      if (h >= 2 * kMinBits && h <= 2 * kMaxBits) halves.push_back({h, clusters, trajectories});
+      if (h >= 2 * kMinBits && h <= 2 * kMaxBits && !windowed) halves.push_back({h, clusters, trajectories});
     try_all(halves);
   }
-  if (cluster_counts.size() > 1) {
+  if (cluster_counts.size() > 1 && !windowed) {
     const int h = best->half_bits();
     for (const int percent : {119, 109}) {
       const int c = best->clusters();
@@ -812,7 +915,9 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const FrameSource& source,
       try_all(near);
     }
   }
-  return best;
+  if (searched == sequence.frames.size()) return best;
+  return std::make_unique<CpcaEncoder>(sequence, frame_count, segment_frames, options, best->half_bits(), clusterings.at(best->clusters()),
+                                       best->trajectory_model(), coding_order);
 }
 
 }  // namespace m4mesh

@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <chrono>
 #include <cstdint>
+#include <cstddef>
 #include <vector>
 
 #include "mesh3d/sequence.h"
@@ -15,7 +16,12 @@ namespace m4mesh::cpca_wpt {
 double seconds_since(std::chrono::steady_clock::time_point start);
 
 // Vertex v's trajectory is row v: x, y, z of frame 0, then of frame 1, …
-Eigen::MatrixXd trajectories(const MeshSequence& s);
+// (at most `most_frames` frames, evenly spaced).
+Eigen::MatrixXd trajectories(const MeshSequence& s, size_t most_frames = SIZE_MAX);
+
+// Sequences of more vertex-frames than this cluster their vertices by
+// trajectories of fewer frames (16, or as many as this holds), evenly spaced.
+inline constexpr uint64_t kClusteringVertexFrames = uint64_t{1} << 20;
 
 // k-means on the trajectories, deterministic: the first center is the
 // trajectory farthest from the mean, each next the one farthest from the
@@ -24,8 +30,9 @@ Eigen::MatrixXd trajectories(const MeshSequence& s);
 // numbered by their first vertex; none is empty.
 std::vector<uint32_t> cluster_trajectories(const Eigen::MatrixXd& x, int k);
 
-// The clusters of k-means asked for `requested` clusters, and its seconds:
-// computed once per count and shared by a search's candidates.
+// The clusters of k-means asked for `requested` clusters (on trajectories
+// of at most kClusteringVertexFrames), and its seconds: computed once per
+// count and shared by a search's candidates.
 struct Clustering {
   int requested = 0;
   std::vector<uint32_t> cluster_of;
@@ -43,7 +50,9 @@ struct Component {
 
 // The components in decreasing sigma, at most `count`, those with sigma
 // above 10^−6 of the first: from the eigenvectors of the smaller Gram
-// matrix (DᵀD or DDᵀ). The largest coefficient of each is positive.
+// matrix (DᵀD or DDᵀ), all of them or, when few are asked of a large one,
+// the leading ones by block power iteration. The largest coefficient of
+// each is positive.
 std::vector<Component> principal_components(const Eigen::MatrixXd& d, size_t count);
 
 // A motion matrix (3M × N) as the members' trajectories (M × 3N): row i,

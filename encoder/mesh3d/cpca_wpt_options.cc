@@ -44,6 +44,7 @@ std::optional<int> parse_noise(const std::string& text) {
 Options parse_options(const CodecSettings& settings) {
   Options o;
   o.base_mesh = settings.base_mesh();
+  o.threads = settings.threads();
   o.model = settings.text("model");
   if (o.model != "shape" && o.model != "trajectory" && o.model != "auto") throw usage_error("--model is shape, trajectory or auto (cpca-wpt)");
   if (settings.text("bits") != "auto") o.bits = static_cast<int>(parse_count(settings.text("bits"), "--bits", kMaxBits, kMinBits));

@@ -41,6 +41,7 @@ struct Options {
   double target_kg = 0;        // 0: none
   std::optional<uint32_t> segment_frames;  // none: auto
   BaseMeshCoding base_mesh;    // the container's
+  unsigned threads = 0;        // the search's candidates, a candidate's clusters at once (0: every core)
 };
 
 // The options given, each checked (a usage error names the option).

@@ -19,6 +19,7 @@ struct Plan {
   size_t sent = 0;
   double estimated_kg = 0;  // of the prefix sent, from the gains
   uint64_t bytes = 0;       // of the prefix sent
+  std::vector<size_t> chains;  // per cluster, the components its chain of operators holds (before the order)
 };
 
 // RPT: round r sends every cluster's r-th operator, in cluster order.

@@ -12,6 +12,7 @@
 #include "common/bit_cast.h"
 #include "common/error.h"
 #include "encoder/mesh3d/codec_options.h"
+#include "encoder/mesh3d/quality_target.h"
 #include "mesh3d/lcc.h"
 #include "mesh3d/metrics.h"
 #include "mesh3d/quantization.h"
@@ -131,7 +132,13 @@ class LccEncoder final : public CodecEncoder3d {
     header_.theta_bits = static_cast<uint32_t>(theta_bits);
     header_.rh_bits = static_cast<uint32_t>(settings.integer("rh-bits") ? settings.integer("rh-bits") : recommended_rh_bits(theta_bits));
     header_.gop = settings.flag("temporal") ? static_cast<uint32_t>(settings.integer("gop")) : 0;
-    if (target_kg_ > 0) choose_bits(s);
+    if (target_kg_ > 0) {
+      // A long sequence's bits are chosen on a sample of its frames.
+      if (uint64_t{s.vertex_count()} * s.frame_count() > kWholeSearchVertexFrames)
+        choose_bits(ClipSource(s, sample_frames(s.vertex_count(), s.frame_count())));
+      else
+        choose_bits(s);
+    }
   }
 
   void write_header(syntax::WriteIO& io) override { syntax::describe(io, header_); }

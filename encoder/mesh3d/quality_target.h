@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "encoder/mesh3d/container_encoder.h"
 
@@ -30,17 +31,40 @@ struct TargetTrial {
   uint64_t bytes = 0;
   double kg = 0, psnr = 0;
   bool meets = false;
+  double vertex_frames = 0;  // of the frames coded (a sample's, or the whole sequence's)
+
+  double bpvf() const { return vertex_frames > 0 ? 8.0 * static_cast<double>(bytes) / vertex_frames : 0; }
 };
 using TrialReport = std::function<void(const TargetTrial&)>;
 
+// Sequences of more than this many vertex-frames search their setting on
+// a sample of their frames (up to kSampleRuns runs of consecutive frames
+// spread over the sequence, kSampleVertexFrames in all), then code the
+// whole sequence at it once, again finer while the whole misses the
+// target: time linear in the sequence's size.
+inline constexpr uint64_t kWholeSearchVertexFrames = uint64_t{1} << 20;
+inline constexpr uint64_t kSampleVertexFrames = uint64_t{1} << 19;
+inline constexpr uint32_t kSampleRuns = 4;
+
+// The frames a large sequence's setting is searched on: runs of at least
+// 16 frames (unless fewer fit the sample) spread evenly, in order.
+std::vector<uint32_t> sample_frames(uint32_t vertex_count, uint32_t frame_count);
+
 // options.codec at the coarsest knob value that meets the target
-// (bisection over the knob's values; the codec's other options as given).
-// A usage error when even the finest misses it.
+// (bisection over the knob's values; the codec's other options as given),
+// or at its own search's (an option named target-kg). A usage error when
+// even the finest misses it. The stream goes to options.output when set.
+Encode3dResult encode_to_target(const FrameSource& frames, const Encode3dOptions& options, const QualityTarget& target,
+                                const TrialReport& report);
 Encode3dResult encode_to_target(const MeshSequence& sequence, const Encode3dOptions& options, const QualityTarget& target,
                                 const TrialReport& report);
 
 // Every registered codec at the target (each codec's best trial reported
-// with report_codec); the smallest stream, its codec in `chosen`.
+// with report_codec); the smallest stream, its codec in `chosen`. A large
+// sequence compares the codecs on its sample and codes the whole with
+// the smallest.
+Encode3dResult encode_smallest(const FrameSource& frames, const Encode3dOptions& options, const QualityTarget& target,
+                               const TrialReport& report_codec, std::string& chosen);
 Encode3dResult encode_smallest(const MeshSequence& sequence, const Encode3dOptions& options, const QualityTarget& target,
                                const TrialReport& report_codec, std::string& chosen);
 
