@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -13,6 +14,9 @@
 #include "encoder/mesh3d/codec_options.h"
 #include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/sequence.h"
+#include "conformance/suite3d/stream_edits.h"
+#include "syntax/mesh3d/cpca_wpt.h"
+#include "syntax/mesh3d/entropy_io.h"
 
 namespace m4mesh::suite3d {
 
@@ -41,6 +45,25 @@ Encode3dOptions affine(const std::string& me, int k = 16);
 // index order, a unit per refinement) unless `values` name others.
 Encode3dOptions cpca(CodecOptionValues values);
 
+// Clustered-PCA streams written symbol by symbol. The position of the n-th
+// refinement unit (from 0) among a stream's units; a refinement unit's
+// field; a refinement unit of frame `frame` whose data is `r` with the
+// bins and raw bits of its symbols, or of one refinement.
+size_t refinement_unit(const ContainerParts& parts, size_t n);
+FieldBytes refinement_field(const char* name);
+std::vector<uint8_t> refinement_unit_bytes(CpcaRefinement r, syntax::EntropyWriteIO<false>& symbols, uint32_t frame = 0);
+std::vector<uint8_t> refinement_bytes(uint32_t cluster, uint32_t kind, uint32_t shift, syntax::EntropyWriteIO<false>& symbols,
+                                      uint32_t frame = 0);
+// The encoder's stream of `s` in one cluster, without hash units: what the
+// streams written symbol by symbol start from.
+ContainerParts cpca_one_cluster_parts(const MeshSequence& s, uint32_t version);
+// The object header and base mesh of `parts` (cpca_one_cluster_parts()),
+// the header's cluster map replaced by `cluster_of` (and F, the segments'
+// frames, by those given); refinement units follow. The base mesh's
+// positions (base_mesh_of) predict the components over the mesh.
+ContainerWriter cpca_written_start(ContainerParts parts, const std::vector<uint32_t>& cluster_of, uint32_t clusters,
+                                   std::optional<uint32_t> fraction_bits, std::optional<uint32_t> segment_frames = std::nullopt);
+
 // A clustered-PCA stream of `s` written symbol by symbol (no hash units):
 // two clusters (the first half of the vertices and the rest), each a start
 // and one component of unit kind `kind` (2 or 3), over a base mesh whose
@@ -61,6 +84,7 @@ std::vector<SuiteCase> group_hash_cases(bool traced);
 std::vector<SuiteCase> base_mesh_cases(bool traced);
 std::vector<SuiteCase> container_cases(bool traced);
 std::vector<SuiteCase> untraversed_cases(bool traced);
+std::vector<SuiteCase> cpca_segment_cases(bool traced);
 
 // Streams to reject, each made from a valid one of `valid`, in parts that
 // keep the manifest's order (suite3d.cc joins them).
@@ -70,6 +94,7 @@ std::vector<SuiteCase> container_unit_rejected(const std::vector<SuiteCase>& val
 std::vector<SuiteCase> bfs3d_rejected(const std::vector<SuiteCase>& valid);
 std::vector<SuiteCase> lcc_rejected(const std::vector<SuiteCase>& valid);
 std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid);
+std::vector<SuiteCase> cpca_segment_rejected(const std::vector<SuiteCase>& valid);
 std::vector<SuiteCase> group_hash_rejected(const std::vector<SuiteCase>& valid);
 std::vector<SuiteCase> base_mesh_unit_rejected(const std::vector<SuiteCase>& valid);
 std::vector<SuiteCase> container_edge_rejected(const std::vector<SuiteCase>& valid);

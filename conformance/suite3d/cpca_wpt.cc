@@ -16,39 +16,69 @@
 
 namespace m4mesh::suite3d {
 
-namespace {
-
-// The position of the n-th refinement unit (n from 0) among a stream's units.
 size_t refinement_unit(const ContainerParts& parts, size_t n) {
   for (size_t k = 0; k < parts.units.size(); ++k)
     if (unit_header_of(parts.units[k].payload).type() == UnitType::kRefinement && n-- == 0) return k;
   throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no such refinement unit");
 }
 
-// A refinement unit's fields.
 FieldBytes refinement_field(const char* name) { return unit_field<CpcaRefinement>(name); }
-uint32_t unit_kind(const ContainerUnit& unit) { return static_cast<uint32_t>(field_value(unit.payload, refinement_field("unit_kind"))); }
-bool is_refinement(const ContainerUnit& unit) { return unit_header_of(unit.payload).type() == UnitType::kRefinement; }
 
-// A refinement unit (frame 0) whose data is `r` with the bins and raw bits
-// of its symbols.
-std::vector<uint8_t> refinement_unit_bytes(CpcaRefinement r, syntax::EntropyWriteIO<false>& symbols) {
+std::vector<uint8_t> refinement_unit_bytes(CpcaRefinement r, syntax::EntropyWriteIO<false>& symbols, uint32_t frame) {
   const std::vector<uint8_t> bins = symbols.finish_bins(), raw = symbols.finish_raw();
   r.arithmetic_bytes = static_cast<uint32_t>(bins.size());
   r.bins = bins;
   r.raw = raw;
   BitWriter writer;
   syntax::WriteIO io(writer);
-  UnitHeader header{static_cast<uint32_t>(UnitType::kRefinement), 0};
+  UnitHeader header{static_cast<uint32_t>(UnitType::kRefinement), frame};
   syntax::describe(io, header);
   syntax::describe(io, r);
   return writer.take_bytes();
 }
 
-// A refinement unit of one refinement of cluster `cluster`.
-std::vector<uint8_t> refinement_bytes(uint32_t cluster, uint32_t kind, uint32_t shift, syntax::EntropyWriteIO<false>& symbols) {
-  return refinement_unit_bytes(CpcaRefinement{cluster, kind, shift, {}, 0, {}, {}}, symbols);
+std::vector<uint8_t> refinement_bytes(uint32_t cluster, uint32_t kind, uint32_t shift, syntax::EntropyWriteIO<false>& symbols, uint32_t frame) {
+  return refinement_unit_bytes(CpcaRefinement{cluster, kind, shift, {}, 0, {}, {}}, symbols, frame);
 }
+
+// The encoder's stream of `s` in one cluster, without hash units: what the
+// streams written symbol by symbol start from.
+ContainerParts cpca_one_cluster_parts(const MeshSequence& s, uint32_t version) {
+  Encode3dOptions o = cpca({{"clusters", "1"}});
+  o.hashes = false;
+  o.version = version;
+  return split_container(encode_mesh3d(s, o).stream);
+}
+
+// The start of a clustered-PCA stream written symbol by symbol: the object
+// header and base mesh of `parts` (cpca_one_cluster_parts()), the header's
+// cluster map replaced by `cluster_of` (and F by `fraction_bits` when
+// given); refinement units follow. The base mesh's positions (base_mesh_of)
+// predict the components over the mesh from version 7.
+ContainerWriter cpca_written_start(ContainerParts parts, const std::vector<uint32_t>& cluster_of, uint32_t clusters,
+                                   std::optional<uint32_t> fraction_bits, std::optional<uint32_t> segment_frames) {
+  auto [object, header] = read_headers<CpcaHeader>(parts);
+  const uint32_t version = object.version;
+  header.cluster_count = clusters;
+  header.map_prediction = kCpcaMapByDifference;
+  if (fraction_bits) header.fraction_bits = *fraction_bits;
+  if (segment_frames) header.segment_frames = *segment_frames;
+  std::vector<uint8_t> map_bins, map_raw;
+  write_cluster_map<false>(header, {}, cluster_of, map_bins, map_raw, syntax::SectionPlace{.version = version});
+  BitWriter payload;
+  syntax::WriteIO out(payload);
+  syntax::describe(out, object);
+  syntax::describe(out, header);
+  ContainerWriter writer;
+  writer.object(payload.take_bytes());
+  writer.unit(unit_of(parts, UnitType::kBaseMesh, 0).payload);
+  return writer;
+}
+
+namespace {
+
+uint32_t unit_kind(const ContainerUnit& unit) { return static_cast<uint32_t>(field_value(unit.payload, refinement_field("unit_kind"))); }
+bool is_refinement(const ContainerUnit& unit) { return unit_header_of(unit.payload).type() == UnitType::kRefinement; }
 
 // A group unit (unit_kind 4) of these refinements in a stream of
 // `version`: from version 5 its list in bins, of clusters `started` tells
@@ -104,39 +134,6 @@ std::vector<uint8_t> crafted_refinement(uint32_t cluster, uint32_t kind, const s
   syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
   for (auto [channel, value] : residuals) coder.describe(symbols, channel, value, syntax::kCpcaBasis);
   return refinement_bytes(cluster, kind, kCpcaShiftBias, symbols);
-}
-
-// The encoder's stream of `s` in one cluster, without hash units: what the
-// streams written symbol by symbol start from.
-ContainerParts cpca_one_cluster_parts(const MeshSequence& s, uint32_t version) {
-  Encode3dOptions o = cpca({{"clusters", "1"}});
-  o.hashes = false;
-  o.version = version;
-  return split_container(encode_mesh3d(s, o).stream);
-}
-
-// The start of a clustered-PCA stream written symbol by symbol: the object
-// header and base mesh of `parts` (cpca_one_cluster_parts()), the header's
-// cluster map replaced by `cluster_of` (and F by `fraction_bits` when
-// given); refinement units follow. The base mesh's positions (base_mesh_of)
-// predict the components over the mesh from version 7.
-ContainerWriter cpca_written_start(ContainerParts parts, const std::vector<uint32_t>& cluster_of, uint32_t clusters,
-                                   std::optional<uint32_t> fraction_bits) {
-  auto [object, header] = read_headers<CpcaHeader>(parts);
-  const uint32_t version = object.version;
-  header.cluster_count = clusters;
-  header.map_prediction = kCpcaMapByDifference;
-  if (fraction_bits) header.fraction_bits = *fraction_bits;
-  std::vector<uint8_t> map_bins, map_raw;
-  write_cluster_map<false>(header, {}, cluster_of, map_bins, map_raw, syntax::SectionPlace{.version = version});
-  BitWriter payload;
-  syntax::WriteIO out(payload);
-  syntax::describe(out, object);
-  syntax::describe(out, header);
-  ContainerWriter writer;
-  writer.object(payload.take_bytes());
-  writer.unit(unit_of(parts, UnitType::kBaseMesh, 0).payload);
-  return writer;
 }
 
 // What a rewritten clustered-PCA header starts from: the stream's map and

@@ -500,7 +500,9 @@ class CpcaEncoder final : public CodecEncoder3d {
         start.gain = 0;
       }
       sequence.push_back(std::move(start));
-      for (size_t j = 0; j < continued_[c].size(); ++j) {
+      // A segment takes at most the rank bound of its motion's components per cluster, continued ones included.
+      const uint64_t limit = cpca_component_limit(trajectories_ ? kCpcaTrajectory : kCpcaComponent, members, static_cast<uint32_t>(s.frames.size()));
+      for (size_t j = 0; j < continued_[c].size() && sequence.size() <= limit; ++j) {
         const ListedBasis& listed = listed_[c][j];
         const Component& component = continued_[c][j];
         Operator op = quantize_continued(listed.basis, listed.exponent, component.coefficients, c, static_cast<uint32_t>(j), trajectories_, q,
@@ -517,6 +519,7 @@ class CpcaEncoder final : public CodecEncoder3d {
         sequence.push_back(std::move(op));
       }
       for (const Component& component : components_of_[c]) {
+        if (sequence.size() > limit) break;
         Operator op =
             quantize(component, c, q, static_cast<int>(header_.fraction_bits), (trajectories_ ? kTrajectoryBasisFiner : 0) + reuse_finer_);
         if (trajectories_) {
