@@ -43,6 +43,10 @@ int run_info3d(const std::string& input) {
     std::printf("  group lists: %s\n", cpca_group_list_in_bins(h.version) ? "in bins (from version 5)" : "in the unit's fields (versions 1 to 4)");
     std::printf("  bases over the mesh: %s\n", h.version >= kCpcaAffineFitVersion ? "by an affine fit over the mean shape (from version 7)"
                                                                                  : "by parallelograms (versions 1 to 6)");
+    if (h.version >= kCpcaSegmentVersion)
+      std::printf("  segments: of %u frames (from version 9)\n", read_headers<CpcaHeader>(parts).second.segment_frames);
+    else
+      std::printf("  segments: one of every frame (versions 1 to 8)\n");
   }
   if (const std::optional<uint32_t> order = decoder.vertex_order()) {
     std::printf("  vertex order: %s\n", vertex_order_name(*order));

@@ -212,10 +212,13 @@ std::map<std::string, std::set<std::string>> coverage_catalog3d() {
   // Version 5's group lists: shift differences lie within ±63, so e ≤ 5.
   residual_family(cpca, "cpca-wpt", "group_shift", {0, 1}, 5);
   for (int v = 0; v < 2; ++v)
-    for (const char* bin : {"group_trajectory", "group_mesh"}) cpca.insert(bin_item("cpca-wpt", bin, 0, v));
+    for (const char* bin : {"group_trajectory", "group_mesh", "group_continued"}) cpca.insert(bin_item("cpca-wpt", bin, 0, v));
+  // Version 9's continued components: a shape component's lane on channel 0, a trajectory component's on 1 … 3.
+  residual_family(cpca, "cpca-wpt", "continued_coefficient", {0, 1, 2, 3});
   for (const char* s : {"start shift < 16", "start shift = 16", "start shift > 16", "component shift < 16", "component shift = 16",
                         "component shift > 16", "cluster_count = 1", "cluster_count > 1", "fraction_bits = 0", "fraction_bits = 16",
-                        "quantization_bits = 4", "quantization_bits = 24", "unit_kind = 0", "unit_kind = 1", "unit_kind = 2", "unit_kind = 3"})
+                        "quantization_bits = 4", "quantization_bits = 24", "unit_kind = 0", "unit_kind = 1", "unit_kind = 2", "unit_kind = 3",
+                        "unit_kind = 5"})
     cpca.insert(item("cpca-wpt", s));
 
   // Every codec in every version: the two adaptations of the contexts.

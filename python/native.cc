@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <map>
 #include <optional>
 #include <sstream>
 
@@ -178,9 +179,16 @@ class Progressive {
     if (!decoder_.next_unit()) throw py::stop_iteration();
     ++units_;
     const ObjectHeader& h = decoder_.header();
+    // Frames of a segment that has ended are final: kept here once the decoder releases them.
+    for (uint32_t f : decoder_.unit().released) decoder_.frame(f, released_[f] = std::vector<Float3>(h.vertex_count));
     Frames frames({static_cast<py::ssize_t>(h.frame_count), static_cast<py::ssize_t>(h.vertex_count), py::ssize_t{3}});
-    for (uint32_t f = 0; f < h.frame_count; ++f)
-      decoder_.frame(f, std::span<Float3>(reinterpret_cast<Float3*>(frames.mutable_data(f)), h.vertex_count));
+    for (uint32_t f = 0; f < h.frame_count; ++f) {
+      const std::span<Float3> out(reinterpret_cast<Float3*>(frames.mutable_data(f)), h.vertex_count);
+      if (auto it = released_.find(f); it != released_.end())
+        std::copy(it->second.begin(), it->second.end(), out.begin());
+      else
+        decoder_.frame(f, out);
+    }
     const size_t taken = decoder_.units_taken();
     const uint64_t received = taken < parts_.units.size() ? parts_.units[taken].byte_offset : stream_.size();
     return py::make_tuple(units_, received, frames);
@@ -190,6 +198,7 @@ class Progressive {
   std::vector<uint8_t> stream_;
   Mesh3dDecoder decoder_;
   ContainerParts parts_;
+  std::map<uint32_t, std::vector<Float3>> released_;
   size_t units_ = 0;
 };
 

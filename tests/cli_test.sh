@@ -208,9 +208,9 @@ grep -q "progressive needs a progressive codec" "$work/err" || fail "progressive
 grep -q "^note: .* numbers its vertices in coding order" "$work/err" || fail "decode3d note: $(cat "$work/err")"
 "$m4mesh" info "$work/t.m4m" | grep -q "vertex order: the input's" || fail "info of an input-order stream"
 # The version, the contexts' adaptation and the base mesh's blend, in every version.
-"$m4mesh" info conformance/mesh3d/streams/base-19-blend-5.m4m > "$work/info" && grep -q "container version 8, .*" "$work/info" && grep -q "contexts: warm-up" "$work/info" &&
+"$m4mesh" info conformance/mesh3d/streams/base-19-blend-5.m4m > "$work/info" && grep -q "container version 9, .*" "$work/info" && grep -q "contexts: warm-up" "$work/info" &&
   grep -q "residual signs: in bins" "$work/info" && grep -q "neighbours' mean by 5/16, in the position order" "$work/info" &&
-  grep -q "far vertices: by their index on the gate's front" "$work/info" || fail "info of a version 8 stream: $(cat "$work/info")"
+  grep -q "far vertices: by their index on the gate's front" "$work/info" || fail "info of a version 9 stream: $(cat "$work/info")"
 "$m4mesh" info conformance/mesh3d/streams/base-27-far-chain-version-7.m4m | grep -q "far vertices: by their difference from the gate's vertex (versions 1 to 7)" ||
   fail "info of a version 7 stream: $("$m4mesh" info conformance/mesh3d/streams/base-27-far-chain-version-7.m4m)"
 "$m4mesh" info conformance/mesh3d/streams/base-24-version-5.m4m > "$work/info" && grep -q "container version 5, .*" "$work/info" &&
@@ -231,11 +231,14 @@ grep -q "^note: .* numbers its vertices in coding order" "$work/err" || fail "de
 "$m4mesh" encode3d tests/data/tetra-frames --container-version 5 -o "$work/v5.m4m" > /dev/null || fail "encode3d --container-version 5"
 "$m4mesh" encode3d tests/data/tetra-frames --container-version 6 -o "$work/v6.m4m" > /dev/null || fail "encode3d --container-version 6"
 "$m4mesh" encode3d tests/data/tetra-frames --container-version 7 -o "$work/v7.m4m" > /dev/null || fail "encode3d --container-version 7"
-"$m4mesh" decode3d "$work/t.m4m" -o "$work/v8.m4seq" > /dev/null || fail "decode3d of a version 8 stream"
-for v in 2 3 4 5 6 7; do
-  "$m4mesh" decode3d "$work/v$v.m4m" -o "$work/v$v.m4seq" > /dev/null && cmp -s "$work/v$v.m4seq" "$work/v8.m4seq" ||
-    fail "a version $v stream decodes to other frames than version 8's"
+"$m4mesh" encode3d tests/data/tetra-frames --container-version 8 -o "$work/v8.m4m" > /dev/null || fail "encode3d --container-version 8"
+"$m4mesh" decode3d "$work/t.m4m" -o "$work/v9.m4seq" > /dev/null || fail "decode3d of a version 9 stream"
+for v in 2 3 4 5 6 7 8; do
+  "$m4mesh" decode3d "$work/v$v.m4m" -o "$work/v$v.m4seq" > /dev/null && cmp -s "$work/v$v.m4seq" "$work/v9.m4seq" ||
+    fail "a version $v stream decodes to other frames than version 9's"
 done
+"$m4mesh" info conformance/mesh3d/streams/cpca-36-segments.m4m | grep -q "segments: of 8 frames (from version 9)" ||
+  fail "info of a segmented stream: $("$m4mesh" info conformance/mesh3d/streams/cpca-36-segments.m4m)"
 "$m4mesh" info conformance/mesh3d/streams/cpca-34-trajectories-version-6.m4m | grep -q "bases over the mesh: by parallelograms (versions 1 to 6)" &&
   "$m4mesh" info conformance/mesh3d/streams/cpca-12-trajectories.m4m | grep -q "bases over the mesh: by an affine fit over the mean shape" ||
   fail "info of cpca-wpt's bases over the mesh: $("$m4mesh" info conformance/mesh3d/streams/cpca-12-trajectories.m4m)"

@@ -220,11 +220,11 @@ class Stream3d {
   val frame(uint32_t index) const {
     std::vector<float> flat;
     std::vector<Float3> positions;
-    if (decoder_ && decoder_->progressive() && units_applied_ > 0 && index < decoder_->header().frame_count) {
+    if (auto it = frames_.find(index); it != frames_.end()) {
+      positions = it->second;
+    } else if (decoder_ && decoder_->progressive() && units_applied_ > 0 && index < decoder_->header().frame_count) {
       positions.resize(decoder_->header().vertex_count);
       decoder_->frame(index, positions);
-    } else if (auto it = frames_.find(index); it != frames_.end()) {
-      positions = it->second;
     }
     for (const Float3& p : positions) flat.insert(flat.end(), p.begin(), p.end());
     return copy_out<float>("Float32Array", flat);
@@ -255,12 +255,13 @@ class Stream3d {
         while (decoder_->units_taken() < decoder_->units_received()) {
           decoder_->next_unit();
           ++units_applied_;
-          if (!decoder_->progressive())
-            for (uint32_t f : decoder_->unit().frames) {
-              std::vector<Float3>& slot = frames_[f];
-              slot.resize(decoder_->header().vertex_count);
-              decoder_->frame(f, slot);
-            }
+          // A progressive codec's frames stay with it until its segment ends (released): kept here then.
+          const DecodedUnit& unit = decoder_->unit();
+          for (uint32_t f : decoder_->progressive() ? unit.released : unit.frames) {
+            std::vector<Float3>& slot = frames_[f];
+            slot.resize(decoder_->header().vertex_count);
+            decoder_->frame(f, slot);
+          }
         }
         if (ended_ && !decoder_->next_unit()) done_ = true;
         if (const std::optional<uint32_t> f = decoder_->first_mismatch())

@@ -143,9 +143,9 @@ std::vector<SuiteCase> container_cases(bool traced) {
   // adapt at the fixed rate, 3, whose residual signs are raw, 4, whose
   // cpca-wpt group lists are in the units' fields, 5, whose base mesh
   // codes its positions in coding order, 6, whose cpca-wpt bases over the
-  // mesh are predicted by parallelograms, and 7, whose far vertices are
-  // coded by their difference alone (cpca-wpt's and the base mesh's
-  // version 1 have their own streams).
+  // mesh are predicted by parallelograms, 7, whose far vertices are
+  // coded by their difference alone, and 8, whose cpca-wpt has no segments
+  // (cpca-wpt's and the base mesh's version 1 have their own streams).
   MeshSequence waving = waving_flag(6, 8, false);
   waving.frames.erase(waving.frames.begin());
   const struct {
@@ -173,6 +173,7 @@ std::vector<SuiteCase> container_cases(bool traced) {
   for (const auto& c : codecs) add(c, 5, "the base mesh's positions in coding order");
   for (const auto& c : codecs) add(c, 6, "cpca-wpt's bases over the mesh by parallelograms");
   for (const auto& c : codecs) add(c, 7, "far vertices by their difference alone");
+  for (const auto& c : codecs) add(c, 8, "cpca-wpt in one segment of every frame");
   return suite;
 }
 

@@ -279,6 +279,39 @@ std::vector<SuiteCase> cpca_segment_cases(bool traced) {
     suite.push_back(written_case("cpca-39-segment-skipped", "a segment without units between two with units: its frames the mean shape",
                                  {"cpca", "cpca-segments"}, s.finish()));
   }
+  {
+    // Continued components whose coefficients step through prefix_schedule() and 3 on every channel: a shape
+    // component's lane (channel 0) and a trajectory component's three (1 … 3), in a segment as long as the schedule.
+    std::vector<int32_t> schedule = prefix_schedule();
+    schedule.insert(schedule.end(), 100, 0);  // the order back to 0, then a suffix whose top bit is 1 (powers of two have none)
+    schedule.push_back(3);
+    const uint32_t length = static_cast<uint32_t>(schedule.size());
+    SegmentedStream s(2 * length, length);
+    std::vector<int32_t> lane(length), lanes(3 * size_t{length});
+    int32_t value = 0;
+    for (uint32_t n = 0; n < length; ++n) {
+      lane[n] = value += schedule[n];
+      for (size_t l = 0; l < 3; ++l) lanes[3 * n + l] = value;
+    }
+    s.unit(0, {start(0, 16, std::vector<int32_t>(3 * size_t{length}))});
+    s.unit(0, {component(0, kCpcaComponent, 16, ramp(3 * s.members(0), 1, 1), std::vector<int32_t>(length))});
+    s.unit(0, {component(0, kCpcaTrajectory, 16, ramp(s.members(0), 1, 1), std::vector<int32_t>(3 * size_t{length}))});
+    s.unit(length, {start(0, 16, std::vector<int32_t>(3 * size_t{length}))});
+    s.unit(length, {continued(0, 0, false, 16, lane)});
+    s.unit(length, {continued(0, 1, true, 16, lanes)});
+    suite.push_back(written_case("cpca-42-continued-prefixes", "continued components' coefficients of every prefix length 0 … 13 after "
+                                 "each class and a suffix's top bit 1, on the shape lane and the three trajectory lanes", {"cpca", "cpca-segments"}, s.finish()));
+  }
+  suite.push_back(valid("cpca-40-segments-of-one", "segments of one frame", {"cpca", "cpca-segments"}, waving_flag(4, 3, false),
+                        cpca({{"clusters", "2"}, {"model", "trajectory"}, {"segment-frames", "1"}, {"noise", "-2"}}), traced));
+  {
+    // One segment however long: segment_frames 2^32 − 1 over cpca-12's frames.
+    const std::vector<uint8_t> one = encode_mesh3d(waving_flag(9, 8, false), cpca({{"clusters", "4"}, {"model", "trajectory"}})).stream;
+    suite.push_back(written_case("cpca-41-segment-frames-max", "segment_frames 2^32 − 1: every frame in one segment", {"cpca", "cpca-segments"},
+                                 edited(one, [&](ContainerParts& p) {
+                                   put_field(p.object_payload, object_field<CpcaHeader>(one, "segment_frames"), UINT32_MAX);
+                                 })));
+  }
   return suite;
 }
 
@@ -318,25 +351,27 @@ std::vector<SuiteCase> cpca_segment_rejected(const std::vector<SuiteCase>& valid
                           edited(lone, [&](ContainerParts& p) { put_field(p.units[refinement_unit(p, 1)].payload, refinement_field("unit_kind"), 5); }),
                           ErrorKind::kStructure, "unit_kind", kNoPlane));
   {
-    // cpca-37's first continued component: its reference beyond the previous segment's list.
+    // cpca-37's first continued component.
     const ContainerParts parts = split_container(lone);
     size_t k = 0;
     for (size_t n = 0;; ++n) {
       k = refinement_unit(parts, n);
       if (field_value(parts.units[k].payload, refinement_field("unit_kind")) == kCpcaContinued) break;
     }
-    suite.push_back(invalid("x-162-cpca-continued-reference-beyond", "a continued component's reference 255, beyond its cluster's list",
-                            {"cpca-segments"},
-                            edited(lone,
-                                   [&](ContainerParts& p) {
-                                     UnitHeader header;
-                                     CpcaRefinement continued_unit{0, kCpcaContinued, 16, {}, 0, {}, {}};
-                                     put_field(p.units[k].payload, field_bytes("reference", header, continued_unit), 255);
-                                   }),
-                            ErrorKind::kOutOfRange, "reference", kNoPlane));
     suite.push_back(invalid("x-169-cpca-continued-left-over", "a byte after a continued component's raw bits", {"cpca-segments"},
                             edited(lone, [&](ContainerParts& p) { p.units[k].payload.push_back(0x00); }), ErrorKind::kStructure,
                             "continued_coefficient", kNoPlane));
+  }
+  {
+    // Cluster 0 sends three components in segment 0; segment 1 continues the fourth.
+    SegmentedStream s(8, 4);
+    const size_t m0 = s.members(0);
+    s.unit(0, {start(0, 16, ramp(12, 1, 1))});
+    for (int32_t c = 1; c <= 3; ++c) s.unit(0, {component(0, kCpcaComponent, 16, ramp(3 * m0, c, 1), {c, c, c, c})});
+    s.unit(4, {start(0, 16, ramp(12, 1, 1))});
+    s.unit(4, {continued(0, 3, false, 16, {1, 1, 1, 1})});
+    suite.push_back(invalid("x-162-cpca-continued-reference-beyond", "a continued component's reference 3 of a list of 3", {"cpca-segments"},
+                            s.finish(), ErrorKind::kOutOfRange, "reference", kNoPlane));
   }
   {
     // Cluster 1 sends three components in segment 0; segment 1's group

@@ -365,8 +365,13 @@ void for_each_prefix(std::span<const uint8_t> stream,
   decoded.vertex_count = decoder.header().vertex_count;
   decoded.frames.resize(decoder.header().frame_count, std::vector<Vec3>(decoded.vertex_count));
   std::vector<Float3> positions(decoded.vertex_count);
+  uint32_t final_frames = 0;  // frames before this are final: their segment has ended, and they are kept
   for (size_t units = 1; decoder.next_unit(); ++units) {
-    for (uint32_t f = 0; f < decoded.frames.size(); ++f) {
+    // The frames the unit released (a segment's, in order) are read once more, then kept.
+    const std::vector<uint32_t>& released = decoder.unit().released;
+    const uint32_t first = released.empty() ? final_frames : released.front();
+    final_frames = released.empty() ? final_frames : released.back() + 1;
+    for (uint32_t f = first; f < decoded.frames.size(); ++f) {
       decoder.frame(f, positions);
       for (size_t v = 0; v < positions.size(); ++v) decoded.frames[f][v] = {positions[v][0], positions[v][1], positions[v][2]};
     }
