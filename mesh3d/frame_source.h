@@ -128,9 +128,11 @@ MeshSequence read_all_frames(const FrameSource& source);
 inline constexpr uint64_t kInMemoryVertexFrames = uint64_t{1} << 22;
 
 // The frames of a sequence file or folder (every form load_sequence
-// reads), in memory up to kInMemoryVertexFrames, else read from the files
-// as the encoder asks for them (a .m4seq or .pc2 file at the frame's
-// offset, a frame file parsed again; standard input is always read whole).
-std::unique_ptr<FrameSource> open_sequence(const std::string& path, bool report_progress = false);
+// reads), in memory up to `in_memory` vertex-frames, else read from the
+// files as the encoder asks for them (a .m4seq or .pc2 file at the
+// frame's offset, a frame file parsed again; standard input is always
+// read whole).
+std::unique_ptr<FrameSource> open_sequence(const std::string& path, bool report_progress = false,
+                                           uint64_t in_memory = kInMemoryVertexFrames);
 
 }  // namespace m4mesh

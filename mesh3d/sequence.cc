@@ -392,8 +392,8 @@ class FrameFilesSource final : public FrameSource {
   MeshSequence shape_;  // the vertex count and faces, no frames
 };
 
-// A .m4seq file's frames where it holds more than kInMemoryVertexFrames.
-std::unique_ptr<FrameSource> open_m4seq(const std::string& path) {
+// A .m4seq file's frames where it holds more than `in_memory` vertex-frames.
+std::unique_ptr<FrameSource> open_m4seq(const std::string& path, uint64_t in_memory) {
   auto file = std::make_unique<PositionedFile>(path);
   std::vector<uint8_t> head(kMagicSize + 12);
   if (file->size() < head.size()) throw io(path, "truncated .m4seq file");
@@ -407,7 +407,7 @@ std::unique_ptr<FrameSource> open_m4seq(const std::string& path) {
   const uint64_t expected = first_frame + uint64_t{frames} * vertices * 12;
   if (file->size() < expected) throw io(path, "truncated .m4seq file");
   if (file->size() > expected) throw io(path, "bytes after the last frame");
-  if (uint64_t{frames} * vertices <= kInMemoryVertexFrames) return nullptr;
+  if (uint64_t{frames} * vertices <= in_memory) return nullptr;
   std::vector<uint8_t> face_bytes(size_t{face_count} * 12);
   file->read(head.size(), face_bytes);
   ByteReader f(face_bytes, path, ".m4seq");
@@ -420,18 +420,18 @@ std::unique_ptr<FrameSource> open_m4seq(const std::string& path) {
   return std::make_unique<PackedFramesSource>(std::move(file), first_frame, vertices, frames, std::move(faces));
 }
 
-// A .pc2 file's frames where it holds more than kInMemoryVertexFrames.
-std::unique_ptr<FrameSource> open_pc2(const std::string& path) {
+// A .pc2 file's frames where it holds more than `in_memory` vertex-frames.
+std::unique_ptr<FrameSource> open_pc2(const std::string& path, uint64_t in_memory) {
   auto file = std::make_unique<PositionedFile>(path);
   constexpr size_t kHeader = 32;
   std::vector<uint8_t> head(kHeader);
   if (file->size() < kHeader || (file->read(0, head), std::memcmp(head.data(), "POINTCACHE2", 12) != 0)) return nullptr;
   ByteReader r(head, path, "PC2");
-  r.skip(20);
+  r.skip(16);  // the signature and the version
   const uint32_t points = r.u32();
-  r.skip(4);
+  r.skip(8);  // the start frame and the sample rate
   const uint32_t samples = r.u32();
-  if (uint64_t{samples} * points <= kInMemoryVertexFrames || file->size() != kHeader + uint64_t{samples} * points * 12) return nullptr;
+  if (uint64_t{samples} * points <= in_memory || file->size() != kHeader + uint64_t{samples} * points * 12) return nullptr;
   const std::string obj = pc2_faces_path(path);
   if (!std::filesystem::is_regular_file(obj)) return nullptr;
   MeshFrame first = read_obj_frame(obj);
@@ -441,17 +441,17 @@ std::unique_ptr<FrameSource> open_pc2(const std::string& path) {
 
 }  // namespace
 
-std::unique_ptr<FrameSource> open_sequence(const std::string& path, bool progress) {
+std::unique_ptr<FrameSource> open_sequence(const std::string& path, bool progress, uint64_t in_memory) {
   namespace fs = std::filesystem;
   if (path != "-" && fs::is_regular_file(path)) {
     refuse_mesh_stream(path);
     const std::string extension = fs::path(path).extension().string();
-    std::unique_ptr<FrameSource> large = extension == ".m4seq" ? open_m4seq(path) : extension == ".pc2" ? open_pc2(path) : nullptr;
+    std::unique_ptr<FrameSource> large = extension == ".m4seq" ? open_m4seq(path, in_memory) : extension == ".pc2" ? open_pc2(path, in_memory) : nullptr;
     if (large) return large;
   } else if (path != "-") {
     std::vector<std::string> files = frame_files(path, {".obj", ".off", ".ply"});
     MeshFrame first = read_frame_file(files.front());
-    if (uint64_t{files.size()} * first.vertices.size() > kInMemoryVertexFrames && first.vertices.size() >= 3 && !first.faces.empty()) {
+    if (uint64_t{files.size()} * first.vertices.size() > in_memory && first.vertices.size() >= 3 && !first.faces.empty()) {
       if (const std::string note = dropped_records_note(files.front(), first.dropped, "positions and faces"); progress && !note.empty())
         std::fprintf(stderr, "note: %s\n", note.c_str());
       return std::make_unique<FrameFilesSource>(std::move(files), std::move(first));

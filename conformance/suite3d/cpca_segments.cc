@@ -215,10 +215,11 @@ Written continued(uint32_t cluster, uint32_t reference, bool trajectory, uint32_
 
 // Segments 0 … 3, 4 … 7 and 8, 9 of 10 frames; frame 0's segment ends
 // with its clusters' last translations odd (x −3, y 3, z 5 at shift 17),
-// the next continues them at shift 16 (halves rounded up), a shape
-// component's last coefficient 7 at shift 0 continued at shift 63 (the
-// base saturates at 2^23), a trajectory component's lanes at shift 63
-// continued at 32; cluster 1 a group of a start, a continued component
+// the next continues them at shift 16 (halves rounded up), then in one
+// group a shape component's last coefficient 7 at shift 0 continued at
+// shift 63 (the base saturates at 2^23) and a trajectory component's
+// lanes at shift 63 continued at 32 (the coder's channels 0 and 1 … 3
+// side by side); cluster 1 a group of a start, a continued component
 // (its reference in no raw bit) and a new one; the last segment of 2
 // frames refines cluster 1 alone, continuing the second of its two
 // components (a reference in 1 raw bit).
@@ -232,8 +233,8 @@ SegmentedStream written_segments(const std::function<void(SegmentedStream&, uint
   s.unit(0, {component(1, kCpcaComponent, 20, ramp(3 * m1, 3, -1), {2, 4, 6, 8})});
   if (after_segment) after_segment(s, 0);
   s.unit(4, {start(0, 16, {-1, 2, 3, 0, 2, 4, 1, 1, 1, 2, 0, -2})});
-  s.unit(4, {continued(0, 0, false, 63, {(1 << 23) - 5, (1 << 23) - 3, 100, -100})});
-  s.unit(4, {continued(0, 1, true, 32, {0, 0, 0, 1, -1, 0, 2, 2, 2, 0, 0, 0})});
+  s.unit(4, {continued(0, 0, false, 63, {(1 << 23) - 5, (1 << 23) - 3, 100, -100}),
+             continued(0, 1, true, 32, {0, 0, 0, 1, -1, 0, 2, 2, 2, 0, 0, 0})});
   s.unit(4, {start(1, 18, ramp(12, 40, -3)), continued(1, 0, false, 21, {9, 7, 5, 3}),
              component(1, kCpcaComponent, 19, ramp(3 * m1, -5, 2), {1, -1, 1, -1})});
   if (after_segment) after_segment(s, 4);
