@@ -61,6 +61,7 @@ int run_decode3d(const Decode3dArgs& args) {
   if (header.frame_count != 0 && !args.keep_going)
     count = first < header.frame_count ? std::min(last, header.frame_count - 1) - first + 1 : 0;
   std::unique_ptr<SequenceWriter> writer;  // made at the first frame written
+  std::vector<Vec3> frame;
   std::vector<uint32_t> written;
   bool failed = false;
   try {
@@ -77,7 +78,9 @@ int run_decode3d(const Decode3dArgs& args) {
       if (!writer)
         writer = sequence_writer(form, args.output,
                                  {header.vertex_count, decoder.faces(), count, static_cast<double>(header.frame_rate_num) / header.frame_rate_den});
-      writer->frame(decoder.frame_index(), decoder.positions());
+      frame.resize(decoder.positions().size());
+      for (size_t v = 0; v < frame.size(); ++v) frame[v] = {decoder.positions()[v][0], decoder.positions()[v][1], decoder.positions()[v][2]};
+      writer->frame(decoder.frame_index(), frame);
       // Past the range nothing is written; without --verify nothing more is needed.
       if (decoder.frame_index() == last && !args.verify) break;
     }

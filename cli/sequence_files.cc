@@ -19,27 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// PLY frames: the '*' of the name replaced by 0001, 0002, …; a name
-// without '*' takes one frame. Existing files are refused before any is written.
-void write_ply_frames(const MeshSequence& sequence, const std::string& output) {
-  const size_t star = fs::path(output).filename().string().find('*');
-  if (star == std::string::npos && sequence.frames.size() != 1)
-    throw usage_error(output + ": " + std::to_string(sequence.frames.size()) + " frames need a name with '*' for the frame number (frames/*.ply)");
-  std::vector<std::string> paths;
-  for (size_t k = 0; k < sequence.frames.size(); ++k) {
-    std::string path = output;
-    if (star != std::string::npos) {
-      char number[24];
-      std::snprintf(number, sizeof number, "%04zu", k + 1);
-      path.replace(output.size() - fs::path(output).filename().string().size() + star, 1, number);
-    }
-    console::check_output(path);
-    paths.push_back(path);
-  }
-  if (const fs::path folder = fs::path(output).parent_path(); !folder.empty()) fs::create_directories(folder);
-  for (size_t k = 0; k < paths.size(); ++k) write_ply_frame(sequence.frames[k], sequence.faces, paths[k]);
-}
-
 // Whether a file name is one obj_frame_name gives (0001.obj, …).
 bool is_obj_frame_name(const std::string& name) {
   const std::string stem = name.size() > 4 ? name.substr(0, name.size() - 4) : "";
@@ -66,17 +45,6 @@ SequenceOutput sequence_output(const std::string& output, bool f32_allowed, cons
   if (extension == ".f32" && f32_allowed) return SequenceOutput::kF32;
   throw usage_error(output + ": unknown output format '" + extension + "' (a folder of OBJ frames, .m4seq, .pc2, .ply, .glb, .gltf" + (f32_allowed ? ", .f32" : "") +
                   "; a folder whose name holds a dot takes a trailing '/')");
-}
-
-void write_sequence_file(SequenceOutput form, const MeshSequence& sequence, const std::string& output, double fps) {
-  if (form == SequenceOutput::kGltf)
-    write_gltf(sequence, fps, output);
-  else if (form == SequenceOutput::kPc2)
-    write_pc2_sequence(sequence, output);
-  else if (form == SequenceOutput::kPly)
-    write_ply_frames(sequence, output);
-  else
-    write_binary_sequence(sequence, output);
 }
 
 void install_obj_frames(const fs::path& staging, const fs::path& output) {
@@ -118,6 +86,11 @@ MeshSequence load_sequence_or_stream(const std::string& path, StreamFacts* facts
 MeshSequence load_frames(const std::string& path) {
   if (is_gltf_path(path) && fs::is_regular_file(path)) return read_gltf(path, {}).sequence;
   return load_sequence(path, !console::quiet());
+}
+
+std::unique_ptr<FrameSource> open_frames(const std::string& path) {
+  if (is_gltf_path(path) && fs::is_regular_file(path)) return std::make_unique<SequenceSource>(read_gltf(path, {}).sequence);
+  return open_sequence(path, !console::quiet());
 }
 
 void refuse_overwriting(const std::string& input, const std::string& output) {

@@ -5,9 +5,11 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <utility>
 
+#include "mesh3d/frame_source.h"
 #include "mesh3d/sequence.h"
 #include "syntax/mesh3d/container.h"
 
@@ -21,9 +23,6 @@ namespace m4mesh {
 // takes `format`: m4seq (the default) or f32.
 enum class SequenceOutput { kObjFolder, kM4seq, kPc2, kPly, kGltf, kF32 };
 SequenceOutput sequence_output(const std::string& output, bool f32_allowed, const std::string& format = "");
-
-// A whole sequence to a .m4seq, .pc2, PLY or glTF output (a glTF animation plays at `fps`).
-void write_sequence_file(SequenceOutput form, const MeshSequence& sequence, const std::string& output, double fps);
 
 // The OBJ frames written into `staging` become the frames of `folder`:
 // its earlier frame files (0001.obj, …) go, its other files stay.
@@ -50,6 +49,9 @@ struct StreamFacts {
 // A sequence's frames in any form load_sequence reads, or a glTF animation
 // (cli/gltf.h) baked at its keyframes.
 MeshSequence load_frames(const std::string& path);
+
+// The same, read frame by frame when large (open_sequence); a glTF animation in memory.
+std::unique_ptr<FrameSource> open_frames(const std::string& path);
 
 // A sequence's frames (load_frames), or a mesh3d stream's decoded frames (read once),
 // with the stream's facts in `facts`.

@@ -17,12 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<Vec3> as_vec3(std::span<const Float3> positions) {
-  std::vector<Vec3> out(positions.size());
-  for (size_t v = 0; v < positions.size(); ++v) out[v] = {positions[v][0], positions[v][1], positions[v][2]};
-  return out;
-}
-
 // Frames written into a staging folder beside the output, moved into
 // place on commit; the folder goes if the writer is abandoned.
 class StagedFrames : public SequenceWriter {
@@ -42,8 +36,8 @@ class StagedFrames : public SequenceWriter {
 class ObjFolderWriter final : public StagedFrames {
  public:
   ObjFolderWriter(const std::string& output, std::span<const Triangle> faces) : StagedFrames(output), output_(output), faces_(faces) {}
-  void frame(uint32_t index, std::span<const Float3> positions) override {
-    write_obj_frame(as_vec3(positions), faces_, (staging_ / obj_frame_name(index)).string());
+  void frame(uint32_t index, std::span<const Vec3> positions) override {
+    write_obj_frame(positions, faces_, (staging_ / obj_frame_name(index)).string());
   }
   void commit() override {
     install_obj_frames(staging_, fs::path(output_));
@@ -62,7 +56,7 @@ class PlyWriter final : public StagedFrames {
  public:
   PlyWriter(const std::string& output, std::span<const Triangle> faces)
       : StagedFrames(output), output_(output), star_(fs::path(output).filename().string().find('*')), faces_(faces) {}
-  void frame(uint32_t, std::span<const Float3> positions) override {
+  void frame(uint32_t, std::span<const Vec3> positions) override {
     if (star_ == std::string::npos && !targets_.empty())
       throw usage_error(output_ + ": several frames need a name with '*' for the frame number (frames/*.ply)");
     std::string path = output_;
@@ -72,7 +66,7 @@ class PlyWriter final : public StagedFrames {
       path.replace(output_.size() - fs::path(output_).filename().string().size() + star_, 1, number);
     }
     console::check_output(path);
-    write_ply_frame(as_vec3(positions), faces_, (staging_ / fs::path(path).filename()).string());
+    write_ply_frame(positions, faces_, (staging_ / fs::path(path).filename()).string());
     targets_.push_back(path);
   }
   void commit() override {
@@ -122,20 +116,20 @@ class PackedWriter final : public SequenceWriter {
     if (faces_written_) fs::remove(faces_file_temp(), ignored);
   }
 
-  void frame(uint32_t, std::span<const Float3> positions) override {
+  void frame(uint32_t, std::span<const Vec3> positions) override {
     if (form_ == SequenceOutput::kPc2 && frames_ == 0 && file_) {
-      write_obj_frame(as_vec3(positions), shape_.faces, faces_file_temp());
+      write_obj_frame(positions, shape_.faces, faces_file_temp());
       faces_written_ = true;
     }
     ++frames_;
     if (!file_) {
-      kept_.frames.push_back(as_vec3(positions));
+      kept_.frames.emplace_back(positions.begin(), positions.end());
       return;
     }
     std::string bytes;
     bytes.reserve(12 * positions.size());
-    for (const Float3& p : positions)
-      for (float c : p) put_f32(bytes, c);
+    for (const Vec3& p : positions)
+      for (double c : {p.x, p.y, p.z}) put_f32(bytes, static_cast<float>(c));
     file_->write(bytes);
   }
 
@@ -181,7 +175,7 @@ class GltfWriter final : public SequenceWriter {
     kept_.vertex_count = shape.vertex_count;
     kept_.faces.assign(shape.faces.begin(), shape.faces.end());
   }
-  void frame(uint32_t, std::span<const Float3> positions) override { kept_.frames.push_back(as_vec3(positions)); }
+  void frame(uint32_t, std::span<const Vec3> positions) override { kept_.frames.emplace_back(positions.begin(), positions.end()); }
   void commit() override { write_gltf(kept_, fps_, output_); }
 
  private:

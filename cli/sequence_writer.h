@@ -13,6 +13,7 @@
 
 #include "cli/sequence_files.h"
 #include "common/point3.h"
+#include "mesh3d/sequence.h"
 #include "mesh/topology.h"
 
 namespace m4mesh {
@@ -20,9 +21,10 @@ namespace m4mesh {
 class SequenceWriter {
  public:
   virtual ~SequenceWriter() = default;
-  // The next frame, in display order; `index` is its number in the stream
-  // (a folder of OBJ frames names its files by it).
-  virtual void frame(uint32_t index, std::span<const Float3> positions) = 0;
+  // The next frame, in display order; `index` is its number in the output
+  // (a folder of OBJ frames names its files by it). Binary outputs hold
+  // binary32 positions, text ones the positions given.
+  virtual void frame(uint32_t index, std::span<const Vec3> positions) = 0;
   virtual void commit() = 0;
 };
 

@@ -15,23 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class TempDir {
- public:
-  TempDir() : path_(fs::temp_directory_path() / ("m4mesh-test-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "-" +
-                                                 ::testing::UnitTest::GetInstance()->current_test_info()->name())) {
-    fs::create_directories(path_);
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  std::string write(const std::string& name, const std::string& text) const {
-    const fs::path p = path_ / name;
-    std::ofstream(p) << text;
-    return p.string();
-  }
-  std::string path() const { return path_.string(); }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 // A 3×2 grid with spacing 0.5 (8 half pixels at scale 16), split '00'.
 std::string grid_obj(double shift_y) {

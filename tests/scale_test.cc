@@ -18,12 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path scratch(const std::string& name) {
-  const fs::path folder = fs::temp_directory_path() / "m4mesh-scale-test";
-  fs::create_directories(folder);
-  return folder / name;
-}
-
 Encode3dOptions codec(const std::string& name, CodecOptionValues values = {}) {
   Encode3dOptions o;
   o.codec = name;
@@ -33,10 +27,10 @@ Encode3dOptions codec(const std::string& name, CodecOptionValues values = {}) {
 
 TEST(FrameSources, FilesReadFrameByFrameGiveTheFramesLoadSequenceGives) {
   const MeshSequence s = test::test_sequence(7, 3);
-  const fs::path m4seq = scratch("s.m4seq"), pc2 = scratch("s.pc2"), folder = scratch("frames");
+  const test::TempDir dir;
+  const fs::path m4seq = dir / "s.m4seq", pc2 = dir / "s.pc2", folder = dir / "frames";
   write_binary_sequence(s, m4seq.string());
   write_pc2_sequence(s, pc2.string());
-  fs::remove_all(folder);
   write_obj_frames(s, folder.string());
   for (const fs::path& path : {m4seq, pc2, folder}) {
     const MeshSequence whole = load_sequence(path.string());
@@ -51,8 +45,8 @@ TEST(FrameSources, FilesReadFrameByFrameGiveTheFramesLoadSequenceGives) {
 
 TEST(FrameSources, AFrameFileOfOtherConnectivityIsNamedWhenItIsRead) {
   MeshSequence s = test::test_sequence(3, 1);
-  const fs::path folder = scratch("mismatch");
-  fs::remove_all(folder);
+  const test::TempDir dir;
+  const fs::path folder = dir / "mismatch";
   write_obj_frames(s, folder.string());
   std::vector<Triangle> fewer(s.faces.begin(), s.faces.end() - 1);
   write_obj_frame(s.frames[2], fewer, (folder / obj_frame_name(2)).string());
@@ -92,7 +86,8 @@ TEST(StreamingContainers, AnOutputGetsTheStreamUnitByUnitAndAFileDecodesAsMemory
     EXPECT_EQ(result.stream_bytes, whole.size());
     EXPECT_EQ(streamed, whole) << base.codec;
     EXPECT_GT(pieces, 3u);
-    const fs::path file = scratch("stream.m4m");
+    const test::TempDir dir;
+    const fs::path file = dir / "stream.m4m";
     std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(whole.data()), static_cast<std::streamsize>(whole.size()));
     Mesh3dDecoder from_file(ContainerSource::open_file(file.string()), test::verifying());
     MeshSequence decoded;
@@ -109,7 +104,8 @@ TEST(StreamingContainers, AnOutputGetsTheStreamUnitByUnitAndAFileDecodesAsMemory
 TEST(StreamingContainers, AFileReportsTheFramingErrorsMemoryReports) {
   std::vector<uint8_t> stream = encode_mesh3d(test::test_sequence(3, 4), codec("bfs3d")).stream;
   stream.push_back(0x42);  // after the end code
-  const fs::path file = scratch("trailing.m4m");
+  const test::TempDir dir;
+  const fs::path file = dir / "trailing.m4m";
   std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(stream.data()), static_cast<std::streamsize>(stream.size()));
   const auto error_of = [](const auto& make) -> Error {
     try {

@@ -1,6 +1,10 @@
 #include "tests/test_util.h"
 
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <cmath>
+#include <fstream>
 #include <numbers>
 #include <set>
 #include <stdexcept>
@@ -11,6 +15,24 @@
 #include "mesh/cdt.h"
 
 namespace m4mesh::test {
+
+TempDir::TempDir() {
+  const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  path_ = std::filesystem::temp_directory_path() /
+          ("m4mesh-test-" + std::to_string(::getpid()) + "-" + (test ? std::string(test->test_suite_name()) + "." + test->name() : "outside-a-test"));
+  std::filesystem::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+  std::error_code ignored;
+  std::filesystem::remove_all(path_, ignored);
+}
+
+std::string TempDir::write(const std::string& name, const std::string& text) const {
+  const std::filesystem::path file = path_ / name;
+  std::ofstream(file) << text;
+  return file.string();
+}
 
 std::vector<uint8_t> bytes_from_bits(std::string_view bits) {
   std::vector<uint8_t> bytes;

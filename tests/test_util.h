@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -19,6 +20,23 @@ std::vector<uint8_t> bytes_from_bits(std::string_view bits);
 std::string bits_of(const std::vector<uint8_t>& bytes);
 
 using Random = SplitMix64;
+
+// A folder of the running test's own under the temporary folder, removed with everything in it.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  // `name` inside the folder.
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+  // Writes `text` to `name` inside the folder; returns its path.
+  std::string write(const std::string& name, const std::string& text) const;
+  std::string path() const { return path_.string(); }
+
+ private:
+  std::filesystem::path path_;
+};
 
 // A random star-shaped simple polygon of `boundary` nodes around (512, 512)
 // with `interior` distinct nodes strictly inside, in §10 order (node 0
