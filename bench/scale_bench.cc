@@ -29,6 +29,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "anchors/draco_reference.h"
 #include "bench/sequences.h"
 #include "decoder/mesh3d/container_decoder.h"
@@ -231,17 +233,19 @@ int main(int argc, char** argv) {
   double most = 1e8, target_kg = 0.5;
   std::vector<std::string> codecs{"bfs3d", "affine-octree", "lcc", "cpca-wpt", "draco"}, series{"frames", "mesh"};
   std::string json;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string flag = argv[i], value = argv[i + 1];
+  for (int i = 1; i < argc; i += 2) {
+    const std::string flag = argv[i];
+    const bool known = flag == "--max" || flag == "--codecs" || flag == "--series" || flag == "--target-kg" || flag == "--json";
+    if (!known || i + 1 == argc) {
+      std::fprintf(stderr, "usage: %s [--max 1e8] [--codecs LIST] [--series frames,mesh] [--target-kg 0.5] [--json FILE]\n", argv[0]);
+      return flag == "--help" || flag == "-h" ? 0 : 2;
+    }
+    const std::string value = argv[i + 1];
     if (flag == "--max") most = std::stod(value);
     else if (flag == "--codecs") codecs = split(value);
     else if (flag == "--series") series = split(value);
     else if (flag == "--target-kg") target_kg = std::stod(value);
-    else if (flag == "--json") json = value;
-    else {
-      std::fprintf(stderr, "usage: %s [--max 1e8] [--codecs LIST] [--series frames,mesh] [--target-kg 0.5] [--json FILE]\n", argv[0]);
-      return 2;
-    }
+    else json = value;
   }
   const MeshSequence& base = sequence("horse-gallop");
   std::printf("scale benchmark: %s (%u vertices, %zu frames), %s%s, sizes up to %.0e vertex-frames\n", label(0).c_str(), base.vertex_count,
@@ -280,16 +284,12 @@ int main(int argc, char** argv) {
                   exponent(of, &Run::decode_seconds));
     }
   if (!json.empty()) {
-    std::ofstream out(json);
-    out << "[\n";
-    for (size_t i = 0; i < runs.size(); ++i) {
-      const Run& r = runs[i];
-      out << "  {\"codec\": \"" << r.codec << "\", \"series\": \"" << r.series << "\", \"vertices\": " << r.vertices
-          << ", \"frames\": " << r.frames << ", \"encode_seconds\": " << r.encode_seconds << ", \"decode_seconds\": " << r.decode_seconds
-          << ", \"encode_peak_kb\": " << r.encode_peak_kb << ", \"decode_peak_kb\": " << r.decode_peak_kb << ", \"bytes\": " << r.bytes
-          << ", \"kg\": " << r.kg << ", \"error\": \"" << r.error << "\"}" << (i + 1 < runs.size() ? "," : "") << "\n";
-    }
-    out << "]\n";
+    nlohmann::json out = nlohmann::json::array();
+    for (const Run& r : runs)
+      out.push_back({{"codec", r.codec}, {"series", r.series}, {"vertices", r.vertices}, {"frames", r.frames},
+                     {"encode_seconds", r.encode_seconds}, {"decode_seconds", r.decode_seconds}, {"encode_peak_kb", r.encode_peak_kb},
+                     {"decode_peak_kb", r.decode_peak_kb}, {"bytes", r.bytes}, {"kg", r.kg}, {"error", r.error}});
+    std::ofstream(json) << out.dump(2) << "\n";
   }
   return 0;
 }

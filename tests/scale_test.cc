@@ -3,9 +3,11 @@
 // targets searched on a sample of a long sequence.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
+#include "common/md5.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
 #include "encoder/mesh3d/quality_target.h"
@@ -175,6 +177,68 @@ TEST(QualityTargets, SampleFramesAreRunsSpreadOverTheSequence) {
   EXPECT_EQ(frames.front(), 0u);
   EXPECT_EQ(frames.back(), 99999u);
   EXPECT_EQ(sample_frames(1000, 20), std::vector<uint32_t>({0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19}));
+}
+
+// A wavy sheet of 72 × 72 vertices: frames large enough to decode on two threads.
+MeshSequence large_sheet(int frames) {
+  constexpr int n = 71;
+  MeshSequence s;
+  auto at = [](int i, int j) { return static_cast<NodeIndex>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      s.faces.push_back({{at(i, j), at(i + 1, j), at(i + 1, j + 1)}});
+      s.faces.push_back({{at(i, j), at(i + 1, j + 1), at(i, j + 1)}});
+    }
+  s.vertex_count = (n + 1) * (n + 1);
+  for (int f = 0; f < frames; ++f) {
+    std::vector<Vec3> frame;
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) frame.push_back({i * 0.1, 0.3 * std::sin(0.2 * i + 0.5 * f) * std::cos(0.15 * j), j * 0.1});
+    s.frames.push_back(std::move(frame));
+  }
+  return s;
+}
+
+// Every frame's MD5, or the error, of a decoding with or without a trace.
+std::string decoding(std::span<const uint8_t> stream, bool traced) {
+  std::ostream nowhere(nullptr);
+  Trace trace(nowhere);
+  Decode3dOptions options;
+  if (traced) options.trace = &trace;
+  std::string out;
+  try {
+    Mesh3dDecoder decoder(stream, options);
+    while (decoder.next_frame()) {
+      const std::vector<Float3>& positions = decoder.positions();
+      out += md5_hex(std::string_view(reinterpret_cast<const char*>(positions.data()), positions.size() * sizeof(Float3))) + " ";
+    }
+  } catch (const Error& e) {
+    out += e.what();
+  }
+  return out;
+}
+
+// A large frame decodes its sections side by side (bfs3d's axes; lcc's
+// symbols beside its vertices); traced, one after the other. Both give
+// the same frames and, on damaged streams, the same first error.
+TEST(LargeFrames, DecodeSideBySideAsOneAfterTheOther) {
+  const MeshSequence s = large_sheet(4);
+  for (const Encode3dOptions& o : {codec("bfs3d"), codec("lcc"), codec("lcc", {{"mode", "download"}, {"temporal", "1"}, {"gop", "2"}})}) {
+    const std::vector<uint8_t> stream = encode_mesh3d(s, o).stream;
+    EXPECT_EQ(decoding(stream, false), decoding(stream, true)) << o.codec;
+    test::Random random(17);
+    int rejected = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+      std::vector<uint8_t> bad = stream;
+      // Past the base mesh, in the frames' symbols.
+      const size_t at = stream.size() / 3 + static_cast<size_t>(random.uniform(0, static_cast<int32_t>(stream.size() * 2 / 3) - 1));
+      bad[at] ^= static_cast<uint8_t>(1 << random.uniform(0, 7));
+      const std::string alone = decoding(bad, false);
+      EXPECT_EQ(alone, decoding(bad, true)) << o.codec << ", byte " << at;
+      rejected += alone.find(" at ") != std::string::npos;
+    }
+    EXPECT_GT(rejected, 10) << o.codec;
+  }
 }
 
 }  // namespace

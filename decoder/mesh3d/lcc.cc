@@ -2,9 +2,12 @@
 // (docs/codec_lcc.md): the reference mesh from the base mesh, then every
 // frame from its symbols, vertex after vertex along the coding order, in
 // binary64 with IEEE operations only.
+#include <algorithm>
+#include <atomic>
 #include <optional>
 
 #include "codecs3d/codec_decoder.h"
+#include "common/parallel.h"
 #include "mesh3d/lcc.h"
 #include "mesh3d/quantization.h"
 #include "syntax/mesh3d/entropy_io.h"
@@ -13,6 +16,12 @@
 namespace m4mesh {
 
 namespace {
+
+// Frames of at least this many steps place their vertices on one thread
+// while their symbols are decoded on another, kStepChunk steps at a time.
+constexpr size_t kPipelinedSteps = 4096;
+constexpr size_t kStepChunk = 1024;
+constexpr uint32_t kSymbolsFailed = UINT32_MAX;
 
 class LccDecoder final : public CodecDecoder3d {
  public:
@@ -58,20 +67,40 @@ class LccDecoder final : public CodecDecoder3d {
                                      8 * static_cast<uint64_t>(data.raw.data() - payload), io.plane(),
                                      object_.version};
     if (header_.mode == kLccStreamMode) coder_.emplace();
+    const bool predicted = !coded.anchor();
+    const LccIndices& prediction = predictor_->predict(coded);
+    LccIndices indices{std::vector<int32_t>(residuals_.direct.size()), std::vector<int32_t>(residuals_.steps.size())};
     if (trace_) {
       syntax::EntropyReadIO<true> symbols(data.bins, data.raw, place, trace_);
-      read_symbols(symbols, !coded.anchor());
-    } else {
+      read_symbols(symbols, predicted, nullptr);
+      place_vertices(io, prediction, indices, nullptr);
+    } else if (model_->order().steps.size() < kPipelinedSteps) {
       syntax::EntropyReadIO<false> symbols(data.bins, data.raw, place);
-      read_symbols(symbols, !coded.anchor());
+      read_symbols(symbols, predicted, nullptr);
+      place_vertices(io, prediction, indices, nullptr);
+    } else {
+      // A large frame places its vertices while its symbols are being
+      // decoded; an error of the symbols is reported before one of the
+      // values, as one after the other would.
+      std::atomic<uint32_t> decoded{0};
+      parallel_for(2, 0, [&](size_t task) {
+        if (task == 0) {
+          syntax::EntropyReadIO<false> symbols(data.bins, data.raw, place);
+          read_symbols(symbols, predicted, &decoded);
+        } else {
+          place_vertices(io, prediction, indices, &decoded);
+        }
+      });
     }
-    reconstruct(io, coded);
+    positions_.swap(next_);
+    predictor_->keep(coded, std::move(indices));
   }
 
   void start(BaseMesh base) {
     faces_ = std::move(base.faces);
     std::vector<IntPoint3> reference_grid = std::move(base.positions);
     positions_.resize(reference_grid.size());
+    next_.resize(reference_grid.size());
     for (size_t i = 0; i < positions_.size(); ++i) positions_[i] = lcc_grid_position(header_, reference_grid[i]);
     model_.emplace(faces_, positions_, static_cast<int>(header_.theta_bits), static_cast<int>(header_.rh_bits), header_.rh_range_value());
     predictor_.emplace(header_, model_->order(), reference_grid);
@@ -81,42 +110,72 @@ class LccDecoder final : public CodecDecoder3d {
     coder_.emplace();
   }
 
+  // The frame's symbols, in chunks of steps; `decoded` (when set) says
+  // how far they are: 1 + the steps decoded once the direct vertices are,
+  // kSymbolsFailed when their decoding failed.
   template <class IO>
-  void read_symbols(IO& io, bool predicted) {
-    syntax::describe_symbols(io, *coder_, predicted, residuals_.direct, residuals_.steps, model_->theta_limit(), model_->rh_limit());
-    io.finish("theta");
+  void read_symbols(IO& io, bool predicted, std::atomic<uint32_t>* decoded) {
+    const auto publish = [&](uint32_t value) {
+      if (!decoded) return;
+      decoded->store(value, std::memory_order_release);
+      decoded->notify_one();
+    };
+    const std::span<int32_t> steps = residuals_.steps;
+    try {
+      syntax::describe_symbols(io, *coder_, predicted, residuals_.direct, {}, model_->theta_limit(), model_->rh_limit());
+      publish(1);
+      for (size_t k = 0; k < steps.size() / 3; k += kStepChunk) {
+        const size_t end = std::min(k + kStepChunk, steps.size() / 3);
+        syntax::describe_symbols(io, *coder_, predicted, {}, steps.subspan(3 * k, 3 * (end - k)), model_->theta_limit(), model_->rh_limit());
+        publish(static_cast<uint32_t>(1 + end));
+      }
+      io.finish("theta");
+    } catch (...) {
+      publish(kSymbolsFailed);
+      throw;
+    }
   }
 
-  // The frame's indices (prediction plus residuals), then its directly
-  // coded vertices from their grid indices and every step in order.
-  void reconstruct(syntax::ReadIO& io, const LccCodedFrame& coded) {
-    const LccIndices& prediction = predictor_->predict(coded);
-    LccIndices indices;
-    indices.direct.resize(residuals_.direct.size());
+  // The frame's indices (prediction plus residuals) and positions: the
+  // directly coded vertices from their grid indices, then every step in
+  // order, each as soon as `decoded` says its symbols are there.
+  void place_vertices(const syntax::ReadIO& io, const LccIndices& prediction, LccIndices& indices, const std::atomic<uint32_t>* decoded) {
+    const auto wait_for = [&](size_t needed) {
+      if (!decoded) return true;
+      uint32_t now = decoded->load(std::memory_order_acquire);
+      while (now < needed) {
+        decoded->wait(now, std::memory_order_acquire);
+        now = decoded->load(std::memory_order_acquire);
+      }
+      return now != kSymbolsFailed;
+    };
+    if (!wait_for(1)) return;
+    const std::vector<NodeIndex>& direct = model_->order().direct;
     for (size_t i = 0; i < indices.direct.size(); ++i) {
       const int64_t q = int64_t{prediction.direct[i]} + residuals_.direct[i];
       if (q > kMaxQuantized || q < -kMaxQuantized)
-        fail_reconstruction(io, ErrorKind::kOutOfRange, "direct_position", "vertex " + std::to_string(model_->order().direct[i / 3]) + " leaves ±2^26 grid steps");
+        fail_reconstruction(io, ErrorKind::kOutOfRange, "direct_position", "vertex " + std::to_string(direct[i / 3]) + " leaves ±2^26 grid steps");
       indices.direct[i] = static_cast<int32_t>(q);
     }
+    for (size_t i = 0; i < direct.size(); ++i)
+      next_[direct[i]] = lcc_grid_position(header_, {indices.direct[3 * i], indices.direct[3 * i + 1], indices.direct[3 * i + 2]});
     const int32_t theta_limit = model_->theta_limit(), rh_limit = model_->rh_limit();
-    indices.steps.resize(residuals_.steps.size());
-    for (size_t i = 0; i < indices.steps.size(); i += 3) {
-      indices.steps[i] = lcc_wrapped_angle(int64_t{prediction.steps[i]} + residuals_.steps[i], theta_limit);
-      for (size_t j = i + 1; j < i + 3; ++j) {
-        indices.steps[j] = prediction.steps[j] + residuals_.steps[j];
-        if (indices.steps[j] < -rh_limit || indices.steps[j] > rh_limit)
-          fail_reconstruction(io, ErrorKind::kOutOfRange, j == i + 1 ? "rho" : "zeta",
-                  "step " + std::to_string(i / 3) + ": prediction and residual leave ±2^rh_bits");
+    const std::vector<LccStep>& steps = model_->order().steps;
+    for (size_t k = 0; k < steps.size();) {
+      const size_t end = std::min(k + kStepChunk, steps.size());
+      if (!wait_for(1 + end)) return;
+      for (; k < end; ++k) {
+        int32_t* step = &indices.steps[3 * k];
+        step[0] = lcc_wrapped_angle(int64_t{prediction.steps[3 * k]} + residuals_.steps[3 * k], theta_limit);
+        for (size_t j = 1; j < 3; ++j) {
+          step[j] = prediction.steps[3 * k + j] + residuals_.steps[3 * k + j];
+          if (step[j] < -rh_limit || step[j] > rh_limit)
+            fail_reconstruction(io, ErrorKind::kOutOfRange, j == 1 ? "rho" : "zeta",
+                                "step " + std::to_string(k) + ": prediction and residual leave ±2^rh_bits");
+        }
+        next_[steps[k].d] = model_->place(k, next_, step[0], step[1], step[2]);
       }
     }
-    const std::vector<NodeIndex>& direct = model_->order().direct;
-    for (size_t i = 0; i < direct.size(); ++i)
-      positions_[direct[i]] = lcc_grid_position(header_, {indices.direct[3 * i], indices.direct[3 * i + 1], indices.direct[3 * i + 2]});
-    for (size_t k = 0; k < model_->order().steps.size(); ++k)
-      positions_[model_->order().steps[k].d] =
-          model_->place(k, positions_, indices.steps[3 * k], indices.steps[3 * k + 1], indices.steps[3 * k + 2]);
-    predictor_->keep(coded, std::move(indices));
   }
 
   ObjectHeader object_;
@@ -125,7 +184,7 @@ class LccDecoder final : public CodecDecoder3d {
   std::optional<LccModel> model_;
   std::optional<LccPredictor> predictor_;
   std::optional<LccFrameOrder> frame_order_;
-  std::vector<Vec3> positions_;
+  std::vector<Vec3> positions_, next_;  // the last frame decoded, the one being decoded
   LccIndices residuals_;
   std::optional<syntax::ResidualCoder<syntax::kLccChannels>> coder_;
 };
