@@ -33,6 +33,7 @@
 
 #include "anchors/draco_reference.h"
 #include "bench/sequences.h"
+#include "common/parallel.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/quality_target.h"
 #include "mesh3d/frame_source.h"
@@ -230,6 +231,7 @@ std::vector<std::string> split(const std::string& text) {
 int main(int argc, char** argv) {
   using namespace m4mesh;
   using namespace m4mesh::bench;
+  use_one_heap();  // as the m4mesh command does
   double most = 1e8, target_kg = 0.5;
   std::vector<std::string> codecs{"bfs3d", "affine-octree", "lcc", "cpca-wpt", "draco"}, series{"frames", "mesh"};
   std::string json;

@@ -12,7 +12,20 @@
 #include <thread>
 #include <vector>
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 namespace m4mesh {
+
+// A program's threads allocate from one heap (glibc's arenas): blocks one
+// worker frees, another reuses, where an arena per thread keeps its own
+// (cpca-wpt's peak resident memory on 10^7 vertex-frames: 955 → 722 MB).
+inline void use_one_heap() {
+#ifdef __GLIBC__
+  mallopt(M_ARENA_MAX, 1);
+#endif
+}
 
 // The threads to run on: `threads`, or every core for 0.
 inline unsigned worker_count(unsigned threads) { return threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency()); }

@@ -919,8 +919,11 @@ std::unique_ptr<CodecEncoder3d> make_cpca_wpt_encoder(const FrameSource& source,
     }
   }
   if (searched == sequence.frames.size()) return best;
-  return std::make_unique<CpcaEncoder>(sequence, frame_count, segment_frames, options, best->half_bits(), clusterings.at(best->clusters()),
-                                       best->trajectory_model(), coding_order);
+  // The window's encoder goes before the segment's is built.
+  const Candidate kept{best->half_bits(), best->clusters(), best->trajectory_model()};
+  best.reset();
+  return std::make_unique<CpcaEncoder>(sequence, frame_count, segment_frames, options, kept.half_bits, clusterings.at(kept.clusters),
+                                       kept.trajectories, coding_order);
 }
 
 }  // namespace m4mesh
