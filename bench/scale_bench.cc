@@ -13,6 +13,7 @@
 //
 //   m4mesh_scale_bench [--max 1e8] [--codecs bfs3d,affine-octree,lcc,cpca-wpt,draco]
 //                      [--series frames,mesh] [--target-kg 0.5] [--json out.json]
+//   m4mesh_scale_bench --segments [--target-kg 0.5]   (what cpca-wpt's segments cost in rate)
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -218,6 +219,38 @@ double exponent(const std::vector<const Run*>& runs, double Run::*seconds) {
   return n >= 2 ? (n * sxy - sx * sy) / (n * sxx - sx * sx) : NAN;
 }
 
+// What segments cost: cpca-wpt at one quality target over a long sequence,
+// as one model and in segments of 1/2, 1/4 and 1/10 of its frames (the
+// horse over 480 frames, ten gallops; the cloth flag's 300 frames).
+void segment_costs(const MeshSequence& horse, double target_kg) {
+  std::vector<std::pair<std::string, MeshSequence>> cases;
+  cases.emplace_back(label(0) + " × 480", read_all_frames(HerdSource(horse, 1, 480)));
+  if (const fs::path flag = kData / "cloth" / "flag" / "flag.pc2"; fs::exists(flag)) cases.emplace_back("cloth flag", load_sequence(flag.string()));
+  std::printf("cpca-wpt in segments, at KG %g:\n%-22s %8s %8s %10s %8s %9s %10s\n", target_kg, "sequence", "segment", "segments", "bytes", "bpvf",
+              "KG %", "vs whole");
+  for (const auto& [name, sequence] : cases) {
+    const uint32_t n = static_cast<uint32_t>(sequence.frames.size());
+    uint64_t whole = 0;
+    for (const uint32_t length : {n, n / 2, n / 4, n / 10}) {
+      Encode3dOptions options;
+      options.codec = "cpca-wpt";
+      options.codec_options = {{"segment-frames", std::to_string(length)}};
+      Encode3dResult r;
+      try {
+        r = encode_to_target(sequence, options, {.kg = target_kg}, [](const TargetTrial&) {});
+      } catch (const Error& e) {
+        std::printf("%-22s %8u %8u  %s\n", name.c_str(), length, (n + length - 1) / length, e.what());
+        continue;
+      }
+      if (length == n) whole = r.stream_bytes;
+      std::printf("%-22s %8u %8u %10llu %8.4f %9.4f %+9.1f%%\n", name.c_str(), length, (n + length - 1) / length,
+                  static_cast<unsigned long long>(r.stream_bytes), 8.0 * static_cast<double>(r.stream_bytes) / (static_cast<double>(sequence.vertex_count) * n), r.kg,
+                  100.0 * (static_cast<double>(r.stream_bytes) / static_cast<double>(whole) - 1));
+      std::fflush(stdout);
+    }
+  }
+}
+
 std::vector<std::string> split(const std::string& text) {
   std::vector<std::string> parts;
   std::istringstream in(text);
@@ -235,11 +268,17 @@ int main(int argc, char** argv) {
   double most = 1e8, target_kg = 0.5;
   std::vector<std::string> codecs{"bfs3d", "affine-octree", "lcc", "cpca-wpt", "draco"}, series{"frames", "mesh"};
   std::string json;
+  bool segments = false;
   for (int i = 1; i < argc; i += 2) {
     const std::string flag = argv[i];
+    if (flag == "--segments") {
+      segments = true;
+      --i;
+      continue;
+    }
     const bool known = flag == "--max" || flag == "--codecs" || flag == "--series" || flag == "--target-kg" || flag == "--json";
     if (!known || i + 1 == argc) {
-      std::fprintf(stderr, "usage: %s [--max 1e8] [--codecs LIST] [--series frames,mesh] [--target-kg 0.5] [--json FILE]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--max 1e8] [--codecs LIST] [--series frames,mesh] [--target-kg 0.5] [--json FILE] [--segments]\n", argv[0]);
       return flag == "--help" || flag == "-h" ? 0 : 2;
     }
     const std::string value = argv[i + 1];
@@ -250,6 +289,10 @@ int main(int argc, char** argv) {
     else json = value;
   }
   const MeshSequence& base = sequence("horse-gallop");
+  if (segments) {
+    segment_costs(base, target_kg);
+    return 0;
+  }
   std::printf("scale benchmark: %s (%u vertices, %zu frames), %s%s, sizes up to %.0e vertex-frames\n", label(0).c_str(), base.vertex_count,
               base.frames.size(), target_kg > 0 ? "at KG " : "codec defaults", target_kg > 0 ? std::to_string(target_kg).c_str() : "", most);
   std::printf("%-14s %-6s %8s %6s %9s %10s %9s %9s %9s %9s %9s %8s\n", "codec", "series", "vertices", "frames", "vf", "enc s", "enc Mvf/s",
