@@ -28,21 +28,19 @@ std::vector<IntPoint3> grid_positions(const MeshSequence& s, int bits) {
   return q;
 }
 
-std::vector<uint8_t> base_unit(const MeshSequence& s, const std::vector<IntPoint3>& q, bool reorder,
-                               const BaseMeshCoding& coding = {}) {
+std::vector<uint8_t> base_unit(const MeshSequence& s, const std::vector<IntPoint3>& q, bool reorder) {
   const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, reorder);
   std::vector<IntPoint3> positions = q;
   if (reorder)
     for (uint32_t i = 0; i < s.vertex_count; ++i) positions[i] = q[plan.input_of[i]];
   BitWriter writer;
   syntax::WriteIO io(writer);
-  write_base_mesh(io, plan.faces, positions, coding);
+  write_base_mesh(io, plan.faces, positions, BaseMeshCoding{});
   return writer.take_bytes();
 }
 
-// Counters: bits per vertex, m4mesh in input order and reordered (and so
-// in version 7, before the base mesh's last change: version 8's fronts),
-// Draco edgebreaker and sequential on the same grid positions.
+// Counters: bits per vertex, m4mesh in input order and reordered, Draco
+// edgebreaker and sequential on the same grid positions.
 void BM_BaseMeshRate(benchmark::State& state) {
   const MeshSequence& s = bench::sequence(kSequences[state.range(0)]);
   const int bits = static_cast<int>(state.range(1));
@@ -52,9 +50,6 @@ void BM_BaseMeshRate(benchmark::State& state) {
   const double v = s.vertex_count;
   state.counters["m4mesh"] = 8.0 * static_cast<double>(ordered) / v;
   state.counters["m4mesh_reorder"] = 8.0 * static_cast<double>(base_unit(s, q, true).size()) / v;
-  const BaseMeshCoding previous = BaseMeshCoding::of(kFrontVersion - 1, std::nullopt);
-  state.counters["m4mesh_previous"] = 8.0 * static_cast<double>(base_unit(s, q, false, previous).size()) / v;
-  state.counters["m4mesh_reorder_previous"] = 8.0 * static_cast<double>(base_unit(s, q, true, previous).size()) / v;
   state.counters["draco_eb"] = 8.0 * static_cast<double>(draco_grid_size(s.faces, q, true)) / v;
   state.counters["draco_seq"] = 8.0 * static_cast<double>(draco_grid_size(s.faces, q, false)) / v;
   state.SetLabel(bench::label(kSequences[state.range(0)]) + " " + std::to_string(bits) + " bits");
@@ -62,44 +57,34 @@ void BM_BaseMeshRate(benchmark::State& state) {
 BENCHMARK(BM_BaseMeshRate)->ArgsProduct({{0, 1, 2, 3, 4, 5}, {10, 12, 14}})->Unit(benchmark::kMillisecond)->Iterations(1);
 
 // Bits per vertex of each part at 12 bits in the input order, each coded
-// alone, in versions 1 to 4, 6 and 8 (version 5's base mesh is version 4's,
-// version 7's version 6's).
+// alone.
 void BM_BaseMeshParts(benchmark::State& state) {
   const MeshSequence& s = bench::sequence(kSequences[state.range(0)]);
-  const uint32_t version = static_cast<uint32_t>(state.range(1));
   const std::vector<IntPoint3> q = grid_positions(s, 12);
   const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false);
-  const BaseMeshCoding coding = BaseMeshCoding::of(version, version == 1 ? std::optional<uint32_t>(0) : std::nullopt);
   BaseMeshParts parts;
-  for (auto _ : state) parts = base_mesh_parts(plan.faces, q, coding);
+  for (auto _ : state) parts = base_mesh_parts(plan.faces, q, BaseMeshCoding{});
   const double v = s.vertex_count;
   state.counters["connectivity"] = 8.0 * static_cast<double>(parts.connectivity) / v;
   state.counters["order"] = 8.0 * static_cast<double>(parts.vertex_order) / v;
   state.counters["positions"] = 8.0 * static_cast<double>(parts.positions) / v;
-  state.SetLabel(bench::label(kSequences[state.range(0)]) + " version " + std::to_string(version));
+  state.SetLabel(bench::label(kSequences[state.range(0)]));
 }
-BENCHMARK(BM_BaseMeshParts)->ArgsProduct({{0, 1, 2, 3, 4, 5}, {1, 2, 3, 4, 6, 8}})->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_BaseMeshParts)->DenseRange(0, 5)->Unit(benchmark::kMillisecond)->Iterations(1);
 
-// Each version in one run: 1 (no blend, contexts at the fixed rate), 2
-// (the blend the encoder chooses), 3 (contexts warming up as well), 4
-// (residual signs and top bits in bins), 6 (the position order) and 8
-// (far vertices on the front by their index).
 void BM_BaseMeshDecode(benchmark::State& state) {
   const MeshSequence& s = bench::sequence(kSequences[state.range(0)]);
-  const uint32_t version = static_cast<uint32_t>(state.range(1));
-  const BaseMeshCoding coding = BaseMeshCoding::of(version, version == 1 ? std::optional<uint32_t>(0) : std::nullopt);
-  const std::vector<uint8_t> unit = base_unit(s, grid_positions(s, 12), false, coding);
-  const ObjectHeader header{coding.version, 1, s.vertex_count, static_cast<uint32_t>(s.faces.size()), 1, 25, 1};
+  const std::vector<uint8_t> unit = base_unit(s, grid_positions(s, 12), false);
+  const ObjectHeader header{kFormatVersion, 1, s.vertex_count, static_cast<uint32_t>(s.faces.size()), 1, 25, 1};
   for (auto _ : state) {
     BitReader reader(unit.data(), unit.size());
     syntax::ReadIO io(reader);
     benchmark::DoNotOptimize(read_base_mesh(io, header, nullptr).positions.data());
   }
-  state.SetLabel(bench::label(kSequences[state.range(0)]) + " version " + std::to_string(coding.version) + ", position_blend " +
-                 std::to_string(coding.version == 1 ? 0 : unit[1]));
+  state.SetLabel(bench::label(kSequences[state.range(0)]) + ", position_blend " + std::to_string(unit[1]));
   state.counters["vertices/s"] = benchmark::Counter(static_cast<double>(state.iterations()) * s.vertex_count, benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_BaseMeshDecode)->ArgsProduct({{0, 2}, {1, 2, 3, 4, 6, 8}})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BaseMeshDecode)->Arg(0)->Arg(2)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace m4mesh

@@ -98,13 +98,8 @@ int run_m4mesh(int argc, const char* const* argv) {
                          "number the vertices in coding order, not the input's: a smaller base mesh (decoders say so)");
   encode3d_cmd->add_option("--position-blend", encode3d_args.position_blend,
                            "the base mesh's positions: the known neighbours' mean blended into each parallelogram prediction, in sixteenths: "
-                           "0 … 16, or auto (each base mesh's smallest); 0 writes a version 1 stream unless --container-version says otherwise")
+                           "0 … 16, or auto (each base mesh's smallest)")
       ->capture_default_str();
-  encode3d_cmd->add_option("--container-version", encode3d_args.container_version,
-                           "the stream's version, for older decoders: 1 (no position blend), 2 (contexts at a fixed rate), 3 (residual "
-                           "signs raw), 4 (cpca-wpt's group lists in fields), 5 (positions in coding order), 6 (cpca-wpt's bases by "
-                           "parallelograms), 7 (far vertices by their difference) or 8 (default: 8, or 1 with --position-blend 0)")
-      ->check(CLI::Range(1u, kLatestVersion));
   encode3d_cmd->add_option("--hash-group", encode3d_args.hash_group, "frames per group hash unit (1: an MD5 hash unit per frame)")
       ->check(CLI::Range(1, 65535))
       ->capture_default_str();

@@ -115,7 +115,6 @@ int run_encode3d(const Encode3dArgs& args) {
       throw usage_error("--position-blend is auto or 0 … 16, not " + text);
     options.position_blend = static_cast<uint32_t>(std::stoul(text));
   }
-  options.version = args.container_version;
   std::tie(options.frame_rate_num, options.frame_rate_den) = frame_rate_fraction(fps);
   options.trace = args.trace ? &trace : nullptr;
   options.threads = args.threads;

@@ -23,7 +23,6 @@ struct Encode3dArgs {
   bool no_hash = false;
   bool reorder = false;      // vertices renumbered in coding order
   std::string position_blend = "auto";  // the base meshes' blend: auto or 0 … 16
-  std::optional<uint32_t> container_version;
   uint32_t hash_group = 16;  // frames per group hash unit; 1: a frame hash unit per frame
   // The stream's frame rate (default 25); a glTF input is sampled at it
   // (default: at its keyframes, whose rate the stream takes).

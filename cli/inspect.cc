@@ -34,29 +34,13 @@ int run_info3d(const std::string& input) {
   const ContainerParts parts = split_container(stream);
   Mesh3dDecoder decoder(stream);
   const ObjectHeader& h = decoder.header();
-  std::printf("%s: %zu bytes, mesh3d container version %u, codec_id %u (%s), %u vertices, %u faces, %u frames at %u/%u fps\n",
-              input.c_str(), stream.size(), h.version, h.codec_id, decoder.codec().name.c_str(), h.vertex_count, h.face_count,
+  std::printf("%s: %zu bytes, mesh3d format %u.%u, codec_id %u (%s), %u vertices, %u faces, %u frames at %u/%u fps\n", input.c_str(),
+              stream.size(), h.version >> 4, h.version & 15, h.codec_id, decoder.codec().name.c_str(), h.vertex_count, h.face_count,
               h.frame_count, h.frame_rate_num, h.frame_rate_den);
-  std::printf("  contexts: %s\n", adaptation_of(h.version) == Adaptation::kWarmUp ? "warm-up (from version 3)" : "fixed rate (versions 1 and 2)");
-  std::printf("  residual signs: %s\n", residual_sign_in_bins(h.version) ? "in bins, with the suffix's top bit (from version 4)" : "raw (versions 1 to 3)");
-  if (h.codec_id == kCpcaWptId) {
-    std::printf("  group lists: %s\n", cpca_group_list_in_bins(h.version) ? "in bins (from version 5)" : "in the unit's fields (versions 1 to 4)");
-    std::printf("  bases over the mesh: %s\n", h.version >= kCpcaAffineFitVersion ? "by an affine fit over the mean shape (from version 7)"
-                                                                                 : "by parallelograms (versions 1 to 6)");
-    if (h.version >= kCpcaSegmentVersion)
-      std::printf("  segments: of %u frames (from version 9)\n", read_headers<CpcaHeader>(parts).second.segment_frames);
-    else
-      std::printf("  segments: one of every frame (versions 1 to 8)\n");
-  }
-  if (const std::optional<uint32_t> order = decoder.vertex_order()) {
-    std::printf("  vertex order: %s\n", vertex_order_name(*order));
-    std::printf("  far vertices: %s\n", h.version >= kFrontVersion ? "by their index on the gate's front where they are on it (from version 8)"
-                                                                   : "by their difference from the gate's vertex (versions 1 to 7)");
-  }
+  if (h.codec_id == kCpcaWptId) std::printf("  segments: of %u frames\n", read_headers<CpcaHeader>(parts).second.segment_frames);
+  if (const std::optional<uint32_t> order = decoder.vertex_order()) std::printf("  vertex order: %s\n", vertex_order_name(*order));
   if (const std::optional<uint32_t> blend = decoder.position_blend())
-    std::printf("  positions: parallelograms blended with the neighbours' mean by %u/16%s, %s\n", *blend,
-                h.version == 1 ? " (version 1: no blend)" : "",
-                h.version >= kPositionOrderVersion ? "in the position order (from version 6)" : "in coding order (versions 1 to 5)");
+    std::printf("  positions: parallelograms blended with the neighbours' mean by %u/16\n", *blend);
   const UnitSizes unit = unit_sizes(parts, stream.size());
   const uint64_t* sizes = unit.bytes;
   const uint64_t* counts = unit.count;

@@ -52,17 +52,11 @@ class CodecEncoder3d {
   virtual std::vector<CodecStatistic> statistics() const { return {}; }
 };
 
-// How the encoder codes base meshes beyond their content: the stream's
-// version, and from version 2 the positions' blend (docs/base_mesh.md), or
-// the one of 0 … 16 that codes each base mesh in the fewest bytes.
+// How the encoder codes base meshes beyond their content: the positions'
+// blend (docs/base_mesh.md), or without one the one of 0 … 16 that codes
+// each base mesh in the fewest bytes.
 struct BaseMeshCoding {
-  uint32_t version = kLatestVersion;
   std::optional<uint32_t> position_blend;
-
-  // The version asked for (a usage error for a version 1 with a blend), or
-  // without one: version 1 for a blend of 0 (a stream every decoder of
-  // version 1 reads), else the latest.
-  static BaseMeshCoding of(std::optional<uint32_t> version, std::optional<uint32_t> position_blend);
 };
 
 // A base mesh unit's data (docs/base_mesh.md): the faces, which must be in

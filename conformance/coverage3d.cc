@@ -43,7 +43,7 @@ bool is_residual_bin(const std::string& name) {
 
 // A residual family (syntax/mesh3d/residual.h) on `channels`, whose prefix
 // length e cannot exceed max_e: its zero flag and prefix bins by class, its
-// sign bins by previous sign and its top bins (version 4).
+// sign bins by previous sign and its top bins.
 void residual_family(std::set<std::string>& out, const std::string& area, const std::string& name, std::initializer_list<int> channels,
                      int max_e = Residual::kMaxPrefix) {
   for (int channel : channels)
@@ -97,7 +97,6 @@ std::set<std::string> coverage_items3d(std::span<const uint8_t> stream) {
     if (n == "unit_type" && value == 3) items.insert(item("container", "frame hash unit"));
     if (n == "unit_type" && value == 4) items.insert(item("container", "group hash unit"));
     if (n == "frame_count" && value == 0) items.insert(item("container", "frame_count = 0 (streaming)"));
-    if (n == "version") items.insert(item(area, "version = " + line->value));
     if (n == "vertex_order") items.insert(item("base-mesh", "vertex_order = " + std::to_string(value)));
     if (n == "loose_face_count" && value > 0) items.insert(item("base-mesh", "loose faces"));
     if (n == "quantization_bits" && (value == 4 || value == 24)) items.insert(item(area, "quantization_bits = " + std::to_string(value)));
@@ -209,22 +208,17 @@ std::map<std::string, std::set<std::string>> coverage_catalog3d() {
   residual_family(cpca, "cpca-wpt", "mesh_basis", {0, 1, 2, 3, 4, 5});
   residual_family(cpca, "cpca-wpt", "trajectory_basis", {0, 1});
   residual_family(cpca, "cpca-wpt", "trajectory_coefficient", {2, 3, 4});
-  // Version 5's group lists: shift differences lie within ±63, so e ≤ 5.
+  // Group lists: shift differences lie within ±63, so e ≤ 5.
   residual_family(cpca, "cpca-wpt", "group_shift", {0, 1}, 5);
   for (int v = 0; v < 2; ++v)
     for (const char* bin : {"group_trajectory", "group_mesh", "group_continued"}) cpca.insert(bin_item("cpca-wpt", bin, 0, v));
-  // Version 9's continued components: a shape component's lane on channel 0, a trajectory component's on 1 … 3.
+  // Continued components: a shape component's lane on channel 0, a trajectory component's on 1 … 3.
   residual_family(cpca, "cpca-wpt", "continued_coefficient", {0, 1, 2, 3});
   for (const char* s : {"start shift < 16", "start shift = 16", "start shift > 16", "component shift < 16", "component shift = 16",
                         "component shift > 16", "cluster_count = 1", "cluster_count > 1", "fraction_bits = 0", "fraction_bits = 16",
                         "quantization_bits = 4", "quantization_bits = 24", "unit_kind = 0", "unit_kind = 1", "unit_kind = 2", "unit_kind = 3",
                         "unit_kind = 5"})
     cpca.insert(item("cpca-wpt", s));
-
-  // Every codec in every version: the two adaptations of the contexts.
-  for (const char* codec : {"bfs3d", "affine-octree", "lcc", "cpca-wpt"})
-    for (uint32_t version = kFirstVersion; version <= kLatestVersion; ++version)
-      c[codec].insert(item(codec, "version = " + std::to_string(version)));
   return c;
 }
 

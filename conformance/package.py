@@ -5,7 +5,10 @@ runner conform.py, a README (package-readme.md) and the normative docs the
 suites follow (docs/decisions.md, container3d.md, base_mesh.md and each 3D
 codec's).
 
-    python3 conformance/package.py [-o m4mesh-conformance.tar.gz]
+    python3 conformance/package.py [-o m4mesh-conformance-VERSION.tar.gz]
+
+VERSION is m4mesh's (the top CMakeLists.txt's project version); the
+archive's folder is m4mesh-conformance-VERSION.
 
 The archive is the same bytes for the same suites: its members in name
 order, with no owner, mode 0644 (0755 for conform.py) and the time
@@ -17,12 +20,14 @@ import gzip
 import io
 import os
 import pathlib
+import re
 import sys
 import tarfile
 import tempfile
 
 HERE = pathlib.Path(__file__).resolve().parent
-TOP = "m4mesh-conformance"
+VERSION = re.search(r"project\(m4mesh VERSION (\S+)", (HERE.parent / "CMakeLists.txt").read_text()).group(1)
+TOP = f"m4mesh-conformance-{VERSION}"
 
 
 def members():
@@ -40,7 +45,7 @@ def members():
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("-o", "--output", default="m4mesh-conformance.tar.gz", help="the archive to write (default: %(default)s)")
+    parser.add_argument("-o", "--output", default=f"{TOP}.tar.gz", help="the archive to write (default: %(default)s)")
     args = parser.parse_args()
     output = pathlib.Path(args.output)
     if output.resolve().is_relative_to(HERE):

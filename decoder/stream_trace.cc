@@ -49,7 +49,6 @@ std::vector<std::string> unit_labels3d(std::span<const uint8_t> stream) {
       std::string label = unit_type_name(header.type());
       if (header.type() == UnitType::kRefinement && object.codec_id == kCpcaWptId) {
         CpcaRefinement refinement;
-        refinement.version = object.version;
         syntax::describe(io, refinement);
         label += refinement.kind == kCpcaGroup
                      ? ", group of " + std::to_string(refinement.group.size())

@@ -74,10 +74,9 @@ void describe_vertex_order(IO& io, syntax::BaseMeshContexts& contexts, uint32_t 
   }
 }
 
-PositionCoding::PositionCoding(std::span<const Triangle> faces, uint32_t vertex_count, uint32_t version)
-    : predictor(faces, vertex_count), order(vertex_count) {
+PositionCoding::PositionCoding(std::span<const Triangle> faces, uint32_t vertex_count) : predictor(faces, vertex_count), order(vertex_count) {
   std::iota(order.begin(), order.end(), 0u);
-  if (version >= kPositionOrderVersion) order = PositionOrder(predictor, vertex_count).of(order);
+  order = PositionOrder(predictor, vertex_count).of(order);
 }
 
 PositionPrediction predict_position(const PositionCoding& coding, std::span<const uint32_t> place, uint32_t i, uint32_t v,

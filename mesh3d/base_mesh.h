@@ -64,7 +64,7 @@ void describe_traversal(IO& io, syntax::BaseMeshContexts& contexts, GateTraversa
     syntax::describe_gate(io, contexts, traversal.context(gate, count), count, answer.symbol, answer.candidate);
     bool on_front = false;
     if (answer.symbol == GateSymbol::kFarVertex) {
-      if (io.version() >= kFrontVersion) traversal.front(gate, candidates, front);
+      traversal.front(gate, candidates, front);
       on_front = syntax::describe_far_vertex(io, contexts, front, traversal.visited(), gate.from, answer.far_vertex);
     }
     uint32_t c = 0;
@@ -107,10 +107,9 @@ void describe_vertex_order(IO& io, syntax::BaseMeshContexts& contexts, uint32_t 
                            std::vector<uint32_t>& input_of);
 
 // What the positions' coding takes from the faces alone, built once per
-// base mesh: the parallelograms and the position order of the stream's
-// version (coding order before version 6).
+// base mesh: the parallelograms and the position order.
 struct PositionCoding {
-  PositionCoding(std::span<const Triangle> faces, uint32_t vertex_count, uint32_t version);
+  PositionCoding(std::span<const Triangle> faces, uint32_t vertex_count);
   MeshPredictor predictor;
   std::vector<uint32_t> order;  // the vertices in the order their positions are coded
 };

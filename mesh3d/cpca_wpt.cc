@@ -13,10 +13,9 @@ std::vector<std::vector<NodeIndex>> cpca_members(std::span<const uint32_t> clust
 }
 
 CpcaMeshPrediction::CpcaMeshPrediction(std::span<const Triangle> faces, std::span<const uint32_t> coding_order,
-                                       std::span<const uint32_t> cluster_of, uint32_t cluster_count, uint32_t version,
-                                       std::span<const IntPoint3> mean_shape)
+                                       std::span<const uint32_t> cluster_of, uint32_t cluster_count, std::span<const IntPoint3> mean_shape)
     : predictor_(faces, static_cast<uint32_t>(cluster_of.size())),
-      mean_shape_(version >= kCpcaAffineFitVersion ? std::vector<IntPoint3>(mean_shape.begin(), mean_shape.end()) : std::vector<IntPoint3>{}),
+      mean_shape_(mean_shape.begin(), mean_shape.end()),
       rank_(cluster_of.size()),
       slot_(cluster_of.size()),
       cluster_of_(cluster_of.begin(), cluster_of.end()),
@@ -26,13 +25,13 @@ CpcaMeshPrediction::CpcaMeshPrediction(std::span<const Triangle> faces, std::spa
   for (const uint32_t v : coding_order) in_order_[cluster_of[v]].push_back(v);
   PositionOrder by_support(predictor_, static_cast<uint32_t>(cluster_of.size()));
   for (std::vector<uint32_t>& order : in_order_) {
-    if (version >= kPositionOrderVersion) order = by_support.of(order);
+    order = by_support.of(order);
     for (uint32_t i = 0; i < order.size(); ++i) rank_[order[i]] = i;
   }
 }
 
 void CpcaMeshPrediction::keep_fits() {
-  if (mean_shape_.empty() || !fits_.empty()) return;
+  if (!fits_.empty()) return;
   fits_.resize(cluster_of_.size());
   std::vector<uint32_t> points;
   for (uint32_t cluster = 0; cluster < in_order_.size(); ++cluster)

@@ -107,18 +107,17 @@ inline uint64_t cpca_component_limit(uint32_t kind, size_t members, uint32_t fra
 
 // The prediction of a component's basis over the base mesh (unit_kind 2
 // and 3): a cluster's members in its member order, each predicted from the
-// members before it: by the base mesh's parallelograms (MeshPredictor), or
-// from version 7 by an affine fit over the mean shape (mesh3d/affine_fit.h).
+// members before it by an affine fit over the mean shape
+// (mesh3d/affine_fit.h).
 class CpcaMeshPrediction {
  public:
   // faces: the base mesh's, coding_order: its vertices in coding order,
-  // mean_shape: its decoded positions. The member order is coding order,
-  // from version 6 the position order over the cluster
-  // (docs/codec_cpca_wpt.md).
+  // mean_shape: its decoded positions. The member order is the position
+  // order over the cluster (docs/codec_cpca_wpt.md).
   CpcaMeshPrediction(std::span<const Triangle> faces, std::span<const uint32_t> coding_order, std::span<const uint32_t> cluster_of,
-                     uint32_t cluster_count, uint32_t version, std::span<const IntPoint3> mean_shape);
+                     uint32_t cluster_count, std::span<const IntPoint3> mean_shape);
 
-  // From version 7: every member's fit support and shape found once and
+  // Every member's fit support and shape found once and
   // kept (about 200 bytes a vertex), for an encoder that predicts the same
   // members again and again; the predictions do not change.
   void keep_fits();
@@ -127,8 +126,7 @@ class CpcaMeshPrediction {
   // D = 3, x, y, z; unit_kind 3: D = 1) at basis[D·i + a], i the member's
   // slot in the cluster's index order, for the members in member order:
   // the residual from the prediction, on channel a after a parallelogram,
-  // D + a after a mean of neighbours (from version 7 an affine fit
-  // without a parallelogram), else (no neighbour known) D + a from the
+  // D + a after an affine fit without a parallelogram, else (no neighbour known) D + a from the
   // member before (0 for the first); |basis| ≤ 2^15.
   // Then the coefficients (3/D per frame) as the differences to the same
   // lane the frame before, on channels 2D + lane; |coefficient| ≤ 2^23.
@@ -190,7 +188,6 @@ class CpcaMeshPrediction {
       for (size_t a = 0; a < D; ++a) values[a] = basis[D * slot_[u] + a];
       return values;
     };
-    if (mean_shape_.empty()) return predictor_.predict(v, known, value, p);
     if (!fits_.empty()) {
       const KeptFit& fit = fits_[v];
       const std::span<const uint32_t> support(fit_points_.data() + fit.first, fit.count);
@@ -211,7 +208,7 @@ class CpcaMeshPrediction {
   };
 
   MeshPredictor predictor_;
-  std::vector<IntPoint3> mean_shape_;                  // from version 7, else empty
+  std::vector<IntPoint3> mean_shape_;
   std::vector<uint32_t> rank_;                         // per vertex: its place in its cluster's member order
   std::vector<uint32_t> slot_;                         // per vertex: its index among its cluster's members
   std::vector<uint32_t> cluster_of_;

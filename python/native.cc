@@ -113,7 +113,7 @@ std::string keyword_spelling(const std::string& message) {
 }
 
 py::bytes encode(const Frames& frames, const Faces& faces, const std::string& codec, bool hashes, uint32_t hash_group, bool reorder,
-                 std::optional<uint32_t> position_blend, std::optional<uint32_t> container_version, const py::kwargs& options) {
+                 std::optional<uint32_t> position_blend, const py::kwargs& options) {
   Encode3dOptions o;
   o.codec = codec;
   o.hashes = hashes;
@@ -121,9 +121,6 @@ py::bytes encode(const Frames& frames, const Faces& faces, const std::string& co
   o.reorder = reorder;
   if (position_blend > kPositionBlendUnit) throw py::value_error("position_blend is None (auto) or 0 … 16");
   o.position_blend = position_blend;
-  if (container_version && (*container_version < kFirstVersion || *container_version > kLatestVersion))
-    throw py::value_error("container_version is None (the latest) or 1 … " + std::to_string(kLatestVersion));
-  o.version = container_version;
   QualityTarget target;
   for (const auto& [key, value] : options) {
     std::string name = py::str(key);
@@ -309,16 +306,14 @@ PYBIND11_MODULE(_native, m) {
     return names;
   }, "The registered 3D codecs' names.");
   m.def("encode", &encode, py::arg("frames"), py::arg("faces"), py::arg("codec") = "bfs3d", py::arg("hashes") = true,
-        py::arg("hash_group") = 16, py::arg("reorder") = false, py::arg("position_blend") = py::none(),
-        py::arg("container_version") = py::none(), R"(A 3D stream (bytes) of frames float32[F, V, 3] with faces int32[T, 3].
+        py::arg("hash_group") = 16, py::arg("reorder") = false, py::arg("position_blend") = py::none(), R"(A 3D stream (bytes) of frames float32[F, V, 3] with faces int32[T, 3].
 
 codec: a name of m4mesh.codecs(), or "auto" (every codec at the target,
 the smallest stream kept). Its options as keywords, dashes as underscores
 (bits=12, me=5, theta_bits=6, noise="auto", …; True is "1"); target_kg=X
 or target_psnr=Y (a finite number above 0) searches the codec's quality
 for the smallest stream that reaches it. hashes, hash_group, reorder,
-position_blend (None: auto; 0 writes a version 1 stream), container_version
-(None: the latest, or 1 with position_blend=0): as encode3d's.)");
+position_blend (None: auto): as encode3d's.)");
   m.def("decode", &decode, py::arg("stream"),
         "(frames float32[F, V, 3], faces int32[T, 3]) of a 3D stream (bytes or any bytes-like object), every frame checked "
         "against its hash units. A stream of reorder=True numbers its vertices in coding order (a UserWarning says so): "

@@ -86,7 +86,7 @@ TEST(AffineFit, TheEncodersRoundingIsToNearestAtOneHalf) {
   const std::vector<Triangle> faces{{{0, 1, 2}}, {{2, 1, 3}}, {{2, 3, 4}}};
   const std::vector<IntPoint3> shape{{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {10, 10, 0}, {0, 20, 0}};
   const std::vector<uint32_t> cluster_of(5, 0), coding_order{0, 1, 2, 3, 4};
-  const CpcaMeshPrediction mesh(faces, coding_order, cluster_of, 1, kLatestVersion, shape);
+  const CpcaMeshPrediction mesh(faces, coding_order, cluster_of, 1, shape);
   const std::vector<double> target{10.4, 20.52, -30.3, 40.49, 7.2};
   std::vector<int32_t> nearest(5), towards(5);
   mesh.quantize<1>(0, target, 0.5, nearest);

@@ -12,36 +12,32 @@
 namespace m4mesh {
 namespace {
 
-constexpr Adaptation kAdaptations[] = {Adaptation::kFixedRate, Adaptation::kWarmUp};
-
 TEST(Arithmetic, RoundTripsBins) {
-  for (const Adaptation adaptation : kAdaptations) {
-    test::Random random(2);
-    std::vector<std::pair<int, int>> bins;  // (context, value)
-    ArithmeticEncoder encoder(adaptation);
-    std::vector<BinContext> contexts(4);
-    for (int i = 0; i < 20000; ++i) {
-      const int context = random.uniform(0, 3);
-      const int bin = random.uniform(0, 9) < context * 3 ? 1 : 0;
-      bins.push_back({context, bin});
-      encoder.encode(contexts[context], bin);
-    }
-    const std::vector<uint8_t> data = encoder.finish();
-    EXPECT_LT(data.size(), 20000u / 8);  // skewed bins cost less than a bit each
-    ArithmeticDecoder decoder(data, adaptation);
-    std::vector<BinContext> decoding(4);
-    for (const auto& [context, bin] : bins) ASSERT_EQ(decoder.decode(decoding[context]), bin);
-    EXPECT_EQ(decoder.overrun(), 0u);
-    EXPECT_EQ(decoder.position(), data.size());
-    ArithmeticDecoder truncated(std::span<const uint8_t>(data).first(data.size() / 2), adaptation);
-    for (const auto& [context, bin] : bins) truncated.decode(decoding[context]);
-    EXPECT_GT(truncated.overrun(), 0u);
+  test::Random random(2);
+  std::vector<std::pair<int, int>> bins;  // (context, value)
+  ArithmeticEncoder encoder;
+  std::vector<BinContext> contexts(4);
+  for (int i = 0; i < 20000; ++i) {
+    const int context = random.uniform(0, 3);
+    const int bin = random.uniform(0, 9) < context * 3 ? 1 : 0;
+    bins.push_back({context, bin});
+    encoder.encode(contexts[context], bin);
   }
+  const std::vector<uint8_t> data = encoder.finish();
+  EXPECT_LT(data.size(), 20000u / 8);  // skewed bins cost less than a bit each
+  ArithmeticDecoder decoder(data);
+  std::vector<BinContext> decoding(4);
+  for (const auto& [context, bin] : bins) ASSERT_EQ(decoder.decode(decoding[context]), bin);
+  EXPECT_EQ(decoder.overrun(), 0u);
+  EXPECT_EQ(decoder.position(), data.size());
+  ArithmeticDecoder truncated(std::span<const uint8_t>(data).first(data.size() / 2));
+  for (const auto& [context, bin] : bins) truncated.decode(decoding[context]);
+  EXPECT_GT(truncated.overrun(), 0u);
 }
 
 // The decoder renormalizes by at most one byte per bin; the least likely
-// bins at both probability limits (fixed rate: 31 and 2017 of 2048; warm-up:
-// 128 and 32640 of 32768) must still decode.
+// bins at both probability limits (128 and 32640 of 32768) must still
+// decode.
 TEST(Arithmetic, LeastLikelyBinsAtTheProbabilityLimitsRoundTrip) {
   std::vector<int> bins;
   for (int run = 0; run < 40; ++run) {
@@ -49,35 +45,32 @@ TEST(Arithmetic, LeastLikelyBinsAtTheProbabilityLimitsRoundTrip) {
     bins.insert(bins.end(), 300 + 7 * run, likely);
     bins.insert(bins.end(), 1 + run % 3, 1 - likely);
   }
-  for (const Adaptation adaptation : kAdaptations) {
-    ArithmeticEncoder encoder(adaptation);
-    BinContext context;
-    for (int bin : bins) encoder.encode(context, bin);
-    const std::vector<uint8_t> data = encoder.finish();
-    ArithmeticDecoder decoder(data, adaptation);
-    BinContext decoding;
-    uint16_t lowest = decoding.p0, highest = decoding.p0;
-    for (size_t i = 0; i < bins.size(); ++i) {
-      lowest = std::min(lowest, decoding.p0);
-      highest = std::max(highest, decoding.p0);
-      ASSERT_EQ(decoder.decode(decoding), bins[i]) << "bin " << i;
-    }
-    const bool fixed = adaptation == Adaptation::kFixedRate;
-    EXPECT_EQ(lowest, fixed ? 31 * 16 : 128);
-    EXPECT_EQ(highest, fixed ? 2017 * 16 : 32640);
-    EXPECT_EQ(decoder.overrun(), 0u);
-    EXPECT_EQ(decoder.position(), data.size());
+  ArithmeticEncoder encoder;
+  BinContext context;
+  for (int bin : bins) encoder.encode(context, bin);
+  const std::vector<uint8_t> data = encoder.finish();
+  ArithmeticDecoder decoder(data);
+  BinContext decoding;
+  uint16_t lowest = decoding.p0, highest = decoding.p0;
+  for (size_t i = 0; i < bins.size(); ++i) {
+    lowest = std::min(lowest, decoding.p0);
+    highest = std::max(highest, decoding.p0);
+    ASSERT_EQ(decoder.decode(decoding), bins[i]) << "bin " << i;
   }
+  EXPECT_EQ(lowest, 128);
+  EXPECT_EQ(highest, 32640);
+  EXPECT_EQ(decoder.overrun(), 0u);
+  EXPECT_EQ(decoder.position(), data.size());
 }
 
-// Warm-up: a context moves by 1/8 of the way over its first 16 bins, then
+// A context moves by 1/8 of the way over its first 16 bins, then
 // 1/16, 1/32, and 1/64 from its 49th bin on.
 TEST(Arithmetic, WarmUpSlowsEverySixteenBins) {
   BinContext context;
   for (int n = 0; n < 100; ++n) {
     const uint32_t before = context.p0;
     const int bin = n % 5 == 4 ? 1 : 0;
-    arithmetic::adapt(context, bin, Adaptation::kWarmUp);
+    arithmetic::adapt(context, bin);
     const int shift = n < 16 ? 3 : n < 32 ? 4 : n < 48 ? 5 : 6;
     const uint32_t expected = bin == 0 ? before + ((32768 - before) >> shift) : before - (before >> shift);
     ASSERT_EQ(context.p0, expected) << "bin " << n;
@@ -122,9 +115,11 @@ TEST(Arithmetic, ASectionThatEndsEarlyStopsTheDecodingThere) {
   EXPECT_EQ(stop(false), kBins + 9);  // the tenth raw byte is missing
 }
 
-// The bytes of both sections, and whether they decode back to `values`.
-size_t residual_bytes(uint32_t version, const std::vector<int32_t>& values) {
-  const syntax::SectionPlace place{.version = version};
+TEST(Arithmetic, ResidualsOfEverySizeRoundTrip) {
+  std::vector<int32_t> values{0, 1, -1, 2, -2, 3, 100, -100, 65535, -65536, (1 << 29), -(1 << 29), (1 << 30) + 7};
+  test::Random random(3);
+  for (int i = 0; i < 3000; ++i) values.push_back(random.uniform(-3000, 3000) >> random.uniform(0, 10));
+  const syntax::SectionPlace place;
   syntax::EntropyWriteIO<false> writer(place);
   syntax::ResidualCoder<3> model;
   for (size_t i = 0; i < values.size(); ++i) {
@@ -138,34 +133,9 @@ size_t residual_bytes(uint32_t version, const std::vector<int32_t>& values) {
   for (size_t i = 0; i < values.size(); ++i) {
     int32_t r = 0;
     decoding.describe(reader, static_cast<int>(i % 3), r, syntax::kMotionResidual);
-    EXPECT_EQ(r, values[i]) << "version " << version << ", residual " << i;
+    EXPECT_EQ(r, values[i]) << "residual " << i;
   }
   EXPECT_NO_THROW(reader.finish("motion_residual"));
-  return data.size() + raw_bytes.size();
-}
-
-TEST(Arithmetic, ResidualsOfEverySizeRoundTripInEveryVersion) {
-  std::vector<int32_t> values{0, 1, -1, 2, -2, 3, 100, -100, 65535, -65536, (1 << 29), -(1 << 29), (1 << 30) + 7};
-  test::Random random(3);
-  for (int i = 0; i < 3000; ++i) values.push_back(random.uniform(-3000, 3000) >> random.uniform(0, 10));
-  for (uint32_t version = kFirstVersion; version <= kLatestVersion; ++version) residual_bytes(version, values);
-}
-
-// Version 4's sign and top bins: residuals whose sign runs on, and whose
-// magnitudes lean to the low half of their prefix's range, take fewer
-// bytes than in version 3; signs and magnitudes at random barely more.
-TEST(Arithmetic, Version4LearnsLeaningSignsAndMagnitudes) {
-  test::Random random(5);
-  std::vector<int32_t> leaning, even;
-  int32_t signs[3] = {1, 1, 1};  // per channel
-  for (int i = 0; i < 6000; ++i) {
-    int32_t& sign = signs[i % 3];
-    if (random.uniform(0, 9) == 0) sign = -sign;
-    leaning.push_back(sign * (1 + random.uniform(0, 15) * random.uniform(0, 15) / 8));
-    even.push_back(random.uniform(-64, 64));
-  }
-  EXPECT_LT(residual_bytes(4, leaning), residual_bytes(3, leaning) * 90 / 100);
-  EXPECT_LT(residual_bytes(4, even), residual_bytes(3, even) * 101 / 100);
 }
 
 // After the last symbol: no bin bytes left over, zero padding, no raw bytes left over.

@@ -77,10 +77,10 @@ std::vector<uint8_t> write_unit(std::span<const Triangle> faces, std::span<const
   return writer.take_bytes();
 }
 
-BaseMesh read_unit(const std::vector<uint8_t>& unit, uint32_t vertex_count, uint32_t face_count, uint32_t version = kLatestVersion) {
+BaseMesh read_unit(const std::vector<uint8_t>& unit, uint32_t vertex_count, uint32_t face_count) {
   BitReader reader(unit.data(), unit.size());
   syntax::ReadIO io(reader);
-  return read_base_mesh(io, ObjectHeader{version, 1, vertex_count, face_count, 1, 25, 1}, nullptr);
+  return read_base_mesh(io, ObjectHeader{kFormatVersion, 1, vertex_count, face_count, 1, 25, 1}, nullptr);
 }
 
 TEST(BaseMesh, RoundTripsAwkwardMeshesInTheInputVertexOrder) {
@@ -166,7 +166,7 @@ TEST(GateTraversal, FrontWalksEightStepsEachWay) {
   EXPECT_EQ(front.size(), GateTraversal::kMaxFront);
 }
 
-TEST(BaseMesh, FarVerticesOnTheFrontRoundTripInEveryVersion) {
+TEST(BaseMesh, FarVerticesOnTheFrontRoundTrip) {
   // A torus of 16 × 12 cells, diagonals at random: the front meets itself around it.
   constexpr uint32_t kAround = 16, kAcross = 12;
   test::Random random(7);
@@ -186,15 +186,10 @@ TEST(BaseMesh, FarVerticesOnTheFrontRoundTripInEveryVersion) {
   std::vector<IntPoint3> positions(kAround * kAcross);
   for (IntPoint3& p : positions) p = {random.uniform(0, 99), random.uniform(0, 99), random.uniform(0, 99)};
   const BaseMeshPlan plan = plan_base_mesh(faces, kAround * kAcross, false);
-  size_t bytes[2] = {};
-  for (const uint32_t version : {kFrontVersion - 1, kFrontVersion}) {
-    const std::vector<uint8_t> unit = write_unit(plan.faces, positions, BaseMeshCoding::of(version, std::nullopt));
-    const BaseMesh base = read_unit(unit, kAround * kAcross, static_cast<uint32_t>(plan.faces.size()), version);
-    EXPECT_EQ(base.faces, plan.faces);
-    EXPECT_EQ(base.positions, positions);
-    bytes[version - kFrontVersion + 1] = unit.size();
-  }
-  EXPECT_LT(bytes[1], bytes[0]);
+  const std::vector<uint8_t> unit = write_unit(plan.faces, positions);
+  const BaseMesh base = read_unit(unit, kAround * kAcross, static_cast<uint32_t>(plan.faces.size()));
+  EXPECT_EQ(base.faces, plan.faces);
+  EXPECT_EQ(base.positions, positions);
 }
 
 TEST(PositionOrder, IsTheDefinitionsOrder) {
@@ -282,7 +277,7 @@ TEST(BaseMesh, EveryPositionBlendRoundTripsAndAutoTakesTheSmallest) {
   size_t smallest = SIZE_MAX;
   uint32_t best = 0;
   for (uint32_t blend = 0; blend <= kPositionBlendUnit; ++blend) {
-    const std::vector<uint8_t> unit = write_unit(planned, positions, BaseMeshCoding{kLatestVersion, blend});
+    const std::vector<uint8_t> unit = write_unit(planned, positions, BaseMeshCoding{blend});
     EXPECT_EQ(unit[1], blend);  // after vertex_order
     const BaseMesh base = read_unit(unit, 900, static_cast<uint32_t>(faces.size()));
     ASSERT_EQ(base.positions, positions) << "blend " << blend;
@@ -295,11 +290,6 @@ TEST(BaseMesh, EveryPositionBlendRoundTripsAndAutoTakesTheSmallest) {
   const std::vector<uint8_t> automatic = write_unit(planned, positions);
   EXPECT_EQ(automatic[1], best);
   EXPECT_EQ(automatic.size(), smallest);
-  // Version 1: no position_blend field, the predictions of a blend of 0.
-  const std::vector<uint8_t> first = write_unit(planned, positions, BaseMeshCoding::of(std::nullopt, 0u));
-  const std::vector<uint8_t> zero = write_unit(planned, positions, BaseMeshCoding{2, 0u});
-  EXPECT_EQ(first.size() + 1, zero.size());
-  EXPECT_EQ(read_unit(first, 900, static_cast<uint32_t>(faces.size()), kFirstVersion).positions, positions);
 }
 
 // Every damaged copy decodes or raises Error: never a crash, a hang or an overrun (ASan).

@@ -181,26 +181,25 @@ void for_each_refinement_unit(const std::vector<uint8_t>& stream, Visit visit) {
   }
 }
 
-// The refinements of a stream's refinement units, in order (from version
-// 5 a group's list is read from its bins).
+// The refinements of a stream's refinement units, in order (a group's
+// list read from its bins).
 std::vector<CpcaRefinementHeader> refinements(const std::vector<uint8_t>& stream) {
-  const auto [object, header] = read_headers<CpcaHeader>(split_container(stream));
+  const CpcaHeader header = read_headers<CpcaHeader>(split_container(stream)).second;
   std::vector<uint8_t> started(header.cluster_count, 0);
   std::vector<CpcaRefinementHeader> all;
   for_each_refinement_unit(stream, [&](const ContainerUnit&, syntax::ReadIO& io) {
     CpcaRefinement r;
-    r.version = object.version;
     syntax::describe(io, r);
-    if (r.kind == kCpcaGroup && cpca_group_list_in_bins(r.version)) {
-      syntax::EntropyReadIO<false> symbols(r.bins, r.raw, syntax::SectionPlace{.version = r.version});
+    if (r.kind == kCpcaGroup) {
+      syntax::EntropyReadIO<false> symbols(r.bins, r.raw, syntax::SectionPlace{});
       syntax::CpcaGroupContexts contexts;
       syntax::describe_group_list(symbols, contexts, std::span(r.group), header.cluster_count, [&](uint32_t c) { return started[c] != 0; },
                                   [](uint32_t) { return 0u; }, [&](const CpcaRefinementHeader& h, bool) { started[h.cluster] |= h.kind == kCpcaStart; });
     }
-    for (const CpcaRefinementHeader& h : r.refinements()) {
+    const std::vector<CpcaRefinementHeader> listed = r.refinements();
+    all.insert(all.end(), listed.begin(), listed.end());
+    for (const CpcaRefinementHeader& h : listed)
       if (h.kind == kCpcaStart) started[h.cluster] = 1;
-      all.push_back(h);
-    }
   });
   return all;
 }
@@ -235,27 +234,6 @@ TEST(CpcaWpt, EveryComponentKindDecodesAsTheEncoderReconstructs) {
     EXPECT_EQ(kinds, c.kinds) << c.values.at("model");
     const MeshSequence decoded = decode_mesh3d(stream);  // throws on a hash mismatch
     EXPECT_LT(kg_error(s, decoded), 5.0);
-  }
-}
-
-// Version 5 codes a group's list in its bins: the same refinements as
-// version 4's list in fields, decoding to the same animation, in fewer
-// bytes, for every component kind.
-TEST(CpcaWpt, Version5GroupListsAreTheSameRefinementsInFewerBytes) {
-  const MeshSequence s = test::test_sequence(12, 8);
-  for (const char* model : {"shape", "trajectory"}) {
-    auto encoded = [&](uint32_t version) {
-      Encode3dOptions options = cpca({{"clusters", "3"}, {"model", model}, {"group-bytes", "1000000"}});
-      options.version = version;
-      return encode_mesh3d(s, options).stream;
-    };
-    const std::vector<uint8_t> fields = encoded(4), bins = encoded(5);
-    EXPECT_EQ(fields[4], 4);
-    EXPECT_EQ(bins[4], 5);  // the version, after the object start code
-    EXPECT_EQ(refinements(bins).size(), refinements(fields).size()) << model;
-    EXPECT_EQ(component_kinds(bins), component_kinds(fields)) << model;
-    EXPECT_LT(bins.size(), fields.size()) << model;
-    EXPECT_EQ(decode_mesh3d(bins).frames, decode_mesh3d(fields).frames) << model;
   }
 }
 

@@ -148,9 +148,6 @@ TEST(CpcaSegments, LongerSequencesThanOneSegmentHoldsAreCoded) {
   // 2^22 vertex-frames a segment: 98 vertices take 42,799 frames in one; a segment of 3 over 10 frames here.
   const MeshSequence s = test::test_sequence(10, 7);
   EXPECT_THROW(encode_mesh3d(s, codec("cpca-wpt", {{"segment-frames", "100000"}})), Error);
-  Encode3dOptions v8 = codec("cpca-wpt", {{"segment-frames", "3"}});
-  v8.version = 8;
-  EXPECT_THROW(encode_mesh3d(s, v8), Error) << "version 8 has no segments";
   const Encode3dResult r = encode_mesh3d(s, codec("cpca-wpt", {{"segment-frames", "3"}}));
   EXPECT_EQ(decode_mesh3d(r.stream).frames.size(), 10u);
 }

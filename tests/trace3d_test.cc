@@ -49,7 +49,7 @@ TEST(Trace3d, EveryElementKindIsTraced) {
   std::string all;
   for (const SuiteCase& c : suite) all += c.encoder_trace;
   for (const char* element : {"mesh3d_object_start_code", "codec_id", "unit_type", "frame_index", "vertex_order", "gate_new_vertex", "gate_candidate", "position_prefix", "frame_md5", "arithmetic_bytes_x",
-                              "raw_bytes_z", "bins_x:0", "raw_z:0", "motion_nonzero", "motion_prefix", "motion_sign_suffix", "split_flag",
+                              "raw_bytes_z", "bins_x:0", "raw_z:0", "motion_nonzero", "motion_prefix", "motion_sign", "motion_top", "split_flag",
                               "direct_flag", "matrix_nonzero", "direct_nonzero", "mesh_object_end_code"})
     EXPECT_NE(all.find(element), std::string::npos) << element;
 }

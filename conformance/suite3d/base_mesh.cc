@@ -110,12 +110,6 @@ std::vector<SuiteCase> base_mesh_cases(bool traced) {
                                 "after it, the last index of fronts of 1 … 14 vertices, and a far vertex off a front (written symbol by symbol)",
                                 {"base-mesh"}, written_base_mesh_stream(size.vertices, size.faces, oracle)));
   }
-  {
-    Encode3dOptions version7;
-    version7.version = 7;
-    suite.push_back(valid("base-27-far-chain-version-7", "base-08's chain in a version 7 stream: far vertices by their difference alone, "
-                          "on the gate's front too", {"base-mesh"}, far_chain(3000, 51), version7, traced));
-  }
   suite.push_back(valid("base-16-all-loose", "every face loose (degenerate), no traversal: loose_face_count equal to face_count", {"base-mesh"},
                         all_loose(), Encode3dOptions{}, traced));
   {
@@ -128,19 +122,13 @@ std::vector<SuiteCase> base_mesh_cases(bool traced) {
   {
     // Spikes off a sheet: parallelograms and neighbours' means of either sign, far from each other.
     const MeshSequence spiky = spiky_sheet(2, 32, 200, 46, 4);
-    const std::pair<const char*, uint32_t> blends[] = {{"base-18-blend-16", 16}, {"base-19-blend-5", 5}, {"base-20-version-1", 0}};
+    const std::pair<const char*, uint32_t> blends[] = {{"base-18-blend-16", 16}, {"base-19-blend-5", 5}, {"base-20-blend-0", 0}};
     for (const auto& [id, blend] : blends) {
       Encode3dOptions o = bits24;
       o.position_blend = blend;
-      suite.push_back(valid(id, blend ? "positions predicted with position_blend " + std::to_string(blend) + " on a spiky sheet"
-                                      : std::string("the spiky sheet in a version 1 stream: no position_blend field"),
-                            {"base-mesh"}, spiky, o, traced));
+      suite.push_back(valid(id, "positions predicted with position_blend " + std::to_string(blend) + " on a spiky sheet", {"base-mesh"}, spiky, o,
+                            traced));
     }
-    Encode3dOptions second_version = bits24;
-    second_version.position_blend = 5;
-    second_version.version = 2;
-    suite.push_back(valid("base-22-version-2", "base-19's spiky sheet, position_blend 5, in a version 2 stream: contexts at the fixed rate",
-                          {"base-mesh"}, spiky, second_version, traced));
     // A degenerate face (v, v, u) from the middle of the sheet to the first vertex coded.
     MeshSequence repeated_corner = spiky;
     repeated_corner.faces.push_back({{544, 544, spiky.faces.front().v[0]}});
@@ -148,10 +136,6 @@ std::vector<SuiteCase> base_mesh_cases(bool traced) {
     blend5.position_blend = 5;
     suite.push_back(valid("base-25-repeated-corner", "base-19's spiky sheet and a loose face (v, v, u) to the first vertex coded: u "
                           "counted twice in v's neighbours' mean, position_blend 5", {"base-mesh"}, repeated_corner, blend5, traced));
-    Encode3dOptions fifth_version = second_version;
-    fifth_version.version = 5;
-    suite.push_back(valid("base-24-version-5", "base-19's spiky sheet, position_blend 5, in a version 5 stream: positions in coding order",
-                          {"base-mesh"}, spiky, fifth_version, traced));
     // Its second frame moved below the first frame's box, an intra base mesh of negative positions.
     MeshSequence below = spiky;
     for (size_t v = 0; v < below.frames[1].size(); ++v) {

@@ -32,10 +32,11 @@ std::vector<uint8_t> broken_base_mesh_unit(std::vector<uint8_t> unit_header, uin
 namespace {
 
 // A bin the components are chosen for: any but a residual's sign and top
-// bins (version 4), so that the components stay those of earlier suites.
+// bins, which every component reaches, and the front's (base-26 reaches
+// them all).
 bool is_counted_bin(const std::tuple<std::string, int, bool>& bin) {
   const std::string& name = std::get<0>(bin);
-  return !name.ends_with("_sign") && !name.ends_with("_top");
+  return !name.ends_with("_sign") && !name.ends_with("_top") && name != "far_on_front" && name != "front_index";
 }
 
 }  // namespace
@@ -43,7 +44,7 @@ bool is_counted_bin(const std::tuple<std::string, int, bool>& bin) {
 std::vector<uint64_t> covering_component_seeds() {
   std::vector<uint64_t> chosen;
   std::set<std::tuple<std::string, int, bool>> reached;
-  SplitMix64 random(57);
+  SplitMix64 random(60);
   for (;;) {
     uint64_t best = 0;
     size_t most = 0;

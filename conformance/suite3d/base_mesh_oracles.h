@@ -30,7 +30,6 @@ class StopAtFailureIO {
   static constexpr bool kReading = false;
   struct Stop {};
   explicit StopAtFailureIO(syntax::EntropyWriteIO<false>& io) : io_(io) {}
-  uint32_t version() const { return io_.version(); }
   void bin(const char* name, BinContext& state, int context, bool& value) { io_.bin(name, state, context, value); }
   void raw(const char* name, int bits, uint32_t& value) { io_.raw(name, bits, value); }
   [[noreturn]] void fail(ErrorKind, const char*, const std::string&) const { throw Stop{}; }
@@ -99,7 +98,7 @@ std::vector<uint8_t> written_base_mesh_stream(uint32_t vertex_count, uint32_t fa
   for (int32_t& d : order_differences) contexts.order.describe(symbols, 0, d, syntax::kOrderNames);
   positions.resize(vertex_count);
   try {
-    describe_positions(symbols, contexts, PositionCoding(traversal.faces(), vertex_count, symbols.version()), 0, positions);
+    describe_positions(symbols, contexts, PositionCoding(traversal.faces(), vertex_count), 0, positions);
   } catch (const Error&) {
   }
   const FieldBytes faces = object_field<Bfs3dHeader>(encoded, "face_count");
@@ -226,7 +225,7 @@ class ComponentOracle : public FaceTracker {
   uint32_t first_ = 0, first_face_ = 0;  // the component's first vertex and face
 };
 // Answers for a disc of new vertices, then far vertices on the gate's
-// front (version 8) where the face is valid: at the last index of fronts
+// front where the face is valid: at the last index of fronts
 // of each size 1 … 14 at any gate, and at every third gate each index
 // 0 … 12 with more after it and one off a front that has vertices; the
 // first candidate at two gates of three otherwise (loops shrink), else a
@@ -259,13 +258,10 @@ class FrontOracle : public FaceTracker {
   std::vector<uint32_t> front_;
 };
 
-// Writes nothing: records the (element, context, value) of every bin, far
-// vertices as version 7 codes them (so that the components chosen stay
-// those of earlier suites; base-26 reaches the fronts).
+// Writes nothing: records the (element, context, value) of every bin.
 class BinRecorder {
  public:
   static constexpr bool kReading = false;
-  uint32_t version() const { return kFrontVersion - 1; }
   void bin(const char* name, BinContext&, int context, bool& value) { bins.insert({name, context, value}); }
   void raw(const char*, int, uint32_t&) {}
   [[noreturn]] void fail(ErrorKind kind, const char* element, const std::string& message) const {

@@ -34,7 +34,6 @@ class EndlessPrefixIO {
   static constexpr bool kReading = false;
   struct Stop {};
   explicit EndlessPrefixIO(syntax::EntropyWriteIO<false>& io) : io_(io) {}
-  uint32_t version() const { return io_.version(); }
   void bin(const char* name, BinContext& state, int context, bool& value) {
     if (std::string_view(name).ends_with("_prefix")) value = true;
     io_.bin(name, state, context, value);

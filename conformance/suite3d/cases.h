@@ -56,7 +56,7 @@ std::vector<uint8_t> refinement_bytes(uint32_t cluster, uint32_t kind, uint32_t 
                                       uint32_t frame = 0);
 // The encoder's stream of `s` in one cluster, without hash units: what the
 // streams written symbol by symbol start from.
-ContainerParts cpca_one_cluster_parts(const MeshSequence& s, uint32_t version);
+ContainerParts cpca_one_cluster_parts(const MeshSequence& s);
 // The object header and base mesh of `parts` (cpca_one_cluster_parts()),
 // the header's cluster map replaced by `cluster_of` (and F, the segments'
 // frames, by those given); refinement units follow. The base mesh's

@@ -113,11 +113,14 @@ std::vector<SuiteCase> container_edge_rejected(const std::vector<SuiteCase>& val
     suite.push_back(invalid("x-51-trailing-byte", "a zero byte after the end code", {"container"}, trailing, ErrorKind::kTrailingData,
                             "mesh_object_end_code", kNoPlane));
   }
-  suite.push_back(invalid("x-52-version", "version " + std::to_string(kLatestVersion + 1), {"container"},
-                          edited(base, [&](ContainerParts& p) { put_field(p.object_payload, object_field<AffineOctreeHeader>(base, "version"), kLatestVersion + 1); }),
-                          ErrorKind::kReservedValue, "version", kNoPlane));
-  suite.push_back(invalid("x-146-version-0", "version 0", {"container"}, edited(base, [&](ContainerParts& p) { put_field(p.object_payload, object_field<AffineOctreeHeader>(base, "version"), 0); }),
-                          ErrorKind::kReservedValue, "version", kNoPlane));
+  // Format 1.0 is version 16; its neighbours are not defined.
+  for (const auto& neighbour : {std::pair{"x-52-version", kFormatVersion + 1}, std::pair{"x-146-version", kFormatVersion - 1}}) {
+    const uint32_t version = neighbour.second;
+    suite.push_back(invalid(std::string(neighbour.first) + "-" + std::to_string(version), "version " + std::to_string(version) + ", format 1.0 is 16",
+                            {"container"},
+                            edited(base, [&](ContainerParts& p) { put_field(p.object_payload, object_field<AffineOctreeHeader>(base, "version"), version); }),
+                            ErrorKind::kReservedValue, "version", kNoPlane));
+  }
   return suite;
 }
 
@@ -139,41 +142,6 @@ std::vector<SuiteCase> container_cases(bool traced) {
                           "frame_rate_num and frame_rate_den " + std::to_string(rate) + ", the " + (rate == 1 ? "smallest" : "largest"),
                           {"container"}, box_and_sheet(3, 2), o, traced));
   }
-  // Every codec in the versions before the latest: 1 and 2, whose contexts
-  // adapt at the fixed rate, 3, whose residual signs are raw, 4, whose
-  // cpca-wpt group lists are in the units' fields, 5, whose base mesh
-  // codes its positions in coding order, 6, whose cpca-wpt bases over the
-  // mesh are predicted by parallelograms, 7, whose far vertices are
-  // coded by their difference alone, and 8, whose cpca-wpt has no segments
-  // (cpca-wpt's and the base mesh's version 1 have their own streams).
-  MeshSequence waving = waving_flag(6, 8, false);
-  waving.frames.erase(waving.frames.begin());
-  const struct {
-    const char* codec;
-    MeshSequence sequence;
-    Encode3dOptions options;
-    std::vector<uint32_t> fixed_rate_versions;
-  } codecs[] = {{"bfs3d", box_and_sheet(6, 4), Encode3dOptions{}, {1, 2}},
-                {"affine-octree", box_and_sheet(6, 4), affine("1"), {1, 2}},
-                {"lcc", waving, lcc({}), {1, 2}},
-                {"cpca-wpt", waving_flag(9, 8, false), cpca({{"clusters", "4"}}), {2}}};
-  int number = 1;
-  const auto add = [&](const auto& c, uint32_t version, const std::string& what) {
-    Encode3dOptions o = c.options;
-    o.version = version;
-    char id[64];
-    std::snprintf(id, sizeof id, "ver-%02d-%s-%u", number++, c.codec, version);
-    suite.push_back(valid(id, std::string(c.codec) + " in a version " + std::to_string(version) + " stream: " + what, {"container"}, c.sequence,
-                          o, traced));
-  };
-  for (const auto& c : codecs)
-    for (const uint32_t version : c.fixed_rate_versions) add(c, version, "contexts at the fixed rate");
-  for (const auto& c : codecs) add(c, 3, "residual signs and suffixes raw");
-  for (const auto& c : codecs) add(c, 4, "cpca-wpt's group lists in the units' fields");
-  for (const auto& c : codecs) add(c, 5, "the base mesh's positions in coding order");
-  for (const auto& c : codecs) add(c, 6, "cpca-wpt's bases over the mesh by parallelograms");
-  for (const auto& c : codecs) add(c, 7, "far vertices by their difference alone");
-  for (const auto& c : codecs) add(c, 8, "cpca-wpt in one segment of every frame");
   return suite;
 }
 

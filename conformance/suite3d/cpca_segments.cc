@@ -1,5 +1,4 @@
-// The clustered-PCA codec's segments (from version 9; docs/codec_cpca_wpt.md,
-// "Segments"): streams the encoder writes, streams written symbol by
+// The clustered-PCA codec's segments (docs/codec_cpca_wpt.md, "Segments"): streams the encoder writes, streams written symbol by
 // symbol for what it never writes, and those to reject.
 #include <functional>
 #include <optional>
@@ -50,14 +49,14 @@ class SegmentedStream {
   SegmentedStream(uint32_t frames, uint32_t segment_frames) : sequence_(waving_flag(static_cast<int>(frames), 3, false)) {
     cluster_of_.assign(sequence_.vertex_count, 1);
     for (uint32_t v = 0; v < 8; ++v) cluster_of_[v] = 0;
-    const ContainerParts parts = cpca_one_cluster_parts(sequence_, kLatestVersion);
+    const ContainerParts parts = cpca_one_cluster_parts(sequence_);
     writer_.emplace(cpca_written_start(parts, cluster_of_, 2, std::nullopt, segment_frames));
     members_ = cpca_members(cluster_of_, 2);
     segment_frames_ = segment_frames;
     frames_ = frames;
     const BaseMesh base = base_mesh_of(parts);
     faces_ = base.faces;
-    mesh_.emplace(faces_, plan_base_mesh(sequence_.faces, sequence_.vertex_count, false).input_of, cluster_of_, 2, kLatestVersion,
+    mesh_.emplace(faces_, plan_base_mesh(sequence_.faces, sequence_.vertex_count, false).input_of, cluster_of_, 2,
                   base.positions);
     carry_ = next_ = empty_carry();
   }
@@ -462,14 +461,13 @@ std::vector<SuiteCase> cpca_segment_rejected(const std::vector<SuiteCase>& valid
                             {"cpca-segments"}, s.finish(), ErrorKind::kOutOfRange, "continued_coefficient", kNoPlane));
   }
   {
-    // Version 8 has no unit_kind 5.
+    // unit_kind 5 is the last.
     Encode3dOptions o = cpca({{"clusters", "2"}});
-    o.version = 8;
     o.hashes = false;
-    const std::vector<uint8_t> version_8 = encode_mesh3d(waving_flag(4, 3, false), o).stream;
-    suite.push_back(invalid("x-170-cpca-unit-kind-5-version-8", "unit_kind 5 in a version 8 stream", {"cpca-segments"},
-                            edited(version_8,
-                                   [&](ContainerParts& p) { put_field(p.units[refinement_unit(p, 1)].payload, refinement_field("unit_kind"), 5); }),
+    const std::vector<uint8_t> stream = encode_mesh3d(waving_flag(4, 3, false), o).stream;
+    suite.push_back(invalid("x-170-cpca-unit-kind-6", "unit_kind 6, one past the last", {"cpca-segments"},
+                            edited(stream,
+                                   [&](ContainerParts& p) { put_field(p.units[refinement_unit(p, 1)].payload, refinement_field("unit_kind"), 6); }),
                             ErrorKind::kOutOfRange, "unit_kind", kNoPlane));
   }
   {

@@ -43,10 +43,9 @@ std::vector<uint8_t> refinement_bytes(uint32_t cluster, uint32_t kind, uint32_t 
 
 // The encoder's stream of `s` in one cluster, without hash units: what the
 // streams written symbol by symbol start from.
-ContainerParts cpca_one_cluster_parts(const MeshSequence& s, uint32_t version) {
+ContainerParts cpca_one_cluster_parts(const MeshSequence& s) {
   Encode3dOptions o = cpca({{"clusters", "1"}});
   o.hashes = false;
-  o.version = version;
   return split_container(encode_mesh3d(s, o).stream);
 }
 
@@ -54,17 +53,16 @@ ContainerParts cpca_one_cluster_parts(const MeshSequence& s, uint32_t version) {
 // header and base mesh of `parts` (cpca_one_cluster_parts()), the header's
 // cluster map replaced by `cluster_of` (and F by `fraction_bits` when
 // given); refinement units follow. The base mesh's positions (base_mesh_of)
-// predict the components over the mesh from version 7.
+// predict the components over the mesh.
 ContainerWriter cpca_written_start(ContainerParts parts, const std::vector<uint32_t>& cluster_of, uint32_t clusters,
                                    std::optional<uint32_t> fraction_bits, std::optional<uint32_t> segment_frames) {
   auto [object, header] = read_headers<CpcaHeader>(parts);
-  const uint32_t version = object.version;
   header.cluster_count = clusters;
   header.map_prediction = kCpcaMapByDifference;
   if (fraction_bits) header.fraction_bits = *fraction_bits;
   if (segment_frames) header.segment_frames = *segment_frames;
   std::vector<uint8_t> map_bins, map_raw;
-  write_cluster_map<false>(header, {}, cluster_of, map_bins, map_raw, syntax::SectionPlace{.version = version});
+  write_cluster_map<false>(header, {}, cluster_of, map_bins, map_raw, syntax::SectionPlace{});
   BitWriter payload;
   syntax::WriteIO out(payload);
   syntax::describe(out, object);
@@ -80,50 +78,28 @@ namespace {
 uint32_t unit_kind(const ContainerUnit& unit) { return static_cast<uint32_t>(field_value(unit.payload, refinement_field("unit_kind"))); }
 bool is_refinement(const ContainerUnit& unit) { return unit_header_of(unit.payload).type() == UnitType::kRefinement; }
 
-// A group unit (unit_kind 4) of these refinements in a stream of
-// `version`: from version 5 its list in bins, of clusters `started` tells
-// (the list's starts set it), then the symbols `data` writes.
-std::vector<uint8_t> group_bytes(std::vector<CpcaRefinementHeader> group, std::vector<uint8_t>& started, uint32_t version,
+// A group unit (unit_kind 4) of these refinements: its list in bins, of
+// clusters `started` tells (the list's starts set it), then the symbols
+// `data` writes.
+std::vector<uint8_t> group_bytes(std::vector<CpcaRefinementHeader> group, std::vector<uint8_t>& started,
                                  const std::function<void(syntax::EntropyWriteIO<false>&)>& data) {
-  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.version = version});
-  auto start = [&](const CpcaRefinementHeader& h, bool) {
-    if (h.kind == kCpcaStart) started.at(h.cluster) = 1;
-  };
-  if (cpca_group_list_in_bins(version)) {
-    syntax::CpcaGroupContexts contexts;
-    syntax::describe_group_list(symbols, contexts, std::span(group), static_cast<uint32_t>(started.size()),
-                                [&](uint32_t cluster) { return started.at(cluster) != 0; }, [](uint32_t) { return 0u; }, start);
-  } else {
-    for (const CpcaRefinementHeader& h : group) start(h, false);
-  }
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
+  syntax::CpcaGroupContexts contexts;
+  syntax::describe_group_list(
+      symbols, contexts, std::span(group), static_cast<uint32_t>(started.size()), [&](uint32_t cluster) { return started.at(cluster) != 0; },
+      [](uint32_t) { return 0u; },
+      [&](const CpcaRefinementHeader& h, bool) {
+        if (h.kind == kCpcaStart) started.at(h.cluster) = 1;
+      });
   data(symbols);
-  return refinement_unit_bytes(CpcaRefinement{0, kCpcaGroup, 0, std::move(group), 0, {}, {}, version}, symbols);
+  return refinement_unit_bytes(CpcaRefinement{0, kCpcaGroup, 0, std::move(group), 0, {}, {}}, symbols);
 }
 
-// A group unit's field in a stream of `version`: `group_size`, or its
-// first refinement's `group_cluster`, or up to version 2 its `group_kind`
-// or `group_shift` (from version 3 those two share a byte).
-FieldBytes group_field(const char* name, uint32_t version = kLatestVersion) {
+// A group unit's field: `group_size`.
+FieldBytes group_field(const char* name) {
   UnitHeader header;
-  CpcaRefinement group{0, kCpcaGroup, 0, std::vector<CpcaRefinementHeader>(1), 0, {}, {}, version};
+  CpcaRefinement group{0, kCpcaGroup, 0, std::vector<CpcaRefinementHeader>(1), 0, {}, {}};
   return field_bytes(name, header, group);
-}
-
-// A group unit of version 4 with its list edited.
-void edit_group_list(ContainerUnit& unit, const std::function<void(std::vector<CpcaRefinementHeader>&)>& edit) {
-  BitReader reader(unit.payload.data(), unit.payload.size());
-  syntax::ReadIO in(reader);
-  UnitHeader header;
-  syntax::describe(in, header);
-  CpcaRefinement r;
-  r.version = 4;
-  syntax::describe(in, r);
-  edit(r.group);
-  BitWriter writer;
-  syntax::WriteIO out(writer);
-  syntax::describe(out, header);
-  syntax::describe(out, r);
-  unit.payload = writer.take_bytes();
 }
 
 // A refinement unit (frame 0, shift 16) whose symbols are the residuals
@@ -211,7 +187,7 @@ std::vector<uint8_t> cpca_written_stream() {
   });
   const int loose = static_cast<int>(cluster_of.size()) - 11;  // designed_loose()'s sheet and box hold 11
   ContainerWriter writer =
-      cpca_written_start(cpca_one_cluster_parts(designed_loose(2, loose, [](int, int) { return 0; }), kLatestVersion), cluster_of, kClusters,
+      cpca_written_start(cpca_one_cluster_parts(designed_loose(2, loose, [](int, int) { return 0; })), cluster_of, kClusters,
                          kCpcaMaxFractionBits);
 
   const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, kClusters);
@@ -275,11 +251,11 @@ std::vector<uint8_t> cpca_mesh_written_stream() {
   for (uint32_t p = 0; p < patterns.size(); ++p) cluster_of[quads_end + schedule.size() + p] = 2 + p;
   const uint32_t clusters = 2 + static_cast<uint32_t>(patterns.size());
 
-  const ContainerParts start = cpca_one_cluster_parts(s, kLatestVersion);
+  const ContainerParts start = cpca_one_cluster_parts(s);
   ContainerWriter writer = cpca_written_start(start, cluster_of, clusters, std::nullopt);
 
   const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false);
-  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, clusters, kLatestVersion, base_mesh_of(start).positions);
+  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, clusters, base_mesh_of(start).positions);
   const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, clusters);
   // One value per member (every axis alike), one per frame (every lane alike).
   auto component = [&](uint32_t kind, uint32_t cluster, const std::vector<int32_t>& values, std::pair<int32_t, int32_t> frames) {
@@ -343,11 +319,9 @@ std::vector<uint8_t> cpca_mixed_kinds_stream() {
 // over 255 vertices, one per cluster (the most clusters), and the
 // prediction over its base mesh (which reads the plan's faces: not moved).
 struct OneVertexClusters {
-  explicit OneVertexClusters(uint32_t stream_version = kLatestVersion) : version(stream_version) {}
+  OneVertexClusters() = default;
   OneVertexClusters(const OneVertexClusters&) = delete;
   OneVertexClusters& operator=(const OneVertexClusters&) = delete;
-
-  uint32_t version;
 
   MeshSequence sequence = designed_loose(2, static_cast<int>(kCpcaMaxClusters) - 11, [](int, int) { return 0; });  // its sheet and box hold 11
   std::vector<uint32_t> cluster_of = [this] {
@@ -356,9 +330,9 @@ struct OneVertexClusters {
     return each;
   }();
   BaseMeshPlan plan = plan_base_mesh(sequence.faces, sequence.vertex_count, false);
-  ContainerParts start = cpca_one_cluster_parts(sequence, version);
+  ContainerParts start = cpca_one_cluster_parts(sequence);
   ContainerWriter writer = cpca_written_start(start, cluster_of, kCpcaMaxClusters, std::nullopt);
-  CpcaMeshPrediction mesh{plan.faces, plan.input_of, cluster_of, kCpcaMaxClusters, version, base_mesh_of(start).positions};
+  CpcaMeshPrediction mesh{plan.faces, plan.input_of, cluster_of, kCpcaMaxClusters, base_mesh_of(start).positions};
 };
 
 // A clustered-PCA stream of 2 frames written symbol by symbol (no hash
@@ -406,7 +380,7 @@ std::vector<uint8_t> cpca_limits_stream() {
   return writer.finish();
 }
 
-// A clustered-PCA stream of `version`, 2 frames written symbol by symbol
+// A clustered-PCA stream of 2 frames written symbol by symbol
 // (no hash units), of groups at their limits, over 255 vertices, one per
 // cluster:
 // - a group of 255: every cluster's start in cluster order, cluster 0's at
@@ -419,7 +393,7 @@ std::vector<uint8_t> cpca_limits_stream() {
 // Writes a group unit of these refinements over OneVertexClusters, the
 // i-th value of each −2 … 2; `started` as group_bytes's.
 void write_one_vertex_group(OneVertexClusters& stream, std::vector<uint8_t>& started, const std::vector<CpcaRefinementHeader>& refinements) {
-  stream.writer.unit(group_bytes(refinements, started, stream.version, [&](syntax::EntropyWriteIO<false>& symbols) {
+  stream.writer.unit(group_bytes(refinements, started, [&](syntax::EntropyWriteIO<false>& symbols) {
     syntax::CpcaCoders coders;
     for (const CpcaRefinementHeader& h : refinements) {
       const size_t per_member = h.kind == kCpcaTrajectory ? 1 : 3;
@@ -432,8 +406,8 @@ void write_one_vertex_group(OneVertexClusters& stream, std::vector<uint8_t>& sta
   }));
 }
 
-std::vector<uint8_t> cpca_group_limits_stream(uint32_t version) {
-  OneVertexClusters stream(version);
+std::vector<uint8_t> cpca_group_limits_stream() {
+  OneVertexClusters stream;
   std::vector<uint8_t> started(kCpcaMaxClusters, 0);
   auto group = [&](const std::vector<CpcaRefinementHeader>& refinements) { write_one_vertex_group(stream, started, refinements); };
   std::vector<CpcaRefinementHeader> starts;
@@ -445,7 +419,7 @@ std::vector<uint8_t> cpca_group_limits_stream(uint32_t version) {
   return stream.writer.finish();
 }
 
-// A version 5 clustered-PCA stream over OneVertexClusters whose group
+// A clustered-PCA stream over OneVertexClusters whose group
 // lists' shifts walk 0 … 63 at random (a fixed seed; a third of the time
 // the same shift, a third one up or down, a third anywhere), then climb a
 // ladder to the longest prefixes, so that the shift differences of starts
@@ -489,10 +463,10 @@ std::vector<uint8_t> cpca_group_shifts_stream() {
 std::vector<uint8_t> cpca_over_mesh_stream(const MeshSequence& s, uint32_t kind, std::span<const uint32_t> untraversed) {
   std::vector<uint32_t> cluster_of(s.vertex_count);
   for (uint32_t v = 0; v < s.vertex_count; ++v) cluster_of[v] = v < s.vertex_count / 2 ? 0 : 1;
-  const ContainerParts start = cpca_one_cluster_parts(s, kLatestVersion);
+  const ContainerParts start = cpca_one_cluster_parts(s);
   ContainerWriter writer = cpca_written_start(start, cluster_of, 2, std::nullopt);
   const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false, untraversed);
-  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, 2, kLatestVersion, base_mesh_of(start).positions);
+  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, 2, base_mesh_of(start).positions);
   const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, 2);
   const size_t per_member = kind == kCpcaTrajectory ? 1 : 3, frames = s.frames.size();
   for (uint32_t c = 0; c < 2; ++c) {
@@ -574,7 +548,7 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
                         cpca({{"clusters", "4"}, {"model", "trajectory"}, {"group-bytes", "150"}, {"group-growth", "1"}}), traced));
   suite.push_back(written_case("cpca-21-group-limits", "groups at their limits, written symbol by symbol: 255 starts in one group "
                                "(group_cluster 0 … 254, group_shift 0 and 63), a group of 1, a group of all three component kinds",
-                               {"cpca"}, cpca_group_limits_stream(kLatestVersion)));
+                               {"cpca"}, cpca_group_limits_stream()));
   const auto by_neighbours = [](const std::vector<uint8_t>& stream) {
     return with_cpca_header(stream, [](CpcaHeader& h, const CpcaMap& map, std::vector<uint8_t>& bins, std::vector<uint8_t>& raw) {
       h.map_prediction = kCpcaMapByNeighbours;
@@ -585,43 +559,8 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
                                "candidates, second candidates and raw ranks", {"cpca"}, by_neighbours(stream_of(suite, "cpca-09-many-clusters"))));
   suite.push_back(written_case("cpca-23-map-limits-by-neighbours", "cpca-17's 255 clusters, its map by neighbours: raw ranks up to 253 of "
                                "8 bits", {"cpca"}, by_neighbours(stream_of(suite, "cpca-17-limits"))));
-  Encode3dOptions first_version = cpca({{"clusters", "4"}});
-  first_version.position_blend = 0;
-  suite.push_back(valid("cpca-24-version-1", "a version 1 stream: no cluster_map_prediction, the map by differences", {"cpca"}, flag,
-                        first_version, traced));
-  // Version 2's group lists, a byte a field.
-  suite.push_back(written_case("cpca-25-group-limits-version-2", "cpca-21's groups at their limits in a version 2 stream: group_kind and "
-                               "group_shift a byte each", {"cpca"}, cpca_group_limits_stream(2)));
-  Encode3dOptions second_version = cpca({{"clusters", "4"}, {"group-bytes", "150"}, {"group-growth", "1"}});
-  second_version.version = 2;
-  suite.push_back(valid("cpca-26-groups-version-2", "cpca-18's groups in a version 2 stream", {"cpca"}, flag, second_version, traced));
-  // Version 4's group lists in the units' fields.
-  Encode3dOptions fourth_version = second_version;
-  fourth_version.version = 4;
-  suite.push_back(valid("cpca-28-groups-version-4", "cpca-18's groups in a version 4 stream: group lists in the units' fields", {"cpca"},
-                        flag, fourth_version, traced));
-  suite.push_back(written_case("cpca-29-group-limits-version-4", "cpca-21's groups at their limits in a version 4 stream", {"cpca"},
-                               cpca_group_limits_stream(4)));
-  suite.push_back(written_case("cpca-30-group-shifts", "version 5 group lists whose shifts walk 0 … 63 at random: 255 starts, then the "
+  suite.push_back(written_case("cpca-30-group-shifts", "group lists whose shifts walk 0 … 63 at random: 255 starts, then the "
                                "components of unit_kind 1, 2 and 3 of every cluster, a group each", {"cpca"}, cpca_group_shifts_stream()));
-  // Version 5's members in coding order.
-  Encode3dOptions fifth_version = cpca({{"clusters", "4"}, {"basis", "mesh"}});
-  fifth_version.version = 5;
-  suite.push_back(valid("cpca-31-mesh-basis-version-5", "cpca-11's components over the mesh in a version 5 stream: members in coding order",
-                        {"cpca"}, flag, fifth_version, traced));
-  Encode3dOptions fifth_version_trajectories = cpca({{"clusters", "4"}, {"model", "trajectory"}});
-  fifth_version_trajectories.version = 5;
-  suite.push_back(valid("cpca-32-trajectories-version-5", "cpca-12's trajectory components in a version 5 stream: members in coding order",
-                        {"cpca"}, flag, fifth_version_trajectories, traced));
-  // Version 6's bases predicted by parallelograms.
-  Encode3dOptions sixth_version = cpca({{"clusters", "4"}, {"basis", "mesh"}});
-  sixth_version.version = 6;
-  suite.push_back(valid("cpca-33-mesh-basis-version-6", "cpca-11's components over the mesh in a version 6 stream: bases predicted by "
-                        "parallelograms", {"cpca"}, flag, sixth_version, traced));
-  Encode3dOptions sixth_version_trajectories = cpca({{"clusters", "4"}, {"model", "trajectory"}});
-  sixth_version_trajectories.version = 6;
-  suite.push_back(valid("cpca-34-trajectories-version-6", "cpca-12's trajectory components in a version 6 stream: bases predicted by "
-                        "parallelograms", {"cpca"}, flag, sixth_version_trajectories, traced));
   {
     // Frame 1 the flag's frame 0, its first half through the origin: the
     // mean shape holds that half at the origin.
@@ -853,49 +792,6 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                             ErrorKind::kStructure, "shift", kNoPlane));
     suite.push_back(invalid("x-136-cpca-group-empty", "group_size 0", {"cpca"}, put(group_field("group_size"), 0), ErrorKind::kOutOfRange,
                             "group_size", kNoPlane));
-    // Version 4's lists in fields (from version 5 the list is in bins).
-    const std::vector<uint8_t> fourth_version = stream_of(valid, "cpca-28-groups-version-4");
-    auto put_v4 = [&](FieldBytes at, uint64_t value) {
-      return edited(fourth_version, [&, at, value](ContainerParts& p) { put_field(first_group(p).payload, at, value); });
-    };
-    suite.push_back(invalid("x-137-cpca-group-cluster-beyond", "a version 4 group's first refinement for cluster 4 of 4", {"cpca"},
-                            put_v4(group_field("group_cluster", 4), 4), ErrorKind::kOutOfRange, "group_cluster", kNoPlane));
-    // Kinds and shifts out of their range: a version 2 list's bytes hold them, version 3's 2 and 6 bits do not.
-    const std::vector<uint8_t> second_version = stream_of(valid, "cpca-26-groups-version-2");
-    auto put_v2 = [&](FieldBytes at, uint64_t value) {
-      return edited(second_version, [&, at, value](ContainerParts& p) { put_field(first_group(p).payload, at, value); });
-    };
-    suite.push_back(invalid("x-138-cpca-group-kind", "a version 2 group's first refinement of group_kind 4 (a group in a group)", {"cpca"},
-                            put_v2(group_field("group_kind", 2), kCpcaGroup), ErrorKind::kOutOfRange, "group_kind", kNoPlane));
-    suite.push_back(invalid("x-139-cpca-group-shift-range", "a version 2 group's first refinement at group_shift 64", {"cpca"},
-                            put_v2(group_field("group_shift", 2), kCpcaMaxShift + 1), ErrorKind::kOutOfRange, "group_shift", kNoPlane));
-    // A start of the group made a component: its cluster has not started.
-    suite.push_back(invalid("x-140-cpca-group-not-started", "a version 4 group's first start made a component (unit_kind 1) of a cluster not started",
-                            {"cpca"}, edited(fourth_version,
-                                             [&](ContainerParts& p) {
-                                               edit_group_list(first_group(p), [](std::vector<CpcaRefinementHeader>& entries) {
-                                                 size_t j = 0;
-                                                 while (entries.at(j).kind != kCpcaStart) ++j;
-                                                 entries[j].kind = kCpcaComponent;
-                                               });
-                                             }),
-                            ErrorKind::kStructure, "group_kind", kNoPlane));
-    // A component of the group made a start: its cluster started earlier in the group.
-    suite.push_back(invalid("x-141-cpca-group-second-start", "a version 4 group's component made a second start of a cluster the group started",
-                            {"cpca"}, edited(fourth_version,
-                                             [&](ContainerParts& p) {
-                                               edit_group_list(first_group(p), [](std::vector<CpcaRefinementHeader>& entries) {
-                                                 for (size_t j = 0; j < entries.size(); ++j)
-                                                   for (size_t i = 0; i < j; ++i)
-                                                     if (entries[j].kind != kCpcaStart && entries[i].kind == kCpcaStart &&
-                                                         entries[i].cluster == entries[j].cluster) {
-                                                       entries[j].kind = kCpcaStart;
-                                                       return;
-                                                     }
-                                                 throw Error(ErrorKind::kStructure, "", kNoPlane, kNoOffset, "suite: no start and component in one group");
-                                               });
-                                             }),
-                            ErrorKind::kStructure, "group_kind", kNoPlane));
   }
   {
     // cpca-21: one vertex per cluster over 2 frames (at most 2 components of
@@ -907,7 +803,7 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                                                std::vector<uint8_t> started(kCpcaMaxClusters, 1);
                                                const std::vector<uint8_t> unit = group_bytes(
                                                    {{0, kCpcaComponent, kCpcaShiftBias}, {0, kCpcaComponent, kCpcaShiftBias}}, started,
-                                                   kLatestVersion, [](syntax::EntropyWriteIO<false>& symbols) {
+                                                   [](syntax::EntropyWriteIO<false>& symbols) {
                                                      syntax::CpcaCoders coders;
                                                      for (int k = 0; k < 2; ++k) {
                                                        std::vector<int32_t> basis{1, 1, 1}, coefficients{1, 1};
@@ -921,13 +817,7 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                             {"cpca"},
                             edited(limits, [](ContainerParts& p) { p.units[refinement_unit(p, 2)].payload.push_back(0x00); }),
                             ErrorKind::kStructure, "trajectory_coefficient", kNoPlane));
-    const std::vector<uint8_t> fourth_limits = stream_of(valid, "cpca-29-group-limits-version-4");
-    suite.push_back(invalid("x-144-cpca-group-cluster-255", "a version 4 group's first refinement for cluster 255, one past the most clusters",
-                            {"cpca"},
-                            edited(fourth_limits,
-                                   [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, group_field("group_cluster", 4), 255); }),
-                            ErrorKind::kOutOfRange, "group_cluster", kNoPlane));
-    // Version 5's list in bins: the first group of cpca-21 replaced by one
+    // The list in bins: the first group of cpca-21 replaced by one
     // whose first refinement is written symbol by symbol.
     auto first_list = [&](const std::function<void(syntax::EntropyWriteIO<false>&)>& symbols_of) {
       return edited(limits, [&](ContainerParts& p) {
@@ -936,13 +826,13 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
         p.units[refinement_unit(p, 0)].payload = refinement_unit_bytes(CpcaRefinement{0, kCpcaGroup, 0, {CpcaRefinementHeader{}}, 0, {}, {}}, symbols);
       });
     };
-    suite.push_back(invalid("x-154-cpca-group-list-cluster-255", "a version 5 group's first group_cluster 255 (8 raw bits of 255 clusters)",
+    suite.push_back(invalid("x-154-cpca-group-list-cluster-255", "a group's first group_cluster 255 (8 raw bits of 255 clusters)",
                             {"cpca"}, first_list([](syntax::EntropyWriteIO<false>& symbols) {
                               uint32_t cluster = kCpcaMaxClusters;
                               symbols.raw("group_cluster", 8, cluster);
                             }),
                             ErrorKind::kOutOfRange, "group_cluster", kNoPlane));
-    suite.push_back(invalid("x-155-cpca-group-list-shift", "a version 5 group's first start at group_shift 16 − 17", {"cpca"},
+    suite.push_back(invalid("x-155-cpca-group-list-shift", "a group's first start at group_shift 16 − 17", {"cpca"},
                             first_list([](syntax::EntropyWriteIO<false>& symbols) {
                               uint32_t cluster = 0;
                               symbols.raw("group_cluster", 8, cluster);

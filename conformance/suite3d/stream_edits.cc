@@ -58,7 +58,7 @@ namespace {
 struct FirstBaseMesh {
   BaseMesh base;
   size_t traversal_faces = 0;
-  BaseMeshCoding coding;  // the unit's version and blend
+  BaseMeshCoding coding;  // the unit's blend
 };
 
 FirstBaseMesh first_base_mesh(const ContainerParts& parts) {
@@ -73,10 +73,9 @@ FirstBaseMesh first_base_mesh(const ContainerParts& parts) {
   syntax::describe(in, header);
   BaseMesh base = read_base_mesh(in, object, nullptr);
   BaseMeshData data;
-  data.version = object.version;
   const size_t loose = field_value(payload, field_bytes("loose_face_count", header, data));
-  const uint64_t blend = object.version >= 2 ? field_value(payload, field_bytes("position_blend", header, data)) : 0;
-  return {std::move(base), object.face_count - loose, {object.version, static_cast<uint32_t>(blend)}};
+  const uint64_t blend = field_value(payload, field_bytes("position_blend", header, data));
+  return {std::move(base), object.face_count - loose, {static_cast<uint32_t>(blend)}};
 }
 
 }  // namespace

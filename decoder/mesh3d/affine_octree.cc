@@ -32,8 +32,7 @@ class AffineOctreeDecoder final : public GridFrameDecoder {
     syntax::describe(io, frame);
     const uint8_t* payload = io.reader().data();
     const syntax::SectionPlace place{"bins", "raw", 8 * static_cast<uint64_t>(frame.bins.data() - payload),
-                                     8 * static_cast<uint64_t>(frame.raw.data() - payload), io.plane(),
-                                     object_.version};
+                                     8 * static_cast<uint64_t>(frame.raw.data() - payload), io.plane()};
     if (trace_) {
       syntax::EntropyReadIO<true> cells(frame.bins, frame.raw, place, trace_);
       decode_cells(cells, frame.direct_shift, positions);

@@ -28,7 +28,7 @@ BaseMesh read_symbols(IO& symbols, const BaseMeshData& data, const ObjectHeader&
   std::vector<uint32_t> input_of(header.vertex_count);
   describe_vertex_order(symbols, contexts, data.vertex_order, traversal.parents(), input_of);
   base.positions.resize(header.vertex_count);
-  describe_positions(symbols, contexts, PositionCoding(base.faces, header.vertex_count, header.version), data.position_blend, base.positions);
+  describe_positions(symbols, contexts, PositionCoding(base.faces, header.vertex_count), data.position_blend, base.positions);
   symbols.finish("base_mesh");
   if (data.vertex_order == kVertexOrderCoding) {
     base.coding_order.resize(header.vertex_count);
@@ -48,14 +48,13 @@ BaseMesh read_symbols(IO& symbols, const BaseMeshData& data, const ObjectHeader&
 
 BaseMesh read_base_mesh(syntax::ReadIO& io, const ObjectHeader& header, Trace* trace) {
   BaseMeshData data;
-  data.version = header.version;
   io.note_start("base_mesh", io.reader().position());  // rules about the whole base mesh are placed at its start
   syntax::describe(io, data);
   if (data.loose_face_count > header.face_count)
     io.fail(ErrorKind::kOutOfRange, "loose_face_count", "more loose faces than the object's face_count");
   const uint8_t* payload = io.reader().data();
   const syntax::SectionPlace place{"bins", "raw", 8 * static_cast<uint64_t>(data.bins.data() - payload),
-                                   8 * static_cast<uint64_t>(data.raw.data() - payload), io.plane(), header.version};
+                                   8 * static_cast<uint64_t>(data.raw.data() - payload), io.plane()};
   if (trace) {
     syntax::EntropyReadIO<true> symbols(data.bins, data.raw, place, trace);
     return read_symbols(symbols, data, header);

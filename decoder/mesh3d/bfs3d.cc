@@ -49,8 +49,7 @@ class Bfs3dDecoder final : public GridFrameDecoder {
     const auto decode = [&](size_t axis) {
       const syntax::SectionPlace place{syntax::kAxisBins[axis], syntax::kAxisRaw[axis],
                                        8 * static_cast<uint64_t>(frame.bins[axis].data() - payload),
-                                       8 * static_cast<uint64_t>(frame.raw[axis].data() - payload), io.plane(),
-                                       object_.version};
+                                       8 * static_cast<uint64_t>(frame.raw[axis].data() - payload), io.plane()};
       if (trace_)
         decode_axis<true>(frame.bins[axis], frame.raw[axis], place, trace_, residuals_[axis]);
       else

@@ -106,7 +106,6 @@ std::optional<BaseMeshData> Mesh3dDecoder::first_base_mesh_fields() const {
       syntax::describe(io, header);
       if (header.type() != UnitType::kBaseMesh) continue;
       BaseMeshData data;
-      data.version = header_.version;
       syntax::describe(io, data);
       return data;
     } catch (const Error&) {

@@ -89,7 +89,7 @@ class CpcaDecoder final : public CodecDecoder3d {
           throw in_object_payload(e);
         }
       }
-      mesh_.emplace(base.faces, base.coding_order, cluster_of_, header_.cluster_count, object_.version, base.positions);
+      mesh_.emplace(base.faces, base.coding_order, cluster_of_, header_.cluster_count, base.positions);
       faces_ = std::move(base.faces);
       animation_.emplace(header_, base.positions, frames_of(0));
       report(decoded);
@@ -98,12 +98,10 @@ class CpcaDecoder final : public CodecDecoder3d {
     if (!animation_) io.fail(ErrorKind::kStructure, "unit_type", "a refinement unit before the base mesh");
     enter_segment(io, unit.frame_index);
     CpcaRefinement r;
-    r.version = object_.version;
     syntax::describe(io, r, [&](const CpcaRefinementHeader& h, bool grouped) { admit(io, h, grouped); });
     const uint8_t* payload = io.reader().data();
     const syntax::SectionPlace place{"bins", "raw", 8 * static_cast<uint64_t>(r.bins.data() - payload),
-                                     8 * static_cast<uint64_t>(r.raw.data() - payload), io.plane(),
-                                     object_.version};
+                                     8 * static_cast<uint64_t>(r.raw.data() - payload), io.plane()};
     if (trace_) {
       syntax::EntropyReadIO<true> symbols(r.bins, r.raw, place, trace_);
       read_refinements(symbols, r);
@@ -141,10 +139,8 @@ class CpcaDecoder final : public CodecDecoder3d {
   void enter_segment(syntax::ReadIO& io, uint32_t frame_index) {
     if (frame_index % header_.segment_frames != 0)
       io.fail(ErrorKind::kStructure, "frame_index",
-              object_.version >= kCpcaSegmentVersion
-                  ? "a refinement unit names the first frame of its segment, a multiple of segment_frames (" +
-                        std::to_string(header_.segment_frames) + ")"
-                  : "a refinement unit refines every frame and names frame 0");
+              "a refinement unit names the first frame of its segment, a multiple of segment_frames (" + std::to_string(header_.segment_frames) +
+                  ")");
     if (frame_index < first_frame_)
       io.fail(ErrorKind::kStructure, "frame_index",
               "a refinement unit of the segment at frame " + std::to_string(frame_index) + " after one of the segment at frame " +
@@ -210,12 +206,12 @@ class CpcaDecoder final : public CodecDecoder3d {
     ++count;
   }
 
-  // A group's list (from version 5), then the unit's refinements in order, each
+  // A group's list, then the unit's refinements in order, each
   // applied once its symbols are read, with one set of coders; then the end
   // of the sections.
   template <class IO>
   void read_refinements(IO& io, CpcaRefinement& r) {
-    if (r.kind == kCpcaGroup && cpca_group_list_in_bins(r.version)) {
+    if (r.kind == kCpcaGroup) {
       syntax::CpcaGroupContexts contexts;
       syntax::describe_group_list(
           io, contexts, r.group, header_.cluster_count, [&](uint32_t cluster) { return started_[cluster] != 0; },
@@ -275,21 +271,16 @@ class CpcaDecoder final : public CodecDecoder3d {
 
 std::unique_ptr<CodecDecoder3d> make_cpca_wpt_decoder(const ObjectHeader& object, syntax::ReadIO& io) {
   CpcaHeader header;
-  header.version = object.version;
   syntax::describe(io, header);
   if (object.frame_count == 0) io.fail(ErrorKind::kStructure, "frame_count", "the clustered-PCA codec needs the frame count");
-  if (object.version < kCpcaSegmentVersion) {
-    if (uint64_t{object.vertex_count} * object.frame_count > kCpcaMaxVertexFrames)
-      io.fail(ErrorKind::kLimit, "frame_count", "more than 2^22 vertex-frames");
-    header.segment_frames = object.frame_count;
-  } else if (uint64_t{object.vertex_count} * std::min(header.segment_frames, object.frame_count) > kCpcaMaxVertexFrames) {
+  if (uint64_t{object.vertex_count} * std::min(header.segment_frames, object.frame_count) > kCpcaMaxVertexFrames) {
     io.fail(ErrorKind::kLimit, "segment_frames", "a segment of more than 2^22 vertex-frames");
   }
   const uint8_t* payload = io.reader().data();
   MapSections map{{header.map_bins.begin(), header.map_bins.end()},
                   {header.map_raw.begin(), header.map_raw.end()},
                   {"cluster_map_bins", "cluster_map_raw", 8 * static_cast<uint64_t>(header.map_bins.data() - payload),
-                   8 * static_cast<uint64_t>(header.map_raw.data() - payload), kNoPlane, object.version},
+                   8 * static_cast<uint64_t>(header.map_raw.data() - payload), kNoPlane},
                   io.start_of("cluster_count")};
   return std::make_unique<CpcaDecoder>(object, header, std::move(map), io.trace());
 }
@@ -305,7 +296,7 @@ std::vector<uint32_t> cpca_cluster_map(const ContainerParts& parts) {
     syntax::describe(io, unit);
     faces = read_base_mesh(io, object, nullptr).faces;
   }
-  return read_cluster_map<false>(header, faces, object.vertex_count, syntax::SectionPlace{.version = object.version});
+  return read_cluster_map<false>(header, faces, object.vertex_count, syntax::SectionPlace{});
 }
 
 }  // namespace m4mesh

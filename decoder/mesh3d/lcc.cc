@@ -64,8 +64,7 @@ class LccDecoder final : public CodecDecoder3d {
     syntax::describe(io, data);
     const uint8_t* payload = io.reader().data();
     const syntax::SectionPlace place{"bins", "raw", 8 * static_cast<uint64_t>(data.bins.data() - payload),
-                                     8 * static_cast<uint64_t>(data.raw.data() - payload), io.plane(),
-                                     object_.version};
+                                     8 * static_cast<uint64_t>(data.raw.data() - payload), io.plane()};
     if (header_.mode == kLccStreamMode) coder_.emplace();
     const bool predicted = !coded.anchor();
     const LccIndices& prediction = predictor_->predict(coded);

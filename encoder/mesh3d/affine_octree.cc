@@ -43,7 +43,7 @@ class AffineOctreeEncoder final : public GridFrameEncoder {
 
  private:
   void encode_frame(syntax::WriteIO& io, std::span<const Vec3> frame, size_t frame_index, std::vector<IntPoint3>& positions) override {
-    const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane(), version()};
+    const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane()};
     if (io.trace()) {
       syntax::EntropyWriteIO<true> cells(place, io.trace());
       encode_cells(io, cells, frame, frame_index, positions);

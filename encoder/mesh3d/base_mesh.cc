@@ -143,8 +143,8 @@ Connectivity write_connectivity(IO& symbols, syntax::BaseMeshContexts& contexts,
 }
 
 // The bytes the vertex order takes in a coding, alone.
-size_t vertex_order_bytes(uint32_t method, const Connectivity& c, uint32_t version) {
-  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.version = version});
+size_t vertex_order_bytes(uint32_t method, const Connectivity& c) {
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
   syntax::BaseMeshContexts contexts;
   std::vector<uint32_t> input_of = c.input_of;
   describe_vertex_order(symbols, contexts, method, c.parents, input_of);
@@ -154,8 +154,8 @@ size_t vertex_order_bytes(uint32_t method, const Connectivity& c, uint32_t versi
 // The bytes the positions take with a blend, alone.
 // The bytes of the positions' residuals at `blend`, from their predictions.
 size_t position_bytes(const PositionCoding& position_coding, std::span<const PositionPrediction> predictions,
-                       const std::vector<IntPoint3>& coded, uint32_t blend, uint32_t version) {
-  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.version = version});
+                       const std::vector<IntPoint3>& coded, uint32_t blend) {
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
   syntax::BaseMeshContexts contexts;
   describe_predicted_positions(symbols, contexts, position_coding, blend, predictions, coded);
   return symbols.finish_bins().size() + symbols.finish_raw().size();
@@ -171,19 +171,18 @@ std::vector<PositionPrediction> position_predictions(const PositionCoding& posit
   return predictions;
 }
 
-size_t position_bytes(const PositionCoding& position_coding, const std::vector<IntPoint3>& coded, uint32_t blend, uint32_t version) {
-  return position_bytes(position_coding, position_predictions(position_coding, coded), coded, blend, version);
+size_t position_bytes(const PositionCoding& position_coding, const std::vector<IntPoint3>& coded, uint32_t blend) {
+  return position_bytes(position_coding, position_predictions(position_coding, coded), coded, blend);
 }
 
 // The coding's blend, else the smallest of 0 … 16 (the lowest of equals).
 uint32_t chosen_blend(const BaseMeshCoding& coding, const PositionCoding& position_coding, const std::vector<IntPoint3>& coded) {
-  if (coding.version < 2) return 0;
   if (coding.position_blend) return *coding.position_blend;
   const std::vector<PositionPrediction> predictions = position_predictions(position_coding, coded);
   uint32_t best = 0;
-  size_t best_bytes = position_bytes(position_coding, predictions, coded, 0, coding.version);
+  size_t best_bytes = position_bytes(position_coding, predictions, coded, 0);
   for (uint32_t blend = 1; blend <= kPositionBlendUnit; ++blend)
-    if (const size_t bytes = position_bytes(position_coding, predictions, coded, blend, coding.version); bytes < best_bytes) {
+    if (const size_t bytes = position_bytes(position_coding, predictions, coded, blend); bytes < best_bytes) {
       best = blend;
       best_bytes = bytes;
     }
@@ -196,11 +195,11 @@ struct VertexOrderCoding {
   uint32_t method = kVertexOrderCoding;
   size_t bytes = 0;
 };
-VertexOrderCoding chosen_vertex_order(const Connectivity& c, uint32_t version) {
+VertexOrderCoding chosen_vertex_order(const Connectivity& c) {
   for (uint32_t i = 0; i < c.input_of.size(); ++i)
     if (c.input_of[i] != i) {
-      const size_t by_parallelogram = vertex_order_bytes(kVertexOrderFromParallelogram, c, version);
-      const size_t by_gate = vertex_order_bytes(kVertexOrderFromGate, c, version);
+      const size_t by_parallelogram = vertex_order_bytes(kVertexOrderFromParallelogram, c);
+      const size_t by_gate = vertex_order_bytes(kVertexOrderFromGate, c);
       return by_parallelogram < by_gate ? VertexOrderCoding{kVertexOrderFromParallelogram, by_parallelogram}
                                         : VertexOrderCoding{kVertexOrderFromGate, by_gate};
     }
@@ -227,12 +226,11 @@ uint32_t write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> 
   if (!std::equal(decoded.begin(), decoded.end(), faces.begin(), faces.end()))
     throw Error(ErrorKind::kInput, "base_mesh", kNoPlane, kNoOffset, "encoder: the faces are not in coding order (plan_base_mesh)");
   BaseMeshData data;
-  data.version = coding.version;
   data.loose_face_count = c.loose_faces;
-  data.vertex_order = chosen_vertex_order(c, coding.version).method;
+  data.vertex_order = chosen_vertex_order(c).method;
   describe_vertex_order(symbols, contexts, data.vertex_order, c.parents, c.input_of);
   std::vector<IntPoint3> coded = in_coding_numbers(positions, c);
-  const PositionCoding position_coding(c.faces, vertex_count, coding.version);
+  const PositionCoding position_coding(c.faces, vertex_count);
   data.position_blend = chosen_blend(coding, position_coding, coded);
   describe_positions(symbols, contexts, position_coding, data.position_blend, coded);
   symbols.finish(io, data);
@@ -282,29 +280,21 @@ MeshSequence renumbered(const MeshSequence& sequence, std::span<const uint32_t> 
 }
 
 BaseMeshParts base_mesh_parts(std::span<const Triangle> faces, std::span<const IntPoint3> positions, const BaseMeshCoding& coding) {
-  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.version = coding.version});
+  syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
   syntax::BaseMeshContexts contexts;
   const Connectivity c = write_connectivity(symbols, contexts, faces, static_cast<uint32_t>(positions.size()), {});
   BaseMeshParts parts;
   parts.connectivity = symbols.finish_bins().size() + symbols.finish_raw().size();
-  parts.vertex_order = chosen_vertex_order(c, coding.version).bytes;
+  parts.vertex_order = chosen_vertex_order(c).bytes;
   const std::vector<IntPoint3> coded = in_coding_numbers(positions, c);
-  const PositionCoding position_coding(c.faces, static_cast<uint32_t>(positions.size()), coding.version);
-  parts.positions = position_bytes(position_coding, coded, chosen_blend(coding, position_coding, coded), coding.version);
+  const PositionCoding position_coding(c.faces, static_cast<uint32_t>(positions.size()));
+  parts.positions = position_bytes(position_coding, coded, chosen_blend(coding, position_coding, coded));
   return parts;
-}
-
-BaseMeshCoding BaseMeshCoding::of(std::optional<uint32_t> version, std::optional<uint32_t> position_blend) {
-  if (!version) return {position_blend == 0u ? kFirstVersion : kLatestVersion, position_blend};
-  if (*version < kFirstVersion || *version > kLatestVersion)
-    throw usage_error("the container version is 1 … " + std::to_string(kLatestVersion) + ", not " + std::to_string(*version));
-  if (*version == 1 && position_blend.value_or(0) != 0) throw usage_error("a version 1 stream has no position blend: only 0");
-  return {*version, *version == 1 ? std::optional<uint32_t>(0) : position_blend};
 }
 
 uint32_t write_base_mesh(syntax::WriteIO& io, std::span<const Triangle> faces, std::span<const IntPoint3> positions,
                          const BaseMeshCoding& coding, std::span<const uint32_t> untraversed) {
-  const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane(), coding.version};
+  const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane()};
   if (io.trace()) {
     syntax::EntropyWriteIO<true> symbols(place, io.trace());
     return write_data(io, symbols, faces, positions, coding, untraversed);

@@ -58,7 +58,7 @@ class Bfs3dEncoder final : public GridFrameEncoder {
     std::array<std::vector<uint8_t>, 3> bins, raw;
     std::array<std::string, 3> traces;
     for (int axis = 0; axis < 3; ++axis) {
-      const syntax::SectionPlace place{syntax::kAxisBins[axis], syntax::kAxisRaw[axis], 0, 0, io.plane(), version()};
+      const syntax::SectionPlace place{syntax::kAxisBins[axis], syntax::kAxisRaw[axis], 0, 0, io.plane()};
       if (io.trace())
         encode_axis<true>(residuals_[axis], place, io.trace(), bins[axis], raw[axis], traces[axis]);
       else

@@ -128,7 +128,7 @@ Encode3dResult encode_mesh3d(const FrameSource& input, const Encode3dOptions& op
   const RenumberedSource s(input, options.reorder ? plan.input_of : std::vector<uint32_t>{}, std::move(plan.faces));
   const Codec3d& codec = codec3d_by_name(options.codec);
   const CodecEncoding& encoding = codec_encoding(codec);
-  const BaseMeshCoding base_mesh = BaseMeshCoding::of(options.version, options.position_blend);
+  const BaseMeshCoding base_mesh{options.position_blend};
   CodecSettings settings(codec.name, encoding.options, options.codec_options, base_mesh, options.threads);
   // The codec's frames in coding order: the plan's, or with --reorder their own numbers.
   std::vector<uint32_t> coding_order = plan.input_of;
@@ -143,7 +143,7 @@ Encode3dResult encode_mesh3d(const FrameSource& input, const Encode3dOptions& op
     if (options.trace) options.trace->begin_payload(-1, "object", "mesh3d_object_start_code", kMesh3dObjectStartCode);
     BitWriter writer;
     syntax::WriteIO io(writer, options.trace);
-    ObjectHeader header{base_mesh.version,       codec.id, s.vertex_count(), static_cast<uint32_t>(s.faces().size()), s.frame_count(),
+    ObjectHeader header{kFormatVersion,          codec.id, s.vertex_count(), static_cast<uint32_t>(s.faces().size()), s.frame_count(),
                         options.frame_rate_num, options.frame_rate_den};
     syntax::describe(io, header);
     encoder->write_header(io);

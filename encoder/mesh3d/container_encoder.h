@@ -31,7 +31,6 @@ struct Encode3dOptions {
   bool measure = false;          // the decoder's output's KG error and PSNR in the result
   bool reorder = false;          // vertices renumbered in coding order (docs/base_mesh.md)
   std::optional<uint32_t> position_blend;  // base meshes' blend (0 … 16); none: each mesh's smallest
-  std::optional<uint32_t> version;         // the container's; none: 1 for a blend of 0, else the latest
   std::function<void(size_t done, size_t total)> progress;
   unsigned threads = 0;  // a search's trials at once (--codec auto, a codec's own search); 0: every core
   // The stream's bytes as they are written (then not kept in the result),

@@ -51,9 +51,9 @@ constexpr double kTrajectoryBasisRounding = 0.45;
 
 // The bytes of a refinement unit an operator in a group does not pay: the
 // start code, the unit header, the refinement fields less its entry in the
-// group's list (about a byte from version 5), and the arithmetic coder's
-// flush (about 4 bytes).
-constexpr uint64_t shared_in_group(uint32_t version) { return 4 + 5 + 7 - (version >= 5 ? 1 : version >= 3 ? 2 : 3) + 4; }
+// group's list (about a byte), and the arithmetic coder's flush (about 4
+// bytes).
+constexpr uint64_t kSharedInGroup = 4 + 5 + 7 - 1 + 4;
 
 // Frames first … first + count − 1 of a source, in memory (no faces).
 MeshSequence frames_of(const FrameSource& source, uint32_t first, uint32_t count) {
@@ -69,19 +69,9 @@ MeshSequence frames_of(const FrameSource& source, uint32_t first, uint32_t count
 
 // The frames of a segment: --segment-frames, or every frame when the
 // sequence holds at most kCpcaMaxVertexFrames vertex-frames, else as many
-// as that holds. Before version 9 a stream is one segment.
+// as that holds.
 uint32_t segment_length(const Options& options, uint32_t vertex_count, uint32_t frame_count) {
   const uint32_t most = static_cast<uint32_t>(std::max<uint64_t>(1, kCpcaMaxVertexFrames / vertex_count));
-  if (options.base_mesh.version < kCpcaSegmentVersion) {
-    if (options.segment_frames)
-      throw usage_error("--segment-frames: container version " + std::to_string(options.base_mesh.version) + " has no segments (version " +
-                        std::to_string(kCpcaSegmentVersion) + " has)");
-    if (frame_count > most)
-      throw usage_error("cpca-wpt in container version " + std::to_string(options.base_mesh.version) +
-                        " takes at most 2^22 vertex-frames (vertices × frames); version " + std::to_string(kCpcaSegmentVersion) +
-                        " codes longer sequences in segments");
-    return frame_count;
-  }
   if (options.segment_frames) {
     if (*options.segment_frames > most)
       throw usage_error("--segment-frames " + std::to_string(*options.segment_frames) + ": a segment holds at most 2^22 vertex-frames, " +
@@ -171,7 +161,6 @@ class CpcaEncoder final : public CodecEncoder3d {
     grid_ = Grid::over_half_bits(mean, half_bits, true);
     half_bits_ = half_bits;
     const int bits = (half_bits + 1) / 2;
-    header_.version = base_mesh_.version;
     header_.bits = static_cast<uint32_t>(bits);
     for (int axis = 0; axis < 3; ++axis) {
       header_.origin[axis] = bit_cast<uint32_t>(grid_.origin[axis]);
@@ -247,7 +236,7 @@ class CpcaEncoder final : public CodecEncoder3d {
   }
 
  private:
-  syntax::SectionPlace map_place() const { return {"cluster_map_bins", "cluster_map_raw", 0, 0, kNoPlane, header_.version}; }
+  syntax::SectionPlace map_place() const { return {"cluster_map_bins", "cluster_map_raw", 0, 0, kNoPlane}; }
 
   // With --max-bytes, the most bytes of the stream through a segment of
   // `count` frames from `first`, the stream holding `so_far` before it: it
@@ -258,11 +247,10 @@ class CpcaEncoder final : public CodecEncoder3d {
     return so_far + (first + count == frame_count_ ? left : left * count / (frame_count_ - first));
   }
 
-  // Version 2: the map's prediction of fewer bytes (by the differences of equals).
+  // The map's prediction of fewer bytes (by the differences of equals).
   void choose_cluster_map() {
     header_.map_prediction = kCpcaMapByDifference;
     write_cluster_map<false>(header_, faces_, cluster_of_, map_bins_, map_raw_, map_place());
-    if (header_.version < 2) return;
     CpcaHeader by_neighbours = header_;
     by_neighbours.map_prediction = kCpcaMapByNeighbours;
     std::vector<uint8_t> bins, raw;
@@ -281,7 +269,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     header_.cluster_count = *std::max_element(cluster_of_.begin(), cluster_of_.end()) + 1;
     members_ = cpca_members(cluster_of_, header_.cluster_count);
     faces_ = s.faces;
-    mesh_.emplace(faces_, coding_order, cluster_of_, header_.cluster_count, header_.version, mean_);
+    mesh_.emplace(faces_, coding_order, cluster_of_, header_.cluster_count, mean_);
     mesh_->keep_fits();
     choose_cluster_map();
     fixed_bytes_ = fixed_bytes(s, base_mesh_sizes);
@@ -399,7 +387,7 @@ class CpcaEncoder final : public CodecEncoder3d {
         }
       if (unit.empty()) break;
       sink.unit(UnitType::kRefinement, first,
-                [&](syntax::WriteIO& io) { write_refinements(io, unit, *mesh_, header_.version, started, continuable); });
+                [&](syntax::WriteIO& io) { write_refinements(io, unit, *mesh_, started, continuable); });
       for (const Operator* op : unit) {
         apply(animation, members_[op->cluster], *op);
         if (op->kind == kCpcaStart)
@@ -426,7 +414,7 @@ class CpcaEncoder final : public CodecEncoder3d {
   }
 
   // Whether the segment being planned may continue the previous one's starts and components.
-  bool continuing() const { return header_.version >= kCpcaSegmentVersion && !started_last_.empty(); }
+  bool continuing() const { return !started_last_.empty(); }
 
   std::vector<uint32_t> continuable_counts() const {
     std::vector<uint32_t> counts(header_.cluster_count, 0);
@@ -682,7 +670,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     syntax::WriteIO io(writer);
     UnitHeader header{static_cast<uint32_t>(UnitType::kRefinement), 0};
     syntax::describe(io, header);
-    write_refinements(io, operators, *mesh_, header_.version, started, continuable);
+    write_refinements(io, operators, *mesh_, started, continuable);
     return ContainerWriter::unit_size(writer.bytes());
   }
 
@@ -693,8 +681,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     Operator* const alone[] = {&op};
     std::vector<uint8_t> none_started(header_.cluster_count, 0);
     const uint64_t bytes = unit_bytes(alone, none_started, continuable_counts());
-    const uint64_t shared = shared_in_group(header_.version);
-    return group_bytes_ > 0 ? std::max<uint64_t>(bytes, shared + 1) - shared : bytes;
+    return group_bytes_ > 0 ? std::max<uint64_t>(bytes, kSharedInGroup + 1) - kSharedInGroup : bytes;
   }
 
   // A component's unit in the kind --basis asks for, or the smaller.
@@ -715,7 +702,7 @@ class CpcaEncoder final : public CodecEncoder3d {
   uint64_t fixed_bytes(const MeshSequence& s, BaseMeshSizes* shared) {
     BitWriter object;
     syntax::WriteIO object_io(object);
-    ObjectHeader header{base_mesh_.version, 4, s.vertex_count, static_cast<uint32_t>(s.faces.size()), frame_count_, 25, 1};
+    ObjectHeader header{kFormatVersion, 4, s.vertex_count, static_cast<uint32_t>(s.faces.size()), frame_count_, 25, 1};
     syntax::describe(object_io, header);
     write_header(object_io);
     const auto base_mesh_unit = [&] {
@@ -727,7 +714,7 @@ class CpcaEncoder final : public CodecEncoder3d {
       return BaseMeshUnit{ContainerWriter::unit_size(base.bytes()), blend};
     };
     const BaseMeshUnit base = shared ? shared->of(half_bits_, base_mesh_unit) : base_mesh_unit();
-    if (base_mesh_.version >= 2) base_mesh_.position_blend = base.position_blend;
+    base_mesh_.position_blend = base.position_blend;
     return ContainerWriter::unit_size(object.bytes()) + base.bytes;
   }
 

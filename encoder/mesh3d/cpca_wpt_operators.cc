@@ -27,14 +27,13 @@ std::vector<int32_t> scaled(const Eigen::VectorXd& values, int half_exponent) {
 
 template <class SymbolIO>
 void write_refinements(syntax::WriteIO& io, SymbolIO& symbols, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh,
-                       uint32_t version, std::vector<uint8_t>& started, std::span<const uint32_t> continuable) {
+                       std::vector<uint8_t>& started, std::span<const uint32_t> continuable) {
   CpcaRefinement r;
-  r.version = version;
   for (const Operator* op : operators) r.group.push_back({op->cluster, op->kind, op->shift, op->reference});
   auto start = [&](const CpcaRefinementHeader& h, bool) {
     if (h.kind == kCpcaStart) started[h.cluster] = 1;
   };
-  if (r.group.size() > 1 && cpca_group_list_in_bins(version)) {
+  if (r.group.size() > 1) {
     syntax::CpcaGroupContexts contexts;
     syntax::describe_group_list(
         symbols, contexts, std::span(r.group), static_cast<uint32_t>(started.size()), [&](uint32_t cluster) { return started[cluster] != 0; },
@@ -155,15 +154,15 @@ double estimated_gain(const Component& c, const Operator& op) {
   return c.sigma * c.sigma - noise;
 }
 
-void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh, uint32_t version,
-                       std::vector<uint8_t>& started, std::span<const uint32_t> continuable) {
-  const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane(), version};
+void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh, std::vector<uint8_t>& started,
+                       std::span<const uint32_t> continuable) {
+  const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane()};
   if (io.trace()) {
     syntax::EntropyWriteIO<true> symbols(place, io.trace());
-    write_refinements(io, symbols, operators, mesh, version, started, continuable);
+    write_refinements(io, symbols, operators, mesh, started, continuable);
   } else {
     syntax::EntropyWriteIO<false> symbols(place);
-    write_refinements(io, symbols, operators, mesh, version, started, continuable);
+    write_refinements(io, symbols, operators, mesh, started, continuable);
   }
 }
 

@@ -67,12 +67,12 @@ double estimated_gain(const Translation& t, size_t members, const Operator& op);
 // products, b unit).
 double estimated_gain(const Component& c, const Operator& op);
 
-// A refinement unit's data in the stream's version: one operator's
+// A refinement unit's data: one operator's
 // (unit_kind 0 … 3 or 5), or a group of several (unit_kind 4). `started`
 // holds per cluster whether its start was sent in the segment before; the
 // unit's starts set it. `continuable`: per cluster, the components the
 // previous segment sent.
-void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh, uint32_t version,
-                       std::vector<uint8_t>& started, std::span<const uint32_t> continuable);
+void write_refinements(syntax::WriteIO& io, std::span<Operator* const> operators, const CpcaMeshPrediction& mesh, std::vector<uint8_t>& started,
+                       std::span<const uint32_t> continuable);
 
 }  // namespace m4mesh::cpca_wpt

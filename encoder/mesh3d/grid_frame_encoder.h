@@ -24,9 +24,6 @@ class GridFrameEncoder : public CodecEncoder3d {
   // the decoded previous frame, which it replaces by the decoded new one.
   virtual void encode_frame(syntax::WriteIO& io, std::span<const Vec3> frame, size_t frame_index, std::vector<IntPoint3>& positions) = 0;
 
-  // The stream's version, which says how the frames' symbols are coded.
-  uint32_t version() const { return base_mesh_.version; }
-
   const Grid grid_;
 
  private:

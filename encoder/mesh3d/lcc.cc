@@ -151,7 +151,7 @@ class LccEncoder final : public CodecEncoder3d {
     closed_loop(s, model, [&](const LccCodedFrame& coded, syntax::ResidualCoder<syntax::kLccChannels>& coder, LccIndices& residuals,
                               const std::vector<Vec3>& positions) {
       sink.unit(UnitType::kFrame, coded.frame, [&](syntax::WriteIO& io) {
-        const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane(), base_mesh_.version};
+        const syntax::SectionPlace place{"bins", "raw", 0, 0, io.plane()};
         if (io.trace()) {
           syntax::EntropyWriteIO<true> symbols(place, io.trace());
           write_frame(io, symbols, coder, model, !coded.anchor(), residuals);
@@ -259,7 +259,7 @@ class LccEncoder final : public CodecEncoder3d {
     Trial trial;
     closed_loop(s, model, [&](const LccCodedFrame& coded, syntax::ResidualCoder<syntax::kLccChannels>& coder, LccIndices& residuals,
                               const std::vector<Vec3>& positions) {
-      syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{.version = base_mesh_.version});
+      syntax::EntropyWriteIO<false> symbols(syntax::SectionPlace{});
       syntax::describe_symbols(symbols, coder, !coded.anchor(), residuals.direct, residuals.steps, model.theta_limit(), model.rh_limit());
       trial.bytes += symbols.finish_bins().size() + symbols.finish_raw().size();
       meter.add(coded.frame, as_floats(positions));

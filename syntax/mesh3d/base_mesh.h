@@ -26,13 +26,8 @@ inline constexpr uint32_t kVertexOrderFromParallelogram = 2;
 // The weight, in sixteenths, of the known neighbours' mean in a position
 // predicted by parallelograms (docs/base_mesh.md, "Positions").
 inline constexpr uint32_t kPositionBlendUnit = 16;
-// From this version the positions are coded in the position order (docs/base_mesh.md).
-inline constexpr uint32_t kPositionOrderVersion = 6;
-// From this version a far vertex on the gate's front is coded by its index there (docs/base_mesh.md).
-inline constexpr uint32_t kFrontVersion = 8;
 
 struct BaseMeshData {
-  uint32_t version = kLatestVersion;  // the object header's: version 1 has no position_blend
   uint32_t vertex_order = kVertexOrderFromGate;
   uint32_t position_blend = 0;
   uint32_t loose_face_count = 0;  // faces outside the traversal, coded by their indices
@@ -49,11 +44,7 @@ namespace syntax {
 template <class IO>
 void describe(IO& io, BaseMeshData& b) {
   io.field_in("vertex_order", 8, b.vertex_order, kVertexOrderCoding, kVertexOrderFromParallelogram);
-  if (b.version >= 2 || kTableOf<IO>) {
-    if constexpr (kTableOf<IO>) io.open("if (version >= 2)");
-    io.field_in("position_blend", 8, b.position_blend, 0, kPositionBlendUnit);
-    if constexpr (kTableOf<IO>) io.close();
-  }
+  io.field_in("position_blend", 8, b.position_blend, 0, kPositionBlendUnit);
   io.field("loose_face_count", 32, b.loose_face_count);  // at most face_count: checked by the decoder
   io.field("arithmetic_bytes", 32, b.arithmetic_bytes);
   io.require_length("arithmetic_bytes", b.arithmetic_bytes);

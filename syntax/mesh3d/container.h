@@ -14,7 +14,6 @@
 #include <utility>
 #include <vector>
 
-#include "bitstream/arithmetic.h"
 #include "syntax/io.h"
 
 namespace m4mesh {
@@ -25,25 +24,13 @@ inline constexpr uint32_t kUnitTypes = 5;
 inline bool is_hash_unit(UnitType type) { return type == UnitType::kFrameHash || type == UnitType::kGroupHash; }
 const char* unit_type_name(UnitType type);
 
-// Version 2 adds the base mesh's `position_blend` (docs/base_mesh.md) and
-// cpca-wpt's `cluster_map_prediction`; version 3 the warm-up adaptation of
-// every context (docs/container3d.md, "Contexts") and cpca-wpt's group
-// lists in 2 bytes a refinement; version 4 a residual's sign and the top
-// bit of its suffix in bins (docs/container3d.md, "Residuals"); version 5
-// cpca-wpt's group lists in bins (docs/codec_cpca_wpt.md, "Groups");
-// version 6 the position order of the base mesh's positions and cpca-wpt's
-// bases over the mesh (docs/base_mesh.md, "Position order"); version 7
-// cpca-wpt's bases predicted by an affine fit; version 8 the base mesh's
-// far vertices on the gate's front; version 9 cpca-wpt's segments
-// (docs/codec_cpca_wpt.md, "Segments").
-inline constexpr uint32_t kFirstVersion = 1;
-inline constexpr uint32_t kLatestVersion = 9;
-
-inline Adaptation adaptation_of(uint32_t version) { return version >= 3 ? Adaptation::kWarmUp : Adaptation::kFixedRate; }
-inline bool residual_sign_in_bins(uint32_t version) { return version >= 4; }
+// The object header's `version`: the format's major version in the high
+// four bits, its minor in the low four. 0x10 is format 1.0, the one this
+// decoder reads (docs/container3d.md, "Compatibility").
+inline constexpr uint32_t kFormatVersion = 0x10;
 
 struct ObjectHeader {
-  uint32_t version = kLatestVersion;
+  uint32_t version = kFormatVersion;
   uint32_t codec_id = 0;
   uint32_t vertex_count = 0;
   uint32_t face_count = 0;
@@ -82,7 +69,7 @@ namespace syntax {
 template <class IO>
 void describe(IO& io, ObjectHeader& h) {
   io.field("version", 8, h.version);
-  io.require(h.version >= kFirstVersion && h.version <= kLatestVersion, ErrorKind::kReservedValue, "version", "only versions 1 to 9 are defined");
+  io.require(h.version == kFormatVersion, ErrorKind::kReservedValue, "version", "this decoder reads format 1.0 (version 16) only");
   io.field("codec_id", 8, h.codec_id);  // checked against the registry (codecs3d/registry.h)
   io.field_in("vertex_count", 32, h.vertex_count, 3, kMaxVertices3d);
   io.field_in("face_count", 32, h.face_count, 1, kMaxFaces3d);
@@ -229,7 +216,6 @@ std::pair<ObjectHeader, CodecHeader> read_headers(const ContainerParts& parts) {
   // Unqualified: the codec header's describe() is found where this is used.
   using syntax::describe;
   describe(in, headers.first);
-  if constexpr (requires { headers.second.version; }) headers.second.version = headers.first.version;
   describe(in, headers.second);
   return headers;
 }

@@ -24,7 +24,7 @@ namespace m4mesh {
 
 inline constexpr uint32_t kCpcaMaxClusters = 255;
 inline constexpr uint32_t kCpcaMaxFractionBits = 16;
-// How the cluster map is coded (cluster_map_prediction, version 2): each
+// How the cluster map is coded (cluster_map_prediction): each
 // vertex's cluster as its difference to the previous vertex's, or ranked
 // by the clusters of its neighbours numbered before it (read once the base
 // mesh has given the faces).
@@ -44,37 +44,24 @@ inline constexpr uint32_t kCpcaTrajectory = 3;     // unit_kind: one of the memb
 inline constexpr uint32_t kCpcaGroup = 4;          // unit_kind: several refinements of kinds 0 … 3 and 5 in one unit
 inline constexpr uint32_t kCpcaContinued = 5;      // unit_kind: a component of the previous segment, with new coefficients
 inline constexpr uint32_t kCpcaMaxGroupSize = 255;
-// From version 5 a group's list is coded at the start of its unit's
-// arithmetic-coded section; before, in the unit's fields.
-inline bool cpca_group_list_in_bins(uint32_t version) { return version >= 5; }
-// From version 7 a component's basis over the mesh (unit_kind 2 and 3) is
-// predicted by an affine fit over the mean shape (mesh3d/affine_fit.h).
-inline constexpr uint32_t kCpcaAffineFitVersion = 7;
-// From version 9 the frames come in segments, each refined by its own
-// units, and a component may continue one of the previous segment's
-// (unit_kind 5; docs/codec_cpca_wpt.md, "Segments").
-inline constexpr uint32_t kCpcaSegmentVersion = 9;
 // A unit_kind as tools name it.
 inline const char* cpca_unit_kind_name(uint32_t kind) {
   static constexpr const char* kNames[] = {"start", "component", "mesh component", "trajectory component", "group", "continued component"};
   return kind <= kCpcaContinued ? kNames[kind] : "unknown";
 }
-// The highest unit_kind of a version.
-inline uint32_t cpca_last_unit_kind(uint32_t version) { return version >= kCpcaSegmentVersion ? kCpcaContinued : kCpcaGroup; }
-// The decoder holds 24 bytes per vertex and frame of a segment (before
-// version 9: of the stream), and the bases of two segments: at most 2^22
-// vertex-frames.
+// The decoder holds 24 bytes per vertex and frame of a segment, and the
+// bases of two segments: at most 2^22 vertex-frames.
+
 inline constexpr uint64_t kCpcaMaxVertexFrames = uint64_t{1} << 22;
 
 struct CpcaHeader {
-  uint32_t version = kLatestVersion;  // the object header's: version 1 has no cluster_map_prediction
   uint32_t bits = 12;  // the grid of the base mesh (the mean shape)
   std::array<uint32_t, 3> origin{};  // binary32 bit patterns
   std::array<uint32_t, 3> step{};
   uint32_t cluster_count = 1;
   uint32_t fraction_bits = 8;  // F: positions accumulate in steps of 2^−F grid units
   uint32_t map_prediction = kCpcaMapByDifference;
-  uint32_t segment_frames = 1;  // from version 9; before, the frame count (one segment)
+  uint32_t segment_frames = 1;
   uint32_t map_bins_bytes = 0;
   std::span<const uint8_t> map_bins;
   uint32_t map_raw_bytes = 0;
@@ -104,8 +91,7 @@ struct CpcaRefinement {
   uint32_t arithmetic_bytes = 0;
   std::span<const uint8_t> bins;
   std::span<const uint8_t> raw;
-  uint32_t version = kLatestVersion;  // the object header's: from version 3 a group lists each refinement in 2 bytes, from 5 in bins
-  uint32_t reference = 0;             // unit_kind 5
+  uint32_t reference = 0;  // unit_kind 5
 
   // The refinements the unit carries, in order.
   std::vector<CpcaRefinementHeader> refinements() const {
@@ -131,16 +117,8 @@ void describe(IO& io, CpcaHeader& h) {
   describe_grid(io, h.origin, h.step);
   io.field_in("cluster_count", 8, h.cluster_count, 1, kCpcaMaxClusters);
   io.field_in("fraction_bits", 8, h.fraction_bits, 0, kCpcaMaxFractionBits);
-  if (h.version >= 2 || kTableOf<IO>) {
-    if constexpr (kTableOf<IO>) io.open("if (version >= 2)");
-    io.field_in("cluster_map_prediction", 8, h.map_prediction, kCpcaMapByDifference, kCpcaMapByNeighbours);
-    if constexpr (kTableOf<IO>) io.close();
-  }
-  if (h.version >= kCpcaSegmentVersion || kTableOf<IO>) {
-    if constexpr (kTableOf<IO>) io.open("if (version >= 9)");
-    io.field_in("segment_frames", 32, h.segment_frames, 1, UINT32_MAX);
-    if constexpr (kTableOf<IO>) io.close();
-  }
+  io.field_in("cluster_map_prediction", 8, h.map_prediction, kCpcaMapByDifference, kCpcaMapByNeighbours);
+  io.field_in("segment_frames", 32, h.segment_frames, 1, UINT32_MAX);
   io.field("cluster_map_bins_bytes", 32, h.map_bins_bytes);
   io.require_length("cluster_map_bins_bytes", h.map_bins_bytes);
   io.section("cluster_map_bins", h.map_bins_bytes, h.map_bins);
@@ -149,12 +127,13 @@ void describe(IO& io, CpcaHeader& h) {
   io.section("cluster_map_raw", h.map_raw_bytes, h.map_raw);
 }
 
-// `check` sees each refinement as soon as its fields are read: the unit's
-// own (unit_kind 0 … 3) or each of its group's.
+// `check` sees the unit's own refinement (unit_kind 0 … 3 and 5) as soon
+// as its fields are read; a group's list is read with its symbols
+// (describe_group_list).
 template <class IO, class Check>
 void describe(IO& io, CpcaRefinement& r, Check&& check) {
   io.field_in("cluster", 8, r.cluster, 0, kCpcaMaxClusters - 1);
-  io.field_in("unit_kind", 8, r.kind, kCpcaStart, cpca_last_unit_kind(r.version));
+  io.field_in("unit_kind", 8, r.kind, kCpcaStart, kCpcaContinued);
   io.field_in("shift", 8, r.shift, 0, kCpcaMaxShift);
   if (r.kind == kCpcaContinued || kTableOf<IO>) {
     if constexpr (kTableOf<IO>) io.open("if (unit_kind == 5)");
@@ -167,34 +146,8 @@ void describe(IO& io, CpcaRefinement& r, Check&& check) {
     io.require(r.shift == 0, ErrorKind::kStructure, "shift", "a group's shift field is not 0");
     uint32_t size = static_cast<uint32_t>(r.group.size());
     io.field_in("group_size", 8, size, 1, kCpcaMaxGroupSize);
-    const bool in_fields = !cpca_group_list_in_bins(r.version) || kTableOf<IO>;
-    io.resize(r.group, size, "group_size", in_fields ? 24 : 1);  // from version 5 read with the symbols
-    if constexpr (kTableOf<IO>) {
-      io.open("if (version <= 4)");
-      io.open("for (each refinement of the group)");
-      r.group.resize(1);
-    }
-    for (CpcaRefinementHeader& h : in_fields ? std::span(r.group) : std::span<CpcaRefinementHeader>()) {
-      io.field_in("group_cluster", 8, h.cluster, 0, kCpcaMaxClusters - 1);
-      if (r.version >= 3 || kTableOf<IO>) {
-        if constexpr (kTableOf<IO>) io.open("if (version >= 3)");
-        io.field("group_kind", 2, h.kind);
-        io.field("group_shift", 6, h.shift);
-        if constexpr (kTableOf<IO>) io.close();
-      }
-      if (r.version <= 2 || kTableOf<IO>) {
-        if constexpr (kTableOf<IO>) io.open("if (version <= 2)");
-        io.field_in("group_kind", 8, h.kind, kCpcaStart, kCpcaTrajectory);
-        io.field_in("group_shift", 8, h.shift, 0, kCpcaMaxShift);
-        if constexpr (kTableOf<IO>) io.close();
-      }
-      check(h, true);
-    }
-    if constexpr (kTableOf<IO>) {
-      io.close();
-      io.close();
-      io.close();
-    }
+    io.resize(r.group, size, "group_size", 1);  // each refinement takes at least a bit of the symbols
+    if constexpr (kTableOf<IO>) io.close();
   } else {
     check(CpcaRefinementHeader{r.cluster, r.kind, r.shift, r.reference}, false);
   }
@@ -296,16 +249,16 @@ struct CpcaCoders {
 
 inline constexpr ResidualNames kCpcaGroupShift = M4MESH_RESIDUAL_NAMES("group_shift", "group_shift");
 
-// The contexts of a group's list (from version 5), fresh in every unit.
+// The contexts of a group's list, fresh in every unit.
 struct CpcaGroupContexts {
   BinContext trajectory, mesh, continued;
   ResidualCoder<2> shift;  // channel 0: starts, 1: components
 };
 
-// From version 5: a group's list, first in its unit's arithmetic-coded section.
-// Each refinement's cluster in bit_width(cluster_count − 1) raw bits (below
+// A group's list, first in its unit's arithmetic-coded section. Each
+// refinement's cluster in bit_width(cluster_count − 1) raw bits (below
 // cluster_count); its kind a start when started(cluster) is false, else,
-// from version 9 when previous(cluster) (the cluster's components in the
+// when previous(cluster) (the cluster's components in the
 // previous segment) is not 0, a continued component (bin group_continued,
 // then the component's place in that list, raw bits below previous), else
 // a trajectory component (bin group_trajectory), a component over the mesh
@@ -381,8 +334,8 @@ void describe_operator(IO& io, ResidualCoder<4>& coder, std::span<int32_t> basis
 
 // A start's symbols: the cluster's translation of every frame and axis
 // (frame 0's x, y, z, then frame 1's, …), each as the difference to the
-// same axis of the frame before (the first to `before`: 0, or from version
-// 9 the previous segment's last, cpca_carried); |translation| ≤ 2^29.
+// same axis of the frame before (the first to `before`: 0, or the previous
+// segment's last, cpca_carried); |translation| ≤ 2^29.
 template <class IO>
 void describe_start(IO& io, ResidualCoder<3>& coder, std::span<int32_t> translation, std::array<int64_t, 3> before = {}) {
   describe_differences(io, coder, translation, 0, 3, -kCpcaMaxTranslation, kCpcaMaxTranslation, kCpcaTranslation,

@@ -22,14 +22,13 @@
 namespace m4mesh::syntax {
 
 // Where a pair of sections lies in its unit's payload, for errors and
-// traces, and the stream's version, which says how its symbols are coded.
+// traces.
 struct SectionPlace {
   const char* bins_name = "bins";
   const char* raw_name = "raw";
   uint64_t bins_offset = 0;  // bits from the payload's start
   uint64_t raw_offset = 0;
   int64_t frame = kNoPlane;
-  uint32_t version = kLatestVersion;
 };
 
 // An error in a section: the element, and the bit where the decoder was.
@@ -41,9 +40,8 @@ class EntropyReadIO {
   static constexpr bool kReading = true;
 
   EntropyReadIO(std::span<const uint8_t> bins, std::span<const uint8_t> raw, const SectionPlace& place, Trace* trace = nullptr)
-      : bins_(bins, adaptation_of(place.version)), raw_(raw.data(), raw.size()), place_(place), trace_(trace) {}
+      : bins_(bins), raw_(raw.data(), raw.size()), place_(place), trace_(trace) {}
 
-  uint32_t version() const { return place_.version; }
   // `context` numbers the bin's context for the trace only. A bin that
   // needs a byte past the section's end stops the decoding (truncated):
   // zeros would go on decoding, a whole unit's symbols from a few bytes.
@@ -104,9 +102,8 @@ class EntropyWriteIO {
   // With kTraced, lines go to a buffer in `like`'s location (trace_text()),
   // for the caller to print after the fields that precede the sections.
   explicit EntropyWriteIO(const SectionPlace& place, Trace* like = nullptr)
-      : bins_(adaptation_of(place.version)), place_(place), trace_(buffer_, like ? *like : Trace(buffer_)) {}
+      : place_(place), trace_(buffer_, like ? *like : Trace(buffer_)) {}
 
-  uint32_t version() const { return place_.version; }
   void bin(const char* name, BinContext& context_state, int context, bool& value) {
     bins_.encode(context_state, value);
     if constexpr (kTraced) trace_.bin(place_.bins_name, bin_index_++, name, context, value);

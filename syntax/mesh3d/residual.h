@@ -10,7 +10,6 @@
 
 #include "bitstream/arithmetic.h"
 #include "common/error.h"
-#include "syntax/mesh3d/container.h"
 
 namespace m4mesh::syntax {
 
@@ -18,9 +17,8 @@ namespace m4mesh::syntax {
 struct ResidualNames {
   const char* nonzero;
   const char* prefix;
-  const char* sign_suffix;  // versions 1 to 3
-  const char* element;      // the residual as a whole, for errors
-  const char* sign;         // version 4: the sign's bin, the suffix's top bin and its other bits
+  const char* element;  // the residual as a whole, for errors
+  const char* sign;     // the sign's bin, the suffix's top bin and its other bits
   const char* top;
   const char* suffix;
 };
@@ -28,18 +26,17 @@ struct ResidualNames {
 // A family's names from its stem (motion: motion_nonzero, motion_prefix, …)
 // and the name of the residual as a whole.
 #define M4MESH_RESIDUAL_NAMES(stem, element)                                                                                        \
-  ResidualNames { stem "_nonzero", stem "_prefix", stem "_sign_suffix", element, stem "_sign", stem "_top", stem "_suffix" }
+  ResidualNames { stem "_nonzero", stem "_prefix", element, stem "_sign", stem "_top", stem "_suffix" }
 
 // A zero flag, then |r| − 1 in exp-Golomb of order k, where k follows a
 // running mean of the channel's magnitudes. The zero flag and the prefix
 // bins are arithmetic-coded with contexts per channel and class of the
 // channel's previous residual (0: zero, 1: prefix length e = 0, 2: e > 0),
-// a class known as soon as that residual's bins are decoded. Up to version
-// 3 the sign and the e + k suffix bits are one raw field; from version 4
-// the sign is a bin by the sign of the channel's previous nonzero residual
-// and the suffix's top bit a bin by channel (both lean: prediction errors
-// keep their sign along a surface, and magnitudes fall within a prefix's
-// range), the other suffix bits raw.
+// a class known as soon as that residual's bins are decoded. The sign is a
+// bin by the sign of the channel's previous nonzero residual and the e + k
+// suffix bits' top bit a bin by channel (both lean: prediction errors keep
+// their sign along a surface, and magnitudes fall within a prefix's range),
+// the other suffix bits raw.
 template <int kChannels>
 class ResidualCoder {
  public:
@@ -91,22 +88,15 @@ class ResidualCoder {
       negative = r < 0;
       suffix = ((high - (1u << e)) << k) | (m & ((1u << k) - 1));
     }
-    if (residual_sign_in_bins(io.version())) {
-      const int sign_class = previous_sign_[channel];
-      io.bin(names.sign, sign_[channel][sign_class], channel * 3 + sign_class, negative);
-      previous_sign_[channel] = negative ? 2 : 1;
-      if (n > 0) {
-        bool top = suffix >> (n - 1) != 0;
-        io.bin(names.top, top_[channel], channel, top);
-        uint32_t low = suffix & ((1u << (n - 1)) - 1);
-        if (n > 1) io.raw(names.suffix, n - 1, low);
-        suffix = (top ? 1u << (n - 1) : 0u) | low;
-      }
-    } else {
-      uint32_t bits = (negative ? 1u << n : 0u) | suffix;
-      io.raw(names.sign_suffix, 1 + n, bits);
-      negative = bits >> n != 0;
-      suffix = bits & ((1u << n) - 1);
+    const int sign_class = previous_sign_[channel];
+    io.bin(names.sign, sign_[channel][sign_class], channel * 3 + sign_class, negative);
+    previous_sign_[channel] = negative ? 2 : 1;
+    if (n > 0) {
+      bool top = suffix >> (n - 1) != 0;
+      io.bin(names.top, top_[channel], channel, top);
+      uint32_t low = suffix & ((1u << (n - 1)) - 1);
+      if (n > 1) io.raw(names.suffix, n - 1, low);
+      suffix = (top ? 1u << (n - 1) : 0u) | low;
     }
     if constexpr (IO::kReading) {
       magnitude = (((1u << e) - 1) << k) + suffix + 1;

@@ -6,6 +6,7 @@ writes the same archive twice, which runs on its own."""
 
 import os
 import pathlib
+import re
 import subprocess
 import sys
 import tarfile
@@ -66,9 +67,11 @@ def test_the_package_is_the_same_twice_and_runs_alone(tmp_path):
     with tarfile.open(first) as tar:
         names = set(tar.getnames())
         tar.extractall(tmp_path / "unpacked")
-    package = tmp_path / "unpacked" / "m4mesh-conformance"
+    top = "m4mesh-conformance-" + re.search(r"project\(m4mesh VERSION (\S+)", (CONFORMANCE.parent / "CMakeLists.txt").read_text()).group(1)
+    assert top == "m4mesh-conformance-1.0.0"
+    package = tmp_path / "unpacked" / top
     for name in ("README.md", "conform.py", "manifest.json", "mesh3d/manifest.json", "docs/container3d.md", "docs/decisions.md"):
-        assert f"m4mesh-conformance/{name}" in names
+        assert f"{top}/{name}" in names
     streams = [n for n in names if "/streams/" in n]
     assert len(streams) == len(list((CONFORMANCE / "streams").iterdir())) + len(list((CONFORMANCE / "mesh3d" / "streams").iterdir()))
     result = subprocess.run([sys.executable, str(package / "conform.py"), "--decoder", f"{M4MESH} decode3d {{in}} -o {{out}}", "--suite", "3d",

@@ -174,17 +174,16 @@ def test_a_reordered_stream_is_compared_through_the_stream_or_its_faces(shuffled
         m4mesh.metrics(frames, decoded, faces, decoded_faces=decoded_faces[::-1, ::-1].copy())
 
 
-def test_older_versions_decode_the_same(shuffled_sheet):
+def test_streams_are_format_1_0_at_any_blend(shuffled_sheet):
     frames, faces = shuffled_sheet
-    streams = [m4mesh.encode(frames, faces, bits=10, position_blend=b, container_version=v)
-               for b, v in ((0, None), (9, 2), (9, 3), (9, 4), (9, 5), (9, 6), (9, 7), (9, 8), (9, None))]
-    assert [s[4] for s in streams] == [1, 2, 3, 4, 5, 6, 7, 8, 9]  # the version, after the object start code
+    streams = [m4mesh.encode(frames, faces, bits=10, position_blend=b) for b in (0, 9, None)]
+    assert [s[4] for s in streams] == [0x10] * 3  # the version, after the object start code
     expected = m4mesh.decode(streams[-1])[0]
     assert all(np.array_equal(m4mesh.decode(s)[0], expected) for s in streams[:-1])
     with pytest.raises(ValueError, match="position_blend"):
         m4mesh.encode(frames, faces, position_blend=17)
-    with pytest.raises(ValueError, match="container_version"):
-        m4mesh.encode(frames, faces, container_version=10)
+    with pytest.raises(m4mesh.Error, match="container_version is not an option"):
+        m4mesh.encode(frames, faces, container_version=8)
 
 
 @pytest.mark.parametrize("where", ["original", "decoded"])

@@ -114,3 +114,18 @@ def test_plot_draws_reference_coders_of_one_sequence_beside_a_sweep(sweep, tmp_p
     out = tmp_path / "both.png"
     subprocess.run([sys.executable, "-m", "m4mesh.plot", str(sweep), str(reference), "--sequence", "pcow", "-o", str(out)], check=True)
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_rates_are_read_on_the_lower_front():
+    points = [{"bpvf": 1.0, "kg_percent": 1.0}, {"bpvf": 2.0, "kg_percent": 2.0}, {"bpvf": 3.0, "kg_percent": 0.2}, {"bpvf": 5.0, "kg_percent": 0.1}]
+    assert plot.rate_at(points, 1.0) == 1.0
+    assert plot.rate_at(points, 0.6) == pytest.approx(2.0)  # halfway from (1, 1.0) to (3, 0.2); (2, 2.0) is beaten
+    assert plot.rate_at(points, 0.1) == pytest.approx(5.0)
+    assert plot.rate_at(points, 0.05) is None
+    assert plot.rate_at(points, 4.0) == 1.0
+
+
+def test_at_kg_prints_every_codec(sweep):
+    result = subprocess.run([sys.executable, "-m", "m4mesh.plot", str(sweep), "--at-kg", "5", "0.000001"], capture_output=True, text=True, check=True)
+    lines = result.stdout.splitlines()
+    assert lines and all(line.endswith("bpvf at KG 5 / 1e-06 %") for line in lines)

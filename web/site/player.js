@@ -541,10 +541,11 @@ export class Player {
         player.frameShown = this.frame;
         player.framesDrawn += 1;
         if (!player.downloadDone) player.framesDrawnDuringDownload += 1;
-        // A progressive stream's frame is as the units applied when the worker sent it.
+        // A progressive stream's frame is as the units applied when the worker sent it; a frame
+        // cached at an older refinement may follow a newer one, so only new highs are recorded.
         const applied = this.kind === '3d' && player.progressive ? this.shownVersion : player.unitsApplied;
         const units = player.unitsAppliedWhenDrawn;
-        if (units[units.length - 1] !== applied) units.push(applied);
+        if (!(units[units.length - 1] >= applied)) units.push(applied);
       }
       this.slider.max = String(Math.max(0, (player.frames || available) - 1));
       this.slider.value = String(this.frame);
