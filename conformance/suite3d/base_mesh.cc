@@ -166,6 +166,15 @@ std::vector<SuiteCase> base_mesh_unit_rejected(const std::vector<SuiteCase>& val
                                    put_field(base_unit(p), unit_field<BaseMeshData>("loose_face_count"), faces + 1);
                                  }),
                           ErrorKind::kOutOfRange, "loose_face_count", 0));
+  suite.push_back(invalid("x-174-base-loose-faces-and-length", "x-47's loose_face_count, arithmetic_bytes past the unit: the length is checked first",
+                          {"base-mesh"},
+                          edited(awkward,
+                                 [&](ContainerParts& p) {
+                                   const uint64_t faces = field_value(p.object_payload, object_field<Bfs3dHeader>(awkward, "face_count"));
+                                   put_field(base_unit(p), unit_field<BaseMeshData>("loose_face_count"), faces + 1);
+                                   put_field(base_unit(p), unit_field<BaseMeshData>("arithmetic_bytes"), 1u << 30);
+                                 }),
+                          ErrorKind::kOutOfRange, "arithmetic_bytes", 0));
   {
     // Seed 0 of three new vertices, its gates borders; seed 1 a new vertex
     // and the old 2 and 1, in the raw section, which is cut: read as zeros,

@@ -92,6 +92,15 @@ std::vector<SuiteCase> group_hash_rejected(const std::vector<SuiteCase>& valid) 
   suite.push_back(invalid("x-45-group-md5-cut", "a group hash unit one byte short", {"container-hash"},
                           edited(grouped, [&](ContainerParts& p) { first_group(p).payload.pop_back(); }), ErrorKind::kOutOfRange,
                           "group_md5", 0));
+  // Two rules broken at once: the digest's size is checked before the group's frames.
+  suite.push_back(invalid("x-172-group-md5-cut-and-ahead", "x-42's group of frames 0 … 4 after frame 3, its digest one byte short",
+                          {"container-hash"},
+                          edited(grouped,
+                                 [&](ContainerParts& p) {
+                                   put_field(first_group(p).payload, group_frames, 5);
+                                   first_group(p).payload.pop_back();
+                                 }),
+                          ErrorKind::kOutOfRange, "group_md5", 0));
   return suite;
 }
 
@@ -230,6 +239,29 @@ std::vector<SuiteCase> container_rules_rejected(const std::vector<SuiteCase>& va
   suite.push_back(invalid("x-77-frame-hash-ahead", "the frame hash unit after frame 1 labelled frame 2", {"container-hash"},
                           edited(base, [](ContainerParts& p) { put_field(unit_of(p, UnitType::kFrameHash, 1).payload, unit_header_field("frame_index"), 2); }),
                           ErrorKind::kStructure, "frame_index", 2));
+  suite.push_back(invalid("x-176-frame-hash-behind", "the frame hash unit after frame 2 labelled frame 1, decoded by the unit before", {"container-hash"},
+                          edited(base, [](ContainerParts& p) { put_field(unit_of(p, UnitType::kFrameHash, 2).payload, unit_header_field("frame_index"), 1); }),
+                          ErrorKind::kStructure, "frame_index", 1));
+  // Two rules broken at once: which one a decoder reports.
+  suite.push_back(invalid("x-173-frame-hash-ahead-and-cut", "x-77's frame hash labelled frame 2, its digest one byte short: the frame is checked first",
+                          {"container-hash"},
+                          edited(base,
+                                 [](ContainerParts& p) {
+                                   std::vector<uint8_t>& hash = unit_of(p, UnitType::kFrameHash, 1).payload;
+                                   put_field(hash, unit_header_field("frame_index"), 2);
+                                   hash.pop_back();
+                                 }),
+                          ErrorKind::kStructure, "frame_index", 2));
+  suite.push_back(invalid("x-175-unit-type-unused-and-frame-beyond", "x-76's refinement unit, its frame_index past frame_count: the unit type is checked first",
+                          {"container-units"},
+                          edited(base,
+                                 [](ContainerParts& p) {
+                                   ContainerUnit refinement = unit_of(p, UnitType::kFrame, 1);
+                                   put_field(refinement.payload, unit_header_field("unit_type"), static_cast<uint32_t>(UnitType::kRefinement));
+                                   put_field(refinement.payload, unit_header_field("frame_index"), 1000);
+                                   p.units.insert(p.units.begin() + 2, refinement);
+                                 }),
+                          ErrorKind::kStructure, "unit_type", kNoPlane));
   suite.push_back(invalid("x-78-bins-one-byte-short", "frame 1's bins_x one byte short, arithmetic_bytes_x one less", {"container"},
                           edited(base,
                                  [](ContainerParts& p) {

@@ -574,6 +574,23 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
                           "without spread, the mean of the known values", {"cpca"}, collapsed,
                           cpca({{"clusters", "2"}, {"model", "trajectory"}, {"noise", "-4"}}), traced));
   }
+  {
+    // base-25's spiky sheet with a loose face (v, v, u): u counts once per
+    // corner of v, in the member order of kinds 2 and 3 and in the map by
+    // neighbours.
+    MeshSequence repeated_corner = spiky_sheet(2, 32, 200, 46, 4);
+    repeated_corner.faces.push_back({{544, 544, repeated_corner.faces.front().v[0]}});
+    suite.push_back(valid("cpca-43-repeated-corner-mesh-basis", "components over the mesh (unit_kind 2) of one cluster over base-25's sheet "
+                          "and its loose face (v, v, u)", {"cpca"}, repeated_corner, cpca({{"clusters", "1"}, {"basis", "mesh"}, {"noise", "-4"}}),
+                          traced));
+    suite.push_back(valid("cpca-44-repeated-corner-trajectories", "trajectory components (unit_kind 3) of one cluster over base-25's sheet "
+                          "and its loose face (v, v, u)", {"cpca"}, repeated_corner,
+                          cpca({{"clusters", "1"}, {"model", "trajectory"}, {"noise", "-4"}}), traced));
+    Encode3dOptions clusters = cpca({{"clusters", "20"}});
+    clusters.hashes = false;
+    suite.push_back(written_case("cpca-45-repeated-corner-map", "20 clusters over base-25's sheet and its loose face (v, v, u), the map "
+                                 "by neighbours", {"cpca"}, by_neighbours(encode_mesh3d(repeated_corner, clusters).stream)));
+  }
   return suite;
 }
 
