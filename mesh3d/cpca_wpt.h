@@ -240,6 +240,27 @@ void describe_refinement(IO& io, syntax::CpcaCoders& coders, const CpcaMeshPredi
     syntax::describe_operator(io, coders.component, basis, coefficients);
 }
 
+// A segment's last value per lane (a translation's 3 axes, a component's
+// 1 or 3 coefficient lanes) and its shift: the base of the next segment's
+// first differences of the same start or component (docs/codec_cpca_wpt.md,
+// "Segments").
+struct CpcaCarried {
+  std::array<int32_t, 3> last{};
+  uint32_t shift = 0;
+
+  std::array<int64_t, 3> at(uint32_t shift_to, int64_t limit) const {
+    std::array<int64_t, 3> before{};
+    for (size_t l = 0; l < 3; ++l) before[l] = syntax::cpca_carried(last[l], shift, shift_to, limit);
+    return before;
+  }
+  // The last frame's lanes of `values`, `lanes` per frame.
+  static CpcaCarried of(std::span<const int32_t> values, size_t lanes, uint32_t shift) {
+    CpcaCarried c{{}, shift};
+    for (size_t l = 0; l < lanes; ++l) c.last[l] = values[values.size() - lanes + l];
+    return c;
+  }
+};
+
 // The animation of a segment's frames as decoded so far: per frame, vertex
 // and axis a 64-bit integer in steps of 2^−F grid units, starting at the
 // mean shape's grid index × 2^F (arithmetic modulo 2^64), and its

@@ -27,31 +27,11 @@ struct MapSections {
   uint64_t cluster_count_offset = 0;  // where an empty cluster is reported
 };
 
-// A segment's last value per lane (a translation's 3 axes, a component's
-// 1 or 3 coefficient lanes) and its shift: the base of the next segment's
-// first differences.
-struct Carried {
-  std::array<int32_t, 3> last{};
-  uint32_t shift = 0;
-
-  std::array<int64_t, 3> at(uint32_t shift_to, int64_t limit) const {
-    std::array<int64_t, 3> before{};
-    for (size_t l = 0; l < 3; ++l) before[l] = syntax::cpca_carried(last[l], shift, shift_to, limit);
-    return before;
-  }
-  // The last frame's lanes of `values`, `lanes` per frame.
-  static Carried of(std::span<const int32_t> values, size_t lanes, uint32_t shift) {
-    Carried c{{}, shift};
-    for (size_t l = 0; l < lanes; ++l) c.last[l] = values[values.size() - lanes + l];
-    return c;
-  }
-};
-
 // A component decoded in a segment, which the next segment may continue.
 struct ListedComponent {
   std::shared_ptr<const std::vector<int32_t>> basis;
   bool trajectory = false;  // a component of the members' trajectories (unit_kind 3, or one continuing it)
-  Carried coefficients;
+  CpcaCarried coefficients;
 };
 
 class CpcaDecoder final : public CodecDecoder3d {
@@ -234,11 +214,11 @@ class CpcaDecoder final : public CodecDecoder3d {
       describe_refinement(io, coders, *mesh_, h, trajectory, before, translation_, basis_, coefficients_);
       if (h.kind == kCpcaStart) {
         animation_->translate(members_[h.cluster], translation_, h.shift);
-        start_[h.cluster] = Carried::of(translation_, 3, h.shift);
+        start_[h.cluster] = CpcaCarried::of(translation_, 3, h.shift);
         continue;
       }
       ListedComponent listed{continued ? continued->basis : std::make_shared<const std::vector<int32_t>>(basis_), trajectory,
-                             Carried::of(coefficients_, lanes, h.shift)};
+                             CpcaCarried::of(coefficients_, lanes, h.shift)};
       animation_->refine(members_[h.cluster], *listed.basis, coefficients_, h.shift, trajectory);
       listed_[h.cluster].push_back(std::move(listed));
     }
@@ -260,7 +240,7 @@ class CpcaDecoder final : public CodecDecoder3d {
   // Per cluster, the components of this segment and of the one before, in
   // the order decoded, and the starts of both.
   std::vector<std::vector<ListedComponent>> listed_, previous_;
-  std::vector<std::optional<Carried>> start_, previous_start_;
+  std::vector<std::optional<CpcaCarried>> start_, previous_start_;
   std::vector<Triangle> faces_;
   std::optional<CpcaAnimation> animation_;
   std::optional<CpcaMeshPrediction> mesh_;

@@ -81,32 +81,14 @@ uint32_t segment_length(const Options& options, uint32_t vertex_count, uint32_t 
   return std::min(most, frame_count);
 }
 
-// A segment's last value per lane and its shift: the base of the next
-// segment's first differences of the same start or component.
-struct Carried {
-  std::array<int32_t, 3> last{};
-  uint32_t shift = 0;
-
-  std::array<int64_t, 3> at(uint32_t shift_to, int64_t limit) const {
-    std::array<int64_t, 3> before{};
-    for (size_t l = 0; l < 3; ++l) before[l] = syntax::cpca_carried(last[l], shift, shift_to, limit);
-    return before;
-  }
-  static Carried of(std::span<const int32_t> values, size_t lanes, uint32_t shift) {
-    Carried c{{}, shift};
-    for (size_t l = 0; l < lanes; ++l) c.last[l] = values[values.size() - lanes + l];
-    return c;
-  }
-};
-
-// The bytes of the base mesh unit per mean shape bits (half bits), found
-// once for a search's candidates, side by side.
 // The bytes and the positions' blend of a base mesh unit.
 struct BaseMeshUnit {
   uint64_t bytes = 0;
   uint32_t position_blend = 0;
 };
 
+// The bytes of the base mesh unit per mean shape bits (half bits), found
+// once for a search's candidates, side by side.
 class BaseMeshSizes {
  public:
   BaseMeshUnit of(int half_bits, const std::function<BaseMeshUnit()>& unit) {
@@ -129,7 +111,7 @@ class BaseMeshSizes {
 struct ListedBasis {
   std::vector<int32_t> basis;
   int exponent = 0;  // the basis is the real one × 2^(exponent / 2)
-  Carried coefficients;
+  CpcaCarried coefficients;
 };
 
 class CpcaEncoder final : public CodecEncoder3d {
@@ -372,7 +354,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     std::vector<uint8_t> started(header_.cluster_count, 0);
     const std::vector<uint32_t> continuable = continuable_counts();
     std::vector<std::vector<ListedBasis>> listed(header_.cluster_count);
-    std::vector<std::optional<Carried>> started_last(header_.cluster_count);
+    std::vector<std::optional<CpcaCarried>> started_last(header_.cluster_count);
     size_t sent = 0;
     double group_bytes = static_cast<double>(group_bytes_);
     while (sent < plan_.sent) {
@@ -391,9 +373,9 @@ class CpcaEncoder final : public CodecEncoder3d {
       for (const Operator* op : unit) {
         apply(animation, members_[op->cluster], *op);
         if (op->kind == kCpcaStart)
-          started_last[op->cluster] = Carried::of(op->translation, 3, op->shift);
+          started_last[op->cluster] = CpcaCarried::of(op->translation, 3, op->shift);
         else
-          listed[op->cluster].push_back({op->basis, op->basis_exponent, Carried::of(op->coefficients, op->trajectory ? 3 : 1, op->shift)});
+          listed[op->cluster].push_back({op->basis, op->basis_exponent, CpcaCarried::of(op->coefficients, op->trajectory ? 3 : 1, op->shift)});
       }
       sent += unit.size();
       sink.progress(first + count * sent / std::max<size_t>(plan_.sent, 1), frame_count_);
@@ -777,7 +759,7 @@ class CpcaEncoder final : public CodecEncoder3d {
   // Per cluster, the components the segment before sent, in stream order,
   // and its start's last translation (empty before the second segment).
   std::vector<std::vector<ListedBasis>> listed_;
-  std::vector<std::optional<Carried>> started_last_;
+  std::vector<std::optional<CpcaCarried>> started_last_;
   size_t sent_total_ = 0, computed_total_ = 0;
   int half_bits_ = 0;
   double kg_ = 0, kmeans_seconds_ = 0, svd_seconds_ = 0, order_seconds_ = 0;
