@@ -41,17 +41,6 @@ size_t draco_grid_size(std::span<const Triangle> faces, std::span<const IntPoint
   return buffer.size();
 }
 
-size_t draco_frame_size(std::span<const Triangle> faces, std::span<const std::array<float, 3>> positions, int bits) {
-  const std::unique_ptr<draco::Mesh> mesh = draco_mesh(faces, positions, draco::DT_FLOAT32);
-  draco::Encoder encoder;
-  encoder.SetEncodingMethod(draco::MESH_EDGEBREAKER_ENCODING);
-  encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, bits);
-  draco::EncoderBuffer buffer;
-  const draco::Status status = encoder.EncodeMeshToBuffer(*mesh, &buffer);
-  if (!status.ok()) throw reference_error(std::string("Draco cannot encode a frame: ") + status.error_msg());
-  return buffer.size();
-}
-
 std::vector<char> draco_frame_encoded(std::span<const Triangle> faces, std::span<const std::array<float, 3>> positions, int bits) {
   const std::unique_ptr<draco::Mesh> mesh = draco_mesh(faces, positions, draco::DT_FLOAT32);
   draco::Encoder encoder;
@@ -61,6 +50,10 @@ std::vector<char> draco_frame_encoded(std::span<const Triangle> faces, std::span
   const draco::Status status = encoder.EncodeMeshToBuffer(*mesh, &buffer);
   if (!status.ok()) throw reference_error(std::string("Draco cannot encode a frame: ") + status.error_msg());
   return {buffer.data(), buffer.data() + buffer.size()};
+}
+
+size_t draco_frame_size(std::span<const Triangle> faces, std::span<const std::array<float, 3>> positions, int bits) {
+  return draco_frame_encoded(faces, positions, bits).size();
 }
 
 size_t draco_frame_decode(std::span<const char> encoded) {

@@ -38,6 +38,18 @@ void require_comparable(const MeshSequence& a, const MeshSequence& b) {
   if (a.frames.empty()) throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, "no frames to compare");
 }
 
+// The mean of a frame's positions (KG's per-frame centre).
+Vec3 centroid(std::span<const Vec3> frame) {
+  Vec3 mean;
+  for (const Vec3& v : frame) {
+    mean.x += v.x;
+    mean.y += v.y;
+    mean.z += v.z;
+  }
+  const double n = static_cast<double>(frame.size());
+  return {mean.x / n, mean.y / n, mean.z / n};
+}
+
 // Unique undirected edges of the faces.
 std::vector<std::pair<NodeIndex, NodeIndex>> edges_of(const MeshSequence& s) {
   std::vector<std::pair<NodeIndex, NodeIndex>> edges;
@@ -53,14 +65,7 @@ double kg_of(const MeshSequence& a, const MeshSequence& b) {
   double error = 0, spread = 0;
   for (size_t f = 0; f < a.frames.size(); ++f) {
     const std::vector<Vec3>& o = a.frames[f];
-    Vec3 mean;
-    for (const Vec3& v : o) {
-      mean.x += v.x;
-      mean.y += v.y;
-      mean.z += v.z;
-    }
-    const double n = static_cast<double>(o.size());
-    mean = {mean.x / n, mean.y / n, mean.z / n};
+    const Vec3 mean = centroid(o);
     for (size_t i = 0; i < o.size(); ++i) {
       const Vec3& d = b.frames[f][i];
       error += (o[i].x - d.x) * (o[i].x - d.x) + (o[i].y - d.y) * (o[i].y - d.y) + (o[i].z - d.z) * (o[i].z - d.z);
@@ -103,14 +108,7 @@ void QualityMeter::add(uint32_t frame, std::span<const Float3> decoded) {
 
 void QualityMeter::measure(uint32_t frame, std::span<const Float3> decoded) {
   const std::span<const Vec3> o = reader_.get(frame);
-  Vec3 mean;
-  for (const Vec3& v : o) {
-    mean.x += v.x;
-    mean.y += v.y;
-    mean.z += v.z;
-  }
-  const double n = static_cast<double>(o.size());
-  mean = {mean.x / n, mean.y / n, mean.z / n};
+  const Vec3 mean = centroid(o);
   for (size_t i = 0; i < o.size(); ++i) {
     const Vec3 d{decoded[i][0], decoded[i][1], decoded[i][2]};
     if (!std::isfinite(d.x) || !std::isfinite(d.y) || !std::isfinite(d.z))
