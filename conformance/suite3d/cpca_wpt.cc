@@ -849,6 +849,20 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                               symbols.raw("group_cluster", 8, cluster);
                             }),
                             ErrorKind::kOutOfRange, "group_cluster", kNoPlane));
+    // The same with 40 bytes of bins behind the raw field: the error is
+    // placed where the arithmetic decoder is (5 bytes in), not at the raw
+    // bits (after the bins), which x-154's 5-byte bin section puts at one place.
+    suite.push_back(invalid("x-177-cpca-group-list-cluster-behind-bins", "x-154's group_cluster 255, its unit's bin section 40 bytes long",
+                            {"cpca"}, first_list([](syntax::EntropyWriteIO<false>& symbols) {
+                              uint32_t cluster = kCpcaMaxClusters;
+                              symbols.raw("group_cluster", 8, cluster);
+                              BinContext context;
+                              for (int i = 0; i < 320; ++i) {
+                                bool bin = i % 2 == 0;
+                                symbols.bin("group_trajectory", context, 0, bin);
+                              }
+                            }),
+                            ErrorKind::kOutOfRange, "group_cluster", kNoPlane));
     suite.push_back(invalid("x-155-cpca-group-list-shift", "a group's first start at group_shift 16 − 17", {"cpca"},
                             first_list([](syntax::EntropyWriteIO<false>& symbols) {
                               uint32_t cluster = 0;
