@@ -155,7 +155,7 @@ std::map<std::string, std::set<std::string>> coverage_catalog3d() {
     for (int later = 64; later <= 67; ++later) base.insert(bin_item("base-mesh", "candidate_index", later, v));
     for (int border = 0; border < 2; ++border) base.insert(bin_item("base-mesh", "gate_border", border, v));
     base.insert(bin_item("base-mesh", "seed_new_vertex", 0, v));
-    // Version 8: whether a far vertex is on the gate's front, and its index there (contexts by bin, the last for bins 3 on).
+    // Whether a far vertex is on the gate's front, and its index there (contexts by bin, the last for bins 3 on).
     base.insert(bin_item("base-mesh", "far_on_front", 0, v));
     for (int slot = 0; slot < syntax::BaseMeshContexts::kFrontSlots; ++slot) base.insert(bin_item("base-mesh", "front_index", slot, v));
   }

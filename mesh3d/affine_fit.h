@@ -1,5 +1,5 @@
 // The affine fit of docs/codec_cpca_wpt.md ("Prediction by the mean
-// shape", from version 7): a vertex's values predicted by the affine
+// shape"): a vertex's values predicted by the affine
 // function of the mean shape's positions that best fits the known vertices
 // around it, a small ridge keeping the function flat where they do not
 // settle it. A rigid part's trajectories are affine in its rest positions,

@@ -1,6 +1,6 @@
 // The order in which values on the vertices are predicted (docs/base_mesh.md,
-// "Position order"): from version 6 the vertex best predicted by the ones
-// before it comes next, rather than the next in coding order.
+// "Position order"): the vertex best predicted by the ones before it comes
+// next, rather than the next in coding order.
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// The affine fit that predicts cpca-wpt's bases from version 7
+// The affine fit that predicts cpca-wpt's bases over the mesh
 // (mesh3d/affine_fit.h), on cases worked out by hand from
 // docs/codec_cpca_wpt.md ("Prediction by the mean shape").
 #include "mesh3d/affine_fit.h"

@@ -131,8 +131,8 @@ void describe_gate(IO& io, BaseMeshContexts& c, GateContext context, uint32_t ca
 }
 
 // A far vertex, below `visited`: its index in the gate's `front` when it
-// is there, else its difference from the gate's `from` vertex. Before
-// version 8 the front is empty, and for an empty front nothing says which.
+// is there, else its difference from the gate's `from` vertex. For an
+// empty front nothing says which.
 // True when the front named it.
 template <class IO>
 bool describe_far_vertex(IO& io, BaseMeshContexts& c, std::span<const uint32_t> front, uint32_t visited, uint32_t from,
