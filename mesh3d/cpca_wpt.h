@@ -122,6 +122,13 @@ class CpcaMeshPrediction {
   // members again and again; the predictions do not change.
   void keep_fits();
 
+  // A cluster's members in member order.
+  std::span<const uint32_t> members_in_order(uint32_t cluster) const { return in_order_[cluster]; }
+  // The points member v's fit reads (affine_fit_support over its cluster); the channel.
+  int fit_support(uint32_t v, std::vector<uint32_t>& points) const {
+    return affine_fit_support(predictor_, v, [&](uint32_t u) { return rank_[u] < rank_[v] && cluster_of_[u] == cluster_of_[v]; }, points);
+  }
+
   // A component over the mesh: D basis values per member (unit_kind 2:
   // D = 3, x, y, z; unit_kind 3: D = 1) at basis[D·i + a], i the member's
   // slot in the cluster's index order, for the members in member order:

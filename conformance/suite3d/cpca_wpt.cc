@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "conformance/suite3d/cases.h"
+#include "conformance/suite3d/fit_readings.h"
 #include "conformance/suite3d/inputs.h"
 #include "conformance/suite3d/stream_edits.h"
 #include "decoder/mesh3d/container_decoder.h"
@@ -295,6 +296,82 @@ std::vector<uint8_t> cpca_mesh_written_stream() {
   return writer.finish();
 }
 
+// A clustered-PCA stream of 2 frames written symbol by symbol (no hash
+// units) that tells the affine fit's binary64 order from each other
+// reading of fit_readings.h: per reading, an octahedron whose corners are
+// moved by −2 … 2 until values tell it apart at its last member, all in
+// one cluster on a 4-bit grid (a grid unit per unit); a start and a
+// component of unit_kind 2 and of unit_kind 3, whose values at the points
+// of octahedron r's last member tell reading 1 + r apart on every lane;
+// every other value is 0.
+std::vector<uint8_t> cpca_fit_order_stream() {
+  constexpr uint32_t kReadings = kFitReadings - 1, kTries = 20000;
+  SplitMix64 random(46);
+  MeshSequence s;
+  const NodeIndex octahedron[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (uint32_t r = 0; r < kReadings; ++r)
+    for (const auto& f : octahedron) s.faces.push_back({{6 * r + f[0], 6 * r + f[1], 6 * r + f[2]}});
+  s.vertex_count = 6 * kReadings + 2;
+  std::vector<IntPoint3> positions(s.vertex_count);
+  positions[s.vertex_count - 1] = {15, 15, 15};  // with the origin, the grid's box: 15 units on every axis
+  const std::vector<uint32_t> cluster_of(s.vertex_count, 0);
+  const BaseMeshPlan plan = plan_base_mesh(s.faces, s.vertex_count, false);
+  std::vector<int32_t> shapes(3 * size_t{s.vertex_count}), trajectories(s.vertex_count);
+  std::vector<uint32_t> points;
+  for (uint32_t r = 0; r < kReadings; ++r) {
+    const FitReading reading = static_cast<FitReading>(1 + r);
+    std::vector<std::vector<int32_t>> lanes;  // unit_kind 2's three, then unit_kind 3's
+    while (lanes.size() < 4) {
+      const int corners[6][3] = {{2, 0, 0}, {-2, 0, 0}, {0, 2, 0}, {0, -2, 0}, {0, 0, 2}, {0, 0, -2}};
+      const int32_t centre[3] = {4 + static_cast<int32_t>(r), 11 - static_cast<int32_t>(r), 4 + static_cast<int32_t>(5 * r % 8)};
+      for (int i = 0; i < 6; ++i)
+        for (int a = 0; a < 3; ++a) positions[6 * r + i][a] = centre[a] + corners[i][a] + random.uniform(-2, 2);
+      const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, 1, positions);
+      const std::span<const uint32_t> order = mesh.members_in_order(0);
+      const uint32_t last = *std::find_if(order.rbegin(), order.rend(), [&](uint32_t v) { return v / 6 == r; });
+      mesh.fit_support(last, points);
+      std::vector<std::array<int32_t, 3>> q;
+      for (const uint32_t u : points)
+        q.push_back({positions[u][0] - positions[last][0], positions[u][1] - positions[last][1], positions[u][2] - positions[last][2]});
+      lanes.clear();
+      while (lanes.size() < 4) {
+        std::optional<std::vector<int32_t>> values = values_telling_apart(q, reading, random, kTries);
+        if (!values) break;
+        lanes.push_back(std::move(*values));
+      }
+      if (lanes.size() < 4) continue;
+      for (size_t i = 0; i < points.size(); ++i) {
+        for (size_t a = 0; a < 3; ++a) shapes[3 * size_t{points[i]} + a] = lanes[a][i];
+        trajectories[points[i]] = lanes[3][i];
+      }
+    }
+  }
+  for (const IntPoint3& p : positions) s.frames.resize(1), s.frames[0].push_back({double(p[0]), double(p[1]), double(p[2])});
+  s.frames.push_back(s.frames[0]);
+
+  Encode3dOptions o = cpca({{"clusters", "1"}, {"bits", "4"}});
+  o.hashes = false;
+  const ContainerParts start = split_container(encode_mesh3d(s, o).stream);
+  if (base_mesh_of(start).positions != positions) throw std::logic_error("suite: the fit-order octahedra are not on their grid points");
+  ContainerWriter writer = cpca_written_start(start, cluster_of, 1, std::nullopt);
+  const CpcaMeshPrediction mesh(plan.faces, plan.input_of, cluster_of, 1, positions);
+  syntax::EntropyWriteIO<false> start_symbols(syntax::SectionPlace{});
+  syntax::CpcaCoders start_coders;
+  std::vector<int32_t> translation(6);
+  syntax::describe_start(start_symbols, start_coders.start, translation);
+  writer.unit(refinement_bytes(0, kCpcaStart, kCpcaShiftBias, start_symbols));
+  std::vector<int32_t> shape_coefficients{1, 1}, trajectory_coefficients(6, 1);
+  syntax::EntropyWriteIO<false> shape_symbols(syntax::SectionPlace{});
+  syntax::CpcaCoders shape_coders;
+  mesh.describe_operator<3>(shape_symbols, shape_coders.mesh_component, 0, shapes, shape_coefficients);
+  writer.unit(refinement_bytes(0, kCpcaMeshComponent, kCpcaShiftBias, shape_symbols));
+  syntax::EntropyWriteIO<false> trajectory_symbols(syntax::SectionPlace{});
+  syntax::CpcaCoders trajectory_coders;
+  mesh.describe_operator<1>(trajectory_symbols, trajectory_coders.trajectory, 0, trajectories, trajectory_coefficients);
+  writer.unit(refinement_bytes(0, kCpcaTrajectory, kCpcaShiftBias, trajectory_symbols));
+  return writer.finish();
+}
+
 // One cluster with more components of both kinds than either limit: the
 // units of a moving tetrahedron's shape components (3 over 3 frames, the
 // limit), then those of its trajectory components (3: its 4 vertices less
@@ -534,6 +611,9 @@ std::vector<SuiteCase> cpca_cases(bool traced) {
                         {"cpca"}, spiky_sheet(4, 16, 100, 47, 3), cpca({{"clusters", "200"}, {"bits", "24"}, {"model", "trajectory"}}), traced));
   suite.push_back(written_case("cpca-14-mesh-written", "unit_kind 2 and 3 written symbol by symbol: every prefix length 0 … 13 after "
                               "each class on the parallelogram, neighbour and coefficient channels", {"cpca"}, cpca_mesh_written_stream()));
+  suite.push_back(written_case("cpca-46-fit-order", "unit_kind 2 and 3 written symbol by symbol over octahedra: fits whose exact "
+                               "value is an integer that the affine fit's binary64 steps taken in another order floor otherwise",
+                               {"cpca"}, cpca_fit_order_stream()));
   suite.push_back(written_case("cpca-16-mixed-kinds", "one cluster of 4 vertices over 3 frames: 3 shape components (its limit, "
                               "min(3M, N) = 3) and 3 trajectory components (of min(M, 3N) = 4), counted apart", {"cpca"}, cpca_mixed_kinds_stream()));
   suite.push_back(valid("cpca-07-no-fraction", "a 24-bit grid: fraction_bits 0", {"cpca"}, flag, cpca({{"clusters", "2"}, {"bits", "24"}}),
