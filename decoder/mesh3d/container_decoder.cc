@@ -297,11 +297,15 @@ bool Mesh3dDecoder::next_unit() {
   return true;
 }
 
-void Mesh3dDecoder::extend(std::span<const uint8_t> received) {
-  ContainerSource parts(received);
-  if (parts.units() < parts_.units() || parts.object_payload() != parts_.object_payload())
-    throw usage_error("the bytes received do not continue those decoded so far");
-  parts_ = std::move(parts);
+void Mesh3dDecoder::take_received_units() {
+  while (next_unit_ < parts_.units()) {
+    next_unit();
+    ready_.merge(released_);
+  }
+}
+
+void Mesh3dDecoder::extend(std::span<const uint8_t> window, uint64_t window_start) {
+  parts_.extend(window, window_start);
   if (next_unit_ > 0)
     while (next_unit_ < parts_.units() && is_hash_unit(next_unit_)) check_hash(next_unit_++);
 }

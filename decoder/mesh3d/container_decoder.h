@@ -82,11 +82,20 @@ class Mesh3dDecoder {
   // unit for as consumed and skips its hash units, so that next_unit() carries on with the next
   // unit from the state the failed one left (`m4mesh check`).
   void resume();
-  // A stream still arriving: `received` is every byte so far, cut where a
-  // unit starts (whole_payloads_size), beginning with the bytes the decoder
-  // was made with. Its new units join the decoder's; the hash units right
-  // after the last unit taken are checked now, as next_unit() would have.
-  void extend(std::span<const uint8_t> received);
+  // A stream in memory still arriving: `window` holds its bytes from
+  // `window_start` (at most the start of the first unit not taken,
+  // unit_offset(units_taken())) to every byte so far, cut where a unit starts
+  // (whole_payloads_size) or at the stream's end. Its new units join the
+  // decoder's; the hash units right after the last unit taken are checked
+  // now, as next_unit() would have.
+  void extend(std::span<const uint8_t> window, uint64_t window_start = 0);
+  // Where unit `index` starts in the stream (its start code).
+  uint64_t unit_offset(size_t index) const { return parts_.unit_offset(index); }
+  // A stream still arriving (extend): decodes every unit received and not
+  // taken yet; the frames they finish wait for next_frame().
+  void take_received_units();
+  // Whether next_frame() has its frame without another unit.
+  bool next_frame_ready() const { return ready_.contains(next_display_); }
   // Units the decoder holds, taken or not, hash units included.
   size_t units_received() const { return parts_.units(); }
   // Units taken so far, hash units included (after an error in a unit, the
@@ -95,6 +104,8 @@ class Mesh3dDecoder {
   // A frame the last unit decoded; of a progressive codec, any frame it
   // holds (its segment's and the later ones) or the last unit released.
   void frame(uint32_t index, std::span<Float3> positions) const;
+  // Whether a progressive codec holds the frame (decoded, not released).
+  bool holds(uint32_t frame) const;
   // Each frame's last hash check: absent when no hash unit covered it
   // (or verification is off), else whether it matched. A group hash unit
   // checks its frames after the last of them is decoded: a frame's result
@@ -125,8 +136,6 @@ class Mesh3dDecoder {
   Digest digest_of(uint32_t frame) const;
   // A progressive codec's frames before `first_held` become final: copied out.
   void release_before(uint32_t first_held);
-  // Whether a progressive codec holds the frame (decoded, not released).
-  bool holds(uint32_t frame) const;
   void finish();
   // An error of a unit header's element (unit_type, frame_index).
   [[noreturn]] void fail(ErrorKind kind, size_t index, int64_t frame, const char* element, const std::string& message) const;

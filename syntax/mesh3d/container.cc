@@ -35,13 +35,16 @@ namespace {
 // The framing of a container of `size` bytes: `word(at)` reads 4 bytes,
 // `prefix(from)` finds the next 0x000001 at or after `from` (or `size`);
 // payload(code, start, end) for the object's and each unit's payload, whose
-// start code is at `start`. Returns whether an end code closes it.
+// start code is at `start`. Returns whether an end code closes it. With
+// `from` above 0 the scan continues one that ended there, at a unit's
+// start code.
 template <class Word, class Prefix, class Payload>
-bool scan_container(uint64_t size, Word&& word, Prefix&& prefix, Payload&& payload) {
-  if (size < 4) throw container_error(ErrorKind::kTruncated, "mesh3d_object_start_code", 0, "the data ends inside this element");
-  if (word(0) != kMesh3dObjectStartCode) throw container_error(ErrorKind::kMissingStartCode, "mesh3d_object_start_code", 0, "not a mesh3d container");
-  uint64_t at = 0;
-  bool first = true;
+bool scan_container(uint64_t size, Word&& word, Prefix&& prefix, Payload&& payload, uint64_t from = 0) {
+  if (from == 0 && size < 4) throw container_error(ErrorKind::kTruncated, "mesh3d_object_start_code", 0, "the data ends inside this element");
+  if (from == 0 && word(0) != kMesh3dObjectStartCode)
+    throw container_error(ErrorKind::kMissingStartCode, "mesh3d_object_start_code", 0, "not a mesh3d container");
+  uint64_t at = from;
+  bool first = from == 0;
   while (at < size) {
     if (at + 4 > size) throw container_error(ErrorKind::kTruncated, "start code", at, "the data ends inside a start code");
     const uint32_t code = word(at);
@@ -101,6 +104,22 @@ ContainerSource::ContainerSource(std::span<const uint8_t> stream) : memory_(stre
       });
 }
 
+void ContainerSource::extend(std::span<const uint8_t> window, uint64_t window_start) {
+  if (file_ || window_start < memory_start_ || window_start > units_end_ || window_start + window.size() < size_)
+    throw usage_error("the bytes received do not continue those decoded so far");
+  memory_ = window;
+  memory_start_ = window_start;
+  size_ = window_start + window.size();
+  has_end_code_ = scan_container(
+      size_, [&](uint64_t at) { return word_at(window, at - window_start); },
+      [&](uint64_t from) { return window_start + next_prefix(window, static_cast<size_t>(from - window_start)); },
+      [&](uint32_t, uint64_t start, uint64_t end) {
+        offsets_.push_back(start);
+        units_end_ = end;
+      },
+      units_end_);
+}
+
 ContainerSource ContainerSource::open_file(const std::string& path) {
   ContainerSource source;
   source.file_ = std::make_shared<std::ifstream>(path, std::ios::binary);
@@ -147,7 +166,8 @@ const std::vector<uint8_t>& ContainerSource::payload(size_t index) const {
   auto it = payloads_.find(index);
   if (it != payloads_.end()) return it->second;
   const uint64_t start = offsets_.at(index) + 4, end = index + 1 < offsets_.size() ? offsets_[index + 1] : units_end_;
-  return payloads_[index] = file_ ? unescape_payload(read(start, end - start)) : unescape_payload(payload_bytes(memory_, start - 4, end));
+  if (!file_ && start - 4 < memory_start_) throw usage_error("unit " + std::to_string(index) + ": its bytes were dropped before it was read");
+  return payloads_[index] = file_ ? unescape_payload(read(start, end - start)) : unescape_payload(payload_bytes(memory_, start - 4 - memory_start_, end - memory_start_));
 }
 
 void ContainerSource::drop_before(size_t index) const { payloads_.erase(payloads_.begin(), payloads_.lower_bound(index)); }

@@ -151,6 +151,11 @@ class ContainerSource {
   const std::vector<uint8_t>& payload(size_t index) const;
   // Drops the payloads read before unit `index`.
   void drop_before(size_t index) const;
+  // A stream in memory still arriving: `window` holds its bytes from
+  // `window_start` (no unit before it is read any more) to all received so
+  // far, cut where a start code begins (whole_payloads_size) or at the
+  // stream's end. The units of the new bytes join.
+  void extend(std::span<const uint8_t> window, uint64_t window_start);
 
  private:
   ContainerSource() = default;
@@ -158,6 +163,7 @@ class ContainerSource {
   std::vector<uint8_t> read(uint64_t first, uint64_t count) const;
 
   std::span<const uint8_t> memory_;
+  uint64_t memory_start_ = 0;  // the stream offset of memory_[0]
   std::shared_ptr<std::ifstream> file_;
   uint64_t size_ = 0;
   std::vector<uint8_t> object_payload_;

@@ -1,0 +1,33 @@
+#!/bin/sh
+# The installed library as other projects use it: `cmake --install` to a
+# temporary prefix, then
+# - the header alone compiles as C89;
+# - a C program built with pkg-config against the shared library decodes
+#   both conformance suites as an external decoder (decode.c);
+# - a C++ project built with find_package(m4mesh) against the static
+#   library encodes a sequence with every codec and decodes it back
+#   (cxx/encode_decode.cc).
+# Usage: test.sh BUILD_DIR SOURCE_DIR C_COMPILER CXX_COMPILER [SANITIZER_FLAGS]
+set -eu
+build=$1 source=$2 cc=$3 cxx=$4 flags=${5:-}
+prefix=$(mktemp -d)
+trap 'rm -rf "$prefix"' EXIT
+cmake --install "$build" --prefix "$prefix/usr" > "$prefix/install.log"
+lib=$(dirname "$(find "$prefix/usr" -name libm4mesh.a)")
+export PKG_CONFIG_PATH="$lib/pkgconfig"
+
+printf '#include <m4mesh.h>\n' | "$cc" -std=c89 -pedantic -Wall -Wextra -Werror -fsyntax-only $(pkg-config --cflags m4mesh) -x c -
+# shellcheck disable=SC2046,SC2086
+"$cc" -std=c99 -pedantic -Wall -Wextra -Werror $flags -o "$prefix/decode" "$source/tests/install/decode.c" \
+  $(pkg-config --cflags --libs m4mesh) -Wl,-rpath,"$lib"
+"$prefix/usr/bin/m4mesh" conform "$source/conformance" --decoder "'$prefix/decode' --method {method} {in} {out}" > "$prefix/2d.log" ||
+  { cat "$prefix/2d.log"; exit 1; }
+tail -n 1 "$prefix/2d.log"
+"$prefix/usr/bin/m4mesh" conform "$source/conformance/mesh3d" --decoder "'$prefix/decode' --chunk 13 {in} {out}" > "$prefix/3d.log" ||
+  { cat "$prefix/3d.log"; exit 1; }
+tail -n 1 "$prefix/3d.log"
+
+cmake -S "$source/tests/install/cxx" -B "$prefix/cxx" -DCMAKE_PREFIX_PATH="$prefix/usr" -DCMAKE_CXX_COMPILER="$cxx" \
+  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" > "$prefix/cxx.log"
+cmake --build "$prefix/cxx" >> "$prefix/cxx.log"
+"$prefix/cxx/encode_decode"
