@@ -18,7 +18,7 @@ echo "clang build: both conformance suites decode to the manifests' MD5s"
 
 work=build-fuzz/run
 rm -rf "$work"
-mkdir -p "$work/seeds-stream" "$work/seeds-text" "$work/seeds-mesh3d" "$work/seeds-gltf" build-fuzz/findings
+mkdir -p "$work/seeds-stream" "$work/seeds-text" "$work/seeds-mesh3d" "$work/seeds-gltf" "$work/seeds-api" build-fuzz/findings
 # Seeds no longer than the inputs the fuzzers make (-max_len).
 find conformance/streams tests/fuzz_regressions -name '*.m4m' -size -8193c -exec cp {} "$work/seeds-stream/" \;
 cp tests/fuzz_regressions/*.txt "$work/seeds-text/" 2> /dev/null || true
@@ -39,12 +39,18 @@ for fps in 25 7; do
   build-fuzz/cli/m4mesh -y convert tests/data/tetra-frames "$work/seeds-gltf/tetra-$fps.glb" --fps "$fps" > /dev/null 2>&1 || true
 done
 
+# The C interface's inputs: a stream and the size of the pieces it is pushed in (its last byte + 1).
+for stream in "$work"/seeds-stream/*.m4m "$work"/seeds-mesh3d/*.m4m; do
+  { cat "$stream"; printf '\074'; } > "$work/seeds-api/$(basename "$stream")"
+done
+
 total=0
-for target in decoder checker text mesh3d gltf; do
+for target in decoder checker text mesh3d gltf api; do
   seeds="$work/seeds-stream"
   [ "$target" = text ] && seeds="$work/seeds-text"
   [ "$target" = mesh3d ] && seeds="$work/seeds-mesh3d"
   [ "$target" = gltf ] && seeds="$work/seeds-gltf"
+  [ "$target" = api ] && seeds="$work/seeds-api"
   mkdir -p "$work/corpus-$target"
   log="$work/$target.log"
   echo "== ${target}_fuzzer for ${seconds}s"
