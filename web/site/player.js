@@ -1,7 +1,8 @@
 // The player: a 3D stream shaded under an orbit camera, decoded as it
 // downloads (a progressive stream plays from its base mesh on and refines
 // at every unit); a 2D stream as the texture warped by every plane.
-// Decoding runs in a Web Worker (decoder-worker.js): the page asks it for
+// Decoding runs in the npm package's Web Worker (m4mesh/worker.js, from
+// web/package/): the page asks it for
 // the frames it shows. What it shows is recorded in state.player for the
 // tests.
 import * as THREE from 'three';
@@ -73,7 +74,7 @@ function bounds(nodeLists, whole = false) {
 export class Player {
   constructor(container, state) {
     this.container = container;
-    this.worker = new Worker(new URL('./decoder-worker.js', import.meta.url), { type: 'module' });
+    this.worker = new Worker(new URL('./m4mesh/worker.js', import.meta.url), { type: 'module' });
     this.worker.onmessage = ({ data }) => this.receive(data);
     this.waiting = new Map();  // frame index → resolvers of fetchFrame
     this.state = state;
