@@ -1,9 +1,10 @@
-// The WebAssembly decoder's speed in headless Chromium against the native
-// decoder, in one run (docs/web.md): the horse and the cow of ../shared/data
-// encoded by every 3D codec, each stream decoded to its conformance output
-// (every frame, hashes verified, MD5) natively (m4mesh_decode_bench, Google
-// Benchmark) and in the page (#bench); the MD5s must agree. Also the size
-// of the site, gzip-compressed.
+// The decoder's speed through its interfaces against the native decoder,
+// in one run (docs/web.md, docs/api.md): the horse and the cow of
+// ../shared/data encoded by every 3D codec, each stream decoded to every
+// frame, hashes verified, natively (m4mesh_decode_bench, Google Benchmark,
+// with the MD5), in Python (m4mesh.decode), in Node (the npm package's
+// module) and in headless Chromium (the page's #bench, with the MD5); the
+// MD5s must agree. Also the size of the site, gzip-compressed.
 // Usage: node scripts/web_bench.mjs [BUILD (default build)] [DATA (default ../shared/data)]
 import { execFileSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, readdirSync, rmSync, statSync } from 'node:fs';
@@ -42,6 +43,40 @@ for (const b of native.benchmarks) if (b.aggregate_name === 'median') nativeMs[b
 const nativeMd5 = Object.fromEntries(Object.entries(streams).map(([name, path]) =>
   [name, execFileSync(m4mesh, ['decode3d', '--md5', path, '-q'], { encoding: 'utf8' }).trim().split('\n')[0]]));
 
+// Python (build/python) and the npm package's module in Node: each stream decoded whole, the best of 5.
+process.stderr.write('Python decoding (m4mesh.decode)\n');
+const pythonMs = JSON.parse(execFileSync('/usr/bin/python3', ['-c', `
+import json, sys, time, m4mesh
+out = {}
+for path in sys.argv[1:]:
+    data = open(path, "rb").read()
+    best = float("inf")
+    for _ in range(5):
+        start = time.perf_counter()
+        m4mesh.decode(data)
+        best = min(best, time.perf_counter() - start)
+    out[path.rsplit("/", 1)[-1]] = best * 1000
+print(json.dumps(out))`, ...Object.values(streams)], { env: { ...process.env, PYTHONPATH: join(build, 'python') }, encoding: 'utf8' }));
+process.stderr.write('Node decoding (the npm package\'s module)\n');
+const { createM4meshDecoder } = await import(join(build, 'web', 'package', 'decoder.js'));
+const decoderModule = await createM4meshDecoder();
+const nodeMs = {};
+for (const [name, path] of Object.entries(streams)) {
+  const bytes = readFileSync(path);
+  let best = Infinity;
+  for (let run = 0; run < 5; ++run) {
+    const start = performance.now();
+    const stream = new decoderModule.Stream3d();
+    stream.push(bytes);
+    const status = JSON.parse(stream.end());
+    if (status.error) throw new Error(`${name}: ${status.error.text}`);
+    for (let f = 0; f < status.header.frames; ++f) stream.frame(f);
+    stream.delete();
+    best = Math.min(best, performance.now() - start);
+  }
+  nodeMs[name] = best;
+}
+
 process.stderr.write('WebAssembly decoding in Chromium\n');
 const site = siteCopy(join(build, 'web', 'site'), streams);
 const server = await serve(m4mesh, site.folder);
@@ -60,14 +95,15 @@ try {
 }
 
 console.log(`Chromium: ${web.agent.match(/Chrome\/[\d.]+/)?.[0]}; native: ${native.context.host_name}, ${native.context.num_cpus} CPUs\n`);
-console.log('| stream | bytes | native ms | WebAssembly ms | speed, WebAssembly / native | same MD5 |');
-console.log('|---|---:|---:|---:|---:|---|');
+console.log('| stream | bytes | native ms | Python ms (speed) | Node ms (speed) | Chromium ms (speed) | same MD5 |');
+console.log('|---|---:|---:|---:|---:|---:|---|');
 let slow = 0, differ = 0;
+const cell = (name, ms) => `${ms.toFixed(1)} (${(nativeMs[name] / ms).toFixed(2)})`;
 for (const r of web.results) {
-  const ratio = nativeMs[r.url] / r.ms;
-  slow += ratio < 0.5;
+  slow += nativeMs[r.url] / r.ms < 0.5;
   differ += r.md5 !== nativeMd5[r.url];
-  console.log(`| ${r.url} | ${r.bytes.toLocaleString('en')} | ${nativeMs[r.url].toFixed(1)} | ${r.ms.toFixed(1)} | ${ratio.toFixed(2)} | ${r.md5 === nativeMd5[r.url] ? 'yes' : 'NO'} |`);
+  console.log(`| ${r.url} | ${r.bytes.toLocaleString('en')} | ${nativeMs[r.url].toFixed(1)} | ${cell(r.url, pythonMs[r.url])} | ${cell(r.url, nodeMs[r.url])} | ` +
+    `${cell(r.url, r.ms)} | ${r.md5 === nativeMd5[r.url] ? 'yes' : 'NO'} |`);
 }
 
 const files = (folder) => readdirSync(folder, { recursive: true }).map((f) => join(folder, f)).filter((f) => statSync(f).isFile());
