@@ -23,15 +23,8 @@
 #include "syntax/trace.h"
 #include "web/embind_json.h"
 
-namespace m4mesh {
+namespace m4mesh::web {
 namespace {
-
-using emscripten::val;
-using json = nlohmann::json;
-using web::bytes_of;
-using web::error_json;
-using web::guarded;
-using web::internal_error;
 
 // A conformance suite's manifest: its streams, and m4mesh's judgement of
 // each (conformance/judge.h), as `m4mesh conform` gives it.
@@ -142,11 +135,11 @@ std::string units3d(const val& bytes) {
 }
 
 }  // namespace
-}  // namespace m4mesh
+}  // namespace m4mesh::web
 
 EMSCRIPTEN_BINDINGS(m4mesh) {
-  using namespace m4mesh;
-  emscripten::function("streamKind", &web::stream_kind);
+  using namespace m4mesh::web;
+  emscripten::function("streamKind", &stream_kind);
   emscripten::function("decodedMd5", &decoded_md5);
   emscripten::function("check", &check);
   emscripten::function("traceFields", &trace_fields);

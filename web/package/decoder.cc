@@ -14,15 +14,8 @@
 #include "decoder/mesh_object_decoder.h"
 #include "web/embind_json.h"
 
-namespace m4mesh {
+namespace m4mesh::web {
 namespace {
-
-using emscripten::val;
-using json = nlohmann::json;
-using web::bytes_of;
-using web::error_json;
-using web::guarded;
-using web::internal_error;
 
 MotionMethod method_of(int method) { return method == 1 ? MotionMethod::kMethod1 : MotionMethod::kMethod2; }
 
@@ -162,11 +155,11 @@ class Stream3d {
 };
 
 }  // namespace
-}  // namespace m4mesh
+}  // namespace m4mesh::web
 
 EMSCRIPTEN_BINDINGS(m4mesh_decoder) {
-  using namespace m4mesh;
-  emscripten::function("streamKind", &web::stream_kind);
+  using namespace m4mesh::web;
+  emscripten::function("streamKind", &stream_kind);
   emscripten::function("decode2d", &decode2d);
   emscripten::class_<Stream3d>("Stream3d")
       .constructor<>()
