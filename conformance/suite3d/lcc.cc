@@ -227,6 +227,17 @@ std::vector<SuiteCase> lcc_cases(bool traced) {
                           lcc({}), traced));
   }
   {
+    // The first face's v1 and v2, coded directly, at one point in the
+    // reference and in the last frame: the step across their edge takes
+    // the zero edge's axis x, for the reference's radius and height and for
+    // the frame's reconstruction.
+    MeshSequence zero_edge = waving_flag(4, 6, false);
+    const Triangle& first = zero_edge.faces[0];
+    for (std::vector<Vec3>* frame : {&zero_edge.frames.front(), &zero_edge.frames.back()}) (*frame)[first.v[2]] = (*frame)[first.v[1]];
+    suite.push_back(valid("lcc-21-zero-edge", "a step whose edge b c has length 0 in the reference and in a frame: the axis x as its z", {"lcc"},
+                          zero_edge, lcc({}), traced));
+  }
+  {
     // Directly coded vertices whose residuals follow prefix_schedule(), in
     // stream mode (contexts reset per frame, residuals against the
     // reference), then under temporal prediction: anchors at odd frames
