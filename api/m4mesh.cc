@@ -211,7 +211,8 @@ m4mesh_status m4mesh_decoder3d_finish(m4mesh_decoder3d* d) {
 }
 
 m4mesh_status m4mesh_decoder3d_header(const m4mesh_decoder3d* d, m4mesh_header3d* header) {
-  if (!d || !header) return M4MESH_ERROR;
+  if (!d) return M4MESH_ERROR;
+  if (!header) return guarded(d->error, []() -> m4mesh_status { throw usage_error("m4mesh_decoder3d_header: no header"); });
   if (!d->decoder) return d->failed() ? M4MESH_ERROR : M4MESH_AGAIN;
   const ObjectHeader& h = d->decoder->header();
   *header = m4mesh_header3d{};
