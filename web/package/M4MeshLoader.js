@@ -105,7 +105,7 @@ export class M4MeshLoader extends Loader {
       const state = { requested: 0, batch: null, version: -1, pending: 0, status: null };
       const receive = (message) => {
         try {
-          if (message.session !== id) return;
+          if (message.session !== undefined && message.session !== id) return;  // the worker's own failure has none
           if (message.type === 'failure') throw new Error(message.text);
           if (message.type === 'planes') throw new Error('a 2D stream: M4MeshLoader loads 3D streams');
           if (message.type === 'status') onStatus(message);
@@ -187,7 +187,7 @@ export class M4MeshLoader extends Loader {
     if (this.workerUrl) {
       const worker = new Worker(this.workerUrl, { type: 'module' });
       worker.onmessage = ({ data }) => receive(data);
-      worker.onerror = (event) => receive({ type: 'failure', session: sessions, text: event.message });
+      worker.onerror = (event) => receive({ type: 'failure', text: `the worker failed: ${event.message}` });
       return { send: (message, transfer) => worker.postMessage(message, transfer), close: () => worker.terminate() };
     }
     // Messages both ways are delivered later, in order, as a worker's would be.
