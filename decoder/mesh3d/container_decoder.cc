@@ -297,11 +297,13 @@ bool Mesh3dDecoder::next_unit() {
   return true;
 }
 
-void Mesh3dDecoder::take_received_units() {
-  while (next_unit_ < parts_.units()) {
+size_t Mesh3dDecoder::take_received_units() {
+  size_t taken = 0;
+  for (; next_unit_ < parts_.units(); ++taken) {
     next_unit();
     ready_.merge(released_);
   }
+  return taken;
 }
 
 void Mesh3dDecoder::extend(std::span<const uint8_t> window, uint64_t window_start) {

@@ -92,8 +92,9 @@ class Mesh3dDecoder {
   // Where unit `index` starts in the stream (its start code).
   uint64_t unit_offset(size_t index) const { return parts_.unit_offset(index); }
   // A stream still arriving (extend): decodes every unit received and not
-  // taken yet; the frames they finish wait for next_frame().
-  void take_received_units();
+  // taken yet; the frames they finish wait for next_frame(). Returns how
+  // many units it decoded, hash units aside.
+  size_t take_received_units();
   // Whether next_frame() has its frame without another unit.
   bool next_frame_ready() const { return ready_.contains(next_display_); }
   // Units the decoder holds, taken or not, hash units included.

@@ -149,6 +149,7 @@ export class M4MeshLoader extends Loader {
           animation.frames[index].set(positions);
         } else {
           animation.frames[index] = positions;
+          if (!animation.progressive) channel.send({ type: 'drop', session: id, index });  // final: the decoder need not keep it
         }
         if (state.pending > 0) return;
         if (animation.progressive) (state.version = state.batch), (state.batch = null);

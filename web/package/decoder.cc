@@ -48,8 +48,9 @@ std::string decode2d(const val& bytes, int method) {
 
 // A 3D stream decoded as it arrives: push() the bytes as they come, end()
 // when the download is over. Units are decoded as soon as they are whole;
-// a progressive codec's frames refine at every unit, a frame-by-frame
-// codec's frames are kept as they are decoded.
+// a progressive codec's frames refine at every unit. Frames no later unit
+// can change are kept here, in display order, until drop()ped; the bytes
+// of the units decoded are not kept.
 class Stream3d {
  public:
   std::string push(const val& chunk) {
@@ -68,20 +69,22 @@ class Stream3d {
       for (const Triangle& t : decoder_->faces()) flat.insert(flat.end(), t.v.begin(), t.v.end());
     return copy_out<uint32_t>("Uint32Array", flat);
   }
-  // Frame `index` as x, y, z per vertex: the latest refinement, or (frame by
-  // frame) the frame once decoded; empty before that.
+  // Frame `index` as x, y, z per vertex: a final frame kept here, else a
+  // progressive codec's latest refinement of it; empty when neither.
   val frame(uint32_t index) const {
     std::vector<float> flat;
     std::vector<Float3> positions;
     if (auto it = frames_.find(index); it != frames_.end()) {
       positions = it->second;
-    } else if (decoder_ && decoder_->progressive() && units_applied_ > 0 && index < decoder_->header().frame_count) {
+    } else if (decoder_ && decoder_->progressive() && units_applied_ > 0 && decoder_->holds(index)) {
       positions.resize(decoder_->header().vertex_count);
       decoder_->frame(index, positions);
     }
     for (const Float3& p : positions) flat.insert(flat.end(), p.begin(), p.end());
     return copy_out<float>("Float32Array", flat);
   }
+  // Forgets a final frame the caller has taken.
+  void drop(uint32_t index) { frames_.erase(index); }
 
  private:
   template <class T>
@@ -91,7 +94,8 @@ class Stream3d {
     return out;
   }
 
-  // Decodes the units whole in the first `size` bytes received.
+  // Decodes the units whole in the first `size` bytes held, keeps the
+  // frames that became final, and drops the bytes of the units taken.
   std::string step(size_t size) {
     json status;
     try {
@@ -102,31 +106,32 @@ class Stream3d {
         options.verify = true;
         decoder_ = std::make_unique<Mesh3dDecoder>(whole, options);
       } else if (decoder_) {
-        decoder_->extend(whole);
+        decoder_->extend(whole, received_start_);
       }
       if (decoder_) {
-        while (decoder_->units_taken() < decoder_->units_received()) {
-          decoder_->next_unit();
-          ++units_applied_;
-          // A progressive codec's frames stay with it until its segment ends (released): kept here then.
-          const DecodedUnit& unit = decoder_->unit();
-          for (uint32_t f : decoder_->progressive() ? unit.released : unit.frames) {
-            std::vector<Float3>& slot = frames_[f];
-            slot.resize(decoder_->header().vertex_count);
-            decoder_->frame(f, slot);
+        units_applied_ += decoder_->take_received_units();
+        while (!done_ && (decoder_->next_frame_ready() || ended_)) {
+          if (!decoder_->next_frame()) {
+            done_ = true;
+            break;
           }
+          frames_[decoder_->frame_index()] = decoder_->positions();
+          ++final_frames_;
         }
-        if (ended_ && !decoder_->next_unit()) done_ = true;
         if (const std::optional<uint32_t> f = decoder_->first_mismatch())
           throw Error(ErrorKind::kStructure, "frame_md5", *f, kNoOffset, "the decoded frame does not match its hash").in_mesh3d(kNoUnit);
-        bytes_decoded_ = size;
+        bytes_decoded_ = received_start_ + size;
+        const size_t taken = decoder_->units_taken();
+        const uint64_t keep = taken < decoder_->units_received() ? decoder_->unit_offset(taken) : received_start_ + size;
+        received_.erase(received_.begin(), received_.begin() + static_cast<std::ptrdiff_t>(keep - received_start_));
+        received_start_ = keep;
       }
     } catch (const Error& e) {
       error_ = error_json(e);
     } catch (const std::exception& e) {
       if (error_.is_null()) error_ = internal_error(e.what());
     }
-    status["bytesReceived"] = received_.size();
+    status["bytesReceived"] = received_start_ + received_.size();
     status["bytesDecoded"] = bytes_decoded_;
     status["unitsApplied"] = units_applied_;
     status["done"] = done_;
@@ -136,19 +141,21 @@ class Stream3d {
       status["header"] = {{"codec", decoder_->codec().name},
                           {"vertices", h.vertex_count},
                           {"faces", h.face_count},
-                          {"frames", h.frame_count != 0 ? size_t{h.frame_count} : frames_.size()},
+                          {"frames", h.frame_count != 0 ? size_t{h.frame_count} : final_frames_},
                           {"frameRate", static_cast<double>(h.frame_rate_num) / h.frame_rate_den},
                           {"progressive", decoder_->progressive()}};
-      status["framesDecoded"] = decoder_->progressive() ? (units_applied_ > 0 ? size_t{h.frame_count} : 0) : frames_.size();
+      status["framesDecoded"] = decoder_->progressive() ? (units_applied_ > 0 ? size_t{h.frame_count} : 0) : final_frames_;
     }
     return status.dump();
   }
 
-  std::vector<uint8_t> received_;
+  std::vector<uint8_t> received_;  // the stream's bytes from received_start_ on
+  uint64_t received_start_ = 0;
   std::unique_ptr<Mesh3dDecoder> decoder_;
   std::map<uint32_t, std::vector<Float3>> frames_;
+  size_t final_frames_ = 0;  // frames that became final so far, in display order
   size_t units_applied_ = 0;
-  size_t bytes_decoded_ = 0;
+  uint64_t bytes_decoded_ = 0;
   bool ended_ = false;
   bool done_ = false;
   json error_;
@@ -166,5 +173,6 @@ EMSCRIPTEN_BINDINGS(m4mesh_decoder) {
       .function("push", &Stream3d::push)
       .function("end", &Stream3d::end)
       .function("faces", &Stream3d::faces)
-      .function("frame", &Stream3d::frame);
+      .function("frame", &Stream3d::frame)
+      .function("drop", &Stream3d::drop);
 }

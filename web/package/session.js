@@ -1,11 +1,12 @@
 // The decoding protocol of the package's worker (worker.js; docs/web.md):
 // messages in — open, push (a chunk of the stream as it downloads), end,
-// frame (ask for one) — and out through `post`: status (JSON of the
-// decoder, the faces once, the box the frames fill), frame (transferred,
-// not copied), planes (a 2D stream, decoded when its download ends),
-// failure. The stream's kind comes from the C++ (streamKind); a 3D
-// stream's units are decoded as soon as they are whole. M4MeshLoader runs
-// it in a worker, or in its own thread where there is none (Node).
+// frame (ask for one), drop (forget a final frame taken) — and out through
+// `post`: status (JSON of the decoder, the faces once, the box the frames
+// fill), frame (transferred, not copied), planes (a 2D stream, decoded
+// when its download ends), failure. The stream's kind comes from the C++
+// (streamKind); a 3D stream's units are decoded as soon as they are whole.
+// M4MeshLoader runs it in a worker, or in its own thread where there is
+// none (Node).
 
 // A handler of the protocol's messages over the decoder module `module`.
 export function createSession(module, post) {
@@ -95,6 +96,7 @@ export function createSession(module, post) {
       else if (!session || data.session !== session.id) return;  // an older stream's message
       else if (data.type === 'push') push(new Uint8Array(data.chunk));
       else if (data.type === 'end') end();
+      else if (data.type === 'drop') session.stream?.drop(data.index);
       else if (data.type === 'frame') {
         const positions = session.stream ? session.stream.frame(data.index) : new Float32Array(0);
         post({ type: 'frame', session: session.id, index: data.index, version: session.version, positions }, [positions.buffer]);
