@@ -16,10 +16,10 @@
 #include "codecs3d/registry.h"
 #include "common/error.h"
 #include "decoder/mesh3d/container_decoder.h"
+#include "decoder/mesh3d/streaming_decoder.h"
 #include "decoder/mesh_object_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
 #include "encoder/mesh3d/quality_target.h"
-#include "syntax/mesh3d/container.h"
 
 namespace m4mesh {
 namespace {
@@ -118,34 +118,11 @@ void check_capacity(size_t capacity, uint64_t needed, const char* array) {
 using namespace m4mesh;
 
 struct m4mesh_decoder3d {
-  std::vector<uint8_t> received;  // the stream's bytes from received_start on
-  uint64_t received_start = 0;
-  std::unique_ptr<Mesh3dDecoder> decoder;
-  bool ended = false;
+  StreamingMesh3dDecoder stream;
   mutable m4mesh_error error = no_error();  // const calls report misuse here too
 
   bool failed() const { return error.kind != M4MESH_ERROR_NONE; }
-
-  // Decodes the units whole in the first `size` bytes held, then drops
-  // the bytes of the units taken.
-  void take(size_t size) {
-    const std::span<const uint8_t> whole(received.data(), size);
-    if (!decoder && (size > 0 || ended)) {
-      Decode3dOptions options;
-      options.verify = true;
-      decoder = std::make_unique<Mesh3dDecoder>(whole, options);
-    } else if (decoder) {
-      decoder->extend(whole, received_start);
-    }
-    if (!decoder) return;
-    decoder->take_received_units();
-    if (const std::optional<uint32_t> f = decoder->first_mismatch())
-      throw Error(ErrorKind::kStructure, "frame_md5", *f, kNoOffset, "the decoded frame does not match its hash unit").in_mesh3d(kNoUnit);
-    const size_t taken = decoder->units_taken();
-    const uint64_t keep = taken < decoder->units_received() ? decoder->unit_offset(taken) : received_start + size;
-    received.erase(received.begin(), received.begin() + static_cast<std::ptrdiff_t>(keep - received_start));
-    received_start = keep;
-  }
+  const Mesh3dDecoder* decoder() const { return stream.decoder(); }
 };
 
 struct m4mesh_decoder2d {
@@ -192,10 +169,9 @@ void m4mesh_decoder3d_free(m4mesh_decoder3d* decoder) { delete decoder; }
 m4mesh_status m4mesh_decoder3d_push(m4mesh_decoder3d* d, const uint8_t* data, size_t size) {
   if (!d || d->failed()) return M4MESH_ERROR;
   return guarded(d->error, [&] {
-    if (d->ended) throw usage_error("m4mesh_decoder3d_push: the stream has finished");
+    if (d->stream.finished()) throw usage_error("m4mesh_decoder3d_push: the stream has finished");
     if (!data && size > 0) throw usage_error("m4mesh_decoder3d_push: no data");
-    if (size > 0) d->received.insert(d->received.end(), data, data + size);
-    d->take(whole_payloads_size(d->received));
+    d->stream.push(std::span(data, size));
     return M4MESH_OK;
   });
 }
@@ -203,9 +179,8 @@ m4mesh_status m4mesh_decoder3d_push(m4mesh_decoder3d* d, const uint8_t* data, si
 m4mesh_status m4mesh_decoder3d_finish(m4mesh_decoder3d* d) {
   if (!d || d->failed()) return M4MESH_ERROR;
   return guarded(d->error, [&] {
-    d->ended = true;
-    d->take(d->received.size());
-    d->decoder->next_unit();  // none left: checks that every frame is decoded
+    d->stream.finish();
+    d->stream.decoder()->next_unit();  // none left: checks that every frame is decoded
     return M4MESH_OK;
   });
 }
@@ -213,23 +188,23 @@ m4mesh_status m4mesh_decoder3d_finish(m4mesh_decoder3d* d) {
 m4mesh_status m4mesh_decoder3d_header(const m4mesh_decoder3d* d, m4mesh_header3d* header) {
   if (!d) return M4MESH_ERROR;
   if (!header) return guarded(d->error, []() -> m4mesh_status { throw usage_error("m4mesh_decoder3d_header: no header"); });
-  if (!d->decoder) return d->failed() ? M4MESH_ERROR : M4MESH_AGAIN;
-  const ObjectHeader& h = d->decoder->header();
+  if (!d->decoder()) return d->failed() ? M4MESH_ERROR : M4MESH_AGAIN;
+  const ObjectHeader& h = d->decoder()->header();
   *header = m4mesh_header3d{};
-  copy_text(header->codec, d->decoder->codec().name);
+  copy_text(header->codec, d->decoder()->codec().name);
   header->frames = h.frame_count;
   header->vertices = h.vertex_count;
   header->faces = h.face_count;
   header->frame_rate = static_cast<double>(h.frame_rate_num) / h.frame_rate_den;
-  header->progressive = d->decoder->progressive() ? 1 : 0;
+  header->progressive = d->decoder()->progressive() ? 1 : 0;
   return M4MESH_OK;
 }
 
 m4mesh_status m4mesh_decoder3d_faces(const m4mesh_decoder3d* d, uint32_t* faces, size_t capacity) {
   if (!d) return M4MESH_ERROR;
-  if (!d->decoder) return d->failed() ? M4MESH_ERROR : M4MESH_AGAIN;
-  const std::vector<Triangle>& decoded = d->decoder->faces();
-  const uint32_t count = d->decoder->header().face_count;
+  if (!d->decoder()) return d->failed() ? M4MESH_ERROR : M4MESH_AGAIN;
+  const std::vector<Triangle>& decoded = d->decoder()->faces();
+  const uint32_t count = d->decoder()->header().face_count;
   if (decoded.size() < count) return d->failed() ? M4MESH_ERROR : M4MESH_AGAIN;
   return guarded(d->error, [&] {
     check_capacity(faces ? capacity : 0, 3 * uint64_t{count}, "m4mesh_decoder3d_faces: faces");
@@ -241,12 +216,13 @@ m4mesh_status m4mesh_decoder3d_faces(const m4mesh_decoder3d* d, uint32_t* faces,
 
 m4mesh_status m4mesh_decoder3d_next_frame(m4mesh_decoder3d* d, uint32_t* index, float* positions, size_t capacity) {
   if (!d || d->failed()) return M4MESH_ERROR;
-  if (!d->decoder || (!d->ended && !d->decoder->next_frame_ready())) return M4MESH_AGAIN;
+  Mesh3dDecoder* decoder = d->stream.decoder();
+  if (!decoder || (!d->stream.finished() && !decoder->next_frame_ready())) return M4MESH_AGAIN;
   return guarded(d->error, [&] {
-    check_capacity(positions && index ? capacity : 0, 3 * uint64_t{d->decoder->header().vertex_count}, "m4mesh_decoder3d_next_frame: positions");
-    if (!d->decoder->next_frame()) return M4MESH_END;
-    *index = d->decoder->frame_index();
-    const std::vector<Float3>& p = d->decoder->positions();
+    check_capacity(positions && index ? capacity : 0, 3 * uint64_t{decoder->header().vertex_count}, "m4mesh_decoder3d_next_frame: positions");
+    if (!decoder->next_frame()) return M4MESH_END;
+    *index = decoder->frame_index();
+    const std::vector<Float3>& p = decoder->positions();
     std::memcpy(positions, p.data(), p.size() * sizeof(Float3));
     return M4MESH_OK;
   });
@@ -254,8 +230,8 @@ m4mesh_status m4mesh_decoder3d_next_frame(m4mesh_decoder3d* d, uint32_t* index, 
 
 m4mesh_status m4mesh_decoder3d_peek_frame(const m4mesh_decoder3d* d, uint32_t index, float* positions, size_t capacity, size_t* units) {
   if (!d) return M4MESH_ERROR;
-  if (!d->decoder) return d->failed() ? M4MESH_ERROR : M4MESH_AGAIN;
-  const Mesh3dDecoder& decoder = *d->decoder;
+  if (!d->decoder()) return d->failed() ? M4MESH_ERROR : M4MESH_AGAIN;
+  const Mesh3dDecoder& decoder = *d->decoder();
   if (!decoder.progressive() || !decoder.holds(index)) return M4MESH_AGAIN;
   return guarded(d->error, [&] {
     const uint32_t vertices = decoder.header().vertex_count;
@@ -266,7 +242,7 @@ m4mesh_status m4mesh_decoder3d_peek_frame(const m4mesh_decoder3d* d, uint32_t in
   });
 }
 
-size_t m4mesh_decoder3d_units(const m4mesh_decoder3d* d) { return d && d->decoder ? d->decoder->units_taken() : 0; }
+size_t m4mesh_decoder3d_units(const m4mesh_decoder3d* d) { return d && d->decoder() ? d->decoder()->units_taken() : 0; }
 const m4mesh_error* m4mesh_decoder3d_error(const m4mesh_decoder3d* d) { return d ? &d->error : null_handle_error(); }
 
 m4mesh_decoder2d* m4mesh_decoder2d_new(int method) {

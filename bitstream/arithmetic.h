@@ -77,7 +77,7 @@ class ArithmeticDecoder {
     for (int i = 0; i < 5; ++i) code_ = (code_ << 8) | next_byte();
   }
 
-  int decode(BinContext& context) {
+  [[gnu::always_inline]] int decode(BinContext& context) {
     const uint32_t bound = arithmetic::bound(range_, context);
     int bin;
     if (code_ < bound) {

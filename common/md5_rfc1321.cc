@@ -25,22 +25,18 @@ void Md5Rfc1321::compress(const uint8_t* block) {
   for (int i = 0; i < 16; ++i)
     x[i] = uint32_t{block[4 * i]} | uint32_t{block[4 * i + 1]} << 8 | uint32_t{block[4 * i + 2]} << 16 | uint32_t{block[4 * i + 3]} << 24;
   uint32_t a = state_[0], b = state_[1], c = state_[2], d = state_[3];
-  for (int i = 0; i < 64; ++i) {
-    const int round = i / 16;
-    uint32_t f;
-    int word;
-    switch (round) {
-      case 0: f = (b & c) | (~b & d), word = i; break;
-      case 1: f = (d & b) | (~d & c), word = (5 * i + 1) % 16; break;
-      case 2: f = b ^ c ^ d, word = (3 * i + 5) % 16; break;
-      default: f = c ^ (b | ~d), word = (7 * i) % 16; break;
-    }
-    const uint32_t rotated = std::rotl(a + f + kSine[i] + x[word], kShift[4 * round + i % 4]);
+  const auto step = [&](int i, uint32_t f, int word) {
+    const uint32_t rotated = std::rotl(a + f + kSine[i] + x[word], kShift[4 * (i / 16) + i % 4]);
     a = d;
     d = c;
     c = b;
     b += rotated;
-  }
+  };
+  // One loop per round, each short enough for every compiler to unroll.
+  for (int i = 0; i < 16; ++i) step(i, (b & c) | (~b & d), i);
+  for (int i = 16; i < 32; ++i) step(i, (d & b) | (~d & c), (5 * i + 1) % 16);
+  for (int i = 32; i < 48; ++i) step(i, b ^ c ^ d, (3 * i + 5) % 16);
+  for (int i = 48; i < 64; ++i) step(i, c ^ (b | ~d), (7 * i) % 16);
   state_[0] += a;
   state_[1] += b;
   state_[2] += c;

@@ -6,11 +6,11 @@
 #include <emscripten/val.h>
 
 #include <map>
-#include <memory>
 #include <nlohmann/json.hpp>
 
 #include "codecs3d/registry.h"
 #include "decoder/mesh3d/container_decoder.h"
+#include "decoder/mesh3d/streaming_decoder.h"
 #include "decoder/mesh_object_decoder.h"
 #include "web/embind_json.h"
 
@@ -55,18 +55,16 @@ class Stream3d {
  public:
   std::string push(const val& chunk) {
     const std::vector<uint8_t> bytes = bytes_of(chunk);
-    received_.insert(received_.end(), bytes.begin(), bytes.end());
-    return step(whole_payloads_size(received_));
+    return step([&] { return stream_.push(bytes); });
   }
   std::string end() {
-    ended_ = true;
-    return step(received_.size());
+    return step([&] { return stream_.finish(); });
   }
 
   val faces() const {
     std::vector<uint32_t> flat;
-    if (decoder_)
-      for (const Triangle& t : decoder_->faces()) flat.insert(flat.end(), t.v.begin(), t.v.end());
+    if (const Mesh3dDecoder* decoder = stream_.decoder())
+      for (const Triangle& t : decoder->faces()) flat.insert(flat.end(), t.v.begin(), t.v.end());
     return copy_out<uint32_t>("Uint32Array", flat);
   }
   // Frame `index` as x, y, z per vertex: a final frame kept here, else a
@@ -76,9 +74,9 @@ class Stream3d {
     std::vector<Float3> positions;
     if (auto it = frames_.find(index); it != frames_.end()) {
       positions = it->second;
-    } else if (decoder_ && decoder_->progressive() && units_applied_ > 0 && decoder_->holds(index)) {
-      positions.resize(decoder_->header().vertex_count);
-      decoder_->frame(index, positions);
+    } else if (const Mesh3dDecoder* decoder = stream_.decoder(); decoder && decoder->progressive() && units_applied_ > 0 && decoder->holds(index)) {
+      positions.resize(decoder->header().vertex_count);
+      decoder->frame(index, positions);
     }
     for (const Float3& p : positions) flat.insert(flat.end(), p.begin(), p.end());
     return copy_out<float>("Float32Array", flat);
@@ -94,69 +92,50 @@ class Stream3d {
     return out;
   }
 
-  // Decodes the units whole in the first `size` bytes held, keeps the
-  // frames that became final, and drops the bytes of the units taken.
-  std::string step(size_t size) {
+  // Runs `take` (push or finish), which decodes units and returns how
+  // many, then keeps the frames that became final; the stream's status.
+  template <class Take>
+  std::string step(Take&& take) {
     json status;
     try {
       if (!error_.is_null()) throw std::logic_error("the stream has failed already");
-      const std::span<const uint8_t> whole(received_.data(), size);
-      if (!decoder_ && (size > 0 || ended_)) {
-        Decode3dOptions options;
-        options.verify = true;
-        decoder_ = std::make_unique<Mesh3dDecoder>(whole, options);
-      } else if (decoder_) {
-        decoder_->extend(whole, received_start_);
-      }
-      if (decoder_) {
-        units_applied_ += decoder_->take_received_units();
-        while (!done_ && (decoder_->next_frame_ready() || ended_)) {
-          if (!decoder_->next_frame()) {
-            done_ = true;
-            break;
-          }
-          frames_[decoder_->frame_index()] = decoder_->positions();
-          ++final_frames_;
+      units_applied_ += take();
+      Mesh3dDecoder* decoder = stream_.decoder();
+      while (decoder && !done_ && (decoder->next_frame_ready() || stream_.finished())) {
+        if (!decoder->next_frame()) {
+          done_ = true;
+          break;
         }
-        if (const std::optional<uint32_t> f = decoder_->first_mismatch())
-          throw Error(ErrorKind::kStructure, "frame_md5", *f, kNoOffset, "the decoded frame does not match its hash").in_mesh3d(kNoUnit);
-        bytes_decoded_ = received_start_ + size;
-        const size_t taken = decoder_->units_taken();
-        const uint64_t keep = taken < decoder_->units_received() ? decoder_->unit_offset(taken) : received_start_ + size;
-        received_.erase(received_.begin(), received_.begin() + static_cast<std::ptrdiff_t>(keep - received_start_));
-        received_start_ = keep;
+        frames_[decoder->frame_index()] = decoder->positions();
+        ++final_frames_;
       }
     } catch (const Error& e) {
       error_ = error_json(e);
     } catch (const std::exception& e) {
       if (error_.is_null()) error_ = internal_error(e.what());
     }
-    status["bytesReceived"] = received_start_ + received_.size();
-    status["bytesDecoded"] = bytes_decoded_;
+    status["bytesReceived"] = stream_.bytes_received();
+    status["bytesDecoded"] = stream_.bytes_decoded();
     status["unitsApplied"] = units_applied_;
     status["done"] = done_;
     if (!error_.is_null()) status["error"] = error_;
-    if (decoder_) {
-      const ObjectHeader& h = decoder_->header();
-      status["header"] = {{"codec", decoder_->codec().name},
+    if (const Mesh3dDecoder* decoder = stream_.decoder()) {
+      const ObjectHeader& h = decoder->header();
+      status["header"] = {{"codec", decoder->codec().name},
                           {"vertices", h.vertex_count},
                           {"faces", h.face_count},
                           {"frames", h.frame_count != 0 ? size_t{h.frame_count} : final_frames_},
                           {"frameRate", static_cast<double>(h.frame_rate_num) / h.frame_rate_den},
-                          {"progressive", decoder_->progressive()}};
-      status["framesDecoded"] = decoder_->progressive() ? (units_applied_ > 0 ? size_t{h.frame_count} : 0) : final_frames_;
+                          {"progressive", decoder->progressive()}};
+      status["framesDecoded"] = decoder->progressive() ? (units_applied_ > 0 ? size_t{h.frame_count} : 0) : final_frames_;
     }
     return status.dump();
   }
 
-  std::vector<uint8_t> received_;  // the stream's bytes from received_start_ on
-  uint64_t received_start_ = 0;
-  std::unique_ptr<Mesh3dDecoder> decoder_;
+  StreamingMesh3dDecoder stream_;
   std::map<uint32_t, std::vector<Float3>> frames_;
   size_t final_frames_ = 0;  // frames that became final so far, in display order
   size_t units_applied_ = 0;
-  uint64_t bytes_decoded_ = 0;
-  bool ended_ = false;
   bool done_ = false;
   json error_;
 };
