@@ -292,7 +292,9 @@ tiles.save('${join(folder, 'tiles.png')}', pnginfo=info)`]);
     const firstAt = shown.player.bytesReceived, total = shown.player.bytesTotal;
     shown = await stateWhen(page, (s) => s.player.done, 120000);
     const cowApplied = shown.player.unitsAppliedWhenDrawn;
-    expect(firstAt < total / 4 && shown.player.framesDrawnDuringDownload > 10 && cowApplied.length >= 3 && shown.player.frames === 204,
+    // The first frame comes from the first units; how many bytes have arrived by then depends on the page's start (worker, module) under load.
+    expect(cowApplied[0] <= 3 && firstAt < total / 2 && shown.player.framesDrawnDuringDownload > 10 && cowApplied.length >= 3 &&
+      shown.player.frames === 204,
       `cow, progressive at 40,000 bytes/s: first frame drawn at ${firstAt} of ${total} bytes, ${shown.player.framesDrawnDuringDownload} frames drawn during the download, ` +
       `refined ${cowApplied.length} times (units ${cowApplied[0]} … ${cowApplied[cowApplied.length - 1]})`);
     await picture(page, 'cow-progressive');
