@@ -61,18 +61,6 @@ MeshSequence sequence_of(const Frames& frames, const Faces& faces) {
   return s;
 }
 
-Frames frames_of(const MeshSequence& s) {
-  Frames out({static_cast<py::ssize_t>(s.frames.size()), static_cast<py::ssize_t>(s.vertex_count), py::ssize_t{3}});
-  auto o = out.mutable_unchecked<3>();
-  for (size_t k = 0; k < s.frames.size(); ++k)
-    for (uint32_t i = 0; i < s.vertex_count; ++i) {
-      o(k, i, 0) = static_cast<float>(s.frames[k][i].x);
-      o(k, i, 1) = static_cast<float>(s.frames[k][i].y);
-      o(k, i, 2) = static_cast<float>(s.frames[k][i].z);
-    }
-  return out;
-}
-
 Faces faces_of(std::span<const Triangle> faces) {
   Faces out({static_cast<py::ssize_t>(faces.size()), py::ssize_t{3}});
   auto o = out.mutable_unchecked<2>();
@@ -81,20 +69,38 @@ Faces faces_of(std::span<const Triangle> faces) {
   return out;
 }
 
-// A stream from any bytes-like object (bytes, bytearray, memoryview, a
-// numpy uint8 array), copied: the decoder runs without the GIL, while
-// another thread could resize a bytearray.
-std::vector<uint8_t> stream_bytes(const py::handle& stream) {
-  if (!PyObject_CheckBuffer(stream.ptr()))
-    throw usage("stream: bytes or another bytes-like object (bytearray, memoryview, a numpy uint8 array), not " +
-                std::string(py::str(py::type::handle_of(stream).attr("__name__"))));
-  const py::buffer_info info = py::reinterpret_borrow<py::buffer>(stream).request();
-  if (info.itemsize != 1 || info.ndim != 1 || (info.size > 1 && info.strides[0] != 1))
-    throw usage("stream: a one-dimensional, contiguous buffer of bytes (its items are " + std::to_string(info.itemsize) + " bytes, " +
-                std::to_string(info.ndim) + " dimensions)");
-  const auto* data = static_cast<const uint8_t*>(info.ptr);
-  return {data, data + info.size};
-}
+// A stream from any bytes-like object: a bytes object's own bytes (it
+// cannot change), any other's copied (the decoder runs without the GIL,
+// while another thread could change a bytearray).
+class StreamBytes {
+ public:
+  explicit StreamBytes(const py::handle& stream) {
+    if (!PyObject_CheckBuffer(stream.ptr()))
+      throw usage("stream: bytes or another bytes-like object (bytearray, memoryview, a numpy uint8 array), not " +
+                  std::string(py::str(py::type::handle_of(stream).attr("__name__"))));
+    if (PyBytes_Check(stream.ptr())) {
+      owner_ = py::reinterpret_borrow<py::object>(stream);
+      bytes_ = {reinterpret_cast<const uint8_t*>(PyBytes_AS_STRING(stream.ptr())), static_cast<size_t>(PyBytes_GET_SIZE(stream.ptr()))};
+      return;
+    }
+    const py::buffer_info info = py::reinterpret_borrow<py::buffer>(stream).request();
+    if (info.itemsize != 1 || info.ndim != 1 || (info.size > 1 && info.strides[0] != 1))
+      throw usage("stream: a one-dimensional, contiguous buffer of bytes (its items are " + std::to_string(info.itemsize) + " bytes, " +
+                  std::to_string(info.ndim) + " dimensions)");
+    const auto* data = static_cast<const uint8_t*>(info.ptr);
+    copy_.assign(data, data + info.size);
+    bytes_ = copy_;
+  }
+  StreamBytes(const StreamBytes&) = delete;
+  StreamBytes& operator=(const StreamBytes&) = delete;
+  operator std::span<const uint8_t>() const { return bytes_; }
+  size_t size() const { return bytes_.size(); }
+
+ private:
+  py::object owner_;
+  std::vector<uint8_t> copy_;
+  std::span<const uint8_t> bytes_;
+};
 
 // Option names in a message as keywords: "--intra-period" → "intra_period".
 std::string keyword_spelling(const std::string& message) {
@@ -147,27 +153,87 @@ py::bytes encode(const Frames& frames, const Faces& faces, const std::string& co
 // Whether a stream numbers its vertices in coding order (encode3d --reorder).
 bool in_coding_order(std::span<const uint8_t> stream) { return Mesh3dDecoder(stream).vertex_order() == kVertexOrderCoding; }
 
-py::tuple decode(const py::handle& stream) {
-  const std::vector<uint8_t> bytes = stream_bytes(stream);
-  MeshSequence s;
-  {
-    py::gil_scoped_release release;
-    s = decode_mesh3d(bytes);
-  }
-  if (in_coding_order(bytes) && s.vertex_count > 0 &&
+// A stream of reorder=True numbers its vertices in coding order: a UserWarning says so.
+void warn_if_coding_order(std::span<const uint8_t> bytes, uint32_t vertex_count) {
+  if (in_coding_order(bytes) && vertex_count > 0 &&
       PyErr_WarnEx(PyExc_UserWarning,
                    "the stream numbers its vertices in coding order (reorder=True, or an input already in that order): compare "
                    "it with its original through m4mesh.metrics(original, stream, faces), which maps them",
                    1) < 0)
     throw py::error_already_set();  // warnings turned into errors
-  return py::make_tuple(frames_of(s), faces_of(s.faces));
 }
+
+Decode3dOptions verified() {
+  Decode3dOptions options;
+  options.verify = true;
+  return options;
+}
+
+py::tuple decode(const py::handle& stream) {
+  const StreamBytes bytes(stream);
+  std::vector<std::vector<Float3>> decoded;  // binary32, copied once into the array returned
+  std::vector<Triangle> faces;
+  uint32_t vertex_count = 0;
+  {
+    py::gil_scoped_release release;
+    Mesh3dDecoder decoder(bytes, verified());
+    vertex_count = decoder.header().vertex_count;
+    while (decoder.next_frame()) decoded.push_back(decoder.positions());
+    decoder.require_hashes_match();
+    faces = decoder.faces();
+  }
+  warn_if_coding_order(bytes, vertex_count);
+  Frames frames({static_cast<py::ssize_t>(decoded.size()), static_cast<py::ssize_t>(vertex_count), py::ssize_t{3}});
+  static_assert(sizeof(Float3) == 3 * sizeof(float));
+  for (size_t k = 0; k < decoded.size(); ++k) std::memcpy(frames.mutable_data(k), decoded[k].data(), decoded[k].size() * sizeof(Float3));
+  return py::make_tuple(frames, faces_of(faces));
+}
+
+// A 3D stream's frames one at a time, in display order: memory for the
+// decoder and one frame, however long the sequence.
+class FrameIterator {
+ public:
+  explicit FrameIterator(const py::handle& stream) : stream_(stream), decoder_(stream_, verified()) {
+    warn_if_coding_order(stream_, decoder_.header().vertex_count);
+  }
+  // float32[V, 3]: the next frame; a hash unit that disagrees raises as soon as it is read.
+  Frames next() {
+    // The frame decodes without the GIL: another thread must not step the same iterator meanwhile.
+    if (busy_) throw py::value_error("frames: already being read in another thread");
+    busy_ = true;
+    bool more = false;
+    try {
+      py::gil_scoped_release release;
+      more = decoder_.next_frame();
+      decoder_.require_hashes_match();
+    } catch (...) {
+      busy_ = false;
+      throw;
+    }
+    busy_ = false;
+    if (!more) throw py::stop_iteration();
+    const std::vector<Float3>& positions = decoder_.positions();
+    Frames frame({static_cast<py::ssize_t>(positions.size()), py::ssize_t{3}});
+    static_assert(sizeof(Float3) == 3 * sizeof(float));
+    std::memcpy(frame.mutable_data(), positions.data(), positions.size() * sizeof(Float3));
+    return frame;
+  }
+  Faces faces() const {
+    if (busy_) throw py::value_error("frames: already being read in another thread");
+    return faces_of(decoder_.faces());
+  }
+
+ private:
+  const StreamBytes stream_;
+  Mesh3dDecoder decoder_;
+  bool busy_ = false;  // read and written with the GIL held
+};
 
 // A progressive stream's prefixes, unit by unit.
 class Progressive {
  public:
   explicit Progressive(const py::handle& stream)
-      : stream_(stream_bytes(stream)), decoder_(stream_), parts_(split_container(stream_)) {
+      : stream_(stream), decoder_(stream_), parts_(split_container(stream_)) {
     if (!decoder_.progressive())
       throw usage(decoder_.codec().name + " decodes frame by frame; progressive decoding needs a progressive codec (cpca-wpt)");
   }
@@ -192,7 +258,7 @@ class Progressive {
   }
 
  private:
-  std::vector<uint8_t> stream_;
+  const StreamBytes stream_;
   Mesh3dDecoder decoder_;
   ContainerParts parts_;
   std::map<uint32_t, std::vector<Float3>> released_;
@@ -215,7 +281,7 @@ MeshSequence decoded_of(const py::handle& decoded, const Faces& faces, const py:
                         bool& coding_order) {
   if (is_stream(decoded)) {
     if (!decoded_faces.is_none()) throw usage("decoded_faces: the stream has its own faces");
-    const std::vector<uint8_t> bytes = stream_bytes(decoded);
+    const StreamBytes bytes(decoded);
     coding_order = in_coding_order(bytes);
     py::gil_scoped_release release;
     return decode_mesh3d(bytes);
@@ -248,7 +314,7 @@ py::dict metrics(const Frames& original, const py::handle& decoded, const Faces&
 
 py::list read_2d(const py::handle& stream) {
   py::list planes;
-  const std::vector<uint8_t> bytes = stream_bytes(stream);
+  const StreamBytes bytes(stream);
   Decoder decoder(bytes);
   while (decoder.next()) {
     py::array_t<int32_t> nodes({static_cast<py::ssize_t>(decoder.nodes().size()), py::ssize_t{2}});
@@ -318,6 +384,14 @@ position_blend (None: auto): as encode3d's.)");
         "(frames float32[F, V, 3], faces int32[T, 3]) of a 3D stream (bytes or any bytes-like object), every frame checked "
         "against its hash units. A stream of reorder=True numbers its vertices in coding order (a UserWarning says so): "
         "compare it with metrics(original, stream, faces).");
+  py::class_<FrameIterator>(m, "frames",
+                          "Iterates over a 3D stream's frames, float32[V, 3] each, in display order, holding one at a time "
+                          "(decode() returns them all); every frame checked against its hash units, a mismatch raised as soon "
+                          "as a unit finds it. faces: int32[T, 3], once the first frame is read.")
+      .def(py::init<const py::handle&>(), py::arg("stream"))
+      .def("__iter__", [](FrameIterator& self) -> FrameIterator& { return self; })
+      .def("__next__", &FrameIterator::next)
+      .def_property_readonly("faces", &FrameIterator::faces);
   py::class_<Progressive>(m, "progressive", "Iterates over a progressive stream's prefixes: (units, bytes received, frames) after each unit.")
       .def(py::init<const py::handle&>(), py::arg("stream"))
       .def("__iter__", [](Progressive& self) -> Progressive& { return self; })

@@ -327,6 +327,11 @@ std::optional<uint32_t> Mesh3dDecoder::first_mismatch() const {
   return std::nullopt;
 }
 
+void Mesh3dDecoder::require_hashes_match() const {
+  if (const std::optional<uint32_t> f = first_mismatch())
+    throw Error(ErrorKind::kStructure, "frame_md5", *f, kNoOffset, "the decoded frame does not match its hash unit").in_mesh3d(kNoUnit);
+}
+
 std::optional<bool> Mesh3dDecoder::hash_result(uint32_t frame) const {
   auto it = hash_results_.find(frame);
   if (it == hash_results_.end()) return std::nullopt;
@@ -395,8 +400,7 @@ std::vector<uint8_t> decoded_frames3d(std::span<const uint8_t> stream) {
     const std::vector<uint8_t> bytes = frame_bytes(decoder.positions());
     out.insert(out.end(), bytes.begin(), bytes.end());
   }
-  if (const std::optional<uint32_t> f = decoder.first_mismatch())
-    throw Error(ErrorKind::kStructure, "frame_md5", *f, kNoOffset, "the decoded frame does not match its hash").in_mesh3d(kNoUnit);
+  decoder.require_hashes_match();
   return out;
 }
 
@@ -412,8 +416,7 @@ MeshSequence decode_mesh3d(std::span<const uint8_t> stream) {
     for (const Float3& p : decoder.positions()) frame.push_back({p[0], p[1], p[2]});
     s.frames.push_back(std::move(frame));
   }
-  if (const std::optional<uint32_t> f = decoder.first_mismatch())
-    throw Error(ErrorKind::kStructure, "frame_md5", *f, kNoOffset, "the decoded frame does not match its hash").in_mesh3d(kNoUnit);
+  decoder.require_hashes_match();
   s.faces = decoder.faces();
   return s;
 }

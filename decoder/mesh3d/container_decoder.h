@@ -114,6 +114,8 @@ class Mesh3dDecoder {
   std::optional<bool> hash_result(uint32_t frame) const;
   // The first frame whose last hash check failed.
   std::optional<uint32_t> first_mismatch() const;
+  // Throws the structure error of the first mismatch, if any.
+  void require_hashes_match() const;
 
   // Decodes the next frame in display order, once no later unit can
   // change it; false after the last.

@@ -1,9 +1,5 @@
 #include "decoder/mesh3d/streaming_decoder.h"
 
-#include <optional>
-
-#include "common/error.h"
-
 namespace m4mesh {
 
 size_t StreamingMesh3dDecoder::push(std::span<const uint8_t> bytes) {
@@ -27,8 +23,7 @@ size_t StreamingMesh3dDecoder::take(size_t size) {
   }
   if (!decoder_) return 0;
   const size_t units = decoder_->take_received_units();
-  if (const std::optional<uint32_t> f = decoder_->first_mismatch())
-    throw Error(ErrorKind::kStructure, "frame_md5", *f, kNoOffset, "the decoded frame does not match its hash unit").in_mesh3d(kNoUnit);
+  decoder_->require_hashes_match();
   bytes_decoded_ = received_start_ + size;
   const size_t taken = decoder_->units_taken();
   const uint64_t keep = taken < decoder_->units_received() ? decoder_->unit_offset(taken) : received_start_ + size;

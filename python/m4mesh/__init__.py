@@ -12,7 +12,7 @@ Every failure raises m4mesh.Error, with the element, frame and bit offset.
 
 from ._errors import Error
 
-__all__ = ["Error", "codecs", "conform", "decode", "encode", "metrics", "progressive", "read_2d"]
+__all__ = ["Error", "codecs", "conform", "decode", "encode", "frames", "metrics", "progressive", "read_2d"]
 
 
 def __dir__():

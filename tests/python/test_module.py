@@ -6,6 +6,7 @@ import json
 import os
 import struct
 import subprocess
+import threading
 
 import numpy as np
 import pytest
@@ -29,15 +30,23 @@ def test_decodes_every_conformance_stream_to_its_md5(case):
     frames, faces = m4mesh.decode(stream_of(case))
     assert frames.dtype == np.float32 and frames.shape[2] == 3 and faces.shape[1] == 3
     assert hashlib.md5(frames.astype("<f4").tobytes()).hexdigest() == case["decoded_md5"]
+    one_by_one = m4mesh.frames(stream_of(case))
+    streamed = hashlib.md5()
+    for frame in one_by_one:
+        assert frame.dtype == np.float32 and frame.shape == frames.shape[1:]
+        streamed.update(frame.astype("<f4").tobytes())
+    assert streamed.hexdigest() == case["decoded_md5"]
+    assert np.array_equal(one_by_one.faces, faces)
 
 
 @pytest.mark.parametrize("case", [c for c in MANIFEST if c["expect"] == "error"], ids=lambda c: c["id"])
 def test_rejects_every_bad_conformance_stream_as_the_manifest_says(case):
-    with pytest.raises(m4mesh.Error) as caught:
-        m4mesh.decode(stream_of(case))
-    assert caught.value.kind == case["error_kind"]
-    assert caught.value.element == case["error_element"]
-    assert caught.value.frame == case["error_plane"]
+    for decode in (m4mesh.decode, lambda stream: list(m4mesh.frames(stream))):
+        with pytest.raises(m4mesh.Error) as caught:
+            decode(stream_of(case))
+        assert caught.value.kind == case["error_kind"]
+        assert caught.value.element == case["error_element"]
+        assert caught.value.frame == case["error_plane"]
 
 
 @pytest.fixture(scope="module")
@@ -72,6 +81,28 @@ def test_a_quality_target_and_the_metrics(tetra):
     measured = m4mesh.metrics(frames, decoded, decoded_faces)
     assert 0 < measured["kg_error"] <= 0.5
     assert m4mesh.metrics(frames, frames, faces)["kg_error"] == 0
+
+
+def test_frames_read_from_several_threads_are_each_read_once():
+    stream = stream_of(next(c for c in MANIFEST if c["id"] == "bfs3d-01-average"))
+    frames = m4mesh.frames(stream)
+    read = []
+
+    def reader():
+        while True:
+            try:
+                read.append(next(frames))
+            except StopIteration:
+                return
+            except ValueError:
+                pass  # another thread was decoding a frame: try again
+
+    threads = [threading.Thread(target=reader) for _ in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert len(read) == len(m4mesh.decode(stream)[0])
 
 
 def test_progressive_decoding_ends_at_the_whole_stream():
@@ -138,7 +169,7 @@ def test_auto_keeps_the_smallest_codec_at_the_target(tetra):
 
 
 def test_dir_lists_the_calls():
-    assert {"encode", "decode", "metrics", "progressive", "conform", "plot"} <= set(dir(m4mesh))
+    assert {"encode", "decode", "frames", "metrics", "progressive", "conform", "plot"} <= set(dir(m4mesh))
 
 
 @pytest.fixture(scope="module")

@@ -7,6 +7,7 @@
 
 #include <map>
 #include <nlohmann/json.hpp>
+#include <span>
 
 #include "codecs3d/registry.h"
 #include "decoder/mesh3d/container_decoder.h"
@@ -70,16 +71,13 @@ class Stream3d {
   // Frame `index` as x, y, z per vertex: a final frame kept here, else a
   // progressive codec's latest refinement of it; empty when neither.
   val frame(uint32_t index) const {
-    std::vector<float> flat;
+    if (auto it = frames_.find(index); it != frames_.end()) return copy_out(it->second);
     std::vector<Float3> positions;
-    if (auto it = frames_.find(index); it != frames_.end()) {
-      positions = it->second;
-    } else if (const Mesh3dDecoder* decoder = stream_.decoder(); decoder && decoder->progressive() && units_applied_ > 0 && decoder->holds(index)) {
+    if (const Mesh3dDecoder* decoder = stream_.decoder(); decoder && decoder->progressive() && units_applied_ > 0 && decoder->holds(index)) {
       positions.resize(decoder->header().vertex_count);
       decoder->frame(index, positions);
     }
-    for (const Float3& p : positions) flat.insert(flat.end(), p.begin(), p.end());
-    return copy_out<float>("Float32Array", flat);
+    return copy_out(positions);
   }
   // Forgets a final frame the caller has taken.
   void drop(uint32_t index) { frames_.erase(index); }
@@ -89,6 +87,16 @@ class Stream3d {
   static val copy_out(const char* type, const std::vector<T>& values) {
     val out = val::global(type).new_(values.size());
     out.call<void>("set", val(emscripten::typed_memory_view(values.size(), values.data())));
+    return out;
+  }
+  // Positions as one Float32Array, copied once: byte for byte, since the
+  // module's floats and JavaScript's are both little-endian binary32.
+  static val copy_out(std::span<const Float3> positions) {
+    static_assert(sizeof(Float3) == 3 * sizeof(float));
+    val out = val::global("Float32Array").new_(3 * positions.size());
+    val::global("Uint8Array")
+        .new_(out["buffer"])
+        .call<void>("set", val(emscripten::typed_memory_view(positions.size_bytes(), reinterpret_cast<const uint8_t*>(positions.data()))));
     return out;
   }
 
