@@ -151,11 +151,12 @@ py::bytes encode(const Frames& frames, const Faces& faces, const std::string& co
 }
 
 // Whether a stream numbers its vertices in coding order (encode3d --reorder).
-bool in_coding_order(std::span<const uint8_t> stream) { return Mesh3dDecoder(stream).vertex_order() == kVertexOrderCoding; }
+bool in_coding_order(const Mesh3dDecoder& decoder) { return decoder.vertex_order() == kVertexOrderCoding; }
+bool in_coding_order(std::span<const uint8_t> stream) { return in_coding_order(Mesh3dDecoder(stream)); }
 
 // A stream of reorder=True numbers its vertices in coding order: a UserWarning says so.
-void warn_if_coding_order(std::span<const uint8_t> bytes, uint32_t vertex_count) {
-  if (in_coding_order(bytes) && vertex_count > 0 &&
+void warn_if_coding_order(bool coding_order) {
+  if (coding_order &&
       PyErr_WarnEx(PyExc_UserWarning,
                    "the stream numbers its vertices in coding order (reorder=True, or an input already in that order): compare "
                    "it with its original through m4mesh.metrics(original, stream, faces), which maps them",
@@ -174,17 +175,18 @@ py::tuple decode(const py::handle& stream) {
   std::vector<std::vector<Float3>> decoded;  // binary32, copied once into the array returned
   std::vector<Triangle> faces;
   uint32_t vertex_count = 0;
+  bool coding_order = false;
   {
     py::gil_scoped_release release;
     Mesh3dDecoder decoder(bytes, verified());
     vertex_count = decoder.header().vertex_count;
+    coding_order = in_coding_order(decoder);
     while (decoder.next_frame()) decoded.push_back(decoder.positions());
     decoder.require_hashes_match();
     faces = decoder.faces();
   }
-  warn_if_coding_order(bytes, vertex_count);
+  warn_if_coding_order(coding_order);
   Frames frames({static_cast<py::ssize_t>(decoded.size()), static_cast<py::ssize_t>(vertex_count), py::ssize_t{3}});
-  static_assert(sizeof(Float3) == 3 * sizeof(float));
   for (size_t k = 0; k < decoded.size(); ++k) std::memcpy(frames.mutable_data(k), decoded[k].data(), decoded[k].size() * sizeof(Float3));
   return py::make_tuple(frames, faces_of(faces));
 }
@@ -194,27 +196,22 @@ py::tuple decode(const py::handle& stream) {
 class FrameIterator {
  public:
   explicit FrameIterator(const py::handle& stream) : stream_(stream), decoder_(stream_, verified()) {
-    warn_if_coding_order(stream_, decoder_.header().vertex_count);
+    warn_if_coding_order(in_coding_order(decoder_));
   }
   // float32[V, 3]: the next frame; a hash unit that disagrees raises as soon as it is read.
   Frames next() {
     // The frame decodes without the GIL: another thread must not step the same iterator meanwhile.
     if (busy_) throw py::value_error("frames: already being read in another thread");
-    busy_ = true;
     bool more = false;
-    try {
+    {
+      const Busy busy(busy_);  // cleared once the GIL is held again
       py::gil_scoped_release release;
       more = decoder_.next_frame();
       decoder_.require_hashes_match();
-    } catch (...) {
-      busy_ = false;
-      throw;
     }
-    busy_ = false;
     if (!more) throw py::stop_iteration();
     const std::vector<Float3>& positions = decoder_.positions();
     Frames frame({static_cast<py::ssize_t>(positions.size()), py::ssize_t{3}});
-    static_assert(sizeof(Float3) == 3 * sizeof(float));
     std::memcpy(frame.mutable_data(), positions.data(), positions.size() * sizeof(Float3));
     return frame;
   }
@@ -224,6 +221,13 @@ class FrameIterator {
   }
 
  private:
+  // Sets a flag for its lifetime.
+  struct Busy {
+    explicit Busy(bool& set) : flag(set) { flag = true; }
+    ~Busy() { flag = false; }
+    bool& flag;
+  };
+
   const StreamBytes stream_;
   Mesh3dDecoder decoder_;
   bool busy_ = false;  // read and written with the GIL held

@@ -92,7 +92,6 @@ class Stream3d {
   // Positions as one Float32Array, copied once: byte for byte, since the
   // module's floats and JavaScript's are both little-endian binary32.
   static val copy_out(std::span<const Float3> positions) {
-    static_assert(sizeof(Float3) == 3 * sizeof(float));
     val out = val::global("Float32Array").new_(3 * positions.size());
     val::global("Uint8Array")
         .new_(out["buffer"])
