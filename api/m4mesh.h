@@ -78,11 +78,18 @@ typedef struct m4mesh_header3d {
 } m4mesh_header3d;
 
 /* A decoder with no bytes yet; NULL when out of memory. Frames are
- * checked against the stream's hash units. */
+ * checked against the stream's hash units: a frame that differs is an
+ * error (M4MESH_ERROR_STRUCTURE, element "frame_md5" or "group_md5", with
+ * the hash unit and its digest's bit). A group hash unit follows its
+ * group's last frame, so next_frame hands out the group's earlier frames
+ * before the check; a caller that must not show an unchecked frame holds
+ * them until the group's end (the encoder's hash_group). */
 M4MESH_API m4mesh_decoder3d *m4mesh_decoder3d_new(void);
 M4MESH_API void m4mesh_decoder3d_free(m4mesh_decoder3d *decoder);
 /* The next bytes of the stream, any number; every unit they complete is
- * decoded now. */
+ * decoded now. Its time is in proportion to the bytes, whatever the size of
+ * the pieces; bytes that cannot begin a 3D stream fail once 4 have
+ * arrived. */
 M4MESH_API m4mesh_status m4mesh_decoder3d_push(m4mesh_decoder3d *decoder, const uint8_t *data, size_t size);
 /* The stream has ended: its last unit is decoded and the stream must be
  * whole (every frame decoded), else M4MESH_ERROR_TRUNCATED. */

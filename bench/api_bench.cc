@@ -37,9 +37,7 @@ void label(benchmark::State& state, const std::vector<uint8_t>& stream) {
 void BM_DecodeLibrary(benchmark::State& state) {
   const std::vector<uint8_t>& stream = stream_of(state.range(0), state.range(1));
   for (auto _ : state) {
-    Decode3dOptions options;
-    options.verify = true;
-    Mesh3dDecoder decoder(stream, options);
+    Mesh3dDecoder decoder(stream);
     while (decoder.next_frame()) benchmark::DoNotOptimize(decoder.positions().data());
   }
   label(state, stream);

@@ -81,7 +81,9 @@ int run_m4mesh(int argc, const char* const* argv) {
                           "suite folder holding manifest.json (default: ./conformance, or the suite installed beside the tool)");
   conform_cmd->add_option("--decoder", conform_options.decoder_command,
                           "external decoder command: {in} stream, {out} output to write (§9 text; for the 3D suite every frame's "
-                          "binary32 bytes, as decode3d -o FILE.f32), {method} 1 or 2");
+                          "binary32 bytes, as decode3d -o FILE.f32), {method} 1 or 2; {in} and {out} are required");
+  conform_cmd->add_option("--timeout", conform_options.timeout_seconds, "seconds the external decoder may take on one stream, then it is killed and the stream fails")
+      ->capture_default_str();
   conform_cmd->add_flag("--coverage", conform_options.coverage, "after the table, what the valid streams reach of the catalog of normative items");
 
   std::string suite_folder;
@@ -115,8 +117,8 @@ int run_m4mesh(int argc, const char* const* argv) {
   decode3d_cmd->add_option("-o,--output", decode3d_args.output, "a folder for OBJ frames, a .m4seq file, a .pc2 file (with the faces and frame 0 in the .obj beside it), PLY frames ('frames/*.ply': '*' becomes 0001, 0002, …), a .f32 file (every frame's binary32 x, y, z, little-endian), or - (standard output, --format); optional with --md5");
   decode3d_cmd->add_option("--format", decode3d_args.format, "with -o - (standard output): m4seq (default) or f32")->check(CLI::IsMember({"m4seq", "f32"}));
   decode3d_cmd->add_flag("--md5", decode3d_args.md5, "print the MD5 of every decoded frame's binary32 x, y, z (the 3D conformance hash)");
-  decode3d_cmd->add_flag("--verify", decode3d_args.verify, "check every frame against its hash unit: OK or MISMATCH per frame");
-  decode3d_cmd->add_option("--frames", decode3d_args.frames, "frames A … B only (A:B, A: or :B): decoding starts at the last intra refresh at or before A (bfs3d, Affine-Octree --intra-period) and, without --verify, stops after B");
+  decode3d_cmd->add_flag("--verify", decode3d_args.verify, "print every frame's hash check (OK, MISMATCH, NO HASH) and fail unless every frame was checked (a mismatch fails without it too)");
+  decode3d_cmd->add_option("--frames", decode3d_args.frames, "frames A … B only (A:B, A: or :B): decoding starts at the last intra refresh at or before A (bfs3d, Affine-Octree --intra-period) and stops once the hash units covering B are read (with --verify: at the end)");
   decode3d_cmd->add_flag("--keep-going", decode3d_args.keep_going,
                          "on an error, keep the frames decoded before it (and say how many; the exit status is still 1)");
   decode3d_cmd->add_option("--max-bytes", decode3d_args.max_bytes,

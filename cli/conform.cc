@@ -26,7 +26,10 @@ std::string default_suite() {
 }  // namespace
 
 int run_conform(ConformOptions options) {
-  if (options.suite.empty()) options.suite = default_suite();
+  if (options.suite.empty()) {
+    options.suite = default_suite();
+    console::say("the suite in %s", options.suite.c_str());
+  }
   const ConformResult result = run_conformance(options, std::cout);
   return result.failed == 0 ? 0 : 1;
 }

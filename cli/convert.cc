@@ -12,7 +12,7 @@ namespace m4mesh {
 using console::say;
 
 int run_convert(const std::string& input, const std::string& output, double fps, const std::string& frames) {
-  refuse_overwriting(input, output);
+  refuse_overwriting(input, output, OutputForm::kFileOrFolder);
   const SequenceOutput form = sequence_output(output, false);
   const auto [first, last] = frame_range(frames);
   const std::unique_ptr<FrameSource> source = open_frames(input);

@@ -1,5 +1,6 @@
 #include "cli/decode3d.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <optional>
@@ -25,7 +26,7 @@ using console::say;
 int run_decode3d(const Decode3dArgs& args) {
   const bool writes = !args.output.empty();
   if (!writes && !args.md5) throw usage_error("decode3d needs -o OUTPUT, or --md5");
-  if (writes) refuse_overwriting(args.input, args.output);
+  if (writes) refuse_overwriting(args.input, args.output, OutputForm::kFileOrFolder);
   const auto [first, last] = frame_range(args.frames);
   // A file is read unit by unit; standard input and a prefix are read whole.
   std::vector<uint8_t> whole;
@@ -44,7 +45,8 @@ int run_decode3d(const Decode3dArgs& args) {
     source = ContainerSource::open_file(args.input);
   }
   Decode3dOptions options;
-  options.verify = args.verify;
+  // A frame that differs from its hash unit is an error; --verify lists every frame's result first.
+  options.hashes = args.verify ? HashCheck::kRecord : HashCheck::kRequire;
   const SequenceOutput form = writes ? sequence_output(args.output, true, args.format) : SequenceOutput::kF32;
   Mesh3dDecoder decoder(std::move(*source), options);
   const ObjectHeader& header = decoder.header();
@@ -63,26 +65,30 @@ int run_decode3d(const Decode3dArgs& args) {
   std::unique_ptr<SequenceWriter> writer;  // made at the first frame written
   std::vector<Vec3> frame;
   std::vector<uint32_t> written;
+  size_t checked = 0;  // written[0 … checked − 1] have been compared with their hash units
   bool failed = false;
   try {
-    // Every frame is decoded (a group hash may cover frames after the range); those in the range are written.
+    // Frames after the range are decoded until the hash units covering the range have been read (a group hash
+    // follows its group's last frame), or with --verify to the end; those in the range are written.
     while (decoder.next_frame()) {
       progress.update(decoder.frame_index() + 1);
-      if (decoder.frame_index() < first || decoder.frame_index() > last) continue;
-      if (args.md5) {
-        const std::vector<uint8_t> bytes = frame_bytes(decoder.positions());
-        md5.update(bytes.data(), bytes.size());
+      if (decoder.frame_index() >= first && decoder.frame_index() <= last) {
+        if (args.md5) {
+          const std::vector<uint8_t> bytes = frame_bytes(decoder.positions());
+          md5.update(bytes.data(), bytes.size());
+        }
+        written.push_back(decoder.frame_index());
+        if (writes) {
+          if (!writer)
+            writer = sequence_writer(form, args.output,
+                                     {header.vertex_count, decoder.faces(), count, static_cast<double>(header.frame_rate_num) / header.frame_rate_den});
+          frame.resize(decoder.positions().size());
+          for (size_t v = 0; v < frame.size(); ++v) frame[v] = {decoder.positions()[v][0], decoder.positions()[v][1], decoder.positions()[v][2]};
+          writer->frame(decoder.frame_index(), frame);
+        }
       }
-      written.push_back(decoder.frame_index());
-      if (!writes) continue;
-      if (!writer)
-        writer = sequence_writer(form, args.output,
-                                 {header.vertex_count, decoder.faces(), count, static_cast<double>(header.frame_rate_num) / header.frame_rate_den});
-      frame.resize(decoder.positions().size());
-      for (size_t v = 0; v < frame.size(); ++v) frame[v] = {decoder.positions()[v][0], decoder.positions()[v][1], decoder.positions()[v][2]};
-      writer->frame(decoder.frame_index(), frame);
-      // Past the range nothing is written; without --verify nothing more is needed.
-      if (decoder.frame_index() == last && !args.verify) break;
+      while (checked < written.size() && decoder.hash_result(written[checked])) ++checked;
+      if (decoder.frame_index() >= last && checked == written.size() && !args.verify) break;
     }
   } catch (const Error& e) {
     if (!args.keep_going) throw;
@@ -95,35 +101,39 @@ int run_decode3d(const Decode3dArgs& args) {
     return 1;
   }
   if (written.empty()) throw usage_error("--frames " + args.frames + ": the stream has no frame there");
-  if (writer) writer->commit();
-  if (failed) {
-    std::fprintf(stderr, "%s: decoded %zu frames before the error; %s holds them\n", args.input.c_str(), written.size(), args.output.c_str());
-    return 1;
-  }
-  say("%s: %zu frames of %u vertices%s", writes ? args.output.c_str() : args.input.c_str(), written.size(), decoder.header().vertex_count,
-              decoder.has_end_code() || args.max_bytes > 0 ? "" : " (warning: no end code)");
   // Hash units may check a group of frames after its last: the results come
   // at the end, on standard error when the frames fill standard output.
   std::FILE* report = args.output == "-" ? stderr : stdout;
-  if (args.md5) std::fprintf(report, "%s\n", md5.hex_digest().c_str());
-  std::vector<uint32_t> mismatched, unchecked;
+  size_t mismatches = 0;
+  std::vector<uint32_t> unchecked;
   for (uint32_t f : written) {
     const std::optional<bool> ok = decoder.hash_result(f);
     if (args.verify) std::fprintf(report, "frame %u: %s\n", f, !ok ? "NO HASH" : *ok ? "OK" : "MISMATCH");
-    if (ok.has_value() && !*ok) mismatched.push_back(f);
-    if (!ok.has_value()) unchecked.push_back(f);
+    if (!ok) unchecked.push_back(f);
+    mismatches += ok == false;
   }
-  if (args.verify) std::fprintf(report, "verify: %zu mismatches, %zu frames without a hash\n", mismatched.size(), unchecked.size());
-  if (!mismatched.empty())
-    std::fprintf(stderr, "error: %s: %zu decoded frames differ from their hash unit (the first: frame %u)\n", args.input.c_str(),
-                 mismatched.size(), mismatched.front());
-  // --verify promises that every frame was checked: a frame without a hash fails it.
-  if (args.verify && !unchecked.empty())
-    std::fprintf(stderr,
-                 "error: %s: --verify: %zu frames carry no hash to check (the first: frame %u): the stream was encoded with --no-hash, "
-                 "or --frames starts inside a group whose hash covers frames not decoded\n",
-                 args.input.c_str(), unchecked.size(), unchecked.front());
-  return mismatched.empty() && (!args.verify || unchecked.empty()) ? 0 : 1;
+  if (args.verify && !failed) {
+    std::fprintf(report, "verify: %zu mismatches, %zu frames without a hash\n", mismatches, unchecked.size());
+    decoder.require_hashes_match();
+    // --verify promises that every frame was checked: a frame without a hash fails it, and nothing is written.
+    if (!unchecked.empty()) {
+      std::fprintf(stderr,
+                   "error: %s: --verify: %zu frames carry no hash to check (the first: frame %u): the stream was encoded with --no-hash, "
+                   "or --frames starts inside a group whose hash covers frames not decoded; nothing written\n",
+                   args.input.c_str(), unchecked.size(), unchecked.front());
+      return 1;
+    }
+  }
+  if (writer) writer->commit();
+  if (failed) {
+    std::fprintf(stderr, "%s: decoded %zu frames before the error; %s holds them\n", args.input.c_str(), written.size(),
+                 writes ? args.output.c_str() : "no file");
+    return 1;
+  }
+  say("%s: %zu %s of %u vertices%s", writes ? args.output.c_str() : args.input.c_str(), written.size(), written.size() == 1 ? "frame" : "frames",
+      decoder.header().vertex_count, decoder.has_end_code() || args.max_bytes > 0 ? "" : " (warning: no end code)");
+  if (args.md5) std::fprintf(report, "%s\n", md5.hex_digest().c_str());
+  return 0;
 }
 
 }  // namespace m4mesh

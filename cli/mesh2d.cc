@@ -45,6 +45,7 @@ int run_encode(const EncodeArgs& args) {
     if (!unused.empty())
       console::say("warning: %s: %zu files not used (not .obj frames), %s%s", args.input.c_str(), unused.size(), unused.front().c_str(),
                    unused.size() > 1 ? ", …" : "");
+    if (const std::string gaps = numbering_gaps_warning(args.input, files); !gaps.empty()) console::say("warning: %s", gaps.c_str());
     std::vector<ObjFrame> frames;
     console::Progress progress("reading frame", files.size());
     for (size_t k = 0; k < files.size(); ++k) {
@@ -71,7 +72,7 @@ int run_encode(const EncodeArgs& args) {
 }
 
 int run_decode(const DecodeArgs& args) {
-  refuse_overwriting(args.input, args.output);
+  refuse_overwriting(args.input, args.output, OutputForm::kFileOrFolder);
   const std::vector<uint8_t> stream = read_file(args.input);
   if (is_mesh3d_stream(stream)) {
     if (args.output.empty() || args.md5_only || args.keep_going)

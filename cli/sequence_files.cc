@@ -11,6 +11,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "decoder/mesh3d/container_decoder.h"
+#include "mesh/obj.h"
 #include "mesh3d/ply.h"
 
 namespace m4mesh {
@@ -93,21 +94,63 @@ std::unique_ptr<FrameSource> open_frames(const std::string& path) {
   return open_sequence(path, !console::quiet());
 }
 
-void refuse_overwriting(const std::string& input, const std::string& output) {
-  if (input != "-" && output != "-") {
-    // A PC2 cache comes with the OBJ beside it (its faces), as an input and as an output.
-    auto with_faces = [](const std::string& path) {
-      std::vector<fs::path> paths{path};
-      if (fs::path(path).extension() == ".pc2") paths.push_back(pc2_faces_path(path));
-      return paths;
-    };
-    std::error_code ignored;
-    for (const fs::path& in : with_faces(input))
-      for (const fs::path& out : with_faces(output))
-        if (fs::equivalent(in, out, ignored))
-          throw usage_error(out.string() + ": the output is the input; refusing to overwrite it");
+namespace {
+
+// A path and, for a PC2 cache, the OBJ beside it (its faces): both are read, and both are written.
+std::vector<fs::path> with_faces(const std::string& path) {
+  std::vector<fs::path> paths{path};
+  if (fs::path(path).extension() == ".pc2") paths.push_back(pc2_faces_path(path));
+  return paths;
+}
+
+bool is_pattern(const std::string& path) { return fs::path(path).filename().string().find('*') != std::string::npos; }
+
+// The files a command reads: the input, or a folder's or pattern's frame files.
+std::vector<fs::path> input_files(const std::string& input) {
+  std::vector<fs::path> files = with_faces(input);
+  if (fs::is_directory(input) || is_pattern(input)) {
+    try {
+      for (const std::string& f : frame_files(input, {".obj", ".off", ".ply"})) files.emplace_back(f);
+    } catch (const Error&) {
+      // Reading the input reports it.
+    }
   }
-  console::check_output(output);
+  return files;
+}
+
+// The files an output replaces: the output, or a folder's OBJ frames, or the existing files of a pattern's frames.
+std::vector<fs::path> output_files(const std::string& output) {
+  std::vector<fs::path> files = with_faces(output);
+  std::error_code ignored;
+  if (fs::is_directory(output, ignored)) {
+    for (const fs::directory_entry& entry : fs::directory_iterator(output, ignored))
+      if (is_obj_frame_name(entry.path().filename().string())) files.push_back(entry.path());
+  } else if (is_pattern(output) && fs::is_directory(fs::path(output).parent_path().empty() ? "." : fs::path(output).parent_path(), ignored)) {
+    try {
+      for (const std::string& f : frame_files(output, {".ply"})) files.emplace_back(f);
+    } catch (const Error&) {
+      // No such frames yet.
+    }
+  }
+  return files;
+}
+
+}  // namespace
+
+void refuse_overwriting(const std::string& input, const std::string& output, OutputForm form) {
+  std::error_code ignored;
+  if (form == OutputForm::kFile && output != "-" && fs::is_directory(output, ignored))
+    throw usage_error(output + ": a folder; the output is a file");
+  if (input != "-" && output != "-") {
+    const std::vector<fs::path> inputs = input_files(input);
+    for (const fs::path& out : output_files(output))
+      for (const fs::path& in : inputs)
+        if (fs::equivalent(in, out, ignored))
+          throw usage_error(out.string() + (in == fs::path(input) ? ": the output is the input" : ": the output is one of the input's files (" + input + ")") +
+                            "; refusing to overwrite it");
+  }
+  // Every file the command writes exists only with -y: a PC2 cache's OBJ too.
+  for (const fs::path& out : with_faces(output)) console::check_output(out.string());
 }
 
 void refuse_trace_to_output(bool trace, const std::string& output) {

@@ -60,9 +60,12 @@ MeshSequence load_sequence_or_stream(const std::string& path, StreamFacts* facts
 
 // A usage error when the trace and the stream would share standard output.
 void refuse_trace_to_output(bool trace, const std::string& output);
-// Before anything is read, usage errors for an output that is an input,
-// or that exists without -y (console::check_output).
-void refuse_overwriting(const std::string& input, const std::string& output);
+// Before anything is read, usage errors for an output that is an input or
+// one of its files (a folder's or a pattern's frames, a PC2 cache's OBJ),
+// -y or not; that exists without -y (console::check_output), a PC2
+// cache's OBJ too; or that is a folder where a file is written.
+enum class OutputForm { kFile, kFileOrFolder };
+void refuse_overwriting(const std::string& input, const std::string& output, OutputForm form = OutputForm::kFile);
 
 // --frames A:B (both included; "A:" to the end, ":B" from the first; empty: all).
 std::pair<uint32_t, uint32_t> frame_range(const std::string& text);

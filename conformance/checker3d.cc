@@ -2,6 +2,7 @@
 #include "conformance/checker.h"
 
 #include <optional>
+#include <set>
 
 #include "decoder/mesh3d/container_decoder.h"
 
@@ -25,7 +26,7 @@ Finding finding_of(const Error& e, std::optional<size_t> unit) {
 CheckReport check_mesh3d(std::span<const uint8_t> stream) {
   CheckReport report;
   Decode3dOptions options;
-  options.verify = true;
+  options.hashes = HashCheck::kRecord;
   std::unique_ptr<Mesh3dDecoder> decoder;
   try {
     decoder = std::make_unique<Mesh3dDecoder>(stream, options);
@@ -40,11 +41,14 @@ CheckReport check_mesh3d(std::span<const uint8_t> stream) {
       if (!decoder->next_unit()) break;
       after_error = report.errors() > 0;
       // After an error, later frames decode from a damaged state: their hashes tell nothing new.
-      if (report.errors() == 0)
+      if (report.errors() == 0) {
+        std::set<int64_t> units;  // a group's frames share their hash unit's finding
         for (uint32_t frame : decoder->unit().verified)
-          if (decoder->hash_result(frame) == false)
-            report.findings.push_back(mesh3d_finding(true, ErrorKind::kStructure, frame, "frame_md5", kNoOffset,
-                                                     "the decoded frame does not match its hash unit", decoder->unit().index));
+          if (decoder->hash_result(frame) == false) {
+            const Error e = decoder->mismatch_error(frame);
+            if (units.insert(e.unit()).second) report.findings.push_back(finding_of(e, static_cast<size_t>(e.unit())));
+          }
+      }
     } catch (const Error& e) {
       // An error that took no unit is the stream's end (frames missing).
       const bool in_unit = decoder->units_taken() != taken;

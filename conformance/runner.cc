@@ -1,8 +1,11 @@
 #include "conformance/runner.h"
 
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -10,6 +13,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
@@ -66,8 +70,42 @@ std::string stderr_of(const fs::path& file) {
   return s.empty() ? "" : "; its stderr: " + s;
 }
 
+std::string seconds_text(double seconds) {
+  std::ostringstream text;
+  text << seconds;
+  return text.str();
+}
+
+// Runs `command` with sh, its standard output to /dev/null and its standard
+// error to `err`: its wait status, or none when it ran past `timeout`
+// seconds (then its process group is killed).
+std::optional<int> run_with_timeout(const std::string& command, const fs::path& err, double timeout) {
+  const pid_t child = fork();
+  if (child < 0) return -1;
+  if (child == 0) {
+    setpgid(0, 0);
+    // A subshell, so that the command's own redirections win over these.
+    const std::string line = "( " + command + " ) > /dev/null 2> " + quoted(err.string());
+    execl("/bin/sh", "sh", "-c", line.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  setpgid(child, child);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
+  auto pause = std::chrono::microseconds(200);
+  for (int status = 0;;) {
+    if (waitpid(child, &status, WNOHANG) == child) return status;
+    if (std::chrono::steady_clock::now() >= deadline) {
+      kill(-child, SIGKILL);
+      waitpid(child, &status, 0);
+      return std::nullopt;
+    }
+    std::this_thread::sleep_for(pause);
+    pause = std::min(2 * pause, std::chrono::microseconds(20000));
+  }
+}
+
 Outcome run_external(SuiteKind kind, const ManifestEntry& e, const std::string& stream_path, const std::string& command_template,
-                     const fs::path& folder) {
+                     const fs::path& folder, double timeout_seconds) {
   if (kind == SuiteKind::kMesh2d && e.method != 2 && command_template.find("{method}") == std::string::npos)
     return {Outcome::kSkip, "needs Method I: put {method} in the decoder command"};
   // The extension tells a decoder such as m4mesh which output to write.
@@ -75,8 +113,9 @@ Outcome run_external(SuiteKind kind, const ManifestEntry& e, const std::string& 
   std::string command = replace_all(command_template, "{in}", quoted(stream_path));
   command = replace_all(command, "{out}", quoted(out.string()));
   command = replace_all(command, "{method}", std::to_string(e.method));
-  // A subshell, so that the command's own redirections win over these.
-  const int status = std::system(("( " + command + " ) > /dev/null 2> " + quoted(err.string())).c_str());
+  const std::optional<int> finished = run_with_timeout(command, err, timeout_seconds);
+  if (!finished) return {Outcome::kFail, "no exit within " + seconds_text(timeout_seconds) + " s: killed" + stderr_of(err)};
+  const int status = *finished;
   if (status == -1) return {Outcome::kFail, "the decoder could not be started"};
   // A crash fails any stream: the shell reports a command killed by signal N as 128 + N.
   const int signal = WIFSIGNALED(status) ? WTERMSIG(status) : WEXITSTATUS(status) > 128 && WEXITSTATUS(status) < 160 ? WEXITSTATUS(status) - 128 : 0;
@@ -131,6 +170,10 @@ void print_coverage(const fs::path& suite, const Manifest& manifest, std::ostrea
 
 ConformResult run_conformance(const ConformOptions& options, std::ostream& out) {
   const fs::path suite(options.suite);
+  if (!options.decoder_command.empty() &&
+      (options.decoder_command.find("{in}") == std::string::npos || options.decoder_command.find("{out}") == std::string::npos))
+    throw usage_error("--decoder " + options.decoder_command + ": the command needs {in} (the stream) and {out} (the file it writes)");
+  if (!(options.timeout_seconds > 0)) throw usage_error("--timeout: a number of seconds above 0");
   const Manifest manifest = read_manifest((suite / "manifest.json").string());
   std::optional<TemporaryFolder> folder;
   if (!options.decoder_command.empty()) folder.emplace();
@@ -146,7 +189,7 @@ ConformResult run_conformance(const ConformOptions& options, std::ostream& out) 
       if (const std::string mismatch = stream_md5_mismatch(e, stream); !mismatch.empty()) {
         outcome = {Outcome::kFail, mismatch};
       } else if (folder) {
-        outcome = run_external(manifest.kind, e, path, options.decoder_command, folder->path());
+        outcome = run_external(manifest.kind, e, path, options.decoder_command, folder->path(), options.timeout_seconds);
       } else {
         const Verdict verdict = judge_stream(manifest.kind, e, stream);
         outcome = {verdict.pass ? Outcome::kPass : Outcome::kFail, verdict.detail};

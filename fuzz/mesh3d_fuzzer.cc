@@ -15,17 +15,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::span<const uint8_t> stream(data, size);
   if (fuzz::declares_more_than_budget(stream)) return -1;  // -1: not added to the corpus
   try {
-    Decode3dOptions options;
-    options.verify = true;
-    Mesh3dDecoder decoder(stream, options);
+    Mesh3dDecoder decoder(stream);
     while (decoder.next_frame()) {
     }
   } catch (const Error&) {
   }
   try {
-    Decode3dOptions options;
-    options.verify = true;
-    Mesh3dDecoder decoder(stream, options);
+    Mesh3dDecoder decoder(stream);
     decoder.seek(size > 0 ? data[size - 1] : 0);
     while (decoder.next_frame()) {
     }

@@ -165,4 +165,31 @@ std::vector<std::string> frame_files(const std::string& folder_or_pattern, std::
   return paths;
 }
 
+std::string numbering_gaps_warning(const std::string& folder_or_pattern, const std::vector<std::string>& files) {
+  if (files.size() < 3) return "";
+  std::vector<int64_t> numbers;
+  for (const std::string& f : files) numbers.push_back(frame_number(f));
+  std::map<int64_t, size_t> steps;  // step → how often it occurs
+  for (size_t k = 1; k < numbers.size(); ++k) ++steps[numbers[k] - numbers[k - 1]];
+  // The most common step; of steps as common, the smallest.
+  const int64_t step = std::max_element(steps.begin(), steps.end(), [](const auto& a, const auto& b) { return a.second < b.second; })->first;
+  std::vector<int64_t> missing;
+  std::string first_gap;
+  uint64_t missing_count = 0;
+  for (size_t k = 1; k < numbers.size(); ++k) {
+    if (numbers[k] - numbers[k - 1] <= step) continue;
+    if (first_gap.empty())
+      first_gap = std::filesystem::path(files[k - 1]).filename().string() + " and " + std::filesystem::path(files[k]).filename().string();
+    for (int64_t n = numbers[k - 1] + step; n < numbers[k]; n += step, ++missing_count)
+      if (missing.size() < 5) missing.push_back(n);
+  }
+  if (missing_count == 0) return "";
+  std::string list;
+  for (int64_t n : missing) list += (list.empty() ? "" : ", ") + std::to_string(n);
+  if (missing_count > missing.size()) list += ", …";
+  return folder_or_pattern + ": " + std::to_string(missing_count) + (missing_count == 1 ? " frame" : " frames") +
+         " missing from the numbering (every " + std::to_string(step) + "): " + list + " (the first gap between " + first_gap + "); " +
+         std::to_string(files.size()) + " frames read, the gaps closed";
+}
+
 }  // namespace m4mesh

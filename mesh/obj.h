@@ -35,4 +35,10 @@ ObjFrame read_obj(const std::string& path);
 std::vector<std::string> frame_files(const std::string& folder_or_pattern, std::initializer_list<const char*> kinds = {".obj"},
                                      std::vector<std::string>* unused = nullptr);
 
+// A warning when frame_files' numbers skip some of a regular numbering: the
+// numbers missing between files whose step exceeds the most common one
+// (1, 2, 4, 5: 3 is missing; 0, 3, 6, every third, misses none). Empty
+// when none is missing.
+std::string numbering_gaps_warning(const std::string& folder_or_pattern, const std::vector<std::string>& files);
+
 }  // namespace m4mesh

@@ -204,6 +204,8 @@ MeshSequence load_sequence(const std::string& path, bool progress) {
   if (progress && !unused.empty())
     std::fprintf(stderr, "warning: %s: %zu files not used (not %s frames), %s%s\n", path.c_str(), unused.size(), extension.c_str(),
                  unused.front().c_str(), unused.size() > 1 ? ", …" : "");
+  if (const std::string gaps = numbering_gaps_warning(path, files); progress && !gaps.empty())
+    std::fprintf(stderr, "warning: %s\n", gaps.c_str());
   const bool report_progress = progress && files.size() > 10 && isatty(fileno(stderr));
   MeshSequence sequence;
   for (size_t k = 0; k < files.size(); ++k) {
@@ -220,7 +222,7 @@ MeshSequence load_sequence(const std::string& path, bool progress) {
     sequence.frames.push_back(std::move(frame.vertices));
     if (report_progress) std::fprintf(stderr, "\rreading frame %zu/%zu", k + 1, files.size());
   }
-  if (report_progress) std::fprintf(stderr, "\n");
+  if (report_progress) std::fprintf(stderr, "\r%*s\r", 40, "");
   return sequence;
 }
 
@@ -454,6 +456,8 @@ std::unique_ptr<FrameSource> open_sequence(const std::string& path, bool progres
     if (uint64_t{files.size()} * first.vertices.size() > in_memory && first.vertices.size() >= 3 && !first.faces.empty()) {
       if (const std::string note = dropped_records_note(files.front(), first.dropped, "positions and faces"); progress && !note.empty())
         std::fprintf(stderr, "note: %s\n", note.c_str());
+      if (const std::string gaps = numbering_gaps_warning(path, files); progress && !gaps.empty())
+        std::fprintf(stderr, "warning: %s\n", gaps.c_str());
       return std::make_unique<FrameFilesSource>(std::move(files), std::move(first));
     }
   }

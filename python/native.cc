@@ -164,12 +164,6 @@ void warn_if_coding_order(bool coding_order) {
     throw py::error_already_set();  // warnings turned into errors
 }
 
-Decode3dOptions verified() {
-  Decode3dOptions options;
-  options.verify = true;
-  return options;
-}
-
 py::tuple decode(const py::handle& stream) {
   const StreamBytes bytes(stream);
   std::vector<std::vector<Float3>> decoded;  // binary32, copied once into the array returned
@@ -178,11 +172,10 @@ py::tuple decode(const py::handle& stream) {
   bool coding_order = false;
   {
     py::gil_scoped_release release;
-    Mesh3dDecoder decoder(bytes, verified());
+    Mesh3dDecoder decoder(bytes);
     vertex_count = decoder.header().vertex_count;
     coding_order = in_coding_order(decoder);
     while (decoder.next_frame()) decoded.push_back(decoder.positions());
-    decoder.require_hashes_match();
     faces = decoder.faces();
   }
   warn_if_coding_order(coding_order);
@@ -195,7 +188,7 @@ py::tuple decode(const py::handle& stream) {
 // decoder and one frame, however long the sequence.
 class FrameIterator {
  public:
-  explicit FrameIterator(const py::handle& stream) : stream_(stream), decoder_(stream_, verified()) {
+  explicit FrameIterator(const py::handle& stream) : stream_(stream), decoder_(stream_) {
     warn_if_coding_order(in_coding_order(decoder_));
   }
   // float32[V, 3]: the next frame; a hash unit that disagrees raises as soon as it is read.
@@ -207,7 +200,6 @@ class FrameIterator {
       const Busy busy(busy_);  // cleared once the GIL is held again
       py::gil_scoped_release release;
       more = decoder_.next_frame();
-      decoder_.require_hashes_match();
     }
     if (!more) throw py::stop_iteration();
     const std::vector<Float3>& positions = decoder_.positions();
@@ -391,7 +383,10 @@ position_blend (None: auto): as encode3d's.)");
   py::class_<FrameIterator>(m, "frames",
                           "Iterates over a 3D stream's frames, float32[V, 3] each, in display order, holding one at a time "
                           "(decode() returns them all); every frame checked against its hash units, a mismatch raised as soon "
-                          "as a unit finds it. faces: int32[T, 3], once the first frame is read.")
+                          "as its hash unit is read. A group hash unit (encode's hash_group, 16 by default) follows its "
+                          "group's last frame: the group's earlier frames are handed out before they are checked, so a "
+                          "caller that must not show an unchecked frame waits for the group's end or encodes with "
+                          "hash_group=1. faces: int32[T, 3], once the first frame is read.")
       .def(py::init<const py::handle&>(), py::arg("stream"))
       .def("__iter__", [](FrameIterator& self) -> FrameIterator& { return self; })
       .def("__next__", &FrameIterator::next)

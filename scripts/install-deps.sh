@@ -8,7 +8,7 @@ apt-get install -y -qq --no-install-recommends \
   libgtest-dev libgmock-dev libbenchmark-dev \
   libcli11-dev libssl-dev libcgal-dev nlohmann-json3-dev libdraco-dev libeigen3-dev \
   libpng-dev libgif-dev libimagequant-dev libtinygltf-dev blender python3-dev pybind11-dev python3-matplotlib python3-numpy python3-pytest \
-  python3-venv python3-pip python3-setuptools python3-build \
+  python3-venv python3-pip python3-setuptools python3-wheel python3-build \
   libcpp-httplib-dev emscripten nodejs chromium time \
   libavformat-dev libavcodec-dev libswscale-dev libavutil-dev ffmpeg opencv-doc \
   > /dev/null

@@ -179,12 +179,14 @@ class ReadIO : public IOBase {
 
   // The payload's remaining bytes must be exactly `expected` (named after
   // the last field read): more is out of range, fewer leaves bytes over.
-  void require_remaining_bytes(const char* element, uint64_t expected) const {
+  // The error names `element` and is placed where `placed_at` starts (as fail() places it without).
+  void require_remaining_bytes(const char* element, uint64_t expected, const char* placed_at = nullptr) const {
     const uint64_t left = reader_.bits_left() / 8;
+    const uint64_t at = start_of(placed_at ? placed_at : element);
     if (expected > left)
-      fail(ErrorKind::kOutOfRange, element, std::to_string(expected) + " bytes where the unit holds " + std::to_string(left));
+      fail_at(ErrorKind::kOutOfRange, element, at, std::to_string(expected) + " bytes where the unit holds " + std::to_string(left));
     if (expected < left)
-      fail(ErrorKind::kStructure, element, std::to_string(left - expected) + " bytes left over after " + std::to_string(expected));
+      fail_at(ErrorKind::kStructure, element, at, std::to_string(left - expected) + " bytes left over after " + std::to_string(expected));
   }
   // A length field must not exceed the bytes left.
   void require_length(const char* element, uint64_t length) const {
@@ -264,7 +266,7 @@ class WriteIO : public IOBase {
     if (trace_) trace_->bytes(element_start_, name, bytes);
   }
   void tail_section(const char* name, std::span<const uint8_t>& bytes) { section(name, bytes.size(), bytes); }
-  void require_remaining_bytes(const char*, uint64_t) const {}
+  void require_remaining_bytes(const char*, uint64_t, const char* = nullptr) const {}
   void require_length(const char*, uint64_t) const {}
 
  private:
@@ -328,7 +330,7 @@ class CountIO : public IOBase {
     bits_ += 8 * length;
   }
   void tail_section(const char*, std::span<const uint8_t>& bytes) { bits_ += 8 * bytes.size(); }
-  void require_remaining_bytes(const char*, uint64_t) const {}
+  void require_remaining_bytes(const char*, uint64_t, const char* = nullptr) const {}
   void require_length(const char*, uint64_t) const {}
 
  private:

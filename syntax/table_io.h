@@ -51,7 +51,7 @@ class TableIO : public IOBase {
   void tail_section(const char* name, std::span<const uint8_t>&) { row(name, "bytes", "to the end of the unit"); }
   // Constraints between fields are the prose's, not the table's.
   void require(bool, ErrorKind, const char*, const char*) const {}
-  void require_remaining_bytes(const char*, uint64_t) const {}
+  void require_remaining_bytes(const char*, uint64_t, const char* = nullptr) const {}
   void require_length(const char*, uint64_t) const {}
 
   // A conditional or repeated part: "head {", its rows indented, "}".

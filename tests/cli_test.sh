@@ -115,6 +115,20 @@ else
   [ "$status" = 2 ] && grep -q "no conformance suite" "$work/err" || fail "conform without a suite: exit $status, $(cat "$work/err")"
 fi
 
+# An external decoder: {in} and {out} required, a time-out per stream, skipped Method I streams do not fail the run; conform.py alike.
+mkdir -p "$work/pair"
+ln -s "$source/conformance/streams" "$work/pair/streams"
+python3 -c "import json,sys; d=json.load(open(sys.argv[1])); d['streams']=[e for e in d['streams'] if e['id'] in ('p01-hand-3x3', 'p33-method1-uniform')]; json.dump(d,open(sys.argv[2],'w'))" \
+  "$source/conformance/manifest.json" "$work/pair/manifest.json"
+for runner in "$m4mesh conform $work/pair" "python3 $source/conformance/conform.py --suite 2d --only p01-hand-3x3 --only p33-method1-uniform"; do
+  status=0; $runner --decoder "'$m4mesh' decode {in}" > "$work/out" 2> "$work/err" || status=$?
+  [ "$status" = 2 ] && grep -q "{out}" "$work/err" || fail "$runner: a decoder command without {out}: exit $status, $(cat "$work/err")"
+  status=0; $runner --decoder "'$m4mesh' decode {in} -o {out}" > "$work/out" 2>&1 || status=$?
+  [ "$status" = 0 ] && grep -q "^1 passed, 0 failed, 1 skipped$" "$work/out" || fail "$runner: a skipped Method I stream: exit $status, $(tail -2 "$work/out")"
+  status=0; $runner --decoder "sleep 30; true {in} {out}" --timeout 0.5 > "$work/out" 2>&1 || status=$?
+  [ "$status" = 1 ] && grep -q "^p01-hand-3x3 .* FAIL .*no exit within 0.5 s" "$work/out" || fail "$runner: a decoder that hangs: exit $status, $(cat "$work/out")"
+done
+
 # An OBJ vertex outside a Delaunay I-plane's 0 … 1023 is named with its file, line and vertex number.
 printf 'v 0 0 0\nv 10 0 0\nv 0 10 0\nv 5000 5 0\nf 1 2 4\nf 1 4 3\n' > "$work/far.obj"
 if "$m4mesh" encode "$work/far.obj" -o "$work/far.m4m" 2> "$work/err"; then fail "a vertex beyond 1023 accepted"; fi
@@ -370,6 +384,47 @@ status=0; "$m4mesh" encode3d "$work/mixed" -o "$work/mixed.m4m" 2> "$work/err" |
 rm "$work/mixed/output0001.off" && touch "$work/mixed/x.obj"
 status=0; "$m4mesh" encode3d "$work/mixed" -o "$work/mixed.m4m" 2> "$work/err" || status=$?
 [ "$status" = 1 ] && grep -q "x.obj: a frame file without a number" "$work/err" || fail "an unnumbered frame file: exit $status"
+
+# A frame that differs from its hash unit fails every decode3d, --verify or not, and leaves no output.
+cp "$work/t.m4m" "$work/bad-hash.m4m"
+digest_byte=$(( $(stat -c %s "$work/t.m4m") - 12 ))  # inside the group hash's digest, before the end code
+printf "$(printf '\\%03o' $(( $(od -An -tu1 -j"$digest_byte" -N1 "$work/t.m4m") ^ 1 )))" | dd of="$work/bad-hash.m4m" bs=1 seek="$digest_byte" conv=notrunc status=none
+for options in "-o $work/bad-hash.f32" "--md5" "-o $work/bad-hash.f32 --verify" "-o $work/bad-hash.f32 --frames 0:1" "-o $work/bad-hash-frames/"; do
+  status=0; "$m4mesh" decode3d "$work/bad-hash.m4m" $options > "$work/out" 2> "$work/err" || status=$?
+  [ "$status" = 1 ] || fail "decode3d $options of a stream whose group hash differs: exit $status"
+  grep -Eq "^error: .*bad-hash.m4m: unit 4, frame 0, group_md5 at bit [0-9]+: frames 0 … 3 as decoded do not match their group hash unit" "$work/err" ||
+    fail "decode3d $options: hash mismatch message: $(cat "$work/err")"
+  ! grep -Eq "^[0-9a-f]{32}$" "$work/out" || fail "decode3d $options printed an MD5 for frames that fail their hash"
+  [ ! -e "$work/bad-hash.f32" ] && [ ! -e "$work/bad-hash-frames" ] || fail "decode3d $options left its output behind"
+  [[ "$options" != *--verify* ]] || grep -q "^frame 0: MISMATCH$" "$work/out" || fail "--verify's report of a mismatch: $(cat "$work/out")"
+done
+status=0; "$m4mesh" check "$work/bad-hash.m4m" > "$work/out" || status=$?
+[ "$status" = 1 ] && [ "$(grep -c "^error: unit 4, frame 0, group_md5 at bit" "$work/out")" = 1 ] || fail "check of a hash mismatch: $(cat "$work/out")"
+
+# A PC2 cache's OBJ is an output too; an output that is one of a folder's or a pattern's frames is refused, -y or not.
+echo precious > "$work/precious.obj"
+status=0; "$m4mesh" decode3d "$work/t.m4m" -o "$work/precious.pc2" 2> "$work/err" || status=$?
+[ "$status" = 2 ] && grep -q "precious.obj: exists; -y replaces it" "$work/err" || fail "decode3d onto a PC2's existing OBJ: exit $status, $(cat "$work/err")"
+[ "$(cat "$work/precious.obj")" = precious ] && [ ! -e "$work/precious.pc2" ] || fail "decode3d -o X.pc2 touched X.obj"
+status=0; "$m4mesh" convert tests/data/tetra-frames "$work/precious.pc2" 2> "$work/err" || status=$?
+[ "$status" = 2 ] && [ "$(cat "$work/precious.obj")" = precious ] || fail "convert onto a PC2's existing OBJ: exit $status"
+cp -r tests/data/tetra-frames "$work/own-frames"
+for output in "$work/own-frames/2.obj" "$work/own-frames"; do
+  for input in "$work/own-frames" "$work/own-frames/*.obj"; do
+    status=0; "$m4mesh" -y encode3d "$input" -o "$output" 2> "$work/err" || status=$?
+    [ "$status" = 2 ] && grep -Eq "refusing to overwrite it|a folder; the output is a file" "$work/err" || fail "-y encode3d $input -o $output: exit $status, $(cat "$work/err")"
+  done
+done
+diff -r tests/data/tetra-frames "$work/own-frames" > /dev/null || fail "an input frame was replaced"
+# A gap in a numbered folder is named; a regular stride is not a gap.
+mkdir "$work/gap" "$work/stride"
+for k in 1 2 4; do cp "tests/data/tetra-frames/$k.obj" "$work/gap/$k.obj"; done
+for k in 1 2 3; do cp "tests/data/tetra-frames/$k.obj" "$work/stride/$(( 3 * k )).obj"; done
+"$m4mesh" encode3d "$work/gap" -o "$work/gap.m4m" 2> "$work/err" || fail "encode3d of a folder with a gap"
+grep -q "^warning: .*gap: 1 frame missing from the numbering (every 1): 3 (the first gap between 2.obj and 4.obj); 3 frames read" "$work/err" ||
+  fail "a gap in the numbering: $(cat "$work/err")"
+"$m4mesh" encode3d "$work/stride" -o "$work/stride.m4m" 2> "$work/err" || fail "encode3d of every third frame"
+! grep -q "missing" "$work/err" || fail "a regular stride called a gap: $(cat "$work/err")"
 
 # --verify without hashes, 3D words in 3D errors, a stream cut short, progress of cpca-wpt.
 "$m4mesh" encode3d tests/data/tetra-frames --no-hash -o "$work/no-hash.m4m" 2> /dev/null

@@ -55,10 +55,11 @@ std::string decoded_text(const std::vector<uint8_t>& stream);
 // returns how many prefixes were rejected.
 int decode_damaged_mesh3d(const std::vector<uint8_t>& stream, size_t step, uint64_t seed);
 
-// 3D decoding that checks every frame against its hash unit.
+// 3D decoding that compares every hashed frame with its hash unit and
+// records the result (hash_result) instead of failing.
 inline Decode3dOptions verifying() {
   Decode3dOptions options;
-  options.verify = true;
+  options.hashes = HashCheck::kRecord;
   return options;
 }
 

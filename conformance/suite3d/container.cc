@@ -101,6 +101,8 @@ std::vector<SuiteCase> group_hash_rejected(const std::vector<SuiteCase>& valid) 
                                    first_group(p).payload.pop_back();
                                  }),
                           ErrorKind::kOutOfRange, "group_md5", 0));
+  suite.push_back(invalid("x-179-group-md5-differs", "hash-01's first group hash with the last bit of its digest flipped", {"container-hash"},
+                          edited(grouped, [&](ContainerParts& p) { first_group(p).payload.back() ^= 1; }), ErrorKind::kStructure, "group_md5", 0));
   return suite;
 }
 
@@ -239,6 +241,16 @@ std::vector<SuiteCase> container_rules_rejected(const std::vector<SuiteCase>& va
   suite.push_back(invalid("x-77-frame-hash-ahead", "the frame hash unit after frame 1 labelled frame 2", {"container-hash"},
                           edited(base, [](ContainerParts& p) { put_field(unit_of(p, UnitType::kFrameHash, 1).payload, unit_header_field("frame_index"), 2); }),
                           ErrorKind::kStructure, "frame_index", 2));
+  suite.push_back(invalid("x-178-frame-md5-differs", "the frame hash unit after frame 1 with the last bit of its digest flipped", {"container-hash"},
+                          edited(base, [](ContainerParts& p) { unit_of(p, UnitType::kFrameHash, 1).payload.back() ^= 1; }), ErrorKind::kStructure,
+                          "frame_md5", 1));
+  // A frame hash's digest of the wrong size: placed at frame_index, the field read before it.
+  suite.push_back(invalid("x-180-frame-md5-cut", "the frame hash unit after frame 1 one byte short", {"container-hash"},
+                          edited(base, [](ContainerParts& p) { unit_of(p, UnitType::kFrameHash, 1).payload.pop_back(); }), ErrorKind::kOutOfRange,
+                          "frame_md5", 1));
+  suite.push_back(invalid("x-181-frame-md5-long", "the frame hash unit after frame 1 one byte long", {"container-hash"},
+                          edited(base, [](ContainerParts& p) { unit_of(p, UnitType::kFrameHash, 1).payload.push_back(0x5A); }), ErrorKind::kStructure,
+                          "frame_md5", 1));
   suite.push_back(invalid("x-176-frame-hash-behind", "the frame hash unit after frame 2 labelled frame 1, decoded by the unit before", {"container-hash"},
                           edited(base, [](ContainerParts& p) { put_field(unit_of(p, UnitType::kFrameHash, 2).payload, unit_header_field("frame_index"), 1); }),
                           ErrorKind::kStructure, "frame_index", 1));

@@ -211,10 +211,9 @@ void Mesh3dDecoder::check_hash(size_t index) {
   if (!covered) fail(ErrorKind::kStructure, index, frame, "frame_index", "a hash unit for a frame the unit before it did not decode");
   FrameHash hash;
   read_unit_data(index, frame, [&](syntax::ReadIO& io) { syntax::describe(io, hash); });
-  if (!options_.verify) return;
+  if (options_.hashes == HashCheck::kSkip) return;
   const Digest digest = digest_of(frame);
-  hash_results_[frame] = std::equal(digest.begin(), digest.end(), hash.md5.begin());
-  unit_.verified.push_back(frame);
+  record_hash(index, false, frame, 1, std::equal(digest.begin(), digest.end(), hash.md5.begin()));
 }
 
 Digest Mesh3dDecoder::digest_of(uint32_t frame) const {
@@ -239,7 +238,7 @@ void Mesh3dDecoder::check_group_hash(size_t index, const UnitHeader& header) {
                     (codec_->holds_frames() && f < held_from_ ? " (its segment is complete already)" : ""));
     }
   });
-  if (!options_.verify) return;
+  if (options_.hashes == HashCheck::kSkip) return;
   std::vector<Digest> frames;
   for (uint32_t f = first; f < first + hash.group_frames; ++f) {
     // A frame that failed to decode (a check carries on past it) has no digest: the group stays unchecked.
@@ -247,11 +246,41 @@ void Mesh3dDecoder::check_group_hash(size_t index, const UnitHeader& header) {
     frames.push_back(digest_of(f));
   }
   const Digest digest = group_digest(frames);
-  const bool match = std::equal(digest.begin(), digest.end(), hash.md5.begin());
-  for (uint32_t f = first; f < first + hash.group_frames; ++f) {
-    hash_results_[f] = match;
+  record_hash(index, true, first, hash.group_frames, std::equal(digest.begin(), digest.end(), hash.md5.begin()));
+}
+
+namespace {
+
+// Where a hash unit's digest starts, in bits from the unit data's start.
+template <class Hash>
+uint64_t digest_offset(const char* element) {
+  syntax::CountIO count(element);
+  Hash hash;
+  syntax::describe(count, hash);
+  return count.offset_of_watched();
+}
+
+}  // namespace
+
+Error Mesh3dDecoder::mismatch_error(uint32_t frame) const {
+  const HashOutcome& h = hash_results_.at(frame);
+  const char* element = h.group ? "group_md5" : "frame_md5";
+  const uint64_t digest = h.group ? digest_offset<GroupHash>(element) : digest_offset<FrameHash>(element);
+  const std::string message =
+      h.group ? "frames " + std::to_string(h.first) + " … " + std::to_string(h.first + h.frames - 1) +
+                    " as decoded do not match their group hash unit (the MD5 of their digests)"
+              : "frame " + std::to_string(h.first) + " as decoded does not match its hash unit (the MD5 of its positions)";
+  return Error(ErrorKind::kStructure, element, h.first, static_cast<int64_t>(parts_.unit_offset(h.unit) * 8 + syntax::unit_data_offset() + digest),
+               message)
+      .in_mesh3d(static_cast<int64_t>(h.unit));
+}
+
+void Mesh3dDecoder::record_hash(size_t index, bool group, uint32_t first, uint32_t frames, bool match) {
+  for (uint32_t f = first; f < first + frames; ++f) {
+    hash_results_[f] = {match, index, group, first, frames};
     unit_.verified.push_back(f);
   }
+  if (!match && options_.hashes == HashCheck::kRequire) throw mismatch_error(first);
 }
 
 void Mesh3dDecoder::finish() {
@@ -290,7 +319,7 @@ bool Mesh3dDecoder::next_unit() {
       }
       slot.resize(header_.vertex_count);
       codec_->frame(f, slot);
-      if (options_.verify) digests_[f] = frame_digest(slot);
+      if (options_.hashes != HashCheck::kSkip) digests_[f] = frame_digest(slot);
     }
   }
   while (next_unit_ < parts_.units() && is_hash_unit(next_unit_)) check_hash(next_unit_++);
@@ -322,20 +351,19 @@ void Mesh3dDecoder::resume() {
 }
 
 std::optional<uint32_t> Mesh3dDecoder::first_mismatch() const {
-  for (const auto& [frame, match] : hash_results_)
-    if (!match) return frame;
+  for (const auto& [frame, outcome] : hash_results_)
+    if (!outcome.match) return frame;
   return std::nullopt;
 }
 
 void Mesh3dDecoder::require_hashes_match() const {
-  if (const std::optional<uint32_t> f = first_mismatch())
-    throw Error(ErrorKind::kStructure, "frame_md5", *f, kNoOffset, "the decoded frame does not match its hash unit").in_mesh3d(kNoUnit);
+  if (const std::optional<uint32_t> f = first_mismatch()) throw mismatch_error(*f);
 }
 
 std::optional<bool> Mesh3dDecoder::hash_result(uint32_t frame) const {
   auto it = hash_results_.find(frame);
   if (it == hash_results_.end()) return std::nullopt;
-  return it->second;
+  return it->second.match;
 }
 
 bool Mesh3dDecoder::next_frame() {
@@ -392,22 +420,17 @@ void for_each_prefix(std::span<const uint8_t> stream,
 }
 
 std::vector<uint8_t> decoded_frames3d(std::span<const uint8_t> stream) {
-  Decode3dOptions options;
-  options.verify = true;
-  Mesh3dDecoder decoder(stream, options);
+  Mesh3dDecoder decoder(stream);
   std::vector<uint8_t> out;
   while (decoder.next_frame()) {
     const std::vector<uint8_t> bytes = frame_bytes(decoder.positions());
     out.insert(out.end(), bytes.begin(), bytes.end());
   }
-  decoder.require_hashes_match();
   return out;
 }
 
 MeshSequence decode_mesh3d(std::span<const uint8_t> stream) {
-  Decode3dOptions options;
-  options.verify = true;
-  Mesh3dDecoder decoder(stream, options);
+  Mesh3dDecoder decoder(stream);
   MeshSequence s;
   s.vertex_count = decoder.header().vertex_count;
   while (decoder.next_frame()) {
@@ -416,7 +439,6 @@ MeshSequence decode_mesh3d(std::span<const uint8_t> stream) {
     for (const Float3& p : decoder.positions()) frame.push_back({p[0], p[1], p[2]});
     s.frames.push_back(std::move(frame));
   }
-  decoder.require_hashes_match();
   s.faces = decoder.faces();
   return s;
 }

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "codecs3d/codec_decoder.h"
+#include "common/error.h"
 #include "mesh3d/frame_hash.h"
 #include "mesh3d/sequence.h"
 #include "syntax/mesh3d/base_mesh.h"
@@ -29,8 +30,21 @@ namespace m4mesh {
 
 struct Codec3d;
 
+// What a decoder does with the stream's hash units.
+enum class HashCheck {
+  // A frame that differs from its hash unit is an error where the unit is
+  // read (structure, element frame_md5 or group_md5, at the digest).
+  kRequire,
+  // Every hashed frame is compared and the result kept (hash_result):
+  // `m4mesh check` and `decode3d --verify` list them all.
+  kRecord,
+  // Hash units are read, their frames not compared (trace, benchmarks of
+  // the codecs alone).
+  kSkip,
+};
+
 struct Decode3dOptions {
-  bool verify = false;    // compare every hashed frame with its hash unit
+  HashCheck hashes = HashCheck::kRequire;
   Trace* trace = nullptr;  // print every element read
 };
 
@@ -43,7 +57,7 @@ struct DecodedUnit {
   // A progressive codec's frames that became final before the unit (its
   // segment ended): frame() gives them until the next unit.
   std::vector<uint32_t> released;
-  std::vector<uint32_t> verified;  // with verify: frames the hash units after it checked
+  std::vector<uint32_t> verified;  // frames the hash units after it compared
 };
 
 class Mesh3dDecoder {
@@ -108,14 +122,18 @@ class Mesh3dDecoder {
   // Whether a progressive codec holds the frame (decoded, not released).
   bool holds(uint32_t frame) const;
   // Each frame's last hash check: absent when no hash unit covered it
-  // (or verification is off), else whether it matched. A group hash unit
+  // (or HashCheck::kSkip), else whether it matched. A group hash unit
   // checks its frames after the last of them is decoded: a frame's result
   // may come after next_frame() handed the frame out.
   std::optional<bool> hash_result(uint32_t frame) const;
   // The first frame whose last hash check failed.
   std::optional<uint32_t> first_mismatch() const;
-  // Throws the structure error of the first mismatch, if any.
+  // With HashCheck::kRecord: throws the error of the first frame whose
+  // last hash check failed, as kRequire would have thrown it at its unit.
   void require_hashes_match() const;
+  // The error of a frame whose last hash comparison failed: its hash unit,
+  // the digest's element and first bit.
+  Error mismatch_error(uint32_t frame) const;
 
   // Decodes the next frame in display order, once no later unit can
   // change it; false after the last.
@@ -135,8 +153,10 @@ class Mesh3dDecoder {
   void check_hash(size_t index);
   void check_group_hash(size_t index, const UnitHeader& header);
   bool is_hash_unit(size_t index) const;
-  // A decoded frame's MD5 digest (with verify).
+  // A decoded frame's MD5 digest.
   Digest digest_of(uint32_t frame) const;
+  // Records a hash unit's comparison for its frames; with kRequire a mismatch throws.
+  void record_hash(size_t index, bool group, uint32_t first, uint32_t frames, bool match);
   // A progressive codec's frames before `first_held` become final: copied out.
   void release_before(uint32_t first_held);
   void finish();
@@ -153,9 +173,16 @@ class Mesh3dDecoder {
   std::vector<bool> decoded_;  // frames decoded at least once (frame by frame codecs)
   uint32_t decoded_count_ = 0;  // a progressive codec's frames decoded: 0 … this − 1
   uint32_t held_from_ = 0;      // the first frame a progressive codec holds
-  std::map<uint32_t, bool> hash_results_;
-  // With verify, the MD5 of every frame as it was decoded (a codec that
-  // holds every frame is hashed when a group hash is read).
+  // A frame's last hash comparison and the hash unit that made it.
+  struct HashOutcome {
+    bool match = false;
+    size_t unit = 0;
+    bool group = false;
+    uint32_t first = 0, frames = 1;  // the frames the unit covers
+  };
+  std::map<uint32_t, HashOutcome> hash_results_;
+  // Unless kSkip, the MD5 of every frame as it was decoded (a codec that
+  // holds every frame is hashed when a hash unit is read).
   std::map<uint32_t, Digest> digests_;
   // Display order: frames copied out of the codec until their turn.
   std::map<uint32_t, std::vector<Float3>> ready_;
@@ -176,10 +203,10 @@ void for_each_prefix(std::span<const uint8_t> stream,
 
 // The decoded output whose MD5 the 3D suite's manifest holds: every frame's
 // canonical bytes (binary32 x, y, z per vertex, little-endian), frame after
-// frame; fails on a hash mismatch.
+// frame; a hash mismatch is an error.
 std::vector<uint8_t> decoded_frames3d(std::span<const uint8_t> stream);
 
-// The whole sequence (tests, tools); fails on a hash mismatch.
+// The whole sequence (tests, tools); a hash mismatch is an error.
 MeshSequence decode_mesh3d(std::span<const uint8_t> stream);
 
 // Decodes every unit, tracing every element to `out` (the lines before an

@@ -17,8 +17,10 @@ namespace m4mesh {
 class StreamingMesh3dDecoder {
  public:
   // Appends `bytes` and decodes the units they complete; returns how many
-  // units that decoded, hash units aside. A frame that fails its hash unit
-  // is an error (structure, element frame_md5).
+  // units that decoded, hash units aside. Its cost is in proportion to the
+  // bytes pushed and the units decoded, whatever the size of the pieces;
+  // bytes that cannot start a 3D stream fail at once. A frame that fails
+  // its hash unit is an error (structure, element frame_md5 or group_md5).
   size_t push(std::span<const uint8_t> bytes);
   // The stream's end: decodes the units left.
   size_t finish();
@@ -38,6 +40,8 @@ class StreamingMesh3dDecoder {
   std::vector<uint8_t> received_;  // the stream's bytes from received_start_ on
   uint64_t received_start_ = 0;
   uint64_t bytes_decoded_ = 0;
+  uint64_t scanned_ = 0;          // a start code cannot begin before this but at last_start_code_
+  uint64_t last_start_code_ = 0;  // the last start code's offset (0: none after the object's)
   std::unique_ptr<Mesh3dDecoder> decoder_;
   bool ended_ = false;
 };

@@ -86,7 +86,7 @@ void describe(IO& io, UnitHeader& h) {
 
 template <class IO>
 void describe(IO& io, FrameHash& h) {
-  io.require_remaining_bytes("frame_md5", kFrameMd5Bytes);
+  io.require_remaining_bytes("frame_md5", kFrameMd5Bytes, "frame_index");
   io.section("frame_md5", kFrameMd5Bytes, h.md5);
 }
 

@@ -1,15 +1,20 @@
 #!/bin/sh
 # The Python package as a user installs it: `pip install ./python` in a
 # fresh virtual environment, offline from Debian's packages (no index, no
-# build isolation), then, from outside the tree, a suite stream decoded to
-# its MD5, a sequence encoded at a quality target, and a bad stream's error.
+# build isolation), writing nothing into the source tree, then, from
+# outside the tree, a suite stream decoded to its MD5, a sequence encoded
+# at a quality target, and a bad stream's error.
 # Usage: python.sh SOURCE_DIR
 set -eu
 source=$1
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 /usr/bin/python3 -m venv --system-site-packages "$work/env"
+touch "$work/start"
 "$work/env/bin/pip" install --no-build-isolation --no-index --quiet "$source/python"
+# Nothing written into the source tree (setuptools' build/ and egg-info go elsewhere).
+written=$(find "$source/python" -newer "$work/start" | head -n 3)
+[ -z "$written" ] || { echo "pip install ./python wrote into the source tree: $written"; exit 1; }
 cd "$work"
 "$work/env/bin/python" - "$source/conformance/mesh3d" <<'PYTHON'
 import hashlib, json, pathlib, sys
