@@ -182,6 +182,35 @@ TEST(CApi, EncodesAndDecodesBack) {
   EXPECT_EQ(error.kind, M4MESH_ERROR_USAGE) << error.message;  // auto needs a target
 }
 
+// Bytes that cannot begin a stream fail at the push that completes four of
+// them, not at finish after everything has been buffered.
+TEST(CApi, BytesThatAreNoStreamFailAtOnce) {
+  const std::vector<uint8_t> ones(size_t{1} << 20, 0xFF);
+  m4mesh_decoder3d* d = m4mesh_decoder3d_new();
+  EXPECT_EQ(m4mesh_decoder3d_push(d, ones.data(), 3), M4MESH_OK);  // not four bytes yet
+  EXPECT_EQ(m4mesh_decoder3d_push(d, ones.data(), ones.size()), M4MESH_ERROR);
+  EXPECT_STREQ(m4mesh_decoder3d_error(d)->kind_name, "missing-start-code") << m4mesh_decoder3d_error(d)->message;
+  EXPECT_STREQ(m4mesh_decoder3d_error(d)->element, "mesh3d_object_start_code");
+  EXPECT_EQ(m4mesh_decoder3d_error(d)->bit_offset, 0);
+  m4mesh_decoder3d_free(d);
+  // A 2D stream's start is no 3D stream either.
+  const std::vector<uint8_t> two_d = read_file(kSuite2d + "/streams/p01-hand-3x3.m4m");
+  d = m4mesh_decoder3d_new();
+  EXPECT_EQ(m4mesh_decoder3d_push(d, two_d.data(), 4), M4MESH_ERROR);
+  m4mesh_decoder3d_free(d);
+}
+
+// A stream pushed a byte at a time decodes as it does whole (start codes straddling pushes).
+TEST(CApi, AStreamPushedByteByByte) {
+  for (const char* id : {"bfs3d-01-average", "cpca-01-wpt", "hash-01-groups"}) {
+    const std::vector<uint8_t> stream = read_file(kSuite3d + "/streams/" + id + ".m4m");
+    const Outcome bytewise = decode3d(stream, 1), whole = decode3d(stream, stream.size());
+    EXPECT_EQ(bytewise.error.kind, M4MESH_ERROR_NONE) << id << ": " << bytewise.error.message;
+    EXPECT_EQ(bytewise.md5, whole.md5) << id;
+    EXPECT_EQ(bytewise.pieces, whole.pieces) << id;
+  }
+}
+
 TEST(CApi, MisuseIsAnErrorNotACrash) {
   m4mesh_decoder3d* d = m4mesh_decoder3d_new();
   EXPECT_EQ(m4mesh_decoder3d_finish(d), M4MESH_ERROR);  // no bytes at all
