@@ -608,6 +608,13 @@ std::vector<SuiteCase> rejected_cases() {
           unchecked_delaunay({{0, 0}, {0, 100}, {100, 100}, {100, 0}, {100, 50}}, 5), ErrorKind::kGeometry, "MeshGeometry", 0);
   suite.invalid("n35-boundary-edges-touch", "a boundary node on a non-adjacent boundary edge", {"6.1", "11"},
           unchecked_delaunay({{0, 0}, {0, 200}, {200, 200}, {200, 0}, {100, 200}}, 5), ErrorKind::kGeometry, "MeshGeometry", 0);
+  {
+    // The '1's right, the first bit '1' too: only the rule that stuffing starts with '0' rejects it.
+    const TracedElement stuffing = trace_elements(small).at("next_start_code").at(0);
+    suite.invalid("n36-stuffing-first-bit-one", "next_start_code() bits all '1's: the first is not '0'", {"2.2", "11"},
+            patched(small, "next_start_code", 0, stuffing_pattern(stuffing.bits) | 1u << (stuffing.bits - 1)), ErrorKind::kBadStuffing,
+            "next_start_code", 0);
+  }
   return suite.take();
 }
 

@@ -328,6 +328,25 @@ std::vector<SuiteCase> base_mesh_rules_rejected(const std::vector<SuiteCase>& va
                                  }),
                           ErrorKind::kTruncated, "loose_vertex", 0));
   {
+    // base-04-crown's traversal takes 19 raw bits of its 2,336: 97 loose faces of 24 bits fit the whole section, not the
+    // bits after the traversal, so the loose faces are read, and the first loose vertex, 255 of 242, is out of range.
+    const std::vector<uint8_t>& crown = stream_of(valid, "base-04-crown");
+    suite.push_back(invalid("x-185-base-loose-faces-whole-raw", "97 loose faces, fitting the whole raw section but not the bits after the "
+                            "traversal; the first loose vertex 255 of 242", {"base-mesh"},
+                            edited(crown,
+                                   [&](ContainerParts& p) {
+                                     std::vector<uint8_t>& unit = unit_of(p, UnitType::kBaseMesh, 0).payload;
+                                     const uint64_t faces = field_value(p.object_payload, object_field<Bfs3dHeader>(crown, "face_count"));
+                                     const uint64_t loose_faces = field_value(unit, unit_field<BaseMeshData>("loose_face_count"));
+                                     put_field(p.object_payload, object_field<Bfs3dHeader>(crown, "face_count"), faces + 97 - loose_faces);
+                                     put_field(unit, unit_field<BaseMeshData>("loose_face_count"), 97);
+                                     const size_t raw = unit_field<BaseMeshData>("bins").first + field_value(unit, unit_field<BaseMeshData>("arithmetic_bytes"));
+                                     unit.at(raw + 2) |= 0x1F;  // raw bits 19 … 26: 255
+                                     unit.at(raw + 3) |= 0xE0;
+                                   }),
+                            ErrorKind::kOutOfRange, "loose_vertex", 0));
+  }
+  {
     BrokenBaseMesh triangle;
     triangle.answer = {GateSymbol::kBorder, 0, 0};
     suite.push_back(invalid("x-133-base-position-beyond", "a position of 2^26 + 1", {"base-mesh"},

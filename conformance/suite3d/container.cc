@@ -101,6 +101,11 @@ std::vector<SuiteCase> group_hash_rejected(const std::vector<SuiteCase>& valid) 
                                    first_group(p).payload.pop_back();
                                  }),
                           ErrorKind::kOutOfRange, "group_md5", 0));
+  // A hash unit's frame_index is checked by the group's rules, not by rule 3 (below frame_count).
+  suite.push_back(invalid("x-184-group-at-frame-count", "hash-01's last group hash labelled frame 10, frame_count", {"container-hash"},
+                          edited(grouped,
+                                 [&](ContainerParts& p) { put_field(p.units[p.units.size() - 1].payload, unit_header_field("frame_index"), 10); }),
+                          ErrorKind::kStructure, "group_frames", 10));
   suite.push_back(invalid("x-179-group-md5-differs", "hash-01's first group hash with the last bit of its digest flipped", {"container-hash"},
                           edited(grouped, [&](ContainerParts& p) { first_group(p).payload.back() ^= 1; }), ErrorKind::kStructure, "group_md5", 0));
   return suite;

@@ -302,6 +302,37 @@ std::vector<SuiteCase> cpca_segment_cases(bool traced) {
     suite.push_back(written_case("cpca-42-continued-prefixes", "continued components' coefficients of every prefix length 0 … 13 after "
                                  "each class and a suffix's top bit 1, on the shape lane and the three trajectory lanes", {"cpca", "cpca-segments"}, s.finish()));
   }
+  {
+    // Carried values that pass ±R within the shifts' reach (d ≤ 30), saturated there: cluster 0's last translation
+    // (5, 3, −3) at shift 0 carried to shift 28 (±2^29), its component's last coefficient 7 at shift 0 continued at
+    // shift 30 (2^23); cluster 1's (10, 11, 12) at shift 0 carried to shift 22 (10 · 2^22 …: beyond ±2^23, within ±2^29).
+    SegmentedStream s(8, 4);
+    const size_t m0 = s.members(0);
+    constexpr int32_t kT = int32_t{1} << 29, kC = int32_t{1} << 23;
+    s.unit(0, {start(0, 0, {0, 0, 0, 1, 1, -1, 2, 2, -2, 5, 3, -3})});
+    s.unit(0, {component(0, kCpcaComponent, 0, ramp(3 * m0, 1, 1), {1, 3, 5, 7})});
+    s.unit(0, {start(1, 0, ramp(12, 1, 1))});
+    s.group_hash(0, 4);
+    s.unit(4, {start(0, 28, {kT - 1, kT - 2, -kT + 1, kT - 3, kT - 4, -kT + 2, kT - 5, kT - 6, -kT + 3, kT - 7, kT - 8, -kT + 4})});
+    s.unit(4, {continued(0, 0, false, 30, {kC - 1, kC - 2, kC - 4, kC - 8})});
+    s.unit(4, {start(1, 22, {(10 << 22) + 1, (11 << 22) - 1, 12 << 22, (10 << 22) + 2, (11 << 22) - 2, 12 << 22, (10 << 22) + 3, (11 << 22) - 3,
+                            12 << 22, (10 << 22) + 4, (11 << 22) - 4, 12 << 22})});
+    s.group_hash(4, 4);
+    suite.push_back(written_case("cpca-47-carried-saturated", "carried values saturated within the shifts' reach: translations at ±2^29 "
+                                 "(shift 0 → 28), a coefficient at 2^23 (0 → 30); a translation carried beyond 2^23 within 2^29 (0 → 22)",
+                                 {"cpca", "cpca-segments"}, s.finish()));
+  }
+  {
+    // The segment limit's edge: 1,024 vertices × 4,096 frames, exactly 2^22 vertex-frames, every frame the mean shape.
+    const std::vector<uint8_t> short_one = encode_mesh3d(waving_strip(2, 31, 31), cpca({{"clusters", "1"}})).stream;
+    suite.push_back(written_case("cpca-48-segment-at-limit", "a segment of exactly 2^22 vertex-frames (1,024 vertices, 4,096 frames), "
+                                 "no refinement unit: every frame the mean shape", {"cpca", "cpca-segments"},
+                                 edited(short_one, [&](ContainerParts& p) {
+                                   put_field(p.object_payload, object_field<CpcaHeader>(short_one, "frame_count"), 4096);
+                                   put_field(p.object_payload, object_field<CpcaHeader>(short_one, "segment_frames"), 4096);
+                                   p.units.resize(1);
+                                 })));
+  }
   suite.push_back(valid("cpca-40-segments-of-one", "segments of one frame", {"cpca", "cpca-segments"}, waving_flag(4, 3, false),
                         cpca({{"clusters", "2"}, {"model", "trajectory"}, {"segment-frames", "1"}, {"noise", "-2"}}), traced));
   {
@@ -329,6 +360,16 @@ std::vector<SuiteCase> cpca_segment_rejected(const std::vector<SuiteCase>& valid
                                    put_field(p.object_payload, header_field("segment_frames"), 1u << 22);
                                  }),
                           ErrorKind::kLimit, "segment_frames", kNoPlane));
+  // Two rules broken at once: the header's fields and lengths come before the segment limit.
+  suite.push_back(invalid("x-186-cpca-segment-limit-and-map-length", "x-158's segments, cluster_map_bins_bytes past the payload: the length first",
+                          {"cpca-segments"},
+                          edited(groups,
+                                 [&](ContainerParts& p) {
+                                   put_field(p.object_payload, object_field<CpcaHeader>(groups, "frame_count"), 1u << 22);
+                                   put_field(p.object_payload, header_field("segment_frames"), 1u << 22);
+                                   put_field(p.object_payload, header_field("cluster_map_bins_bytes"), 0xFFFFFF);
+                                 }),
+                          ErrorKind::kOutOfRange, "cluster_map_bins_bytes", kNoPlane));
   // The first refinement unit of the stream's second segment (frame 8).
   auto second_segment = [](const ContainerParts& p) {
     for (size_t n = 0;; ++n) {
@@ -414,6 +455,21 @@ std::vector<SuiteCase> cpca_segment_rejected(const std::vector<SuiteCase>& valid
     for (int i = 0; i < 5; ++i) s.unit(4, {continued(0, 0, false, 16, {1, 1, 1, 1})});
     suite.push_back(invalid("x-165-cpca-continued-beyond-components", "a fifth shape component (continued) where a segment of 4 frames "
                             "takes 4", {"cpca-segments"}, s.finish(), ErrorKind::kStructure, "cluster", kNoPlane));
+  }
+  {
+    // Two rules broken at once: cluster 0's segment 1 holds its 4 shape and 8 trajectory components, then continues entry 1
+    // of a list of 1: `reference` before the count.
+    SegmentedStream s(8, 4);
+    const size_t m0 = s.members(0);
+    s.unit(0, {start(0, 16, ramp(12, 1, 1))});
+    s.unit(0, {component(0, kCpcaComponent, 16, ramp(3 * m0, 1, 1), {1, 2, 3, 4})});
+    s.unit(4, {start(0, 16, ramp(12, 1, 1))});
+    for (int32_t c = 1; c <= 4; ++c) s.unit(4, {component(0, kCpcaComponent, 16, ramp(3 * m0, c, 1), {c, c, c, c})});
+    for (int32_t c = 1; c <= 8; ++c) s.unit(4, {component(0, kCpcaTrajectory, 16, ramp(m0, c, 1), std::vector<int32_t>(12, c))});
+    s.unit(4, {continued(0, 1, false, 16, {1, 1, 1, 1})});
+    suite.push_back(invalid("x-187-cpca-continued-reference-and-count", "a continued component's reference 1 of a list of 1 where the "
+                            "segment's shape and trajectory counts are full: the reference first", {"cpca-segments"}, s.finish(),
+                            ErrorKind::kOutOfRange, "reference", kNoPlane));
   }
   {
     // After segment 1's first unit, frames 0 … 7 are final: their hashes come too late.

@@ -788,6 +788,15 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                                    p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(first) + 1, p.units[first]);
                                  }),
                           ErrorKind::kStructure, "unit_kind", kNoPlane));
+  // Two rules broken at once: a refinement's rules come after its fields' ranges.
+  suite.push_back(invalid("x-182-cpca-second-start-shift-64", "x-34's second start with shift 64: shift's range before the start rule", {"cpca"},
+                          edited(base,
+                                 [](ContainerParts& p) {
+                                   const size_t first = refinement_unit(p, 0);
+                                   p.units.insert(p.units.begin() + static_cast<std::ptrdiff_t>(first) + 1, p.units[first]);
+                                   put_field(p.units[first + 1].payload, refinement_field("shift"), 64);
+                                 }),
+                          ErrorKind::kOutOfRange, "shift", kNoPlane));
   suite.push_back(invalid("x-35-cpca-refinement-frame", "a refinement unit naming frame 1", {"cpca"},
                           edited(base, [](ContainerParts& p) { put_field(p.units[refinement_unit(p, 0)].payload, unit_header_field("frame_index"), 1); }),
                           ErrorKind::kStructure, "frame_index", kNoPlane));
@@ -889,6 +898,15 @@ std::vector<SuiteCase> cpca_rejected(const std::vector<SuiteCase>& valid) {
                             ErrorKind::kStructure, "shift", kNoPlane));
     suite.push_back(invalid("x-136-cpca-group-empty", "group_size 0", {"cpca"}, put(group_field("group_size"), 0), ErrorKind::kOutOfRange,
                             "group_size", kNoPlane));
+    // Two rules broken at once: the fields' ranges come before a group's rules.
+    suite.push_back(invalid("x-183-cpca-group-cluster-and-shift-64", "a group whose cluster field is 1 and shift 64: shift's range first",
+                            {"cpca"},
+                            edited(groups,
+                                   [&](ContainerParts& p) {
+                                     put_field(first_group(p).payload, refinement_field("cluster"), 1);
+                                     put_field(first_group(p).payload, refinement_field("shift"), 64);
+                                   }),
+                            ErrorKind::kOutOfRange, "shift", kNoPlane));
   }
   {
     // cpca-21: one vertex per cluster over 2 frames (at most 2 components of

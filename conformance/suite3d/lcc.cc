@@ -237,6 +237,9 @@ std::vector<SuiteCase> lcc_cases(bool traced) {
     suite.push_back(valid("lcc-21-zero-edge", "a step whose edge b c has length 0 in the reference and in a frame: the axis x as its z", {"lcc"},
                           zero_edge, lcc({}), traced));
   }
+  suite.push_back(valid("lcc-22-one-frame-temporal", "one frame, reference_mode 0, temporal_gop 4: the base mesh is frame 0, and no frame unit follows",
+                        {"lcc", "lcc-temporal"}, MeshSequence{longer.vertex_count, longer.faces, {longer.frames.front()}},
+                        lcc({{"temporal", "1"}, {"gop", "4"}}), traced));
   {
     // Directly coded vertices whose residuals follow prefix_schedule(), in
     // stream mode (contexts reset per frame, residuals against the

@@ -3,7 +3,8 @@
 // screenshot check that needs no image library (the page itself reads the
 // PNG back and counts its colours).
 import { spawn } from 'node:child_process';
-import { cpSync, mkdtempSync, rmSync } from 'node:fs';
+import { cpSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import http from 'node:http';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { chromium } from 'playwright-core';
@@ -22,6 +23,59 @@ export function serve(m4mesh, folder, rate = 0) {
       if (match) resolve({ url: match[1], stop: () => child.kill() });
     });
   });
+}
+
+// The byte offsets of a 3D stream's units (their start codes 00 00 01 C5).
+export function unitOffsets(bytes) {
+  const offsets = [];
+  for (let k = 0; k + 3 < bytes.length; ++k)
+    if (bytes[k] === 0 && bytes[k + 1] === 0 && bytes[k + 2] === 1 && bytes[k + 3] === 0xc5) offsets.push(k);
+  return offsets;
+}
+
+// A server in front of `upstream` (serve()'s url) that sends the file at
+// `path` only as far as the test allows: allow(n) lets its first n bytes
+// go, flow(rate) the rest at `rate` bytes/s. A test thus drives a slow
+// download by what the page has shown, not by how fast the machine is.
+// Resolves to { url, total, allow, flow, stop }.
+export function gatedServe(upstream, path, file) {
+  const bytes = readFileSync(file);
+  const target = new URL(upstream);
+  let allowed = 0, timer = null;
+  const responses = new Set();
+  const pump = () => {
+    for (const res of responses) {
+      if (res.sentBytes < allowed) res.write(bytes.subarray(res.sentBytes, allowed)), (res.sentBytes = allowed);
+      if (res.sentBytes === bytes.length) res.end(), responses.delete(res);
+    }
+  };
+  const server = http.createServer((req, res) => {
+    if (new URL(req.url, 'http://x').pathname === path) {
+      res.writeHead(200, { 'Content-Type': 'application/octet-stream', 'Content-Length': bytes.length, 'Cache-Control': 'no-store' });
+      res.sentBytes = 0;
+      responses.add(res);
+      return pump();
+    }
+    const forward = http.request({ host: target.hostname, port: target.port, path: req.url, method: req.method, headers: req.headers }, (up) => {
+      res.writeHead(up.statusCode, up.headers);
+      up.pipe(res);
+    });
+    req.pipe(forward);
+  });
+  return new Promise((resolve) => server.listen(0, '127.0.0.1', () => resolve({
+    url: `http://127.0.0.1:${server.address().port}/`,
+    total: bytes.length,
+    allow: (n) => ((allowed = Math.min(bytes.length, Math.max(allowed, n))), pump()),
+    flow: (rate) => {
+      clearInterval(timer);
+      timer = setInterval(() => {
+        allowed = Math.min(bytes.length, allowed + Math.ceil(rate / 20));
+        pump();
+        if (allowed === bytes.length) clearInterval(timer);
+      }, 50);
+    },
+    stop: () => (clearInterval(timer), server.closeAllConnections(), server.close()),
+  })));
 }
 
 // A copy of the built site in a temporary folder, with `extra` files beside it ({ name: path }).
