@@ -35,7 +35,7 @@ std::vector<uint8_t> base_unit(const MeshSequence& s, const std::vector<IntPoint
     for (uint32_t i = 0; i < s.vertex_count; ++i) positions[i] = q[plan.input_of[i]];
   BitWriter writer;
   syntax::WriteIO io(writer);
-  write_base_mesh(io, plan.faces, positions, BaseMeshCoding{});
+  write_base_mesh(io, plan.faces, positions, BaseMeshCoding{std::nullopt, reorder});
   return writer.take_bytes();
 }
 

@@ -54,9 +54,13 @@ class CodecEncoder3d {
 
 // How the encoder codes base meshes beyond their content: the positions'
 // blend (docs/base_mesh.md), or without one the one of 0 … 16 that codes
-// each base mesh in the fewest bytes.
+// each base mesh in the fewest bytes; and whether the vertices are numbered
+// in coding order (--reorder: vertex_order 0), else the input's numbers
+// are sent, also when the traversal numbers the vertices as the input does,
+// so that a decoder's vertex_order tells whether the input's numbers hold.
 struct BaseMeshCoding {
   std::optional<uint32_t> position_blend;
+  bool coding_order = false;
 };
 
 // A base mesh unit's data (docs/base_mesh.md): the faces, which must be in

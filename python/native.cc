@@ -76,8 +76,8 @@ class StreamBytes {
  public:
   explicit StreamBytes(const py::handle& stream) {
     if (!PyObject_CheckBuffer(stream.ptr()))
-      throw usage("stream: bytes or another bytes-like object (bytearray, memoryview, a numpy uint8 array), not " +
-                  std::string(py::str(py::type::handle_of(stream).attr("__name__"))));
+      throw py::type_error("stream: bytes or another bytes-like object (bytearray, memoryview, a numpy uint8 array), not " +
+                           std::string(py::str(py::type::handle_of(stream).attr("__name__"))));
     if (PyBytes_Check(stream.ptr())) {
       owner_ = py::reinterpret_borrow<py::object>(stream);
       bytes_ = {reinterpret_cast<const uint8_t*>(PyBytes_AS_STRING(stream.ptr())), static_cast<size_t>(PyBytes_GET_SIZE(stream.ptr()))};
@@ -85,8 +85,8 @@ class StreamBytes {
     }
     const py::buffer_info info = py::reinterpret_borrow<py::buffer>(stream).request();
     if (info.itemsize != 1 || info.ndim != 1 || (info.size > 1 && info.strides[0] != 1))
-      throw usage("stream: a one-dimensional, contiguous buffer of bytes (its items are " + std::to_string(info.itemsize) + " bytes, " +
-                  std::to_string(info.ndim) + " dimensions)");
+      throw py::type_error("stream: a one-dimensional, contiguous buffer of bytes (its items are " + std::to_string(info.itemsize) +
+                           " bytes, " + std::to_string(info.ndim) + " dimensions)");
     const auto* data = static_cast<const uint8_t*>(info.ptr);
     copy_.assign(data, data + info.size);
     bytes_ = copy_;

@@ -75,7 +75,8 @@ FirstBaseMesh first_base_mesh(const ContainerParts& parts) {
   BaseMeshData data;
   const size_t loose = field_value(payload, field_bytes("loose_face_count", header, data));
   const uint64_t blend = field_value(payload, field_bytes("position_blend", header, data));
-  return {std::move(base), object.face_count - loose, {static_cast<uint32_t>(blend)}};
+  const uint64_t order = field_value(payload, field_bytes("vertex_order", header, data));
+  return {std::move(base), object.face_count - loose, {static_cast<uint32_t>(blend), order == kVertexOrderCoding}};
 }
 
 }  // namespace

@@ -189,21 +189,22 @@ uint32_t chosen_blend(const BaseMeshCoding& coding, const PositionCoding& positi
   return best;
 }
 
-// The vertex order's coding and its bytes alone: none when the traversal
-// numbers the vertices as the input does, else the cheaper of the two.
+// The vertex order's coding and its bytes alone: none in coding order,
+// else the cheaper of the two.
 struct VertexOrderCoding {
   uint32_t method = kVertexOrderCoding;
   size_t bytes = 0;
 };
-VertexOrderCoding chosen_vertex_order(const Connectivity& c) {
-  for (uint32_t i = 0; i < c.input_of.size(); ++i)
-    if (c.input_of[i] != i) {
-      const size_t by_parallelogram = vertex_order_bytes(kVertexOrderFromParallelogram, c);
-      const size_t by_gate = vertex_order_bytes(kVertexOrderFromGate, c);
-      return by_parallelogram < by_gate ? VertexOrderCoding{kVertexOrderFromParallelogram, by_parallelogram}
-                                        : VertexOrderCoding{kVertexOrderFromGate, by_gate};
-    }
-  return {};
+VertexOrderCoding chosen_vertex_order(const Connectivity& c, bool coding_order) {
+  if (coding_order) {
+    for (uint32_t i = 0; i < c.input_of.size(); ++i)
+      if (c.input_of[i] != i) throw Error(ErrorKind::kInput, "base_mesh", kNoPlane, kNoOffset, "encoder: the vertices are not in coding order");
+    return {};
+  }
+  const size_t by_parallelogram = vertex_order_bytes(kVertexOrderFromParallelogram, c);
+  const size_t by_gate = vertex_order_bytes(kVertexOrderFromGate, c);
+  return by_parallelogram < by_gate ? VertexOrderCoding{kVertexOrderFromParallelogram, by_parallelogram}
+                                    : VertexOrderCoding{kVertexOrderFromGate, by_gate};
 }
 
 // The positions in coding numbers.
@@ -227,7 +228,7 @@ uint32_t write_data(syntax::WriteIO& io, IO& symbols, std::span<const Triangle> 
     throw Error(ErrorKind::kInput, "base_mesh", kNoPlane, kNoOffset, "encoder: the faces are not in coding order (plan_base_mesh)");
   BaseMeshData data;
   data.loose_face_count = c.loose_faces;
-  data.vertex_order = chosen_vertex_order(c).method;
+  data.vertex_order = chosen_vertex_order(c, coding.coding_order).method;
   describe_vertex_order(symbols, contexts, data.vertex_order, c.parents, c.input_of);
   std::vector<IntPoint3> coded = in_coding_numbers(positions, c);
   const PositionCoding position_coding(c.faces, vertex_count);
@@ -285,7 +286,7 @@ BaseMeshParts base_mesh_parts(std::span<const Triangle> faces, std::span<const I
   const Connectivity c = write_connectivity(symbols, contexts, faces, static_cast<uint32_t>(positions.size()), {});
   BaseMeshParts parts;
   parts.connectivity = symbols.finish_bins().size() + symbols.finish_raw().size();
-  parts.vertex_order = chosen_vertex_order(c).bytes;
+  parts.vertex_order = chosen_vertex_order(c, coding.coding_order).bytes;
   const std::vector<IntPoint3> coded = in_coding_numbers(positions, c);
   const PositionCoding position_coding(c.faces, static_cast<uint32_t>(positions.size()));
   parts.positions = position_bytes(position_coding, coded, chosen_blend(coding, position_coding, coded));

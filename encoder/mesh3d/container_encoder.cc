@@ -128,7 +128,7 @@ Encode3dResult encode_mesh3d(const FrameSource& input, const Encode3dOptions& op
   const RenumberedSource s(input, options.reorder ? plan.input_of : std::vector<uint32_t>{}, std::move(plan.faces));
   const Codec3d& codec = codec3d_by_name(options.codec);
   const CodecEncoding& encoding = codec_encoding(codec);
-  const BaseMeshCoding base_mesh{options.position_blend};
+  const BaseMeshCoding base_mesh{options.position_blend, options.reorder};
   CodecSettings settings(codec.name, encoding.options, options.codec_options, base_mesh, options.threads);
   // The codec's frames in coding order: the plan's, or with --reorder their own numbers.
   std::vector<uint32_t> coding_order = plan.input_of;

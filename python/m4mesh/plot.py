@@ -27,14 +27,19 @@ def read_points(path, sequence=None, codecs=None):
     """The rows of an `m4mesh rd` CSV, grouped by codec in file order (added to `codecs`)."""
     codecs = {} if codecs is None else codecs
     needed = ("codec", "bpvf", "kg_percent", "sted")
-    with open(path, newline="") as f:
-        reader = csv.DictReader(f)
-        missing = [key for key in needed if key not in (reader.fieldnames or [])]
+    with open(path, newline="", encoding="utf-8") as f:
+        try:
+            reader = csv.DictReader(f)
+            fieldnames = reader.fieldnames
+            rows = list(reader)
+        except (UnicodeDecodeError, csv.Error) as e:
+            raise ValueError(f"{path}: not a CSV of `m4mesh rd` (not UTF-8 text in CSV form: {e.reason if hasattr(e, 'reason') else e})") from None
+        missing = [key for key in needed if key not in (fieldnames or [])]
         if missing:
             raise ValueError(
-                f"{path}: not a CSV of `m4mesh rd`: no column {', '.join(missing)} (it has {', '.join(reader.fieldnames or []) or 'none'})"
+                f"{path}: not a CSV of `m4mesh rd`: no column {', '.join(missing)} (it has {', '.join(fieldnames or []) or 'none'})"
             )
-        for line, row in enumerate(reader, start=2):
+        for line, row in enumerate(rows, start=2):
             if sequence is not None and row.get("sequence", sequence) != sequence:
                 continue
             try:

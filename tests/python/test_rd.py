@@ -129,3 +129,10 @@ def test_at_kg_prints_every_codec(sweep):
     result = subprocess.run([sys.executable, "-m", "m4mesh.plot", str(sweep), "--at-kg", "5", "0.000001"], capture_output=True, text=True, check=True)
     lines = result.stdout.splitlines()
     assert lines and all(line.endswith("bpvf at KG 5 / 1e-06 %") for line in lines)
+
+
+def test_plot_of_a_file_that_is_no_text_fails_cleanly(tmp_path):
+    binary = tmp_path / "stream.m4m"
+    binary.write_bytes(b"\x00\x00\x01\xc4\xff\xfe\x80")
+    result = subprocess.run([sys.executable, "-m", "m4mesh.plot", str(binary), "-o", str(tmp_path / "x.png")], capture_output=True, text=True)
+    assert result.returncode == 1 and "not a CSV of `m4mesh rd` (not UTF-8 text" in result.stderr and "Traceback" not in result.stderr
