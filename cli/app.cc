@@ -29,7 +29,7 @@
 namespace m4mesh {
 
 int run_m4mesh(int argc, const char* const* argv) {
-  CLI::App app{"m4mesh: MPEG-4-style 2D mesh object encoder, decoder and tools"};
+  CLI::App app{"m4mesh: MPEG-4-style mesh streams, 2D mesh objects and animated 3D meshes: encoders, decoders, conformance and tools"};
   app.require_subcommand(1);
   // Before or after the command: `m4mesh -q decode3d …` or `m4mesh decode3d … -q`.
   app.fallthrough();

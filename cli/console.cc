@@ -75,6 +75,7 @@ void Progress::update(size_t done, size_t total) {
 void Progress::update(size_t done) {
   if (g_level == Level::kQuiet) return;
   if (!interactive_) {
+    if (g_level != Level::kVerbose) return;
     const auto now = std::chrono::steady_clock::now();
     if (now - logged_ < log_every_) return;
     logged_ = now;
@@ -87,6 +88,8 @@ void Progress::update(size_t done) {
   std::fprintf(out_, "\r%s %zu/%zu", what_.c_str(), done, total_);
   std::fflush(out_);
 }
+
+std::string counted(uint64_t count, const char* one, const char* many) { return std::to_string(count) + " " + (count == 1 ? one : many); }
 
 void check_output(const std::string& path) {
   namespace fs = std::filesystem;

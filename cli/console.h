@@ -5,6 +5,7 @@
 #pragma once
 
 #include <chrono>
+#include <cstdint>
 #include <cstddef>
 #include <cstdio>
 #include <string>
@@ -23,7 +24,8 @@ bool quiet();
 
 // A job's progress on standard error, without -q: on a terminal one line
 // that rewrites itself once the job has run for a second; elsewhere (a
-// log) a line of its own every ten seconds.
+// file or a pipe) nothing, but with -v a line of its own every ten
+// seconds.
 class Progress {
  public:
   Progress(std::string what, size_t total);
@@ -55,6 +57,9 @@ class Progress {
 void check_output(const std::string& path);
 // Whether -y was given.
 bool overwrite();
+
+// "1 frame", "2 frames": a count with its noun, singular for one.
+std::string counted(uint64_t count, const char* one, const char* many);
 
 // The input a command is reading, named by its errors ("-": standard input).
 void set_input(const std::string& path);

@@ -24,7 +24,8 @@ int run_convert(const std::string& input, const std::string& output, double fps,
   FrameReader reader(*source);
   for (uint32_t f = first; f < end; ++f) writer->frame(f - first, reader.get(f));
   writer->commit();
-  say("%s: %u frames of %u vertices", output.c_str(), end - first, source->vertex_count());
+  say("%s: %s of %s", output.c_str(), console::counted(end - first, "frame", "frames").c_str(),
+      console::counted(source->vertex_count(), "vertex", "vertices").c_str());
   return 0;
 }
 

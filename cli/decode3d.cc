@@ -126,12 +126,12 @@ int run_decode3d(const Decode3dArgs& args) {
   }
   if (writer) writer->commit();
   if (failed) {
-    std::fprintf(stderr, "%s: decoded %zu frames before the error; %s holds them\n", args.input.c_str(), written.size(),
+    std::fprintf(stderr, "%s: decoded %s before the error; %s holds them\n", args.input.c_str(), console::counted(written.size(), "frame", "frames").c_str(),
                  writes ? args.output.c_str() : "no file");
     return 1;
   }
-  say("%s: %zu %s of %u vertices%s", writes ? args.output.c_str() : args.input.c_str(), written.size(), written.size() == 1 ? "frame" : "frames",
-      decoder.header().vertex_count, decoder.has_end_code() || args.max_bytes > 0 ? "" : " (warning: no end code)");
+  say("%s: %s of %s%s", writes ? args.output.c_str() : args.input.c_str(), console::counted(written.size(), "frame", "frames").c_str(),
+      console::counted(decoder.header().vertex_count, "vertex", "vertices").c_str(), decoder.has_end_code() || args.max_bytes > 0 ? "" : " (warning: no end code)");
   if (args.md5) std::fprintf(report, "%s\n", md5.hex_digest().c_str());
   return 0;
 }

@@ -136,8 +136,13 @@ int run_encode3d(const Encode3dArgs& args) {
   auto print_trial = [&](const TargetTrial& t) {
     progress.finish();
     trials.push_back(t);
-    say("  %-14s %-22s %10llu bytes %8.4f bpvf  KG %9.5f  PSNR %8.3f  %s", t.codec.c_str(), t.parameter.c_str(),
-                 static_cast<unsigned long long>(t.bytes), t.bpvf(), t.kg, t.psnr, t.meets ? "meets" : "misses");
+    if (t.bytes == 0 && !t.meets) {  // left out: the reason in the last column
+      say("  %-14s %-22s %10s       %8s       %9s       %8s  left out: %s", t.codec.c_str(), "-", "-", "-", "-", "-", t.note.c_str());
+      return;
+    }
+    say("  %-14s %-22s %10llu bytes %8.4f bpvf  KG %9.5f  PSNR %8.3f  %s%s%s", t.codec.c_str(), t.parameter.c_str(),
+        static_cast<unsigned long long>(t.bytes), t.bpvf(), t.kg, t.psnr, t.meets ? "meets" : "misses", t.note.empty() ? "" : "  ",
+        t.note.c_str());
   };
   const auto start = std::chrono::steady_clock::now();
   Encode3dResult result;
@@ -201,7 +206,8 @@ int run_encode3d(const Encode3dArgs& args) {
   // In millions, thousands or units: a slow codec's rate is far below a million.
   const double rate = vertex_frames_all / seconds;
   const auto [scaled, unit] = rate >= 1e6 ? std::pair{rate / 1e6, "M "} : rate >= 1e3 ? std::pair{rate / 1e3, "k "} : std::pair{rate, ""};
-  say("encoded %u frames of %u vertices in %.3f s (%.1f %svertices/s)", sequence.frame_count(), sequence.vertex_count(), seconds, scaled, unit);
+  say("encoded %s of %s in %.3f s (%.1f %svertices/s)", console::counted(sequence.frame_count(), "frame", "frames").c_str(),
+      console::counted(sequence.vertex_count(), "vertex", "vertices").c_str(), seconds, scaled, unit);
   return 0;
 }
 

@@ -4,6 +4,7 @@
 #include <iostream>
 #include <map>
 
+#include "cli/console.h"
 #include "cli/sequence_files.h"
 #include "codecs3d/registry.h"
 #include "common/atomic_file.h"
@@ -93,7 +94,7 @@ int run_info(const std::string& input) {
                 static_cast<double>(bits) / reader.mesh_nodes());
     start = reader.position();
   }
-  std::printf("%lld planes (%lld I, %lld P), end code %s\n", static_cast<long long>(reader.planes_read()),
+  std::printf("%s (%lld I, %lld P), end code %s\n", console::counted(static_cast<uint64_t>(reader.planes_read()), "plane", "planes").c_str(),
               static_cast<long long>(counts["I"]), static_cast<long long>(counts["P"]),
               reader.has_end_code() ? "present" : "MISSING");
   return 0;

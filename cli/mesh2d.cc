@@ -117,7 +117,7 @@ int run_decode(const DecodeArgs& args) {
   if (args.md5_only)
     std::fprintf(report, "%s\n", md5.c_str());
   else
-    std::fprintf(report, "%s  %s (%lld planes)\n", md5.c_str(), args.input.c_str(), static_cast<long long>(planes));
+    std::fprintf(report, "%s  %s (%s)\n", md5.c_str(), args.input.c_str(), console::counted(static_cast<uint64_t>(planes), "plane", "planes").c_str());
   return 0;
 }
 

@@ -166,7 +166,7 @@ int run_render(const RenderArgs& args) {
   }
   if (gif) gif->finish();
   console::say("%s: %s, %u × %u pixels%s, %s", args.output.c_str(),
-               gif ? (std::to_string(planes) + " planes").c_str() : ("plane " + std::to_string(args.plane)).c_str(), width, height,
+               gif ? console::counted(static_cast<uint64_t>(planes), "plane", "planes").c_str() : ("plane " + std::to_string(args.plane)).c_str(), width, height,
                gif ? (" at " + fps_text(fps) + " frames/s").c_str() : "", size_text(args.output).c_str());
   return 0;
 }

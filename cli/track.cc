@@ -1,5 +1,6 @@
 #include "cli/track.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <numeric>
@@ -41,7 +42,7 @@ double later_psnr(const std::vector<TrackedFrame>& frames, double TrackedFrame::
   double error = 0;  // in units of 255²
   size_t count = 0;
   for (size_t f = 1; f < frames.size(); ++f)
-    if (!std::isnan(frames[f].*measure)) error += std::pow(10.0, -(frames[f].*measure) / 10), ++count;
+    if (!frames[f].intra && !std::isnan(frames[f].*measure)) error += std::pow(10.0, -(frames[f].*measure) / 10), ++count;
   return count == 0 ? std::nan("") : -10 * std::log10(error / static_cast<double>(count));
 }
 
@@ -132,9 +133,12 @@ int run_track(const TrackArgs& args) {
   double stretch = 1;
   for (const TrackedFrame& f : result.frames) stretch = std::max(stretch, f.stretch);
   console::say("largest change of a triangle's area since its I-plane: %.2f×", stretch);
-  if (frames > 1) {
-    console::say("texture warped by the mesh against the video: %s dB (luma PSNR of the mean squared error of frames %lld … %lld)",
-                 decibels(later_psnr(result.frames, &TrackedFrame::render_psnr)).c_str(), static_cast<long long>(result.frames[1].frame),
+  const size_t p_planes = static_cast<size_t>(std::count_if(result.frames.begin(), result.frames.end(), [](const TrackedFrame& f) { return !f.intra; }));
+  if (frames > 1 && p_planes == 0) {
+    console::say("no P-plane: every frame is an I-plane, its own texture");
+  } else if (frames > 1) {
+    console::say("texture warped by the mesh against the video: %s dB (luma PSNR of the mean squared error of the %zu P-planes of frames %lld … %lld)",
+                 decibels(later_psnr(result.frames, &TrackedFrame::render_psnr)).c_str(), p_planes, static_cast<long long>(result.frames[1].frame),
                  static_cast<long long>(result.frames.back().frame));
     console::say("motion compensation from the previous frame: mesh %s dB (%zu vectors), %u × %u blocks %s dB (%u vectors)",
                  decibels(later_psnr(result.frames, &TrackedFrame::mesh_psnr)).c_str(), nodes, result.block, result.block,

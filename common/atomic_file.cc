@@ -40,7 +40,7 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   if (fs::is_directory(status)) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, path_ + ": a folder, not a file");
   temp_path_ = path_ + ".tmp." + std::to_string(::getpid());
   file_ = std::fopen(temp_path_.c_str(), "wb");
-  if (file_ == nullptr) throw io_error(temp_path_, "cannot create");
+  if (file_ == nullptr) throw io_error(path_, "cannot create");
 }
 
 AtomicFile::~AtomicFile() {
@@ -51,13 +51,13 @@ AtomicFile::~AtomicFile() {
 
 void AtomicFile::write(std::string_view data) {
   if (std::fwrite(data.data(), 1, data.size(), file_) != data.size())
-    throw io_error(temp_path_.empty() ? path_ : temp_path_, "cannot write");
+    throw io_error(path_, "cannot write");
 }
 
 void AtomicFile::restart() {
   if (temp_path_.empty()) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, path_ + ": what was written cannot be taken back");
   file_ = std::freopen(temp_path_.c_str(), "wb", file_);
-  if (file_ == nullptr) throw io_error(temp_path_, "cannot create");
+  if (file_ == nullptr) throw io_error(path_, "cannot create");
 }
 
 void AtomicFile::commit() {
@@ -69,7 +69,7 @@ void AtomicFile::commit() {
   }
   if (std::fclose(file) != 0) {
     if (!temp_path_.empty()) std::remove(temp_path_.c_str());
-    throw io_error(temp_path_.empty() ? path_ : temp_path_, "cannot close");
+    throw io_error(path_, "cannot close");
   }
   if (temp_path_.empty()) return;
   if (std::rename(temp_path_.c_str(), path_.c_str()) != 0) {

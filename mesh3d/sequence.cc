@@ -103,11 +103,15 @@ MeshFrame read_obj_frame(const std::string& path) {
   return frame;
 }
 
-// An OBJ, OFF or PLY frame, by its extension.
+// An OBJ, OFF or PLY frame, by its extension, its positions rounded to
+// binary32 as every other form holds them (so that the same frames code to
+// the same stream from text, .m4seq, .pc2, glTF or Python).
 MeshFrame read_frame_file(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension == ".off" ? read_off(path) : extension == ".ply" ? read_ply(path) : read_obj_frame(path);
+  MeshFrame frame = extension == ".off" ? read_off(path) : extension == ".ply" ? read_ply(path) : read_obj_frame(path);
+  for (Vec3& p : frame.vertices) p = {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)};
+  return frame;
 }
 
 }  // namespace

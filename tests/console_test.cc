@@ -53,14 +53,21 @@ TEST(Progress, NothingBeforeItsTime) {
 }
 
 // A log (no terminal) gets lines of their own, never carriage returns.
-TEST(Progress, OffATerminalALineNowAndThen) {
+TEST(Progress, OffATerminalOnlyWithVerbose) {
   std::FILE* out = std::tmpfile();
   ASSERT_NE(out, nullptr);
   {
     console::Progress log("tracking frame", 795, out, false, std::chrono::milliseconds(0), std::chrono::milliseconds(0));
     log.update(100);
+  }
+  EXPECT_EQ(text_of(out), "");  // a file or a pipe: nothing at the normal level
+  console::set_level(console::Level::kVerbose);
+  {
+    console::Progress log("tracking frame", 795, out, false, std::chrono::milliseconds(0), std::chrono::milliseconds(0));
+    log.update(100);
     log.update(200);
   }
+  console::set_level(console::Level::kNormal);
   EXPECT_EQ(text_of(out), "tracking frame 100/795\ntracking frame 200/795\n");
   std::fclose(out);
 }

@@ -142,7 +142,8 @@ TrackResult track_video(const std::string& path, const TrackSettings& settings) 
   const int64_t end = settings.end_frame >= 0 && stated_end >= 0 ? std::min(settings.end_frame, stated_end) : std::max(settings.end_frame, stated_end);
   const int64_t total = end >= 0 ? std::max<int64_t>(1, end - settings.first_frame) : 0;
   if (settings.progress) settings.progress(1, total);
-  bool out_of_room = false;
+  bool out_of_room = false, too_soon = false;
+  size_t mesh_laid_at = 0;  // the plane of the mesh in force
   while (settings.end_frame < 0 || reader.frames_read() < settings.end_frame) {
     previous = std::move(frame);
     previous_luma = std::move(luma);
@@ -150,7 +151,15 @@ TrackResult track_video(const std::string& path, const TrackSettings& settings) 
     luma = luma_of(frame);
     const std::vector<Point>& at = tracker->track(luma);
     TrackedFrame report = measure(at, false);
-    const bool due = remeshing && (report.strained > kMostStrained || report.coverage < kLeastCoverage);
+    const bool degraded = remeshing && (report.strained > kMostStrained || report.coverage < kLeastCoverage);
+    const bool due = degraded && result.positions.size() - mesh_laid_at >= kFewestPlanesPerMesh;
+    if (degraded && !due && !too_soon) {
+      too_soon = true;
+      result.warnings.push_back("the mesh laid out on frame " + std::to_string(result.frames[mesh_laid_at].frame) + " degrades by frame " +
+                                std::to_string(report.frame) + ", within " + std::to_string(kFewestPlanesPerMesh) +
+                                " frames: tracking this content strains it, and no new I-plane comes sooner (--remesh 0: none; --nodes N: a mesh laid "
+                                "on the content)");
+    }
     // Every I-plane's texture goes into one PNG of at most kMostPictureSide on either side.
     const bool room = tile_grid(result.remeshes.size() + 2, w, h).has_value();
     if (due && !room && !out_of_room) {
@@ -159,6 +168,7 @@ TrackResult track_video(const std::string& path, const TrackSettings& settings) 
                                 std::to_string(kMostPictureSide) + " × " + std::to_string(kMostPictureSide) + " pixels in one PNG");
     }
     if (due && room) {
+      mesh_laid_at = result.positions.size();
       result.remeshes.push_back({result.positions.size(), design(luma, nullptr), frame});
       texture = frame;
       lay_out(result.remeshes.back().mesh);  // `mesh` points into result.remeshes until the next push_back
@@ -189,7 +199,7 @@ TrackResult track_video(const std::string& path, const TrackSettings& settings) 
   }
   result.stream = encode(planes).stream;
   Decoder decoder(result.stream);
-  uint64_t start = 0;
+  uint64_t start = decoder.bit_position();  // each plane from its start code, as `info` counts it
   for (size_t f = 0; f < result.frames.size(); ++f) {
     if (!decoder.next() || decoder.info().intra != planes[f].info.intra)
       throw std::logic_error("track: the stream does not read back plane by plane");

@@ -55,9 +55,13 @@ struct Remesh {
   Image texture;
 };
 
-// When a new I-plane is due (TrackSettings::remesh_stretch).
+// When a new I-plane is due (TrackSettings::remesh_stretch), at the
+// earliest kFewestPlanesPerMesh planes after the last: a mesh that
+// degrades sooner shows tracking that a new mesh does not mend (the
+// content's flat regions give its nodes nothing to hold on to).
 inline constexpr double kLeastCoverage = 0.8;
 inline constexpr double kMostStrained = 0.02;
+inline constexpr size_t kFewestPlanesPerMesh = 8;
 
 struct TrackResult {
   VideoInfo video;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "bitstream/start_codes.h"
 #include "common/error.h"
 #include "syntax/mesh3d/container.h"
 
@@ -40,10 +41,12 @@ std::string guarded(Make&& make) {
   }
 }
 
-// {"kind": "2d" | "3d"}: which decoder the stream needs.
+// {"kind": "2d" | "3d" | "none"}: which decoder the stream needs, from its
+// first four bytes (fewer, or another start: none).
 inline std::string stream_kind(const val& bytes) {
   const std::vector<uint8_t> stream = bytes_of(bytes);
-  return json{{"kind", is_mesh3d_stream(stream) ? "3d" : "2d"}}.dump();
+  const bool mesh2d = stream.size() >= 4 && stream[0] == 0 && stream[1] == 0 && stream[2] == 1 && stream[3] == (kMeshObjectStartCode & 0xFF);
+  return json{{"kind", is_mesh3d_stream(stream) ? "3d" : mesh2d ? "2d" : "none"}}.dump();
 }
 
 }  // namespace m4mesh::web

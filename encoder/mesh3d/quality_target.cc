@@ -30,7 +30,7 @@ TargetTrial trial(const FrameSource& s, Encode3dOptions options, const QualityTa
                   Encode3dResult& result) {
   options.measure = true;
   result = encode_mesh3d(s, options);
-  TargetTrial t{options.codec, parameter, result.stream_bytes, result.kg, result.psnr, false,
+  TargetTrial t{options.codec, parameter, "", result.stream_bytes, result.kg, result.psnr, false,
                 static_cast<double>(s.vertex_count()) * s.frame_count()};
   t.meets = target.kg ? t.kg <= *target.kg : t.psnr >= *target.psnr;
   return t;
@@ -115,7 +115,8 @@ Encode3dResult code_whole(const FrameSource& s, const Encode3dOptions& options, 
     Encode3dOptions whole = options;
     for (const auto& [name, value] : setting.options) whole.codec_options[name] = value;
     Encode3dResult result;
-    TargetTrial t = trial(s, whole, target, setting.parameter + ", the whole sequence", result);
+    TargetTrial t = trial(s, whole, target, setting.parameter, result);
+    t.note = "the whole sequence";
     report(t);
     if (t.meets) return result;
     if (setting.knob && *setting.knob + 1 < knob.coarse_to_fine.size()) {
@@ -163,9 +164,9 @@ Encode3dResult encode_to_target(const FrameSource& s, const Encode3dOptions& opt
   s.scan();
   if (large(s)) {
     const ClipSource sample(s, sample_frames(s.vertex_count(), s.frame_count()));
-    const std::string on_sample = " on a sample of " + std::to_string(sample.frame_count()) + " frames";
+    const std::string on_sample = "on a sample of " + std::to_string(sample.frame_count()) + " frames";
     Found found = search(sample, options, target, [&](TargetTrial t) {
-      t.parameter += on_sample;
+      t.note = on_sample;
       report(t);
     });
     return code_whole(s, options, target, found.setting, report);
@@ -189,7 +190,7 @@ Encode3dResult encode_smallest(const FrameSource& whole, const Encode3dOptions& 
   const std::optional<ClipSource> sample =
       large(whole) ? std::optional<ClipSource>(std::in_place, whole, sample_frames(whole.vertex_count(), whole.frame_count())) : std::nullopt;
   const FrameSource& s = sample ? static_cast<const FrameSource&>(*sample) : whole;
-  const std::string on_sample = sample ? " on a sample of " + std::to_string(sample->frame_count()) + " frames" : "";
+  const std::string on_sample = sample ? "on a sample of " + std::to_string(sample->frame_count()) + " frames" : "";
   // Each codec's search on a thread of its own; reported in registry order.
   const std::span<const Codec3d> codecs = codecs3d();
   struct Search {
@@ -215,13 +216,14 @@ Encode3dResult encode_smallest(const FrameSource& whole, const Encode3dOptions& 
           // A codec that misses the target or cannot code the sequence is left out.
           if (e.kind() != ErrorKind::kUsage && e.kind() != ErrorKind::kInput && e.kind() != ErrorKind::kLimit) throw;
           search_k.last.codec = codecs[k].name;
-          search_k.last.parameter = e.message();
+          search_k.last.parameter.clear();
+          search_k.last.note = e.message();
           search_k.last.meets = false;
         }
       },
       [&](size_t k) {
         TargetTrial t = searches[k].last;
-        if (searches[k].met) t.parameter += on_sample;
+        if (searches[k].met) t.note = on_sample;
         report_codec(t);
       });
   Search* best = nullptr;

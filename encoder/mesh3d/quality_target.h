@@ -28,6 +28,9 @@ void check_target(const QualityTarget& target);
 // search), the stream's size and the decoded quality.
 struct TargetTrial {
   std::string codec, parameter;
+  // Where it was tried ("on a sample of 96 frames", "the whole sequence"),
+  // or why a codec was left out (bytes 0, not met).
+  std::string note;
   uint64_t bytes = 0;
   double kg = 0, psnr = 0;
   bool meets = false;

@@ -52,6 +52,16 @@ export class M4MeshAnimation extends EventDispatcher {
   }
 }
 
+// In Node, outside a browser page: a path or a file: URL names a file (fetch takes neither).
+function isNodeFile(url) {
+  const node = typeof process !== 'undefined' && process.versions?.node && typeof document === 'undefined';
+  return Boolean(node) && (url.startsWith('file:') || !/^[a-z][a-z0-9+.-]*:/i.test(url));
+}
+// Node's own modules by a name that browser bundlers do not try to resolve.
+function nodeModule(name) {
+  return `node:${name}`;
+}
+
 export class M4MeshLoader extends Loader {
   // workerUrl: the package's worker.js (beside this file by default); null decodes in this thread.
   constructor(manager, workerUrl = typeof Worker === 'undefined' ? null : new URL('./worker.js', import.meta.url)) {
@@ -68,13 +78,9 @@ export class M4MeshLoader extends Loader {
     const resolved = this.manager.resolveURL(this.path + url);
     this.manager.itemStart(resolved);
     this.decode(animation, async (send) => {
-      const response = await fetch(resolved, { headers: this.requestHeader, credentials: this.withCredentials ? 'include' : 'same-origin' });
-      if (!response.ok) throw new Error(`${resolved}: HTTP ${response.status} ${response.statusText}`);
-      const total = Number(response.headers.get('content-length')) || 0;
-      const reader = response.body.getReader();
-      for (let loaded = 0; ; ) {
-        const { done, value } = await reader.read();
-        if (done) break;
+      const { total, chunks } = await this.fetchBytes(resolved);
+      let loaded = 0;
+      for await (const value of chunks) {
         loaded += value.length;
         send(value);
         onProgress?.({ loaded, total, lengthComputable: total > 0, units: animation.units });
@@ -88,6 +94,28 @@ export class M4MeshLoader extends Loader {
       })
       .finally(() => this.manager.itemEnd(resolved));
     return animation;
+  }
+
+  // The stream's size (0: not known) and its bytes as they come: over HTTP
+  // with fetch, or in Node a file, named by a path or a file: URL.
+  async fetchBytes(resolved) {
+    if (isNodeFile(resolved)) {
+      const [fs, url] = await Promise.all([import(/* @vite-ignore */ nodeModule('fs')), import(/* @vite-ignore */ nodeModule('url'))]);
+      const path = resolved.startsWith('file:') ? url.fileURLToPath(resolved) : resolved;
+      const { size } = await fs.promises.stat(path);
+      return { total: size, chunks: fs.createReadStream(path, { highWaterMark: 1 << 16 }) };
+    }
+    const response = await fetch(resolved, { headers: this.requestHeader, credentials: this.withCredentials ? 'include' : 'same-origin' });
+    if (!response.ok) throw new Error(`${resolved}: HTTP ${response.status} ${response.statusText}`);
+    const reader = response.body.getReader();
+    const chunks = (async function* () {
+      for (;;) {
+        const { done, value } = await reader.read();
+        if (done) return;
+        yield value;
+      }
+    })();
+    return { total: Number(response.headers.get('content-length')) || 0, chunks };
   }
 
   // A whole stream in memory (ArrayBuffer or a typed array): a promise of its animation.

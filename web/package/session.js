@@ -67,6 +67,7 @@ export function createSession(module, post) {
       session.kind = JSON.parse(session.module.streamKind(head)).kind;
       session.head = [];
       chunk = head;
+      if (session.kind === 'none') throw new Error(notAStream(head));
     }
     if (session.kind === '2d') {
       session.chunks.push(chunk);
@@ -77,14 +78,17 @@ export function createSession(module, post) {
     step3d((s) => s.push(chunk));
   }
 
+  // What bytes that begin no m4mesh stream are.
+  function notAStream(head) {
+    if (head.length === 0) return 'an empty stream: no bytes arrived';
+    const start = [...head.subarray(0, 4)].map((b) => b.toString(16).padStart(2, '0')).join(' ');
+    return `not an m4mesh stream: it starts with ${start}${head.length < 4 ? ` and ends there (${head.length} bytes)` : ''} ` +
+      '(a 3D stream starts with 00 00 01 c4, a 2D one with 00 00 01 bc)';
+  }
+
   function end() {
-    // Under four bytes in all: the kind of what there is (the decoder then says what is wrong).
-    if (!session.kind) {
-      const head = concatenate(session.head);
-      session.kind = JSON.parse(session.module.streamKind(head)).kind;
-      if (session.kind === '3d') (session.stream = new session.module.Stream3d()).push(head);
-      else session.chunks = [head];
-    }
+    // Under four bytes in all: no stream.
+    if (!session.kind) throw new Error(notAStream(concatenate(session.head)));
     if (session.kind === '3d') return step3d((s) => s.end());
     const result = JSON.parse(session.module.decode2d(concatenate(session.chunks), 2));
     post({ type: 'planes', session: session.id, result });

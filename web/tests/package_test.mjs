@@ -11,9 +11,9 @@ import { createHash } from 'node:crypto';
 import { mkdirSync, mkdtempSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { createServer } from 'node:http';
 import { tmpdir } from 'node:os';
-import { extname, join, normalize } from 'node:path';
+import { basename, extname, join, normalize, relative } from 'node:path';
 import { pathToFileURL } from 'node:url';
-import { launch } from './harness.mjs';
+import { launch, unitOffsets } from './harness.mjs';
 
 const [packageDir, source] = process.argv.slice(2);
 const suite = join(source, 'conformance', 'mesh3d');
@@ -47,14 +47,26 @@ window.load = (url) => new Promise((resolve) => {
     for (const b of bytes) text += String.fromCharCode(b);
     resolve({ frames: btoa(text), refinements, faces: animation.faces.length / 3, morphs: animation.geometry.morphAttributes.position.length });
   }, undefined, (error) => resolve({ error: String(error.message) }));
-  animation.addEventListener('frames', () => refinements++);
+  animation.addEventListener('frames', () => (refinements++, fetch('/refined')));
 });
 </script>`);
 
-  // The application's files, and the suite's streams under /streams/, sent 256 bytes every 5 ms (a slow download).
+  // The application's files, and the suite's streams under /streams/: a
+  // progressive one in three steps that end where a unit is whole, each
+  // step after the loader has shown a refinement (the page calls
+  // /refined, Node's test refined()), so that it refines while it arrives
+  // however busy the machine is; the others 256 bytes at a time.
   const types = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.wasm': 'application/wasm', '.json': 'application/json' };
+  let onRefined = () => {};
+  const refined = () => onRefined();
+  const nextRefinement = () => new Promise((resolve) => (onRefined = resolve));
   const server = createServer(async (request, response) => {
     const path = decodeURIComponent(new URL(request.url, 'http://x').pathname);
+    if (path === '/refined') {
+      refined();
+      response.writeHead(204).end();
+      return;
+    }
     const stream = path.startsWith('/streams/');
     const file = stream ? join(suite, normalize(path)) : join(app, normalize(path === '/' ? '/index.html' : path));
     let body;
@@ -65,10 +77,19 @@ window.load = (url) => new Promise((resolve) => {
       return;
     }
     response.writeHead(200, { 'content-type': types[extname(file)] ?? 'application/octet-stream', 'content-length': statSync(file).size });
-    for (let at = 0; stream && at + 256 < body.length; at += 256) {
-      response.write(body.subarray(at, at + 256));
-      await new Promise((resolve) => setTimeout(resolve, 5));
+    const units = unitOffsets(body).map((offset) => offset + 4);
+    if (stream && entry(basename(file, '.m4m'))?.clauses.includes('cpca') && units.length > 6) {
+      let at = 0;
+      for (const end of [units[Math.floor(units.length / 3)], units[Math.floor((2 * units.length) / 3)]]) {
+        const shown = nextRefinement();
+        response.write(body.subarray(at, end));
+        at = end;
+        await shown;
+      }
+      response.end(body.subarray(at));
+      return;
     }
+    for (let at = 0; stream && at + 256 < body.length; at += 256) response.write(body.subarray(at, at + 256));
     response.end(stream ? body.subarray(Math.max(0, Math.floor((body.length - 1) / 256) * 256)) : body);
   });
   await new Promise((resolve) => server.listen(0, '127.0.0.1', resolve));
@@ -84,7 +105,7 @@ window.load = (url) => new Promise((resolve) => {
       let refinements = 0;
       const animation = new M4MeshLoader().load(`${origin}/streams/${id}.m4m`, () => resolve({ animation, refinements }), undefined,
         (error) => resolve({ error }));
-      animation.addEventListener('frames', () => refinements++);
+      animation.addEventListener('frames', () => (refinements++, refined()));
     });
     if (result.error) {
       check(false, `Node: ${id}: ${result.error.message}`);
@@ -96,6 +117,20 @@ window.load = (url) => new Promise((resolve) => {
   }
   const bad = await new Promise((resolve) => new M4MeshLoader().load(`${origin}/streams/x-01-codec-unknown.m4m`, () => resolve(null), undefined, resolve));
   check(bad && /codec_id/.test(bad.message), `Node: x-01-codec-unknown rejected: ${bad?.message}`);
+  // Node: a file by its path (relative to the working folder, or absolute) and by a file: URL.
+  const onDisk = join(suite, 'streams', `${streams[0]}.m4m`);
+  for (const name of [relative(process.cwd(), onDisk), onDisk, pathToFileURL(onDisk).href]) {
+    const loaded = await new Promise((resolve) => {
+      const animation = new M4MeshLoader().load(name, () => resolve({ animation }), undefined, (error) => resolve({ error }));
+    });
+    const frames = loaded.animation && Buffer.concat(loaded.animation.frames.map((f) => Buffer.from(f.buffer, f.byteOffset, f.byteLength)));
+    check(frames && md5(frames) === entry(streams[0]).decoded_md5, `Node: load('${name}'): ${loaded.error?.message ?? "the manifest's MD5"}`);
+  }
+  // Bytes that are no stream say so.
+  for (const [bytes, says] of [[new Uint8Array(0), /an empty stream/], [new Uint8Array([0xff, 0xd8, 0xff, 0xe0, 1]), /not an m4mesh stream: it starts with ff d8 ff e0/]]) {
+    const error = await new M4MeshLoader().parse(bytes).then(() => null, (e) => e);
+    check(error && says.test(error.message), `Node: parse of ${bytes.length} bytes that are no stream: ${error?.message}`);
+  }
 
   // Chromium: the same through an import map, decoded in the package's worker.
   const browser = await launch();
