@@ -143,11 +143,16 @@ int run_m4mesh(int argc, const char* const* argv) {
   std::string convert_input, convert_output, convert_frames;
   double convert_fps = 25;
   CLI::App* convert_cmd = app.add_subcommand("convert", "Convert a frame sequence to .m4seq, .pc2 (+ .obj), PLY frames, a glTF animation or OBJ frames");
-  convert_cmd->add_option("input", convert_input, "frames or .m4seq")->required();
+  convert_cmd->add_option("input", convert_input, "frames (a folder or a pattern), .m4seq, .pc2 with its .obj, or a .glb or .gltf animation")->required();
   convert_cmd->add_option("output", convert_output, "a .m4seq file, a .pc2 file (with its .obj), PLY frames ('frames/*.ply'), a .glb or .gltf animation, or a folder")
       ->required();
   convert_cmd->add_option("--fps", convert_fps, "a glTF animation's frames per second")->check(CLI::Range(0.001, 1000.0))->capture_default_str();
   convert_cmd->add_option("--frames", convert_frames, "the input's frames A … B only, counted from 0 (A:B, A: or :B): a clip cut from a sequence");
+  GltfSelection convert_selection;
+  convert_cmd->add_option("--mesh", convert_selection.mesh, "glTF input: the node or mesh to bake, when the asset has several");
+  convert_cmd->add_option("--animation", convert_selection.animation, "glTF input: the animation to bake, when the asset has several");
+  convert_cmd->add_option("--sample-fps", convert_selection.fps, "glTF input: bake at this many frames a second (keys not evenly spaced need it)")
+      ->check(CLI::Range(0.001, 1000.0));
 
   DemoOptions demo_options;
   RenderArgs render_args;
@@ -275,7 +280,7 @@ int run_m4mesh(int argc, const char* const* argv) {
     if (*decode3d_cmd) return console::set_input(decode3d_args.input), run_decode3d(decode3d_args);
     if (*metrics_cmd) return run_metrics(metrics_args);  // names each input as it reads it
     if (*progressive_cmd) return run_progressive(progressive_args);
-    if (*convert_cmd) return console::set_input(convert_input), run_convert(convert_input, convert_output, convert_fps, convert_frames);
+    if (*convert_cmd) return console::set_input(convert_input), run_convert(convert_input, convert_output, convert_fps, convert_frames, convert_selection);
     if (*demo_cmd) return run_demo(demo_options);
     if (*rd_cmd) return console::set_input(rd_args.input), run_rd(rd_args);
     if (*render_cmd) return console::set_input(render_args.input), run_render(render_args);

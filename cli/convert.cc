@@ -11,11 +11,11 @@ namespace m4mesh {
 
 using console::say;
 
-int run_convert(const std::string& input, const std::string& output, double fps, const std::string& frames) {
+int run_convert(const std::string& input, const std::string& output, double fps, const std::string& frames, const GltfSelection& selection) {
   refuse_overwriting(input, output, OutputForm::kFileOrFolder);
   const SequenceOutput form = sequence_output(output, false);
   const auto [first, last] = frame_range(frames);
-  const std::unique_ptr<FrameSource> source = open_frames(input);
+  const std::unique_ptr<FrameSource> source = open_frames(input, selection);
   const uint32_t count = source->frame_count();
   if (first >= count || (last != UINT32_MAX && last >= count))
     throw usage_error("--frames " + frames + ": " + input + " has " + std::to_string(count) + " frames, 0 … " + std::to_string(count - 1));

@@ -126,8 +126,8 @@ int run_decode3d(const Decode3dArgs& args) {
   }
   if (writer) writer->commit();
   if (failed) {
-    std::fprintf(stderr, "%s: decoded %s before the error; %s holds them\n", args.input.c_str(), console::counted(written.size(), "frame", "frames").c_str(),
-                 writes ? args.output.c_str() : "no file");
+    std::fprintf(stderr, "%s: decoded %s before the error; %s %s\n", args.input.c_str(), console::counted(written.size(), "frame", "frames").c_str(),
+                 writes ? args.output.c_str() : "no file", written.size() == 1 ? "holds it" : "holds them");
     return 1;
   }
   say("%s: %s of %s%s", writes ? args.output.c_str() : args.input.c_str(), console::counted(written.size(), "frame", "frames").c_str(),

@@ -103,9 +103,9 @@ int run_decode(const DecodeArgs& args) {
       writer.finish_incomplete();
       file->commit();
     }
-    std::fprintf(stderr, "%s: decoded %lld complete planes before the error%s\n", args.input.c_str(),
-                 static_cast<long long>(planes),
-                 file ? ("; " + args.output + " holds them, without the final 'end' line").c_str() : "");
+    std::fprintf(stderr, "%s: decoded %s before the error%s\n", args.input.c_str(),
+                 console::counted(static_cast<uint64_t>(planes), "complete plane", "complete planes").c_str(),
+                 file ? ("; " + args.output + " holds " + (planes == 1 ? "it" : "them") + ", without the final 'end' line").c_str() : "");
     return 1;
   }
   const std::string md5 = writer.finish();

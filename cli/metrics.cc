@@ -32,10 +32,13 @@ int run_metrics(const MetricsArgs& args) {
     double value;
   };
   std::vector<Rate> rates;
+  bool stream_in_coding_order = false;  // frames decoded from it are numbered so too
   if (!args.stream.empty()) {
     console::set_input(args.stream);
     const std::vector<uint8_t> stream = read_file(args.stream);
-    const ObjectHeader h = Mesh3dDecoder(stream).header();
+    const Mesh3dDecoder headers(stream);
+    const ObjectHeader h = headers.header();
+    stream_in_coding_order = headers.vertex_order() == kVertexOrderCoding;
     if (h.vertex_count != given_original.vertex_count || h.face_count != given_original.faces.size() || h.frame_count != given_original.frames.size())
       throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset,
                   args.stream + ": a stream of " + std::to_string(h.vertex_count) + " vertices, " + std::to_string(h.face_count) + " faces, " +
@@ -55,7 +58,8 @@ int run_metrics(const MetricsArgs& args) {
   }
   StreamFacts facts;
   const MeshSequence decoded = load_sequence_or_stream(args.decoded, &facts);
-  const MeshSequence original = original_as_decoded(given_original, decoded, facts.coding_order, args.decoded);
+  const MeshSequence original = original_as_decoded(given_original, decoded, facts.coding_order || (facts.codec.empty() && stream_in_coding_order),
+                                                    args.decoded);
   for (const std::string& warning : metrics_warnings(original)) say("warning: %s", warning.c_str());
   const SequenceMetrics m = compare_sequences(original, decoded);
   const std::vector<FrameMetrics> frames = args.per_frame ? per_frame_metrics(original, decoded) : std::vector<FrameMetrics>{};

@@ -89,8 +89,9 @@ MeshSequence load_frames(const std::string& path) {
   return load_sequence(path, !console::quiet());
 }
 
-std::unique_ptr<FrameSource> open_frames(const std::string& path) {
-  if (is_gltf_path(path) && fs::is_regular_file(path)) return std::make_unique<SequenceSource>(read_gltf(path, {}).sequence);
+std::unique_ptr<FrameSource> open_frames(const std::string& path, const GltfSelection& selection) {
+  if (is_gltf_path(path) && fs::is_regular_file(path)) return std::make_unique<SequenceSource>(read_gltf(path, selection).sequence);
+  if (!selection.mesh.empty() || !selection.animation.empty()) throw usage_error("--mesh and --animation choose in a glTF input (.glb or .gltf)");
   return open_sequence(path, !console::quiet());
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "cli/gltf.h"
 #include "mesh3d/frame_source.h"
 #include "mesh3d/sequence.h"
 #include "syntax/mesh3d/container.h"
@@ -50,8 +51,10 @@ struct StreamFacts {
 // (cli/gltf.h) baked at its keyframes.
 MeshSequence load_frames(const std::string& path);
 
-// The same, read frame by frame when large (open_sequence); a glTF animation in memory.
-std::unique_ptr<FrameSource> open_frames(const std::string& path);
+// The same, read frame by frame when large (open_sequence); a glTF
+// animation in memory, the mesh, animation and rate `selection` chooses
+// (for another input, naming a mesh or an animation is a usage error).
+std::unique_ptr<FrameSource> open_frames(const std::string& path, const GltfSelection& selection = {});
 
 // A sequence's frames (load_frames), or a mesh3d stream's decoded frames (read once),
 // with the stream's facts in `facts`.
