@@ -141,7 +141,14 @@ int run_serve(const ServeOptions& options) {
                 "cannot listen on " + options.host + ":" + std::to_string(options.port) + " (in use? --port N, or --port 0 for any free port)");
   // The address on standard output, first line, flushed: scripts read it.
   const std::string rate = options.rate ? " (streams, .m4m, at " + std::to_string(options.rate) + " bytes/s)" : "";
-  const std::string listed = streams.empty() ? "" : " with " + std::to_string(streams.size()) + " stream" + (streams.size() == 1 ? "" : "s") + " listed";
+  // The streams the page lists, and the files it shows beside them.
+  uint64_t listed_streams = 0, animations = 0, textures = 0;
+  for (const auto& [name, file] : streams) ++(file.extension() == ".m4m" ? listed_streams : file.extension() == ".png" ? textures : animations);
+  std::string beside;
+  if (animations > 0) beside += console::counted(animations, "glTF animation", "glTF animations");
+  if (textures > 0) beside += (beside.empty() ? "" : " and ") + console::counted(textures, "texture", "textures");
+  const std::string listed = streams.empty() ? "" : " with " + console::counted(listed_streams, "stream", "streams") + " listed" +
+                                                        (beside.empty() ? "" : ", and " + beside);
   std::printf("serving %s%s at http://%s:%d/%s\n", root.c_str(), listed.c_str(), options.host.c_str(), port, rate.c_str());
   std::fflush(stdout);
   if (!server.listen_after_bind()) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, "the server stopped");

@@ -2,8 +2,9 @@
 """Writes the conformance package, a release archive that a decoder team
 runs without building m4mesh: both suites' streams and manifests, the
 runner conform.py, a README (package-readme.md) and the normative docs the
-suites follow (docs/decisions.md, container3d.md, base_mesh.md and each 3D
-codec's).
+suites follow (the 2D specification, ../shared/spec/mesh-bitstream.md, as
+docs/mesh-bitstream.md; docs/decisions.md, container3d.md, base_mesh.md and
+each 3D codec's).
 
     python3 conformance/package.py [-o m4mesh-conformance-VERSION.tar.gz]
 
@@ -30,9 +31,14 @@ VERSION = re.search(r"project\(m4mesh VERSION (\S+)", (HERE.parent / "CMakeLists
 TOP = f"m4mesh-conformance-{VERSION}"
 
 
+SPECIFICATION = HERE.parent.parent / "shared" / "spec" / "mesh-bitstream.md"
+
+
 def members():
     """(name in the archive, file) for every file of the package."""
-    files = {"README.md": HERE / "package-readme.md", "conform.py": HERE / "conform.py"}
+    if not SPECIFICATION.exists():
+        sys.exit(f"package.py: {SPECIFICATION}: no such file: the 2D suite's normative text, which the package carries (docs/mesh-bitstream.md)")
+    files = {"README.md": HERE / "package-readme.md", "conform.py": HERE / "conform.py", "docs/mesh-bitstream.md": SPECIFICATION}
     docs = HERE.parent / "docs"
     for name in ["decisions.md", "container3d.md", "base_mesh.md", *sorted(p.name for p in docs.glob("codec_*.md"))]:
         files[f"docs/{name}"] = docs / name

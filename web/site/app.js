@@ -128,7 +128,8 @@ async function main() {
     const { view, params } = hashParameters();
     showView(view);
     if (params.get('texture')) state.playerView.setTexture(params.get('texture')).catch(report);
-    if (params.has('frame') || params.has('pause')) state.playerView.start(Math.max(0, Number(params.get('frame')) || 0), params.has('pause'));
+    // The player follows its URL: a frame given is shown, and it plays unless "pause" is there.
+    if (view === 'player') state.playerView.start(params.has('frame') ? Math.max(0, Number(params.get('frame')) || 0) : undefined, params.has('pause'));
     if (params.get('stream') && params.get('stream') !== state.source) {
       document.getElementById('url').value = params.get('stream');
       openStream(params.get('stream')).catch(report);

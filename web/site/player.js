@@ -422,10 +422,12 @@ export class Player {
     return total ? seen / total : 0;
   }
 
-  // The frame to show first and whether to hold it (URL parameters frame and pause).
+  // The frame to show (URL parameter frame; undefined: the one shown) and
+  // whether to hold it (pause) or play.
   start(frame, paused) {
-    this.pendingFrame = frame;
-    if (paused) this.playing = false, (this.playButton.textContent = 'Play');
+    if (frame !== undefined) this.pendingFrame = frame;
+    this.playing = !paused;
+    this.playButton.textContent = paused ? 'Play' : 'Pause';
   }
 
   // Shows frame `index` if the worker has sent it (an older refinement
@@ -525,7 +527,9 @@ export class Player {
 
   tick(time) {
     const available = this.available();
-    if (this.pendingFrame !== undefined && available > this.pendingFrame) this.frame = this.pendingFrame, (this.pendingFrame = undefined), (this.changed = true);
+    // A frame asked for is shown once decoded (past the end of a stream decoded whole: its last).
+    if (this.pendingFrame !== undefined && available > 0 && (available > this.pendingFrame || this.state.player?.done))
+      this.frame = Math.min(this.pendingFrame, available - 1), (this.pendingFrame = undefined), (this.changed = true);
     if (this.playing && available > 0 && time - this.lastTick >= 1000 / Math.max(1, Number(this.fps.value))) {
       this.lastTick = time;
       this.frame = (this.frame + 1) % available;

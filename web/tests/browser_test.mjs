@@ -138,6 +138,12 @@ try {
   const held = await page.evaluate(() => window.m4mesh.player);
   expect(held.frameShown === 3 && held.framesDrawn === shown.player.framesDrawn,
     `3D player: &frame=3&pause holds frame ${held.frameShown} (${held.framesDrawn - shown.player.framesDrawn} frames drawn in a second)`);
+  // The open page follows its URL: another frame held, then playing once "pause" goes.
+  await page.evaluate(() => (location.hash = location.hash.replace('frame=3', 'frame=1')));
+  shown = await stateWhen(page, (s) => s.player.frameShown === 1);
+  await page.evaluate(() => (location.hash = location.hash.replace('&pause', '')));
+  const resumed = await stateWhen(page, (s) => s.player.framesDrawn > 3 + shown.player.framesDrawn);
+  expect(resumed.player.framesDrawn > shown.player.framesDrawn, `3D player: a changed URL in the open page holds frame 1, then plays without &pause`);
   await page.close();
 
   // Your own streams: `m4mesh serve A.m4m B.m4m` lists them in the page and they play; a stream the page
