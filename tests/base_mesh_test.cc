@@ -227,8 +227,10 @@ TEST(BaseMesh, ReorderNumbersVerticesInCodingOrder) {
   const BaseMeshPlan plan = plan_base_mesh(m.faces, m.vertex_count, true);
   std::vector<IntPoint3> coded(m.vertex_count);
   for (uint32_t i = 0; i < m.vertex_count; ++i) coded[i] = m.positions[plan.input_of[i]];
-  const std::vector<uint8_t> unit = write_unit(plan.faces, coded);
+  const std::vector<uint8_t> unit = write_unit(plan.faces, coded, BaseMeshCoding{std::nullopt, true});
   EXPECT_EQ(unit[0], kVertexOrderCoding);
+  // Not asked for: the input's numbers are sent, though the traversal numbers the vertices as they are.
+  EXPECT_NE(write_unit(plan.faces, coded)[0], kVertexOrderCoding);
   const BaseMesh base = read_unit(unit, m.vertex_count, static_cast<uint32_t>(m.faces.size()));
   EXPECT_EQ(base.positions, coded);
   EXPECT_EQ(base.faces, plan.faces);

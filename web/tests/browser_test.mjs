@@ -142,7 +142,7 @@ try {
   await page.evaluate(() => (location.hash = location.hash.replace('frame=3', 'frame=1')));
   shown = await stateWhen(page, (s) => s.player.frameShown === 1);
   await page.evaluate(() => (location.hash = location.hash.replace('&pause', '')));
-  const resumed = await stateWhen(page, (s) => s.player.framesDrawn > 3 + shown.player.framesDrawn);
+  const resumed = await stateWhen(page, `(s) => s.player.framesDrawn > ${shown.player.framesDrawn + 3}`);
   expect(resumed.player.framesDrawn > shown.player.framesDrawn, `3D player: a changed URL in the open page holds frame 1, then plays without &pause`);
   await page.close();
 
