@@ -1,8 +1,13 @@
-// The native anchor of the WebAssembly decoder's speed (scripts/web_bench.mjs):
-// each stream decoded to its conformance output (every frame, hash units
-// verified, the MD5), exactly what the web module's decodedMd5 does.
-// Streams: M4MESH_DECODE_STREAMS (comma-separated paths), else every
-// stream to decode of the 3D conformance suite.
+// Decoding speed (docs/rate_distortion.md, "Decoding speed"; the native
+// anchor of scripts/web_bench.mjs): each stream decoded to its
+// conformance output, every frame with its hash units checked and the
+// frames' bytes in memory, exactly what the web module's decodedMd5 does
+// but for the MD5 of the output. Per stream:
+//   Decode/NAME       the whole stream; counter vf/s (vertex-frames a second)
+//   FirstFrame/NAME   until the first frame is handed out
+//   BaseMesh/NAME     the object header and the first unit alone
+// Streams: M4MESH_DECODE_STREAMS (comma-separated paths; scripts/decode_corpus.sh
+// makes the corpus's), else every stream to decode of the 3D conformance suite.
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -10,7 +15,6 @@
 #include <sstream>
 
 #include "common/atomic_file.h"
-#include "common/md5.h"
 #include "conformance/manifest.h"
 #include "decoder/mesh3d/container_decoder.h"
 
@@ -32,11 +36,30 @@ std::vector<std::string> streams() {
 }
 
 void decode(benchmark::State& state, const std::vector<uint8_t>& stream) {
+  uint64_t vertex_frames = 0;
   for (auto _ : state) {
     const std::vector<uint8_t> frames = decoded_frames3d(stream);
-    benchmark::DoNotOptimize(md5_hex(frames));
+    benchmark::DoNotOptimize(frames.data());
+    vertex_frames = frames.size() / 12;
   }
+  state.counters["vf/s"] = benchmark::Counter(static_cast<double>(vertex_frames), benchmark::Counter::kIsIterationInvariantRate);
   state.SetBytesProcessed(static_cast<int64_t>(state.iterations() * stream.size()));
+}
+
+void first_frame(benchmark::State& state, const std::vector<uint8_t>& stream) {
+  for (auto _ : state) {
+    Mesh3dDecoder decoder(stream);
+    if (!decoder.next_frame()) state.SkipWithError("no frame");
+    benchmark::DoNotOptimize(decoder.positions().data());
+  }
+}
+
+void base_mesh(benchmark::State& state, const std::vector<uint8_t>& stream) {
+  for (auto _ : state) {
+    Mesh3dDecoder decoder(stream);
+    if (!decoder.next_unit()) state.SkipWithError("no unit");
+    benchmark::DoNotOptimize(decoder.unit().frames.data());
+  }
 }
 
 }  // namespace
@@ -45,8 +68,12 @@ void decode(benchmark::State& state, const std::vector<uint8_t>& stream) {
 int main(int argc, char** argv) {
   for (const std::string& path : m4mesh::streams()) {
     auto stream = std::make_shared<std::vector<uint8_t>>(m4mesh::read_file(path));
-    benchmark::RegisterBenchmark(("Decode/" + std::filesystem::path(path).filename().string()).c_str(),
-                                 [stream](benchmark::State& state) { m4mesh::decode(state, *stream); })
+    const std::string name = std::filesystem::path(path).filename().string();
+    benchmark::RegisterBenchmark(("Decode/" + name).c_str(), [stream](benchmark::State& state) { m4mesh::decode(state, *stream); })
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("FirstFrame/" + name).c_str(), [stream](benchmark::State& state) { m4mesh::first_frame(state, *stream); })
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("BaseMesh/" + name).c_str(), [stream](benchmark::State& state) { m4mesh::base_mesh(state, *stream); })
         ->Unit(benchmark::kMillisecond);
   }
   benchmark::Initialize(&argc, argv);

@@ -2,6 +2,11 @@
 
 #include <type_traits>
 
+#if defined(__SSE2__) || defined(__wasm_simd128__)
+#include <emmintrin.h>
+#define M4MESH_CPCA_SIMD 1
+#endif
+
 #include "mesh3d/position_order.h"
 
 namespace m4mesh {
@@ -31,20 +36,24 @@ CpcaMeshPrediction::CpcaMeshPrediction(std::span<const Triangle> faces, std::spa
 }
 
 void CpcaMeshPrediction::keep_fits() {
-  if (!fits_.empty()) return;
-  fits_.resize(cluster_of_.size());
+  for (uint32_t cluster = 0; cluster < in_order_.size(); ++cluster) keep_fits(cluster);
+}
+
+void CpcaMeshPrediction::keep_fits(uint32_t cluster) {
+  if (fits_.empty()) fits_.resize(cluster_of_.size()), kept_.assign(in_order_.size(), 0);
+  if (kept_[cluster]) return;
+  kept_[cluster] = 1;
   std::vector<uint32_t> points;
-  for (uint32_t cluster = 0; cluster < in_order_.size(); ++cluster)
-    for (const uint32_t v : in_order_[cluster]) {
-      const uint32_t rank = rank_[v];
-      KeptFit& fit = fits_[v];
-      fit.channel = affine_fit_support(predictor_, v, [&](uint32_t u) { return rank_[u] < rank && cluster_of_[u] == cluster; }, points);
-      fit.first = static_cast<uint32_t>(fit_points_.size());
-      fit.count = static_cast<uint32_t>(points.size());
-      fit_points_.insert(fit_points_.end(), points.begin(), points.end());
-      fit_q_.resize(fit_points_.size());
-      if (fit.channel >= 0) fit.shape = affine_fit_shape(mean_shape_, v, points, std::span(fit_q_.data() + fit.first, fit.count));
-    }
+  for (const uint32_t v : in_order_[cluster]) {
+    const uint32_t rank = rank_[v];
+    KeptFit& fit = fits_[v];
+    fit.channel = affine_fit_support(predictor_, v, [&](uint32_t u) { return rank_[u] < rank && cluster_of_[u] == cluster; }, points);
+    fit.first = static_cast<uint32_t>(fit_points_.size());
+    fit.count = static_cast<uint32_t>(points.size());
+    fit_points_.insert(fit_points_.end(), points.begin(), points.end());
+    fit_q_.resize(fit_points_.size());
+    if (fit.channel >= 0) fit.shape = affine_fit_shape(mean_shape_, v, points, std::span(fit_q_.data() + fit.first, fit.count));
+  }
 }
 
 CpcaAnimation::CpcaAnimation(const CpcaHeader& header, std::span<const IntPoint3> mean_shape, uint32_t frames)
@@ -77,7 +86,41 @@ Float3 CpcaAnimation::position(uint32_t f, NodeIndex v) const {
 }
 
 void CpcaAnimation::frame(uint32_t f, std::span<Float3> positions) const {
-  for (NodeIndex v = 0; v < positions.size(); ++v) positions[v] = position(f, v);
+  NodeIndex v = 0;
+#ifdef M4MESH_CPCA_SIMD
+  // Two vertices (six values, three pairs of axes) at a time, the same IEEE steps as position(): a
+  // value below 2^51 in magnitude becomes its double exactly by the 1.5 · 2^52 bias; pairs beyond it
+  // take position().
+  const __m128d origin[3] = {_mm_set_pd(origin_[1], origin_[0]), _mm_set_pd(origin_[0], origin_[2]), _mm_set_pd(origin_[2], origin_[1])};
+  const __m128d unit[3] = {_mm_set_pd(unit_[1], unit_[0]), _mm_set_pd(unit_[0], unit_[2]), _mm_set_pd(unit_[2], unit_[1])};
+  const __m128i bias = _mm_set1_epi64x(0x4338000000000000), half_range = _mm_set1_epi64x(int64_t{1} << 51);
+  const __m128d biased = _mm_castsi128_pd(bias);
+  const uint64_t* values = fixed_.data() + size_t{f} * mean_shape_.size() * 3;
+  float* out = positions.data()->data();
+  for (; v + 2 <= positions.size(); v += 2) {
+    __m128i x[3];
+    __m128i outside = _mm_setzero_si128();
+    for (int k = 0; k < 3; ++k) {
+      x[k] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(values + 3 * size_t{v} + 2 * static_cast<size_t>(k)));
+      outside = _mm_or_si128(outside, _mm_srli_epi64(_mm_add_epi64(x[k], half_range), 52));
+    }
+    if (_mm_movemask_epi8(_mm_cmpeq_epi32(outside, _mm_setzero_si128())) != 0xFFFF) {
+      positions[v] = position(f, v), positions[v + 1] = position(f, v + 1);
+      continue;
+    }
+    __m128 low = _mm_setzero_ps(), high = _mm_setzero_ps();
+    for (int k = 0; k < 3; ++k) {
+      const __m128d exact = _mm_sub_pd(_mm_castsi128_pd(_mm_add_epi64(x[k], bias)), biased);
+      const __m128 pair = _mm_cvtpd_ps(_mm_add_pd(origin[k], _mm_mul_pd(exact, unit[k])));
+      if (k == 0) low = pair;
+      if (k == 1) low = _mm_movelh_ps(low, pair);
+      if (k == 2) high = pair;
+    }
+    _mm_storeu_ps(out + 3 * size_t{v}, low);
+    _mm_storel_pi(reinterpret_cast<__m64*>(out + 3 * size_t{v} + 4), high);
+  }
+#endif
+  for (; v < positions.size(); ++v) positions[v] = position(f, v);
 }
 
 void CpcaAnimation::mean_frame(std::span<Float3> positions) const {

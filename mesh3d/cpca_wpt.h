@@ -119,8 +119,11 @@ class CpcaMeshPrediction {
 
   // Every member's fit support and shape found once and
   // kept (about 200 bytes a vertex), for an encoder that predicts the same
-  // members again and again; the predictions do not change.
+  // members again and again; the predictions do not change. With a
+  // cluster, its members' only (a decoder, before its first component
+  // over the mesh).
   void keep_fits();
+  void keep_fits(uint32_t cluster);
 
   // A cluster's members in member order.
   std::span<const uint32_t> members_in_order(uint32_t cluster) const { return in_order_[cluster]; }
@@ -195,7 +198,7 @@ class CpcaMeshPrediction {
       for (size_t a = 0; a < D; ++a) values[a] = basis[D * slot_[u] + a];
       return values;
     };
-    if (!fits_.empty()) {
+    if (!fits_.empty() && kept_[cluster]) {
       const KeptFit& fit = fits_[v];
       const std::span<const uint32_t> support(fit_points_.data() + fit.first, fit.count);
       if (fit.channel >= 0) affine_fit_values<D>(fit.shape, support, std::span(fit_q_.data() + fit.first, fit.count), value, p);
@@ -221,6 +224,7 @@ class CpcaMeshPrediction {
   std::vector<uint32_t> cluster_of_;
   std::vector<std::vector<uint32_t>> in_order_;        // per cluster: its members in member order
   std::vector<KeptFit> fits_;                          // per vertex, with keep_fits()
+  std::vector<uint8_t> kept_;                          // per cluster: its members' fits are in fits_
   std::vector<uint32_t> fit_points_;
   std::vector<std::array<int32_t, 3>> fit_q_;
 };

@@ -1,31 +1,60 @@
 #include "mesh3d/frame_hash.h"
 
+#include <bit>
 #include <cstring>
 
+#include "common/bit_cast.h"
 #include "common/md5.h"
+#include "common/md5_lanes.h"
 
 namespace m4mesh {
 
-std::vector<uint8_t> frame_bytes(std::span<const Float3> positions) {
-  std::vector<uint8_t> bytes(positions.size() * 12);
-  uint8_t* out = bytes.data();
+// On a little-endian machine a frame's floats are its canonical bytes already.
+constexpr bool kCanonicalInMemory = std::endian::native == std::endian::little;
+
+void append_frame_bytes(std::span<const Float3> positions, std::vector<uint8_t>& out) {
+  const size_t at = out.size();
+  out.resize(at + positions.size() * 12);
+  uint8_t* bytes = out.data() + at;
+  if constexpr (kCanonicalInMemory) {
+    std::memcpy(bytes, positions.data(), positions.size() * sizeof(Float3));
+    return;
+  }
   for (const Float3& p : positions)
     for (float f : p) {
-      uint32_t bits;
-      std::memcpy(&bits, &f, 4);
-      *out++ = static_cast<uint8_t>(bits);
-      *out++ = static_cast<uint8_t>(bits >> 8);
-      *out++ = static_cast<uint8_t>(bits >> 16);
-      *out++ = static_cast<uint8_t>(bits >> 24);
+      const uint32_t bits = bit_cast<uint32_t>(f);
+      *bytes++ = static_cast<uint8_t>(bits);
+      *bytes++ = static_cast<uint8_t>(bits >> 8);
+      *bytes++ = static_cast<uint8_t>(bits >> 16);
+      *bytes++ = static_cast<uint8_t>(bits >> 24);
     }
+}
+
+std::vector<uint8_t> frame_bytes(std::span<const Float3> positions) {
+  std::vector<uint8_t> bytes;
+  append_frame_bytes(positions, bytes);
   return bytes;
 }
 
 Digest frame_digest(std::span<const Float3> positions) {
-  const std::vector<uint8_t> bytes = frame_bytes(positions);
   Md5 md5;
-  md5.update(bytes.data(), bytes.size());
+  if constexpr (kCanonicalInMemory) {
+    md5.update(positions.data(), positions.size() * sizeof(Float3));
+  } else {
+    const std::vector<uint8_t> bytes = frame_bytes(positions);
+    md5.update(bytes.data(), bytes.size());
+  }
   return md5.digest();
+}
+
+void frame_digests(std::span<const std::span<const Float3>> frames, std::span<Digest> out) {
+  if constexpr (!kCanonicalInMemory) {
+    for (size_t k = 0; k < frames.size(); ++k) out[k] = frame_digest(frames[k]);
+    return;
+  }
+  std::vector<const uint8_t*> starts;
+  for (const std::span<const Float3> frame : frames) starts.push_back(reinterpret_cast<const uint8_t*>(frame.data()));
+  md5_of_equal_lengths(starts, frames.empty() ? 0 : frames[0].size() * sizeof(Float3), out);
 }
 
 Digest group_digest(std::span<const Digest> frame_digests) {

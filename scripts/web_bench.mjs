@@ -39,12 +39,12 @@ for (const [sequence, pattern] of Object.entries(SEQUENCES))
   }
 
 process.stderr.write('native decoding (m4mesh_decode_bench)\n');
-const native = JSON.parse(execFileSync(join(build, 'bench', 'm4mesh_decode_bench'), ['--benchmark_format=json', '--benchmark_repetitions=5',
+const native = JSON.parse(execFileSync(join(build, 'bench', 'm4mesh_decode_bench'), ['--benchmark_format=json', '--benchmark_filter=^Decode/', '--benchmark_repetitions=5',
   '--benchmark_report_aggregates_only=true'], { env: { ...process.env, M4MESH_DECODE_STREAMS: Object.values(streams).join(',') }, maxBuffer: 1 << 26 }));
 const nativeMs = {};
 for (const b of native.benchmarks) if (b.aggregate_name === 'median') nativeMs[b.run_name.replace('Decode/', '')] = b.real_time;
 // The same on one core: the native decoder decodes bfs3d's axes and lcc's symbols and vertices side by side.
-const oneCore = JSON.parse(execFileSync('taskset', ['-c', '0', join(build, 'bench', 'm4mesh_decode_bench'), '--benchmark_format=json',
+const oneCore = JSON.parse(execFileSync('taskset', ['-c', '0', join(build, 'bench', 'm4mesh_decode_bench'), '--benchmark_format=json', '--benchmark_filter=^Decode/',
   '--benchmark_repetitions=5', '--benchmark_report_aggregates_only=true'], { env: { ...process.env, M4MESH_DECODE_STREAMS: Object.values(streams).join(',') },
   maxBuffer: 1 << 26 }));
 const oneCoreMs = {};

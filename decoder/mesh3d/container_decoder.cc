@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "bitstream/bit_reader.h"
+#include "common/md5_lanes.h"
 #include "codecs3d/registry.h"
 #include "decoder/mesh3d/codec_decoders.h"
 #include "syntax/mesh3d/base_mesh.h"
@@ -239,11 +240,26 @@ void Mesh3dDecoder::check_group_hash(size_t index, const UnitHeader& header) {
     }
   });
   if (options_.hashes == HashCheck::kSkip) return;
-  std::vector<Digest> frames;
-  for (uint32_t f = first; f < first + hash.group_frames; ++f) {
-    // A frame that failed to decode (a check carries on past it) has no digest: the group stays unchecked.
-    if (!codec_->holds_frames() && !digests_.count(f)) return;
-    frames.push_back(digest_of(f));
+  std::vector<Digest> frames(hash.group_frames);
+  if (codec_->holds_frames()) {
+    // The codec's frames, a batch of MD5 lanes at a time.
+    std::vector<std::vector<Float3>> batch(kMd5Lanes, std::vector<Float3>(header_.vertex_count));
+    for (uint32_t k = 0; k < hash.group_frames; k += kMd5Lanes) {
+      const uint32_t count = std::min<uint32_t>(kMd5Lanes, hash.group_frames - k);
+      std::vector<std::span<const Float3>> positions;
+      for (uint32_t j = 0; j < count; ++j) {
+        codec_->frame(first + k + j, batch[j]);
+        positions.push_back(batch[j]);
+      }
+      frame_digests(positions, std::span(frames).subspan(k, count));
+    }
+  } else {
+    for (uint32_t k = 0; k < hash.group_frames; ++k) {
+      // A frame that failed to decode (a check carries on past it) has no digest: the group stays unchecked.
+      const auto it = digests_.find(first + k);
+      if (it == digests_.end()) return;
+      frames[k] = it->second;
+    }
   }
   const Digest digest = group_digest(frames);
   record_hash(index, true, first, hash.group_frames, std::equal(digest.begin(), digest.end(), hash.md5.begin()));
@@ -422,10 +438,7 @@ void for_each_prefix(std::span<const uint8_t> stream,
 std::vector<uint8_t> decoded_frames3d(std::span<const uint8_t> stream) {
   Mesh3dDecoder decoder(stream);
   std::vector<uint8_t> out;
-  while (decoder.next_frame()) {
-    const std::vector<uint8_t> bytes = frame_bytes(decoder.positions());
-    out.insert(out.end(), bytes.begin(), bytes.end());
-  }
+  while (decoder.next_frame()) append_frame_bytes(decoder.positions(), out);
   return out;
 }
 

@@ -19,6 +19,10 @@ namespace m4mesh {
 
 namespace {
 
+// The segment length from which a decoder keeps its members' fits over the mesh (CpcaMeshPrediction::keep_fits).
+constexpr uint32_t kKeptFitFrames = 9;
+
+
 // The header's cluster map sections and where they are, kept to be read
 // once the base mesh gives the faces (cluster_map_prediction 1).
 struct MapSections {
@@ -211,6 +215,10 @@ class CpcaDecoder final : public CodecDecoder3d {
       std::array<int64_t, 3> before{};
       if (h.kind == kCpcaStart && previous_start_[h.cluster]) before = previous_start_[h.cluster]->at(h.shift, kCpcaMaxTranslation);
       if (continued) before = continued->coefficients.at(h.shift, kCpcaMaxCoefficient);
+      // A member's fit over the mesh is the same for every component of its cluster: found once and kept, when the
+      // fits (about 200 bytes a member) take no more than the segment's 24 bytes a vertex-frame.
+      if ((h.kind == kCpcaMeshComponent || h.kind == kCpcaTrajectory) && std::min(header_.segment_frames, object_.frame_count) >= kKeptFitFrames)
+        mesh_->keep_fits(h.cluster);
       describe_refinement(io, coders, *mesh_, h, trajectory, before, translation_, basis_, coefficients_);
       if (h.kind == kCpcaStart) {
         animation_->translate(members_[h.cluster], translation_, h.shift);
