@@ -3,8 +3,8 @@
 #include <algorithm>
 
 #include "bitstream/bit_reader.h"
-#include "common/md5_lanes.h"
 #include "codecs3d/registry.h"
+#include "common/md5_lanes.h"
 #include "decoder/mesh3d/codec_decoders.h"
 #include "syntax/mesh3d/base_mesh.h"
 
