@@ -12,9 +12,9 @@
 #   (cxx/encode_decode.cc);
 # - the installed tool finds the installed suite (conform without a
 #   folder) and the installed site (serve), from any folder.
-# Usage: test.sh BUILD_DIR SOURCE_DIR C_COMPILER CXX_COMPILER [SANITIZER_FLAGS]
+# Usage: test.sh BUILD_DIR SOURCE_DIR C_COMPILER CXX_COMPILER
 set -eu
-build=$1 source=$2 cc=$3 cxx=$4 flags=${5:-}
+build=$1 source=$2 cc=$3 cxx=$4
 prefix=$(mktemp -d)
 trap 'rm -rf "$prefix"' EXIT
 cmake --install "$build" --prefix "$prefix/usr" > "$prefix/install.log"
@@ -22,8 +22,8 @@ lib=$(dirname "$(find "$prefix/usr" -name libm4mesh.a)")
 export PKG_CONFIG_PATH="$lib/pkgconfig"
 
 printf '#include <m4mesh.h>\n' | "$cc" -std=c89 -pedantic -Wall -Wextra -Werror -fsyntax-only $(pkg-config --cflags m4mesh) -x c -
-# shellcheck disable=SC2046,SC2086
-"$cc" -std=c99 -pedantic -Wall -Wextra -Werror $flags -o "$prefix/decode" "$source/tests/install/decode.c" \
+# shellcheck disable=SC2046
+"$cc" -std=c99 -pedantic -Wall -Wextra -Werror -o "$prefix/decode" "$source/tests/install/decode.c" \
   $(pkg-config --cflags --libs m4mesh) -Wl,-rpath,"$lib"
 "$prefix/usr/bin/m4mesh" conform "$source/conformance" --decoder "'$prefix/decode' --method {method} {in} {out}" > "$prefix/2d.log" ||
   { cat "$prefix/2d.log"; exit 1; }
@@ -32,13 +32,11 @@ tail -n 1 "$prefix/2d.log"
   { cat "$prefix/3d.log"; exit 1; }
 tail -n 1 "$prefix/3d.log"
 
-cmake -S "$source/tests/install/cxx" -B "$prefix/cxx" -DCMAKE_PREFIX_PATH="$prefix/usr" -DCMAKE_CXX_COMPILER="$cxx" \
-  -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" > "$prefix/cxx.log"
+cmake -S "$source/tests/install/cxx" -B "$prefix/cxx" -DCMAKE_PREFIX_PATH="$prefix/usr" -DCMAKE_CXX_COMPILER="$cxx" > "$prefix/cxx.log"
 cmake --build "$prefix/cxx" >> "$prefix/cxx.log"
 "$prefix/cxx/encode_decode"
 
-cmake -S "$source/tests/install/c" -B "$prefix/c" -DCMAKE_PREFIX_PATH="$prefix/usr" -DCMAKE_C_COMPILER="$cc" \
-  -DCMAKE_C_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" > "$prefix/c.log"
+cmake -S "$source/tests/install/c" -B "$prefix/c" -DCMAKE_PREFIX_PATH="$prefix/usr" -DCMAKE_C_COMPILER="$cc" > "$prefix/c.log"
 cmake --build "$prefix/c" >> "$prefix/c.log"
 "$prefix/usr/bin/m4mesh" conform "$source/conformance/mesh3d" --decoder "'$prefix/c/decode' {in} {out}" > "$prefix/3d-static.log" ||
   { cat "$prefix/3d-static.log"; exit 1; }
