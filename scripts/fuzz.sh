@@ -2,41 +2,48 @@
 # Builds the libFuzzer targets (clang, ASan + UBSan) and runs each for a
 # bounded time, seeded from the conformance suite. Fails on any crash, leak,
 # timeout, out-of-memory or sanitizer report; findings are left in
-# build-fuzz/findings/ (turn them into regression tests in tests/fuzz_regressions/).
-# Usage: scripts/fuzz.sh [SECONDS_PER_TARGET] (default 60)
+# BUILD/findings/ (turn them into regression tests in tests/fuzz_regressions/).
+# Usage: scripts/fuzz.sh [SECONDS_PER_TARGET (default 60)] [BUILD]
+#   BUILD: a build folder configured with clang and -DM4MESH_FUZZ=ON (scripts/test.sh's
+#   build-sanitize); without it, build-fuzz, configured here.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
-CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" -DM4MESH_FUZZ=ON -DM4MESH_CGAL=OFF > /dev/null
-cmake --build build-fuzz -j"$(nproc)" > /dev/null
+build="${2:-build-fuzz}"
+if [ -z "${2:-}" ]; then
+  CC=clang CXX=clang++ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
+    -DM4MESH_FUZZ=ON -DM4MESH_CGAL=OFF -DM4MESH_BENCHMARKS=OFF -DM4MESH_WEB=OFF > /dev/null
+fi
+# The fuzz targets and the tool that checks the build and makes their seeds (nothing else when configured here).
+cmake --build "$build" -j"$(nproc)" --target m4mesh decoder_fuzzer checker_fuzzer text_fuzzer mesh3d_fuzzer gltf_fuzzer api_fuzzer > /dev/null
 
 # The clang build decodes every conformance stream (the manifests' MD5s
 # come from GCC builds): decoding is bit-exact across compilers.
-build-fuzz/cli/m4mesh conform conformance > /dev/null || { echo "clang build: 2D conformance failed"; exit 1; }
-build-fuzz/cli/m4mesh conform conformance/mesh3d > /dev/null || { echo "clang build: 3D conformance failed"; exit 1; }
+"$build"/cli/m4mesh conform conformance > /dev/null || { echo "clang build: 2D conformance failed"; exit 1; }
+"$build"/cli/m4mesh conform conformance/mesh3d > /dev/null || { echo "clang build: 3D conformance failed"; exit 1; }
 echo "clang build: both conformance suites decode to the manifests' MD5s"
 
-work=build-fuzz/run
+work="$build"/run
 rm -rf "$work"
-mkdir -p "$work/seeds-stream" "$work/seeds-text" "$work/seeds-mesh3d" "$work/seeds-gltf" "$work/seeds-api" build-fuzz/findings
+mkdir -p "$work/seeds-stream" "$work/seeds-text" "$work/seeds-mesh3d" "$work/seeds-gltf" "$work/seeds-api" "$build"/findings
 # Seeds no longer than the inputs the fuzzers make (-max_len).
 find conformance/streams tests/fuzz_regressions -name '*.m4m' -size -8193c -exec cp {} "$work/seeds-stream/" \;
 cp tests/fuzz_regressions/*.txt "$work/seeds-text/" 2> /dev/null || true
 for stream in conformance/streams/p0*.m4m conformance/streams/p1*.m4m conformance/streams/p2[0-4]*.m4m; do
-  build-fuzz/cli/m4mesh decode "$stream" -o "$work/seeds-text/$(basename "$stream" .m4m).txt" > /dev/null 2>&1 || true
+  "$build"/cli/m4mesh decode "$stream" -o "$work/seeds-text/$(basename "$stream" .m4m).txt" > /dev/null 2>&1 || true
 done
 
 # 3D streams: the 3D conformance suite (both codecs), and the first frames
 # of a test sequence with both bfs3d predictions.
 cp conformance/mesh3d/streams/*.m4m "$work/seeds-mesh3d/"
 for bits in 6 10; do
-  build-fuzz/cli/m4mesh encode3d tests/data/tetra-frames -o "$work/seeds-mesh3d/tetra-$bits.m4m" --bits "$bits" > /dev/null 2>&1 || true
-  build-fuzz/cli/m4mesh encode3d tests/data/tetra-frames -o "$work/seeds-mesh3d/tetra-$bits-p.m4m" --bits "$bits" --parallelogram > /dev/null 2>&1 || true
+  "$build"/cli/m4mesh encode3d tests/data/tetra-frames -o "$work/seeds-mesh3d/tetra-$bits.m4m" --bits "$bits" > /dev/null 2>&1 || true
+  "$build"/cli/m4mesh encode3d tests/data/tetra-frames -o "$work/seeds-mesh3d/tetra-$bits-p.m4m" --bits "$bits" --parallelogram > /dev/null 2>&1 || true
 done
 
 # glTF: a small animation as GLB (morph targets and a STEP weights animation), at two rates.
 for fps in 25 7; do
-  build-fuzz/cli/m4mesh -y convert tests/data/tetra-frames "$work/seeds-gltf/tetra-$fps.glb" --fps "$fps" > /dev/null 2>&1 || true
+  "$build"/cli/m4mesh -y convert tests/data/tetra-frames "$work/seeds-gltf/tetra-$fps.glb" --fps "$fps" > /dev/null 2>&1 || true
 done
 
 # The C interface's inputs: a stream and the size of the pieces it is pushed in (its last byte + 1).
@@ -54,10 +61,10 @@ for target in decoder checker text mesh3d gltf api; do
   mkdir -p "$work/corpus-$target"
   log="$work/$target.log"
   echo "== ${target}_fuzzer for ${seconds}s"
-  if ! build-fuzz/fuzz/${target}_fuzzer "$work/corpus-$target" "$seeds" -max_total_time="$seconds" -timeout=10 \
-       -rss_limit_mb=2048 -max_len=4096 -print_final_stats=1 -artifact_prefix=build-fuzz/findings/ > "$log" 2>&1; then
+  if ! "$build"/fuzz/${target}_fuzzer "$work/corpus-$target" "$seeds" -max_total_time="$seconds" -timeout=10 \
+       -rss_limit_mb=2048 -max_len=4096 -print_final_stats=1 -artifact_prefix="$build"/findings/ > "$log" 2>&1; then
     tail -40 "$log"
-    echo "FAIL: ${target}_fuzzer found a problem (artifact in build-fuzz/findings/)"
+    echo "FAIL: ${target}_fuzzer found a problem (artifact in $build/findings/)"
     exit 1
   fi
   runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$')

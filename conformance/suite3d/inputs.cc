@@ -166,7 +166,11 @@ MeshSequence spiky_sheet(int frames, int n, int loose, uint64_t seed, int one_in
       d = 0;
       return;
     }
-    d = std::ldexp(random.uniform(1, 8) / 8.0, -random.uniform(2, 23)) * (random.next() % 2 ? 1 : -1);
+    // Drawn one at a time: the order of a call's arguments is the compiler's.
+    const int exponent = random.uniform(2, 23);
+    const double mantissa = random.uniform(1, 8) / 8.0;
+    const double sign = random.next() % 2 ? 1 : -1;
+    d = std::ldexp(mantissa, -exponent) * sign;
   };
   for (int f = 0; f < frames; ++f) {
     std::vector<Vec3> frame;
@@ -379,7 +383,10 @@ MeshSequence clustered_jumps(int frames, int depth) {
     clusters.push_back({start, cell, rigid});
   };
   auto place = [&](int level) { return random.uniform(0, (1 << level) - 1); };
-  for (int c = 0; c < 2; ++c) cluster(depth, place(depth), place(depth), place(depth), false);
+  for (int c = 0; c < 2; ++c) {
+    const int z = place(depth), y = place(depth), x = place(depth);  // drawn in this order, not in the arguments' unspecified one
+    cluster(depth, x, y, z, false);
+  }
   for (int c = 0; c < 2; ++c) {
     const int up = depth - 1, x = place(up) & ~1, y = place(up), z = place(up);
     cluster(up, x, y, z, true);
