@@ -14,5 +14,5 @@ apt-get install -y -qq --no-install-recommends \
   > /dev/null
 # npm comes with some Node.js builds (NodeSource's); Debian's comes apart.
 command -v npm > /dev/null || apt-get install -y -qq --no-install-recommends npm > /dev/null
-# three.js for the web player, playwright-core to drive Chromium in the browser tests (web/package-lock.json).
+# three.js for the web player, playwright-core to drive Chromium in the browser tests, gltfpack, meshoptimizer and draco3d for scripts/anchor_bench.mjs (web/package-lock.json).
 npm ci --prefix "$(dirname "$0")/../web" --no-audit --no-fund --loglevel=error

@@ -1,0 +1,371 @@
+// m4mesh against the tools it replaces, in one run (docs/rate_distortion.md,
+// "Against meshoptimizer and Draco"): each sequence of ../shared/data as
+// gltfpack -cc (meshoptimizer's EXT_meshopt_compression, morph targets) and
+// as Draco per frame (draco3d, edgebreaker), each at the fewest bytes that
+// keep the KG error within 0.5 % and 0.1 %, against m4mesh's cpca-wpt
+// stream at the same target (scripts/decode_corpus.sh's corpus). For each:
+// bytes, brotli bytes, KG and max error (m4mesh metrics on the decoded
+// frames), decoding to float32 positions in Node on one thread (the best of
+// 5), and the bandwidth above which the other file, downloaded then
+// decoded, plays before m4mesh's.
+// Usage: node scripts/anchor_bench.mjs [BUILD (default build)] [DATA (default ../shared/data)] [SEQUENCE …]
+import { execFileSync } from 'node:child_process';
+import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { join, resolve } from 'node:path';
+import { brotliCompressSync, constants } from 'node:zlib';
+
+const root = resolve(new URL('..', import.meta.url).pathname);
+const build = resolve(process.argv[2] || join(root, 'build'));
+const data = resolve(process.argv[3] || join(root, '..', 'shared', 'data'));
+const m4mesh = join(build, 'cli', 'm4mesh');
+const modules = join(root, 'web', 'node_modules');
+const corpus = join(build, 'decode-corpus');
+const work = join(build, 'anchor-bench');
+const SEQUENCES = { horse: 'horse-gallop', cow: 'pcow', flag: 'cloth/flag/flag.pc2', dance: 'openfamc_testdata/dance_mesh',
+                    dog: 'openfamc_testdata/dog_mesh', handstand: 'openfamc_testdata/handstand_mesh' };
+const TARGETS = [0.5, 0.1];
+const FPS = 25;
+const RUNS = 5;
+
+if (!existsSync(data)) {
+  console.log(`skipped: no ${data}`);
+  process.exit(0);
+}
+mkdirSync(work, { recursive: true });
+const { MeshoptDecoder } = await import(join(modules, 'meshoptimizer', 'index.js'));
+const draco3d = (await import(join(modules, 'draco3d', 'draco3d.js'))).default;
+const { createM4meshDecoder } = await import(join(build, 'web', 'package', 'decoder.js'));
+await MeshoptDecoder.ready;
+const dracoEncoder = await draco3d.createEncoderModule({});
+const dracoDecoder = await draco3d.createDecoderModule({});
+const m4meshModule = await createM4meshDecoder();
+
+// ---- glb files: a JSON chunk and a BIN chunk.
+function readGlb(path) {
+  const bytes = readFileSync(path);
+  const jsonLength = bytes.readUInt32LE(12);
+  const json = JSON.parse(bytes.subarray(20, 20 + jsonLength).toString('utf8'));
+  const binStart = 20 + jsonLength + 8;
+  return { json, bin: bytes.subarray(binStart, binStart + bytes.readUInt32LE(20 + jsonLength)) };
+}
+
+function writeGlb(path, json, bin) {
+  const pad = (buffer, fill) => Buffer.concat([buffer, Buffer.alloc((4 - (buffer.length % 4)) % 4, fill)]);
+  const jsonChunk = pad(Buffer.from(JSON.stringify(json)), 0x20), binChunk = pad(Buffer.from(bin), 0);
+  const header = Buffer.alloc(12), jsonHeader = Buffer.alloc(8), binHeader = Buffer.alloc(8);
+  header.write('glTF', 0), header.writeUInt32LE(2, 4), header.writeUInt32LE(12 + 8 + jsonChunk.length + 8 + binChunk.length, 8);
+  jsonHeader.writeUInt32LE(jsonChunk.length, 0), jsonHeader.write('JSON', 4);
+  binHeader.writeUInt32LE(binChunk.length, 0), binHeader.write('BIN\0', 4);
+  writeFileSync(path, Buffer.concat([header, jsonHeader, jsonChunk, binHeader, binChunk]));
+}
+
+// A tightly packed accessor of m4mesh's own glTF (uint32 indices, float32 positions), copied.
+function accessorArray({ json, bin }, index, Type) {
+  const accessor = json.accessors[index];
+  const view = json.bufferViews[accessor.bufferView];
+  const components = { SCALAR: 1, VEC3: 3 }[accessor.type];
+  const start = bin.byteOffset + (view.byteOffset || 0) + (accessor.byteOffset || 0);
+  return new Type(bin.buffer.slice(start, start + accessor.count * components * Type.BYTES_PER_ELEMENT));
+}
+
+// The sequence as m4mesh reads it (convert to a glTF whose targets are the frames), then as an artist's file: the
+// rest pose (frame 0) and one morph target per frame of its differences, a STEP weights animation.
+function sequenceOf(name) {
+  const absolute = join(work, `${name}-frames.glb`);
+  if (!existsSync(absolute)) execFileSync(m4mesh, ['-q', '-y', 'convert', join(data, SEQUENCES[name]), absolute, '--fps', String(FPS)]);
+  const glb = readGlb(absolute);
+  const primitive = glb.json.meshes[0].primitives[0];
+  const faces = accessorArray(glb, primitive.indices, Uint32Array);
+  const frames = primitive.targets.map((t) => accessorArray(glb, t.POSITION, Float32Array));
+  return { absolute, faces, frames, vertices: frames[0].length / 3 };
+}
+
+function restPoseGlb(name, sequence) {
+  const path = join(work, `${name}-rest.glb`);
+  const { faces, frames, vertices } = sequence;
+  const parts = [], views = [], accessors = [];
+  let offset = 0;
+  const add = (typed, accessor) => {
+    const bytes = Buffer.from(typed.buffer, typed.byteOffset, typed.byteLength);
+    views.push({ buffer: 0, byteOffset: offset, byteLength: bytes.length });
+    parts.push(bytes), (offset += bytes.length);
+    accessors.push({ bufferView: views.length - 1, ...accessor });
+    return accessors.length - 1;
+  };
+  const bounds = (values) => {
+    const min = [Infinity, Infinity, Infinity], max = [-Infinity, -Infinity, -Infinity];
+    for (let i = 0; i < values.length; ++i) (min[i % 3] = Math.min(min[i % 3], values[i])), (max[i % 3] = Math.max(max[i % 3], values[i]));
+    return { min, max };
+  };
+  const indices = add(faces, { componentType: 5125, count: faces.length, type: 'SCALAR' });
+  const position = add(frames[0], { componentType: 5126, count: vertices, type: 'VEC3', ...bounds(frames[0]) });
+  const targets = frames.map((frame) => {
+    const delta = new Float32Array(frame.length);
+    for (let i = 0; i < frame.length; ++i) delta[i] = frame[i] - frames[0][i];
+    return { POSITION: add(delta, { componentType: 5126, count: vertices, type: 'VEC3', ...bounds(delta) }) };
+  });
+  const times = add(Float32Array.from(frames, (_, k) => k / FPS), { componentType: 5126, count: frames.length, type: 'SCALAR', min: [0], max: [(frames.length - 1) / FPS] });
+  const weights = new Float32Array(frames.length * frames.length);
+  for (let k = 0; k < frames.length; ++k) weights[k * frames.length + k] = 1;
+  const weightValues = add(weights, { componentType: 5126, count: weights.length, type: 'SCALAR' });
+  const json = {
+    asset: { version: '2.0', generator: 'm4mesh anchor_bench' }, scene: 0, scenes: [{ nodes: [0] }], nodes: [{ mesh: 0, name }],
+    meshes: [{ primitives: [{ attributes: { POSITION: position }, indices, targets }], weights: new Array(frames.length).fill(0) }],
+    animations: [{ samplers: [{ input: times, output: weightValues, interpolation: 'STEP' }], channels: [{ sampler: 0, target: { node: 0, path: 'weights' } }] }],
+    accessors, bufferViews: views, buffers: [{ byteLength: offset }],
+  };
+  writeGlb(path, json, Buffer.concat(parts));
+  return path;
+}
+
+// Decoded frames in m4mesh's order, written as m4mesh writes a glTF animation (targets are frames), for m4mesh metrics.
+function metricsOf(name, sequence, decodedFrames, label) {
+  const path = join(work, `${name}-${label}-decoded.glb`);
+  const original = readGlb(sequence.absolute);
+  const bin = Buffer.from(original.bin);
+  const primitive = original.json.meshes[0].primitives[0];
+  primitive.targets.forEach((t, k) => {
+    const view = original.json.bufferViews[original.json.accessors[t.POSITION].bufferView];
+    Buffer.from(decodedFrames[k].buffer, decodedFrames[k].byteOffset, decodedFrames[k].byteLength).copy(bin, view.byteOffset || 0);
+    for (const accessor of [original.json.accessors[t.POSITION]]) delete accessor.min, delete accessor.max;
+  });
+  writeGlb(path, original.json, bin);
+  const metrics = JSON.parse(execFileSync(m4mesh, ['metrics', sequence.absolute, path, '--json'], { encoding: 'utf8' }));
+  return { kg: metrics.kg_error_percent, maxError: metrics.max_error };
+}
+
+// Each original vertex's decoded vertex, for one file (the order depends on the setting): the one nearest at frame 0 (a grid of the decoded rest pose), ties between
+// coincident vertices broken by the whole trajectory. The decoders reorder (and may merge) vertices.
+function vertexMap(sequence, decodedFrames) {
+  const { frames, vertices } = sequence;
+  const decodedCount = decodedFrames[0].length / 3;
+  const rest = decodedFrames[0];
+  const { min, max } = (() => {
+    const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+    for (let i = 0; i < rest.length; ++i) (lo[i % 3] = Math.min(lo[i % 3], rest[i])), (hi[i % 3] = Math.max(hi[i % 3], rest[i]));
+    return { min: lo, max: hi };
+  })();
+  const cell = Math.max(max[0] - min[0], max[1] - min[1], max[2] - min[2]) / Math.cbrt(decodedCount) || 1;
+  const key = (x, y, z) => `${x},${y},${z}`;
+  const grid = new Map();
+  for (let j = 0; j < decodedCount; ++j) {
+    const k = key(...[0, 1, 2].map((a) => Math.floor((rest[3 * j + a] - min[a]) / cell)));
+    if (!grid.has(k)) grid.set(k, []);
+    grid.get(k).push(j);
+  }
+  const sampled = [0, frames.length >> 2, frames.length >> 1, (3 * frames.length) >> 2, frames.length - 1];
+  const cost = (i, j) => {
+    let sum = 0;
+    for (const f of sampled)
+      for (let a = 0; a < 3; ++a) sum += (frames[f][3 * i + a] - decodedFrames[f][3 * j + a]) ** 2;
+    return sum;
+  };
+  const map = new Uint32Array(vertices);
+  for (let i = 0; i < vertices; ++i) {
+    const c = [0, 1, 2].map((a) => Math.floor((frames[0][3 * i + a] - min[a]) / cell));
+    let best = -1, bestCost = Infinity;
+    for (let radius = 1; best < 0; ++radius)
+      for (let dx = -radius; dx <= radius; ++dx)
+        for (let dy = -radius; dy <= radius; ++dy)
+          for (let dz = -radius; dz <= radius; ++dz)
+            for (const j of grid.get(key(c[0] + dx, c[1] + dy, c[2] + dz)) || []) {
+              const value = cost(i, j);
+              if (value < bestCost) (bestCost = value), (best = j);
+            }
+    map[i] = best;
+  }
+  return map;
+}
+
+function reordered(decodedFrames, map) {
+  return decodedFrames.map((frame) => {
+    const out = new Float32Array(map.length * 3);
+    for (let i = 0; i < map.length; ++i) for (let a = 0; a < 3; ++a) out[3 * i + a] = frame[3 * map[i] + a];
+    return out;
+  });
+}
+
+// The best of RUNS after one run that warms the JIT up.
+const best = (run) => {
+  let ms = Infinity, result = run();
+  for (let r = 0; r < RUNS; ++r) {
+    const start = performance.now();
+    result = run();
+    ms = Math.min(ms, performance.now() - start);
+  }
+  return { ms, result };
+};
+
+// ---- gltfpack -cc: the compressed views decoded by meshoptimizer, then each frame's positions to float32 (the rest
+// pose plus the frame's target, through the node's dequantizing transform).
+function gltfpackFile(name, rest, bits) {
+  const path = join(work, `${name}-gltfpack-vp${bits}.glb`);
+  if (!existsSync(path)) execFileSync('node', [join(modules, 'gltfpack', 'cli.js'), '-i', rest, '-o', path, '-cc', '-vp', String(bits)], { stdio: 'ignore' });
+  return path;
+}
+
+// The compressed views decoded (what a loader that keeps gltfpack's quantized positions on the GPU does), or also
+// every frame as float32 positions: gltfpack's integer positions and targets through the node's scale and translation.
+function decodeGltfpack(glb, toFloat) {
+  const views = glb.json.bufferViews.map((view) => {
+    const ext = view.extensions && view.extensions.EXT_meshopt_compression;
+    if (!ext) return glb.bin.subarray(view.byteOffset || 0, (view.byteOffset || 0) + view.byteLength);
+    const target = new Uint8Array(ext.count * ext.byteStride);
+    MeshoptDecoder.decodeGltfBuffer(target, ext.count, ext.byteStride, glb.bin.subarray(ext.byteOffset || 0, (ext.byteOffset || 0) + ext.byteLength),
+                                    ext.mode, ext.filter);
+    return target;
+  });
+  if (!toFloat) return null;
+  const node = glb.json.nodes.find((n) => n.mesh !== undefined);
+  const primitive = glb.json.meshes[node.mesh].primitives[0];
+  const s = node.scale || [1, 1, 1], t = node.translation || [0, 0, 0];
+  const values = (index) => {
+    const accessor = glb.json.accessors[index];
+    const Type = { 5120: Int8Array, 5121: Uint8Array, 5122: Int16Array, 5123: Uint16Array }[accessor.componentType];
+    const view = glb.json.bufferViews[accessor.bufferView], bytes = views[accessor.bufferView];
+    if (!Type || accessor.normalized || !view.byteStride) throw new Error(`${index}: gltfpack wrote positions in a form this bench does not read`);
+    const stride = view.byteStride / Type.BYTES_PER_ELEMENT;
+    return { array: new Type(bytes.buffer, bytes.byteOffset + (accessor.byteOffset || 0), accessor.count * stride), stride };
+  };
+  const base = values(primitive.attributes.POSITION);
+  const count = base.array.length / base.stride;
+  return primitive.targets.map((target) => {
+    const delta = values(target.POSITION);
+    const frame = new Float32Array(count * 3);
+    for (let i = 0; i < count; ++i)
+      for (let a = 0; a < 3; ++a) frame[3 * i + a] = t[a] + s[a] * (base.array[base.stride * i + a] + delta.array[delta.stride * i + a]);
+    return frame;
+  });
+}
+
+// ---- Draco per frame: each frame a mesh of the same faces, positions quantized to `bits`.
+function dracoFile(name, sequence, bits) {
+  const path = join(work, `${name}-draco-q${bits}.bin`);
+  if (existsSync(path)) return path;
+  const chunks = [];
+  for (const frame of sequence.frames) {
+    const encoder = new dracoEncoder.Encoder(), builder = new dracoEncoder.MeshBuilder(), mesh = new dracoEncoder.Mesh();
+    builder.AddFacesToMesh(mesh, sequence.faces.length / 3, sequence.faces);
+    builder.AddFloatAttributeToMesh(mesh, dracoEncoder.POSITION, sequence.vertices, 3, frame);
+    encoder.SetAttributeQuantization(dracoEncoder.POSITION, bits);
+    const buffer = new dracoEncoder.DracoInt8Array();
+    const length = encoder.EncodeMeshToDracoBuffer(mesh, buffer);
+    const bytes = Buffer.alloc(4 + length);
+    bytes.writeUInt32LE(length, 0);
+    for (let i = 0; i < length; ++i) bytes[4 + i] = buffer.GetValue(i) & 0xff;
+    chunks.push(bytes);
+    [buffer, mesh, builder, encoder].forEach((o) => dracoEncoder.destroy(o));
+  }
+  writeFileSync(path, Buffer.concat(chunks));
+  return path;
+}
+
+function decodeDraco(path) {
+  const bytes = readFileSync(path);
+  const decoder = new dracoDecoder.Decoder();
+  const frames = [];
+  for (let at = 0; at < bytes.length;) {
+    const length = bytes.readUInt32LE(at);
+    const mesh = new dracoDecoder.Mesh();
+    const status = decoder.DecodeArrayToMesh(bytes.subarray(at + 4, at + 4 + length), length, mesh);
+    if (!status.ok()) throw new Error(`${path}: ${status.error_msg()}`);
+    const attribute = decoder.GetAttribute(mesh, decoder.GetAttributeId(mesh, dracoDecoder.POSITION));
+    const count = mesh.num_points() * 3;
+    const pointer = dracoDecoder._malloc(count * 4);
+    decoder.GetAttributeDataArrayForAllPoints(mesh, attribute, dracoDecoder.DT_FLOAT32, count * 4, pointer);
+    frames.push(new Float32Array(dracoDecoder.HEAPF32.buffer, pointer, count).slice());
+    dracoDecoder._free(pointer);
+    dracoDecoder.destroy(mesh);
+    at += 4 + length;
+  }
+  dracoDecoder.destroy(decoder);
+  return frames;
+}
+
+// ---- m4mesh: the npm package's module, every frame taken as float32 positions.
+function decodeM4mesh(path) {
+  const stream = new m4meshModule.Stream3d();
+  stream.push(readFileSync(path));
+  const status = JSON.parse(stream.end());
+  if (status.error) throw new Error(`${path}: ${status.error.text}`);
+  for (let f = 0; f < status.header.frames; ++f) stream.frame(f);
+  stream.delete();
+}
+
+// The fewest bytes at each KG target over a tool's settings (coarsest first).
+function smallestWithin(settings, make) {
+  const chosen = {};
+  for (const setting of settings) {
+    const entry = make(setting);
+    for (const target of TARGETS) if (entry.kg <= target && !chosen[target]) chosen[target] = { ...entry, setting };
+    if (TARGETS.every((target) => chosen[target])) break;
+  }
+  return chosen;
+}
+
+const brotli = (path) => brotliCompressSync(readFileSync(path), { params: { [constants.BROTLI_PARAM_QUALITY]: 11 } }).length;
+// Above this many bit/s the other file, downloaded then decoded, plays first; null: m4mesh plays first at every
+// bandwidth, 0: at none.
+const breakEven = (m4, other) => {
+  if (other.ms >= m4.ms) return other.bytes >= m4.bytes ? null : 0;
+  return other.bytes <= m4.bytes ? 0 : (8 * (other.bytes - m4.bytes)) / ((m4.ms - other.ms) / 1000);
+};
+
+const rows = [];
+const chosenSequences = process.argv.length > 4 ? process.argv.slice(4) : Object.keys(SEQUENCES);
+for (const name of chosenSequences) {
+  if (!SEQUENCES[name]) throw new Error(`no sequence ${name}: ${Object.keys(SEQUENCES).join(', ')}`);
+  if (!existsSync(join(data, SEQUENCES[name]))) continue;
+  process.stderr.write(`${name}\n`);
+  const sequence = sequenceOf(name);
+  const vertexFrames = sequence.vertices * sequence.frames.length;
+  const rest = restPoseGlb(name, sequence);
+  const gltfpack = smallestWithin([8, 9, 10, 11, 12, 13, 14, 15, 16], (bits) => {
+    const path = gltfpackFile(name, rest, bits);
+    const glb = readGlb(path);
+    const stored = best(() => decodeGltfpack(glb, false)).ms;
+    const { ms, result } = best(() => decodeGltfpack(glb, true));
+    return { path, bytes: readFileSync(path).length, ms, stored, ...metricsOf(name, sequence, reordered(result, vertexMap(sequence, result)), `gltfpack-vp${bits}`) };
+  });
+  const draco = smallestWithin([8, 9, 10, 11, 12, 13, 14, 15, 16], (bits) => {
+    const path = dracoFile(name, sequence, bits);
+    const { ms, result } = best(() => decodeDraco(path));
+    return { path, bytes: readFileSync(path).length, ms, ...metricsOf(name, sequence, reordered(result, vertexMap(sequence, result)), `draco-q${bits}`) };
+  });
+  for (const target of TARGETS) {
+    const stream = join(corpus, `${name}-cpca-wpt-${target}.m4m`);
+    if (!existsSync(stream)) {
+      process.stderr.write(`  no ${stream} (scripts/decode_corpus.sh makes it): left out\n`);
+      continue;
+    }
+    const m4 = { bytes: readFileSync(stream).length, ms: best(() => decodeM4mesh(stream)).ms };
+    const metrics = JSON.parse(execFileSync(m4mesh, ['metrics', sequence.absolute, stream, '--json'], { encoding: 'utf8' }));
+    m4.brotli = brotli(stream);
+    const row = { sequence: name, target, vertexFrames, m4mesh: { ...m4, kg: metrics.kg_error_percent, maxError: metrics.max_error } };
+    for (const [tool, chosen] of [['gltfpack', gltfpack], ['draco', draco]]) {
+      const entry = chosen[target];
+      if (!entry) continue;
+      row[tool] = { setting: entry.setting, bytes: entry.bytes, brotli: brotli(entry.path), kg: entry.kg, maxError: entry.maxError, ms: entry.ms, storedMs: entry.stored };
+      row[tool].breakEvenMbps = breakEven({ bytes: m4.brotli, ms: m4.ms }, { bytes: row[tool].brotli, ms: entry.ms });
+    }
+    rows.push(row);
+  }
+}
+writeFileSync(join(work, 'results.json'), JSON.stringify(rows, null, 1));
+
+const mvf = (row, entry) => (row.vertexFrames / (entry.ms / 1000) / 1e6).toFixed(1);
+const kb = (bytes) => (bytes / 1000).toFixed(1);
+const mbps = (bits) => (bits === null ? 'never' : `${(bits / 1e6).toFixed(1)}`);
+console.log('| sequence | KG ≤ | m4mesh cpca-wpt: kB (brotli) · KG · M vf/s | gltfpack -cc: -vp · kB (brotli) · KG · M vf/s | break-even Mbit/s | Draco per frame: -qp · kB (brotli) · KG · M vf/s | break-even Mbit/s |');
+console.log('|---|---|---|---|---|---|---|');
+for (const row of rows) {
+  const cells = [row.sequence, row.target];
+  const m = row.m4mesh;
+  cells.push(`${kb(m.bytes)} (${kb(m.brotli)}) · ${m.kg.toFixed(3)} · ${mvf(row, m)}`);
+  for (const tool of ['gltfpack', 'draco']) {
+    const e = row[tool];
+    cells.push(e ? `${e.setting} · ${kb(e.bytes)} (${kb(e.brotli)}) · ${e.kg.toFixed(3)} · ${mvf(row, e)}` : 'out of reach', e ? mbps(e.breakEvenMbps) : '');
+  }
+  console.log(`| ${cells.join(' | ')} |`);
+}
+console.log(`(${work}/results.json has the max errors, the times, and gltfpack's decoding alone as storedMs, positions left quantized)`);
