@@ -125,9 +125,11 @@ function metricsOf(name, sequence, decodedFrames, label) {
   const bin = Buffer.from(original.bin);
   const primitive = original.json.meshes[0].primitives[0];
   primitive.targets.forEach((t, k) => {
-    const view = original.json.bufferViews[original.json.accessors[t.POSITION].bufferView];
+    const accessor = original.json.accessors[t.POSITION];
+    const view = original.json.bufferViews[accessor.bufferView];
     Buffer.from(decodedFrames[k].buffer, decodedFrames[k].byteOffset, decodedFrames[k].byteLength).copy(bin, view.byteOffset || 0);
-    for (const accessor of [original.json.accessors[t.POSITION]]) delete accessor.min, delete accessor.max;
+    delete accessor.min;  // the original frame's bounds, no longer these values'
+    delete accessor.max;
   });
   writeGlb(path, original.json, bin);
   const metrics = JSON.parse(execFileSync(m4mesh, ['metrics', sequence.absolute, path, '--json'], { encoding: 'utf8' }));
