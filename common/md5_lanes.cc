@@ -4,7 +4,7 @@
 
 #include "common/md5.h"
 
-#if defined(__SSE2__) || defined(__wasm_simd128__)
+#if !defined(M4MESH_NO_SIMD) && (defined(__SSE2__) || defined(__wasm_simd128__))
 #include <emmintrin.h>
 #define M4MESH_MD5_LANES 1
 #endif

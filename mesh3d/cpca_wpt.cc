@@ -1,8 +1,10 @@
 #include "mesh3d/cpca_wpt.h"
 
+#include <algorithm>
+#include <cstring>
 #include <type_traits>
 
-#if defined(__SSE2__) || defined(__wasm_simd128__)
+#if !defined(M4MESH_NO_SIMD) && (defined(__SSE2__) || defined(__wasm_simd128__))
 #include <emmintrin.h>
 #define M4MESH_CPCA_SIMD 1
 #endif
@@ -56,78 +58,72 @@ void CpcaMeshPrediction::keep_fits(uint32_t cluster) {
   }
 }
 
-CpcaAnimation::CpcaAnimation(const CpcaHeader& header, std::span<const IntPoint3> mean_shape, uint32_t frames)
-    : mean_shape_(mean_shape.begin(), mean_shape.end()), fraction_bits_(header.fraction_bits) {
+CpcaSlots::CpcaSlots(const CpcaHeader& header, std::span<const IntPoint3> mean_shape, std::span<const std::vector<NodeIndex>> members)
+    : slot_of_vertex_(mean_shape.size()) {
+  for (const std::vector<NodeIndex>& cluster : members) {
+    first_slot_.push_back(vertex_of_slot_.size());
+    largest_ = std::max(largest_, cluster.size());
+    for (const NodeIndex v : cluster) {
+      slot_of_vertex_[v] = static_cast<NodeIndex>(vertex_of_slot_.size());
+      vertex_of_slot_.push_back(v);
+      for (size_t axis = 0; axis < 3; ++axis) mean_.push_back(static_cast<uint64_t>(int64_t{mean_shape[v][axis]}) << header.fraction_bits);
+    }
+  }
+  first_slot_.push_back(vertex_of_slot_.size());
   const double scale = 1.0 / static_cast<double>(uint64_t{1} << header.fraction_bits);
   for (int axis = 0; axis < 3; ++axis) {
     origin_[axis] = header.origin_value(axis);
     unit_[axis] = static_cast<double>(header.step_value(axis)) * scale;
   }
-  reset(frames);
 }
 
-void CpcaAnimation::reset(uint32_t frames) {
-  frames_ = frames;
-  fixed_.resize(size_t{frames} * mean_shape_.size() * 3);
-  for (uint32_t f = 0; f < frames; ++f)
-    for (size_t v = 0; v < mean_shape_.size(); ++v) {
-      const size_t element = (size_t{f} * mean_shape_.size() + v) * 3;
-      for (int axis = 0; axis < 3; ++axis)
-        fixed_[element + static_cast<size_t>(axis)] = static_cast<uint64_t>(int64_t{mean_shape_[v][axis]}) << fraction_bits_;
-    }
-}
-
-Float3 CpcaAnimation::position(uint32_t f, NodeIndex v) const {
-  const size_t element = (size_t{f} * mean_shape_.size() + v) * 3;
+Float3 CpcaSlots::position(const uint64_t* values) const {
   Float3 p;
   for (int axis = 0; axis < 3; ++axis)
-    p[axis] = static_cast<float>(origin_[axis] + static_cast<double>(static_cast<int64_t>(fixed_[element + static_cast<size_t>(axis)])) * unit_[axis]);
+    p[axis] = static_cast<float>(origin_[axis] + static_cast<double>(static_cast<int64_t>(values[axis])) * unit_[axis]);
   return p;
 }
 
-void CpcaAnimation::frame(uint32_t f, std::span<Float3> positions) const {
-  NodeIndex v = 0;
+void CpcaSlots::convert(const uint64_t* values, size_t first_slot, size_t slots, std::span<Float3> positions) const {
+  const NodeIndex* vertex = vertex_of_slot_.data() + first_slot;
+  size_t s = 0;
 #ifdef M4MESH_CPCA_SIMD
-  // Two vertices (six values, three pairs of axes) at a time, the same IEEE steps as position(): a
+  // Two slots (six values, three pairs of axes) at a time, the same IEEE steps as position(): a
   // value below 2^51 in magnitude becomes its double exactly by the 1.5 · 2^52 bias; pairs beyond it
   // take position().
   const __m128d origin[3] = {_mm_set_pd(origin_[1], origin_[0]), _mm_set_pd(origin_[0], origin_[2]), _mm_set_pd(origin_[2], origin_[1])};
   const __m128d unit[3] = {_mm_set_pd(unit_[1], unit_[0]), _mm_set_pd(unit_[0], unit_[2]), _mm_set_pd(unit_[2], unit_[1])};
   const __m128i bias = _mm_set1_epi64x(0x4338000000000000), half_range = _mm_set1_epi64x(int64_t{1} << 51);
   const __m128d biased = _mm_castsi128_pd(bias);
-  const uint64_t* values = fixed_.data() + size_t{f} * mean_shape_.size() * 3;
-  float* out = positions.data()->data();
-  for (; v + 2 <= positions.size(); v += 2) {
+  for (; s + 2 <= slots; s += 2) {
+    Float3& first = positions[vertex[s]];
+    Float3& second = positions[vertex[s + 1]];
     __m128i x[3];
     __m128i outside = _mm_setzero_si128();
-    for (int k = 0; k < 3; ++k) {
-      x[k] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(values + 3 * size_t{v} + 2 * static_cast<size_t>(k)));
+    for (size_t k = 0; k < 3; ++k) {
+      x[k] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(values + 3 * s + 2 * k));
       outside = _mm_or_si128(outside, _mm_srli_epi64(_mm_add_epi64(x[k], half_range), 52));
     }
     if (_mm_movemask_epi8(_mm_cmpeq_epi32(outside, _mm_setzero_si128())) != 0xFFFF) {
-      positions[v] = position(f, v), positions[v + 1] = position(f, v + 1);
+      first = position(values + 3 * s), second = position(values + 3 * s + 3);
       continue;
     }
     __m128 low = _mm_setzero_ps(), high = _mm_setzero_ps();
-    for (int k = 0; k < 3; ++k) {
+    for (size_t k = 0; k < 3; ++k) {
       const __m128d exact = _mm_sub_pd(_mm_castsi128_pd(_mm_add_epi64(x[k], bias)), biased);
       const __m128 pair = _mm_cvtpd_ps(_mm_add_pd(origin[k], _mm_mul_pd(exact, unit[k])));
       if (k == 0) low = pair;
       if (k == 1) low = _mm_movelh_ps(low, pair);
       if (k == 2) high = pair;
     }
-    _mm_storeu_ps(out + 3 * size_t{v}, low);
-    _mm_storel_pi(reinterpret_cast<__m64*>(out + 3 * size_t{v} + 4), high);
+    alignas(16) float both[8];
+    _mm_store_ps(both, low);
+    _mm_storel_pi(reinterpret_cast<__m64*>(both + 4), high);
+    std::memcpy(first.data(), both, sizeof first);
+    std::memcpy(second.data(), both + 3, sizeof second);
   }
 #endif
-  for (; v < positions.size(); ++v) positions[v] = position(f, v);
-}
-
-void CpcaAnimation::mean_frame(std::span<Float3> positions) const {
-  for (size_t v = 0; v < positions.size(); ++v)
-    for (int axis = 0; axis < 3; ++axis)
-      positions[v][axis] = static_cast<float>(
-          origin_[axis] + static_cast<double>(static_cast<int64_t>(static_cast<uint64_t>(int64_t{mean_shape_[v][axis]}) << fraction_bits_)) * unit_[axis]);
+  for (; s < slots; ++s) positions[vertex[s]] = position(values + 3 * s);
 }
 
 namespace {
@@ -135,54 +131,157 @@ namespace {
 // value × 2^−t, rounded (halves up) when t > 0; |value| ≤ 2^38, t ≥ −16.
 int64_t scaled(int64_t value, int t) { return t > 0 ? (value + (int64_t{1} << (t - 1))) >> t : value * (int64_t{1} << -t); }
 
-}  // namespace
-
-void CpcaAnimation::translate(std::span<const NodeIndex> members, std::span<const int32_t> translation, uint32_t shift, bool undo) {
-  const int t = static_cast<int>(shift) - static_cast<int>(kCpcaShiftBias);
-  for (uint32_t f = 0; f < frames_; ++f) {
-    uint64_t term[3];
-    for (size_t axis = 0; axis < 3; ++axis) {
-      term[axis] = static_cast<uint64_t>(scaled(translation[3 * size_t{f} + axis], t));
-      if (undo) term[axis] = 0 - term[axis];
-    }
-    for (NodeIndex m : members) {
-      const size_t at = size_t{f} * mean_shape_.size() + m;
-      for (size_t axis = 0; axis < 3; ++axis) fixed_[3 * at + axis] += term[axis];
-    }
-  }
+// A start's terms on one frame's run: run[3i + a] += term[a].
+void add_translation(uint64_t* run, size_t n, const std::array<uint64_t, 3>& term) {
+  for (size_t j = 0; j < n; j += 3)
+    for (size_t axis = 0; axis < 3; ++axis) run[j + axis] += term[axis];
 }
 
-void CpcaAnimation::refine(std::span<const NodeIndex> members, std::span<const int32_t> basis, std::span<const int32_t> coefficients,
-                           uint32_t shift, bool trajectory, bool undo) {
-  const int t = static_cast<int>(shift) - static_cast<int>(kCpcaShiftBias);
-  // One pass per kind and direction, its indexing known at compile time (the decoder's hot loop).
-  const auto pass = [&](auto kind, auto subtract) {
-    constexpr bool kTrajectory = decltype(kind)::value, kSubtract = decltype(subtract)::value;
-    // Member i's basis value on an axis is basis[i · per_member + axis · per_axis].
-    constexpr size_t per_member = kTrajectory ? 1 : 3, per_axis = kTrajectory ? 0 : 1;
-    for (uint32_t f = 0; f < frames_; ++f) {
-      int64_t c[3];
-      for (size_t axis = 0; axis < 3; ++axis) c[axis] = kTrajectory ? coefficients[3 * size_t{f} + axis] : coefficients[f];
-      for (size_t i = 0; i < members.size(); ++i) {
-        const size_t at = size_t{f} * mean_shape_.size() + members[i];
-        for (size_t axis = 0; axis < 3; ++axis) {
-          const uint64_t term = static_cast<uint64_t>(scaled(basis[i * per_member + axis * per_axis] * c[axis], t));
-          if constexpr (kSubtract)
-            fixed_[3 * at + axis] -= term;
-          else
-            fixed_[3 * at + axis] += term;
-        }
+// A start's terms on frame f (`undo`: their negation).
+std::array<uint64_t, 3> translation_terms(std::span<const int32_t> translation, uint32_t f, int u, bool undo) {
+  std::array<uint64_t, 3> term;
+  for (size_t axis = 0; axis < 3; ++axis) {
+    term[axis] = static_cast<uint64_t>(scaled(translation[3 * size_t{f} + axis], u));
+    if (undo) term[axis] = 0 - term[axis];
+  }
+  return term;
+}
+
+int exponent_of(uint32_t shift) { return static_cast<int>(shift) - static_cast<int>(kCpcaShiftBias); }
+
+// Coefficient lanes of frame f for the three axes: one value, or three with a trajectory component.
+std::array<int64_t, 3> coefficients_of(std::span<const int32_t> coefficients, uint32_t f, bool trajectory) {
+  if (trajectory) return {coefficients[3 * size_t{f}], coefficients[3 * size_t{f} + 1], coefficients[3 * size_t{f} + 2]};
+  return {coefficients[f], coefficients[f], coefficients[f]};
+}
+
+// row[j] ±= scaled(b(j) × coefficient[j mod 3], u) for j < n, a multiple
+// of 3: one unit's terms on one frame's run of a cluster. b(j) is
+// basis[j], or with kTrajectory basis[j / 3].
+template <bool kTrajectory, bool kSubtract>
+void add_terms(uint64_t* row, const int32_t* basis, size_t n, const std::array<int64_t, 3>& coefficient, int u) {
+  size_t j = 0;
+#ifdef M4MESH_CPCA_SIMD
+  // Six values (three pairs) at a time. The product is exact in binary64
+  // (|p| ≤ 2^38) and becomes its integer by the 1.5 · 2^52 bias; the
+  // rounding shift is a logical one of p + 2^63, whose 2^(63 − u) is taken
+  // out after it.
+  const __m128d pairs[3] = {_mm_set_pd(static_cast<double>(coefficient[1]), static_cast<double>(coefficient[0])),
+                            _mm_set_pd(static_cast<double>(coefficient[0]), static_cast<double>(coefficient[2])),
+                            _mm_set_pd(static_cast<double>(coefficient[2]), static_cast<double>(coefficient[1]))};
+  const uint64_t bias = 0x4338000000000000;
+  const __m128d biased = _mm_castsi128_pd(_mm_set1_epi64x(static_cast<int64_t>(bias)));
+  const uint64_t top = uint64_t{1} << 63;
+  const __m128i before = _mm_set1_epi64x(static_cast<int64_t>(u > 0 ? (uint64_t{1} << (u - 1)) + top - bias : 0 - bias));
+  const __m128i after = _mm_set1_epi64x(static_cast<int64_t>(u > 0 ? top >> u : 0));
+  const __m128i right = _mm_cvtsi32_si128(u > 0 ? u : 0), left = _mm_cvtsi32_si128(u < 0 ? -u : 0);
+  // The exponent's sign chooses the loop: a rounding shift right, or a shift left.
+  const auto six_at_a_time = [&](auto rounded) {
+    const int32_t* next = basis;
+    for (; j + 6 <= n; j += 6) {
+      __m128d b[3];
+      if constexpr (kTrajectory) {
+        const __m128d two = _mm_cvtepi32_pd(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(next)));
+        b[0] = _mm_unpacklo_pd(two, two), b[1] = two, b[2] = _mm_unpackhi_pd(two, two);
+        next += 2;
+      } else {
+        for (size_t k = 0; k < 3; ++k) b[k] = _mm_cvtepi32_pd(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(next + 2 * k)));
+        next += 6;
+      }
+      for (size_t k = 0; k < 3; ++k) {
+        const __m128i p = _mm_add_epi64(_mm_castpd_si128(_mm_add_pd(_mm_mul_pd(b[k], pairs[k]), biased)), before);
+        const __m128i term = decltype(rounded)::value ? _mm_sub_epi64(_mm_srl_epi64(p, right), after) : _mm_sll_epi64(p, left);
+        __m128i* at = reinterpret_cast<__m128i*>(row + j + 2 * k);
+        _mm_storeu_si128(at, kSubtract ? _mm_sub_epi64(_mm_loadu_si128(at), term) : _mm_add_epi64(_mm_loadu_si128(at), term));
       }
     }
   };
-  if (trajectory && undo)
-    pass(std::true_type{}, std::true_type{});
-  else if (trajectory)
-    pass(std::true_type{}, std::false_type{});
-  else if (undo)
-    pass(std::false_type{}, std::true_type{});
+  if (u > 0)
+    six_at_a_time(std::true_type{});
   else
-    pass(std::false_type{}, std::false_type{});
+    six_at_a_time(std::false_type{});
+#endif
+  for (; j < n; ++j) {
+    const uint64_t term = static_cast<uint64_t>(scaled(int64_t{basis[kTrajectory ? j / 3 : j]} * coefficient[j % 3], u));
+    row[j] = kSubtract ? row[j] - term : row[j] + term;
+  }
 }
+
+}  // namespace
+
+void cpca_add_terms(std::span<uint64_t> run, std::span<const int32_t> basis, const std::array<int64_t, 3>& lanes, uint32_t shift,
+                    bool trajectory, bool subtract) {
+  const int u = exponent_of(shift);
+  if (trajectory)
+    subtract ? add_terms<true, true>(run.data(), basis.data(), run.size(), lanes, u) : add_terms<true, false>(run.data(), basis.data(), run.size(), lanes, u);
+  else
+    subtract ? add_terms<false, true>(run.data(), basis.data(), run.size(), lanes, u) : add_terms<false, false>(run.data(), basis.data(), run.size(), lanes, u);
+}
+
+CpcaAnimation::CpcaAnimation(const CpcaHeader& header, std::span<const IntPoint3> mean_shape, std::span<const std::vector<NodeIndex>> members,
+                             uint32_t frames)
+    : slots_(header, mean_shape, members), frames_(frames) {
+  const std::vector<uint64_t>& mean = slots_.mean();
+  fixed_.reserve(size_t{frames} * mean.size());
+  for (uint32_t f = 0; f < frames; ++f) fixed_.insert(fixed_.end(), mean.begin(), mean.end());
+}
+
+Float3 CpcaAnimation::position(uint32_t f, NodeIndex v) const {
+  return slots_.position(fixed_.data() + (size_t{f} * slots_.vertex_count() + slots_.slot_of(v)) * 3);
+}
+
+void CpcaAnimation::frame(uint32_t f, std::span<Float3> positions) const {
+  slots_.convert(fixed_.data() + size_t{f} * slots_.vertex_count() * 3, 0, slots_.vertex_count(), positions);
+}
+
+void CpcaAnimation::translate(uint32_t cluster, std::span<const int32_t> translation, uint32_t shift, bool undo) {
+  for (uint32_t f = 0; f < frames_; ++f)
+    add_translation(fixed_.data() + size_t{f} * slots_.vertex_count() * 3 + slots_.first_value(cluster), slots_.value_count(cluster),
+                    translation_terms(translation, f, exponent_of(shift), undo));
+}
+
+void CpcaAnimation::refine(uint32_t cluster, std::span<const int32_t> basis, std::span<const int32_t> coefficients, uint32_t shift,
+                           bool trajectory, bool undo) {
+  for (uint32_t f = 0; f < frames_; ++f)
+    cpca_add_terms(std::span(fixed_).subspan(size_t{f} * slots_.vertex_count() * 3 + slots_.first_value(cluster), slots_.value_count(cluster)),
+                   basis, coefficients_of(coefficients, f, trajectory), shift, trajectory, undo);
+}
+
+CpcaSegment::CpcaSegment(const CpcaHeader& header, std::span<const IntPoint3> mean_shape, std::span<const std::vector<NodeIndex>> members,
+                         uint32_t frames)
+    : slots_(header, mean_shape, members), frames_(frames), terms_(members.size()), run_(3 * slots_.largest_cluster()) {}
+
+void CpcaSegment::translate(uint32_t cluster, std::vector<int32_t> translation, uint32_t shift) {
+  terms_[cluster].push_back({kCpcaStart, shift, nullptr, std::move(translation)});
+}
+
+void CpcaSegment::refine(uint32_t cluster, std::shared_ptr<const std::vector<int32_t>> basis, std::vector<int32_t> coefficients, uint32_t shift,
+                         bool trajectory) {
+  terms_[cluster].push_back({trajectory ? kCpcaTrajectory : kCpcaComponent, shift, std::move(basis), std::move(coefficients)});
+}
+
+void CpcaSegment::reset(uint32_t frames) {
+  frames_ = frames;
+  for (std::vector<Term>& cluster : terms_) cluster.clear();
+}
+
+void CpcaSegment::frame(uint32_t f, std::span<Float3> positions) const {
+  const std::vector<uint64_t>& mean = slots_.mean();
+  for (uint32_t c = 0; c < terms_.size(); ++c) {
+    const size_t first = slots_.first_value(c), count = slots_.value_count(c);
+    uint64_t* run = run_.data();
+    std::copy_n(mean.begin() + static_cast<ptrdiff_t>(first), count, run);
+    for (const Term& term : terms_[c]) {
+      const bool trajectory = term.kind == kCpcaTrajectory;
+      if (term.kind == kCpcaStart)
+        add_translation(run, count, translation_terms(term.values, f, exponent_of(term.shift), false));
+      else
+        cpca_add_terms(std::span(run, count), *term.basis, coefficients_of(term.values, f, trajectory), term.shift, trajectory);
+    }
+    slots_.convert(run, first / 3, count / 3, positions);
+  }
+}
+
+void CpcaSegment::mean_frame(std::span<Float3> positions) const { slots_.convert(slots_.mean().data(), 0, slots_.vertex_count(), positions); }
 
 }  // namespace m4mesh

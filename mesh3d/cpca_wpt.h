@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -272,39 +273,107 @@ struct CpcaCarried {
   }
 };
 
-// The animation of a segment's frames as decoded so far: per frame, vertex
-// and axis a 64-bit integer in steps of 2^−F grid units, starting at the
-// mean shape's grid index × 2^F (arithmetic modulo 2^64), and its
-// positions in binary32 as they are asked for.
+// The reconstruction's integers (docs/codec_cpca_wpt.md, "Reconstruction"):
+// per frame, vertex and axis a 64-bit integer in steps of 2^−F grid units,
+// starting at the mean shape's grid index × 2^F (arithmetic modulo 2^64).
+// A frame's integers are kept in slots, each cluster's members in member
+// order, clusters in order, so that a unit's terms on a frame add to one
+// contiguous run. CpcaSlots holds that order, the mean shape in it, and the
+// output's conversion to binary32.
+class CpcaSlots {
+ public:
+  // members: each cluster's vertices in member order (cpca_members); every vertex is in one.
+  CpcaSlots(const CpcaHeader& header, std::span<const IntPoint3> mean_shape, std::span<const std::vector<NodeIndex>> members);
+
+  size_t vertex_count() const { return slot_of_vertex_.size(); }
+  // The mean shape's integers, 3 a slot.
+  const std::vector<uint64_t>& mean() const { return mean_; }
+  // Where cluster c's values start among a frame's 3 a slot, and how many.
+  size_t first_value(uint32_t cluster) const { return 3 * first_slot_[cluster]; }
+  size_t value_count(uint32_t cluster) const { return 3 * (first_slot_[cluster + 1] - first_slot_[cluster]); }
+  size_t largest_cluster() const { return largest_; }
+
+  // The position of `values` (3 integers).
+  Float3 position(const uint64_t* values) const;
+  // The positions of the slots from `first_slot` on, given their integers, into their vertices.
+  void convert(const uint64_t* values, size_t first_slot, size_t slots, std::span<Float3> positions) const;
+  NodeIndex slot_of(NodeIndex v) const { return slot_of_vertex_[v]; }
+
+ private:
+  std::vector<NodeIndex> vertex_of_slot_, slot_of_vertex_;
+  std::vector<size_t> first_slot_;  // per cluster, then the vertex count
+  size_t largest_ = 0;
+  std::vector<uint64_t> mean_;
+  std::array<double, 3> origin_, unit_;  // unit: the grid step × 2^−F
+};
+
+// One refinement's terms on one frame's run of a cluster's integers (3 a
+// member): run[3i + a] += scale(b × w) with b = basis[3i + a], w = lanes[a]
+// (a component: the three lanes equal), or with `trajectory` b = basis[i];
+// `subtract` takes them away. |basis| ≤ 2^15, |lanes| ≤ 2^23.
+void cpca_add_terms(std::span<uint64_t> run, std::span<const int32_t> basis, const std::array<int64_t, 3>& lanes, uint32_t shift,
+                    bool trajectory, bool subtract = false);
+
+// A segment's frames as decoded so far, every integer kept: refinements add
+// to them at once and can be undone exactly (the encoder's analysis).
 class CpcaAnimation {
  public:
-  CpcaAnimation(const CpcaHeader& header, std::span<const IntPoint3> mean_shape, uint32_t frames);
+  CpcaAnimation(const CpcaHeader& header, std::span<const IntPoint3> mean_shape, std::span<const std::vector<NodeIndex>> members,
+                uint32_t frames);
 
   uint32_t frames() const { return frames_; }
-  size_t vertex_count() const { return mean_shape_.size(); }
 
   // Adds round(translation[3n + a] × 2^−(shift − 16)) to frame n, axis a
-  // of every member (a cluster's start); `undo` subtracts the same terms.
-  void translate(std::span<const NodeIndex> members, std::span<const int32_t> translation, uint32_t shift, bool undo = false);
+  // of every member of `cluster` (its start); `undo` subtracts the same terms.
+  void translate(uint32_t cluster, std::span<const int32_t> translation, uint32_t shift, bool undo = false);
   // Adds round(basis[3i + a] × coefficients[n] × 2^−(shift − 16)) to
-  // frame n, vertex members[i], axis a. With `trajectory`,
-  // basis[i] × coefficients[3n + a] instead; `undo` subtracts the same terms.
-  void refine(std::span<const NodeIndex> members, std::span<const int32_t> basis, std::span<const int32_t> coefficients, uint32_t shift,
-              bool trajectory = false, bool undo = false);
-  // The mean shape again, in `frames` frames (the next segment's).
-  void reset(uint32_t frames);
+  // frame n, member i of `cluster`, axis a (|basis| ≤ 2^15, |coefficients| ≤ 2^23).
+  // With `trajectory`, basis[i] × coefficients[3n + a] instead; `undo` subtracts the same terms.
+  void refine(uint32_t cluster, std::span<const int32_t> basis, std::span<const int32_t> coefficients, uint32_t shift, bool trajectory = false,
+              bool undo = false);
 
   Float3 position(uint32_t f, NodeIndex v) const;
+  void frame(uint32_t f, std::span<Float3> positions) const;
+
+ private:
+  CpcaSlots slots_;
+  uint32_t frames_;
+  std::vector<uint64_t> fixed_;  // frame-major, then slot, then axis
+};
+
+// A segment's refinements as decoded, cluster by cluster, and its frames
+// summed from them one frame at a time when asked for (the decoder: a
+// frame's integers never outlive it, and the terms of a cluster meet in
+// the cache). The same integers as CpcaAnimation's: the terms add modulo 2^64.
+class CpcaSegment {
+ public:
+  CpcaSegment(const CpcaHeader& header, std::span<const IntPoint3> mean_shape, std::span<const std::vector<NodeIndex>> members,
+              uint32_t frames);
+
+  uint32_t frames() const { return frames_; }
+  // CpcaAnimation::translate and refine, kept to be summed.
+  void translate(uint32_t cluster, std::vector<int32_t> translation, uint32_t shift);
+  void refine(uint32_t cluster, std::shared_ptr<const std::vector<int32_t>> basis, std::vector<int32_t> coefficients, uint32_t shift,
+              bool trajectory);
+  // No refinement, in `frames` frames (the next segment's).
+  void reset(uint32_t frames);
+
   void frame(uint32_t f, std::span<Float3> positions) const;
   // A frame no refinement has reached: the mean shape.
   void mean_frame(std::span<Float3> positions) const;
 
  private:
-  std::vector<IntPoint3> mean_shape_;
-  uint32_t fraction_bits_;
-  uint32_t frames_ = 0;
-  std::array<double, 3> origin_, unit_;  // unit: the grid step × 2^−F
-  std::vector<uint64_t> fixed_;          // frame-major, then vertex, then axis
+  struct Term {
+    uint32_t kind;  // kCpcaStart, kCpcaTrajectory, or kCpcaComponent for either of the others
+    uint32_t shift;
+    std::shared_ptr<const std::vector<int32_t>> basis;
+    std::vector<int32_t> values;  // a start's translations, else the coefficients
+  };
+
+  CpcaSlots slots_;
+  uint32_t frames_;
+  std::vector<std::vector<Term>> terms_;  // per cluster, in the order decoded
+  mutable std::vector<uint64_t> run_;     // one cluster's integers of the frame being summed
 };
 
 }  // namespace m4mesh

@@ -1,6 +1,7 @@
-// The clustered-PCA codec (codec_id 4): every prefix decodes and improves
-// on the one before, full reconstruction, WPT against RPT, determinism,
-// budgets and targets, damaged streams.
+// The clustered-PCA codec (codec_id 4): the reconstruction's arithmetic,
+// every prefix decodes and improves on the one before, full
+// reconstruction, WPT against RPT, determinism, budgets and targets,
+// damaged streams.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,6 +10,8 @@
 #include <numeric>
 #include <set>
 
+#include "common/bit_cast.h"
+#include "common/random.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/cpca_wpt.h"
@@ -69,6 +72,112 @@ void expect_prefixes_decode_and_improve(const MeshSequence& s, const std::vector
 }
 
 // With a unit per refinement, with groups of one size and with growing groups.
+// docs/codec_cpca_wpt.md, "Reconstruction", step 2: scale(p) of every
+// term, in scalar 64-bit arithmetic.
+int64_t document_scale(int64_t p, uint32_t shift) {
+  const int u = static_cast<int>(shift) - 16;
+  return u > 0 ? (p + (int64_t{1} << (u - 1))) >> u : p * (int64_t{1} << -u);
+}
+
+// A value within ±limit, the limits themselves one time in four.
+int32_t value_to_limit(SplitMix64& random, int32_t limit) {
+  return random.next() % 4 == 0 ? (random.next() % 2 ? limit : -limit) : random.uniform(-limit, limit);
+}
+
+// The SIMD loop and its scalar tail give the document's integers: every shift, both kinds and directions, runs of
+// 1 to 12 members.
+TEST(CpcaReconstruction, TermsAreTheDocumentsIntegers) {
+  SplitMix64 random(72);
+  for (uint32_t shift = 0; shift <= 63; ++shift)
+    for (const bool trajectory : {false, true})
+      for (const bool subtract : {false, true})
+        for (size_t members = 1; members <= 12; ++members) {
+          std::vector<uint64_t> run(3 * members);
+          for (uint64_t& x : run) x = random.next();
+          std::vector<int32_t> basis(trajectory ? members : 3 * members);
+          for (int32_t& b : basis) b = value_to_limit(random, kCpcaMaxBasis);
+          std::array<int64_t, 3> lanes{};
+          for (int64_t& w : lanes) w = value_to_limit(random, kCpcaMaxCoefficient);
+          if (!trajectory) lanes[1] = lanes[2] = lanes[0];
+          std::vector<uint64_t> expected = run;
+          for (size_t j = 0; j < run.size(); ++j) {
+            const auto term = static_cast<uint64_t>(document_scale(int64_t{basis[trajectory ? j / 3 : j]} * lanes[j % 3], shift));
+            expected[j] = subtract ? expected[j] - term : expected[j] + term;
+          }
+          cpca_add_terms(run, basis, lanes, shift, trajectory, subtract);
+          ASSERT_EQ(run, expected) << "shift " << shift << (trajectory ? ", trajectory" : "") << (subtract ? ", subtracted" : "") << ", "
+                                   << members << " members";
+        }
+}
+
+// The whole reconstruction, step by step as the document gives it, to
+// binary32: CpcaAnimation and CpcaSegment (SIMD conversion included) give
+// the same positions, at the value limits and over shifts.
+TEST(CpcaReconstruction, FramesAreTheDocumentsPositions) {
+  SplitMix64 random(71);
+  CpcaHeader header;
+  header.fraction_bits = kCpcaMaxFractionBits;
+  for (int axis = 0; axis < 3; ++axis) {
+    header.origin[axis] = bit_cast<uint32_t>(-1.5f + static_cast<float>(axis));
+    header.step[axis] = bit_cast<uint32_t>(0.001f * static_cast<float>(axis + 1));
+  }
+  const uint32_t vertices = 61, frames = 5;
+  std::vector<uint32_t> cluster_of(vertices);
+  for (uint32_t v = 0; v < vertices; ++v) cluster_of[v] = v < 40 ? static_cast<uint32_t>(random.uniform(0, 2)) : 3;  // sizes odd and even
+  const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, 4);
+  std::vector<IntPoint3> mean(vertices);
+  for (IntPoint3& p : mean)
+    for (int axis = 0; axis < 3; ++axis) p[axis] = random.uniform(-(1 << 20), 1 << 20);
+  // P per frame, vertex and axis, as the document defines it.
+  std::vector<uint64_t> expected(size_t{frames} * vertices * 3);
+  for (uint32_t f = 0; f < frames; ++f)
+    for (uint32_t v = 0; v < vertices; ++v)
+      for (int axis = 0; axis < 3; ++axis)
+        expected[(size_t{f} * vertices + v) * 3 + static_cast<size_t>(axis)] = static_cast<uint64_t>(int64_t{mean[v][axis]}) << header.fraction_bits;
+  CpcaAnimation animation(header, mean, members, frames);
+  CpcaSegment segment(header, mean, members, frames);
+  for (uint32_t shift : {0u, 1u, 15u, 16u, 17u, 30u, 47u, 63u})
+    for (uint32_t c = 0; c < members.size(); ++c)
+      for (const uint32_t kind : {kCpcaStart, kCpcaComponent, kCpcaTrajectory}) {
+        const size_t count = members[c].size();
+        std::vector<int32_t> values(kind == kCpcaComponent ? frames : 3 * frames), basis(kind == kCpcaComponent ? 3 * count : count);
+        for (int32_t& x : values) x = value_to_limit(random, kind == kCpcaStart ? kCpcaMaxTranslation : kCpcaMaxCoefficient);
+        for (int32_t& x : basis) x = value_to_limit(random, kCpcaMaxBasis);
+        for (uint32_t f = 0; f < frames; ++f)
+          for (size_t i = 0; i < count; ++i)
+            for (size_t axis = 0; axis < 3; ++axis) {
+              const int64_t term = kind == kCpcaStart       ? document_scale(values[3 * f + axis], shift)
+                                   : kind == kCpcaComponent ? document_scale(int64_t{basis[3 * i + axis]} * values[f], shift)
+                                                            : document_scale(int64_t{basis[i]} * values[3 * f + axis], shift);
+              expected[(size_t{f} * vertices + members[c][i]) * 3 + axis] += static_cast<uint64_t>(term);
+            }
+        if (kind == kCpcaStart) {
+          animation.translate(c, values, shift);
+          segment.translate(c, values, shift);
+        } else {
+          // Undone once, exactly, before it is added for good.
+          animation.refine(c, basis, values, shift, kind == kCpcaTrajectory);
+          animation.refine(c, basis, values, shift, kind == kCpcaTrajectory, true);
+          animation.refine(c, basis, values, shift, kind == kCpcaTrajectory);
+          segment.refine(c, std::make_shared<const std::vector<int32_t>>(basis), values, shift, kind == kCpcaTrajectory);
+        }
+      }
+  std::vector<Float3> eager(vertices), lazy(vertices);
+  for (uint32_t f = 0; f < frames; ++f) {
+    animation.frame(f, eager);
+    segment.frame(f, lazy);
+    for (uint32_t v = 0; v < vertices; ++v)
+      for (int axis = 0; axis < 3; ++axis) {
+        const auto P = static_cast<int64_t>(expected[(size_t{f} * vertices + v) * 3 + static_cast<size_t>(axis)]);
+        const double unit = static_cast<double>(header.step_value(axis)) / static_cast<double>(uint64_t{1} << header.fraction_bits);
+        const float position = static_cast<float>(static_cast<double>(header.origin_value(axis)) + static_cast<double>(P) * unit);
+        ASSERT_EQ(bit_cast<uint32_t>(eager[v][axis]), bit_cast<uint32_t>(position)) << "frame " << f << ", vertex " << v << ", axis " << axis;
+        ASSERT_EQ(bit_cast<uint32_t>(lazy[v][axis]), bit_cast<uint32_t>(position)) << "frame " << f << ", vertex " << v << ", axis " << axis;
+        ASSERT_EQ(bit_cast<uint32_t>(animation.position(f, v)[axis]), bit_cast<uint32_t>(position));
+      }
+  }
+}
+
 TEST(CpcaWpt, EveryPrefixDecodesAndTheErrorNeverGrows) {
   const MeshSequence s = test::test_sequence(12, 7);
   struct Case {

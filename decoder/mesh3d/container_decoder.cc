@@ -179,6 +179,7 @@ void Mesh3dDecoder::decode_unit(size_t index) {
   if (codec_->holds_frames() && decoded_count_ > 0) release_before(codec_->first_held_frame(header));
   read_unit_data(index, frame, [&](syntax::ReadIO& io) { codec_->decode_unit(header, io, unit_.frames); });
   if (codec_->holds_frames()) {
+    hashed_.clear();
     decoded_count_ = codec_->frames_decoded();
     return;
   }
@@ -190,16 +191,24 @@ void Mesh3dDecoder::decode_unit(size_t index) {
 
 void Mesh3dDecoder::release_before(uint32_t first_held) {
   for (uint32_t f = held_from_; f < first_held; ++f) {
-    std::vector<Float3>& slot = released_[f];
-    if (!spare_.empty()) {
-      slot = std::move(spare_.back());
-      spare_.pop_back();
-    }
-    slot.resize(header_.vertex_count);
-    codec_->frame(f, slot);
+    take_held_frame(f, released_[f]);
     unit_.released.push_back(f);
   }
   held_from_ = std::max(held_from_, first_held);
+}
+
+void Mesh3dDecoder::take_held_frame(uint32_t frame, std::vector<Float3>& positions) {
+  if (auto it = hashed_.find(frame); it != hashed_.end()) {
+    positions = std::move(it->second);
+    hashed_.erase(it);
+    return;
+  }
+  if (positions.empty() && !spare_.empty()) {
+    positions = std::move(spare_.back());
+    spare_.pop_back();
+  }
+  positions.resize(header_.vertex_count);
+  codec_->frame(frame, positions);
 }
 
 bool Mesh3dDecoder::holds(uint32_t frame) const { return frame >= held_from_ && frame < decoded_count_; }
@@ -213,15 +222,16 @@ void Mesh3dDecoder::check_hash(size_t index) {
   FrameHash hash;
   read_unit_data(index, frame, [&](syntax::ReadIO& io) { syntax::describe(io, hash); });
   if (options_.hashes == HashCheck::kSkip) return;
-  const Digest digest = digest_of(frame);
+  Digest digest;
+  if (codec_->holds_frames()) {
+    std::vector<Float3> positions(header_.vertex_count);
+    codec_->frame(frame, positions);
+    digest = frame_digest(positions);
+    hashed_[frame] = std::move(positions);
+  } else {
+    digest = digests_.at(frame);
+  }
   record_hash(index, false, frame, 1, std::equal(digest.begin(), digest.end(), hash.md5.begin()));
-}
-
-Digest Mesh3dDecoder::digest_of(uint32_t frame) const {
-  if (!codec_->holds_frames()) return digests_.at(frame);
-  std::vector<Float3> positions(header_.vertex_count);
-  codec_->frame(frame, positions);
-  return frame_digest(positions);
 }
 
 void Mesh3dDecoder::check_group_hash(size_t index, const UnitHeader& header) {
@@ -242,14 +252,15 @@ void Mesh3dDecoder::check_group_hash(size_t index, const UnitHeader& header) {
   if (options_.hashes == HashCheck::kSkip) return;
   std::vector<Digest> frames(hash.group_frames);
   if (codec_->holds_frames()) {
-    // The codec's frames, a batch of MD5 lanes at a time.
-    std::vector<std::vector<Float3>> batch(kMd5Lanes, std::vector<Float3>(header_.vertex_count));
+    // The codec's frames, a batch of MD5 lanes at a time, kept for their release.
     for (uint32_t k = 0; k < hash.group_frames; k += kMd5Lanes) {
       const uint32_t count = std::min<uint32_t>(kMd5Lanes, hash.group_frames - k);
       std::vector<std::span<const Float3>> positions;
       for (uint32_t j = 0; j < count; ++j) {
-        codec_->frame(first + k + j, batch[j]);
-        positions.push_back(batch[j]);
+        std::vector<Float3>& held = hashed_[first + k + j];
+        held.resize(header_.vertex_count);
+        codec_->frame(first + k + j, held);
+        positions.push_back(held);
       }
       frame_digests(positions, std::span(frames).subspan(k, count));
     }
@@ -394,8 +405,7 @@ bool Mesh3dDecoder::next_frame() {
     }
     if (!next_unit()) {
       if (!codec_->holds_frames() || !holds(next_display_)) return false;
-      positions_.resize(header_.vertex_count);
-      codec_->frame(next_display_, positions_);
+      take_held_frame(next_display_, positions_);
       frame_index_ = next_display_++;
       return true;
     }
@@ -404,8 +414,9 @@ bool Mesh3dDecoder::next_frame() {
 }
 
 void Mesh3dDecoder::frame(uint32_t index, std::span<Float3> positions) const {
-  if (!codec_->holds_frames() || holds(index)) return codec_->frame(index, positions);
-  const std::vector<Float3>& released = released_.at(index);
+  const auto hashed = hashed_.find(index);
+  if (hashed == hashed_.end() && (!codec_->holds_frames() || holds(index))) return codec_->frame(index, positions);
+  const std::vector<Float3>& released = hashed != hashed_.end() ? hashed->second : released_.at(index);
   std::copy(released.begin(), released.end(), positions.begin());
 }
 

@@ -153,12 +153,12 @@ class Mesh3dDecoder {
   void check_hash(size_t index);
   void check_group_hash(size_t index, const UnitHeader& header);
   bool is_hash_unit(size_t index) const;
-  // A decoded frame's MD5 digest.
-  Digest digest_of(uint32_t frame) const;
   // Records a hash unit's comparison for its frames; with kRequire a mismatch throws.
   void record_hash(size_t index, bool group, uint32_t first, uint32_t frames, bool match);
   // A progressive codec's frames before `first_held` become final: copied out.
   void release_before(uint32_t first_held);
+  // A held frame into `positions`: the one its hash unit made, else the codec's.
+  void take_held_frame(uint32_t frame, std::vector<Float3>& positions);
   void finish();
   // An error of a unit header's element (unit_type, frame_index).
   [[noreturn]] void fail(ErrorKind kind, size_t index, int64_t frame, const char* element, const std::string& message) const;
@@ -184,6 +184,8 @@ class Mesh3dDecoder {
   // Unless kSkip, the MD5 of every frame as it was decoded (a codec that
   // holds every frame is hashed when a hash unit is read).
   std::map<uint32_t, Digest> digests_;
+  // A progressive codec's held frames as made for their hash unit, until a unit changes them or they are taken.
+  std::map<uint32_t, std::vector<Float3>> hashed_;
   // Display order: frames copied out of the codec until their turn.
   std::map<uint32_t, std::vector<Float3>> ready_;
   std::map<uint32_t, std::vector<Float3>> released_;  // by the last unit

@@ -75,7 +75,7 @@ class CpcaDecoder final : public CodecDecoder3d {
       }
       mesh_.emplace(base.faces, base.coding_order, cluster_of_, header_.cluster_count, base.positions);
       faces_ = std::move(base.faces);
-      animation_.emplace(header_, base.positions, frames_of(0));
+      animation_.emplace(header_, base.positions, members_, frames_of(0));
       report(decoded);
       return;
     }
@@ -209,9 +209,9 @@ class CpcaDecoder final : public CodecDecoder3d {
       const ListedComponent* continued = h.kind == kCpcaContinued ? &previous_[h.cluster][h.reference] : nullptr;
       const bool trajectory = h.kind == kCpcaTrajectory || (continued && continued->trajectory);
       const size_t lanes = trajectory ? 3 : 1;
-      translation_.resize(h.kind == kCpcaStart ? 3 * frames : 0);
-      basis_.resize(h.kind == kCpcaStart || continued ? 0 : (trajectory ? 1 : 3) * members);
-      coefficients_.resize(h.kind == kCpcaStart ? 0 : lanes * frames);
+      std::vector<int32_t> translation(h.kind == kCpcaStart ? 3 * frames : 0);
+      std::vector<int32_t> basis(h.kind == kCpcaStart || continued ? 0 : (trajectory ? 1 : 3) * members);
+      std::vector<int32_t> coefficients(h.kind == kCpcaStart ? 0 : lanes * frames);
       std::array<int64_t, 3> before{};
       if (h.kind == kCpcaStart && previous_start_[h.cluster]) before = previous_start_[h.cluster]->at(h.shift, kCpcaMaxTranslation);
       if (continued) before = continued->coefficients.at(h.shift, kCpcaMaxCoefficient);
@@ -219,15 +219,15 @@ class CpcaDecoder final : public CodecDecoder3d {
       // fits (about 200 bytes a member) take no more than the segment's 24 bytes a vertex-frame.
       if ((h.kind == kCpcaMeshComponent || h.kind == kCpcaTrajectory) && std::min(header_.segment_frames, object_.frame_count) >= kKeptFitFrames)
         mesh_->keep_fits(h.cluster);
-      describe_refinement(io, coders, *mesh_, h, trajectory, before, translation_, basis_, coefficients_);
+      describe_refinement(io, coders, *mesh_, h, trajectory, before, translation, basis, coefficients);
       if (h.kind == kCpcaStart) {
-        animation_->translate(members_[h.cluster], translation_, h.shift);
-        start_[h.cluster] = CpcaCarried::of(translation_, 3, h.shift);
+        start_[h.cluster] = CpcaCarried::of(translation, 3, h.shift);
+        animation_->translate(h.cluster, std::move(translation), h.shift);
         continue;
       }
-      ListedComponent listed{continued ? continued->basis : std::make_shared<const std::vector<int32_t>>(basis_), trajectory,
-                             CpcaCarried::of(coefficients_, lanes, h.shift)};
-      animation_->refine(members_[h.cluster], *listed.basis, coefficients_, h.shift, trajectory);
+      ListedComponent listed{continued ? continued->basis : std::make_shared<const std::vector<int32_t>>(std::move(basis)), trajectory,
+                             CpcaCarried::of(coefficients, lanes, h.shift)};
+      animation_->refine(h.cluster, listed.basis, std::move(coefficients), h.shift, trajectory);
       listed_[h.cluster].push_back(std::move(listed));
     }
     io.finish(syntax::cpca_last_element(refinements.back().kind));
@@ -250,9 +250,8 @@ class CpcaDecoder final : public CodecDecoder3d {
   std::vector<std::vector<ListedComponent>> listed_, previous_;
   std::vector<std::optional<CpcaCarried>> start_, previous_start_;
   std::vector<Triangle> faces_;
-  std::optional<CpcaAnimation> animation_;
+  std::optional<CpcaSegment> animation_;
   std::optional<CpcaMeshPrediction> mesh_;
-  std::vector<int32_t> translation_, basis_, coefficients_;
 };
 
 }  // namespace

@@ -277,7 +277,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     parallel_for(header_.cluster_count, threads_, [&](size_t c) { analyze(s, static_cast<uint32_t>(c)); });
     svd_seconds_ += seconds_since(start);
     start = std::chrono::steady_clock::now();
-    const CpcaAnimation mean_only(header_, mean_, static_cast<uint32_t>(s.frames.size()));
+    const CpcaAnimation mean_only(header_, mean_, members_, static_cast<uint32_t>(s.frames.size()));
     for (uint32_t c = 0; c < header_.cluster_count; ++c) mean_error_.push_back(squared_error(s, mean_only, c));
     spread_ = squared_spread(s);
     int q = noise_.value_or(first > 0 ? plan_.noise : kDefaultNoise);
@@ -350,7 +350,7 @@ class CpcaEncoder final : public CodecEncoder3d {
   // the components sent are the ones the next segment may continue.
   void emit(const MeshSequence& s, uint32_t first, uint64_t limit, UnitSink& sink, QualityMeter& meter) {
     const uint32_t count = static_cast<uint32_t>(s.frames.size());
-    CpcaAnimation animation(header_, mean_, count);
+    CpcaAnimation animation(header_, mean_, members_, count);
     std::vector<uint8_t> started(header_.cluster_count, 0);
     const std::vector<uint32_t> continuable = continuable_counts();
     std::vector<std::vector<ListedBasis>> listed(header_.cluster_count);
@@ -371,7 +371,7 @@ class CpcaEncoder final : public CodecEncoder3d {
       sink.unit(UnitType::kRefinement, first,
                 [&](syntax::WriteIO& io) { write_refinements(io, unit, *mesh_, started, continuable); });
       for (const Operator* op : unit) {
-        apply(animation, members_[op->cluster], *op);
+        apply(animation, *op);
         if (op->kind == kCpcaStart)
           started_last[op->cluster] = CpcaCarried::of(op->translation, 3, op->shift);
         else
@@ -433,7 +433,7 @@ class CpcaEncoder final : public CodecEncoder3d {
     plan.noise = q;
     plan.chains.assign(header_.cluster_count, 0);
     std::optional<CpcaAnimation> animation;
-    if (exact) animation.emplace(header_, mean_, static_cast<uint32_t>(s.frames.size()));
+    if (exact) animation.emplace(header_, mean_, members_, static_cast<uint32_t>(s.frames.size()));
     // Each cluster's chain on a thread (a cluster changes its own members' positions alone), then joined in cluster order.
     std::vector<std::vector<Operator>> sequences(header_.cluster_count);
     parallel_for(header_.cluster_count, threads_, [&](size_t index) {
@@ -446,7 +446,7 @@ class CpcaEncoder final : public CodecEncoder3d {
       std::vector<Operator>& sequence = sequences[c];
       auto measure = [&](Operator& op, double estimate) {
         if (animation) {
-          apply(*animation, members_[c], op);
+          apply(*animation, op);
           const double after = squared_error(s, *animation, c);
           op.gain = error - after;
           error = after;
@@ -457,7 +457,7 @@ class CpcaEncoder final : public CodecEncoder3d {
       // An operator that removes no error leaves the animation as it was.
       auto undo = [&](const Operator& op) {
         if (!animation) return;
-        apply(*animation, members_[c], op, true);
+        apply(*animation, op, true);
         error = squared_error(s, *animation, c);
       };
       Operator start = quantize_start(translations_[c], c, members, q, static_cast<int>(header_.fraction_bits));
@@ -703,10 +703,10 @@ class CpcaEncoder final : public CodecEncoder3d {
   // The KG error of the decoder's output of the segment after the plan's
   // first `count` operators, as `m4mesh metrics` measures it.
   double kg_of_prefix(const MeshSequence& s, size_t count) const {
-    CpcaAnimation animation(header_, mean_, static_cast<uint32_t>(s.frames.size()));
+    CpcaAnimation animation(header_, mean_, members_, static_cast<uint32_t>(s.frames.size()));
     for (size_t i = 0; i < count; ++i) {
       const Operator& op = plan_.operators[plan_.order[i]];
-      apply(animation, members_[op.cluster], op);
+      apply(animation, op);
     }
     const SequenceSource original(s);
     QualityMeter meter(original);

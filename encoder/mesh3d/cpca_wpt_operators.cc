@@ -61,11 +61,11 @@ void write_refinements(syntax::WriteIO& io, SymbolIO& symbols, std::span<Operato
 
 }  // namespace
 
-void apply(CpcaAnimation& animation, std::span<const NodeIndex> members, const Operator& op, bool undo) {
+void apply(CpcaAnimation& animation, const Operator& op, bool undo) {
   if (op.kind == kCpcaStart)
-    animation.translate(members, op.translation, op.shift, undo);
+    animation.translate(op.cluster, op.translation, op.shift, undo);
   else
-    animation.refine(members, op.basis, op.coefficients, op.shift, op.trajectory, undo);
+    animation.refine(op.cluster, op.basis, op.coefficients, op.shift, op.trajectory, undo);
 }
 
 Operator quantize(const Component& c, uint32_t cluster, int noise, int fraction_bits, int basis_finer) {

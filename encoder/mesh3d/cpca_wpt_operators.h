@@ -35,7 +35,7 @@ struct Operator {
 };
 
 // Adds what the operator decodes to (with `undo`: subtracts it, exactly).
-void apply(CpcaAnimation& animation, std::span<const NodeIndex> members, const Operator& op, bool undo = false);
+void apply(CpcaAnimation& animation, const Operator& op, bool undo = false);
 
 // The operator of a component at the noise step Δ = 2^(noise / 2) grid
 // units: the coefficients sigma · w in steps of Δ and the basis in steps of
