@@ -155,11 +155,11 @@ std::array<int64_t, 3> coefficients_of(std::span<const int32_t> coefficients, ui
   return {coefficients[f], coefficients[f], coefficients[f]};
 }
 
-// row[j] ±= scaled(b(j) × coefficient[j mod 3], u) for j < n, a multiple
+// run[j] ±= scaled(b(j) × coefficient[j mod 3], u) for j < n, a multiple
 // of 3: one unit's terms on one frame's run of a cluster. b(j) is
 // basis[j], or with kTrajectory basis[j / 3].
 template <bool kTrajectory, bool kSubtract>
-void add_terms(uint64_t* row, const int32_t* basis, size_t n, const std::array<int64_t, 3>& coefficient, int u) {
+void add_terms(uint64_t* run, const int32_t* basis, size_t n, const std::array<int64_t, 3>& coefficient, int u) {
   size_t j = 0;
 #ifdef M4MESH_CPCA_SIMD
   // Six values (three pairs) at a time. The product is exact in binary64
@@ -191,7 +191,7 @@ void add_terms(uint64_t* row, const int32_t* basis, size_t n, const std::array<i
       for (size_t k = 0; k < 3; ++k) {
         const __m128i p = _mm_add_epi64(_mm_castpd_si128(_mm_add_pd(_mm_mul_pd(b[k], pairs[k]), biased)), before);
         const __m128i term = decltype(rounded)::value ? _mm_sub_epi64(_mm_srl_epi64(p, right), after) : _mm_sll_epi64(p, left);
-        __m128i* at = reinterpret_cast<__m128i*>(row + j + 2 * k);
+        __m128i* at = reinterpret_cast<__m128i*>(run + j + 2 * k);
         _mm_storeu_si128(at, kSubtract ? _mm_sub_epi64(_mm_loadu_si128(at), term) : _mm_add_epi64(_mm_loadu_si128(at), term));
       }
     }
@@ -203,7 +203,7 @@ void add_terms(uint64_t* row, const int32_t* basis, size_t n, const std::array<i
 #endif
   for (; j < n; ++j) {
     const uint64_t term = static_cast<uint64_t>(scaled(int64_t{basis[kTrajectory ? j / 3 : j]} * coefficient[j % 3], u));
-    row[j] = kSubtract ? row[j] - term : row[j] + term;
+    run[j] = kSubtract ? run[j] - term : run[j] + term;
   }
 }
 
