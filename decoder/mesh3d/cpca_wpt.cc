@@ -216,7 +216,7 @@ class CpcaDecoder final : public CodecDecoder3d {
       if (h.kind == kCpcaStart && previous_start_[h.cluster]) before = previous_start_[h.cluster]->at(h.shift, kCpcaMaxTranslation);
       if (continued) before = continued->coefficients.at(h.shift, kCpcaMaxCoefficient);
       // A member's fit over the mesh is the same for every component of its cluster: found once and kept, when the
-      // fits (about 200 bytes a member) take no more than the segment's 24 bytes a vertex-frame.
+      // fits (about 200 bytes a member) take no more than 24 bytes a vertex-frame of the segment.
       if ((h.kind == kCpcaMeshComponent || h.kind == kCpcaTrajectory) && std::min(header_.segment_frames, object_.frame_count) >= kKeptFitFrames)
         mesh_->keep_fits(h.cluster);
       describe_refinement(io, coders, *mesh_, h, trajectory, before, translation, basis, coefficients);
