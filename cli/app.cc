@@ -16,6 +16,7 @@
 #include "cli/decode3d.h"
 #include "cli/demo.h"
 #include "cli/encode3d.h"
+#include "cli/gltf_compress.h"
 #include "cli/inspect.h"
 #include "cli/mesh2d.h"
 #include "cli/metrics.h"
@@ -110,6 +111,15 @@ int run_m4mesh(int argc, const char* const* argv) {
   encode3d_cmd->add_option("--mesh", encode3d_args.gltf_mesh, "glTF: the node or mesh to code, when the asset has several");
   encode3d_cmd->add_option("--animation", encode3d_args.gltf_animation, "glTF: the animation to bake, when the asset has several");
   encode3d_cmd->add_flag("--trace", encode3d_args.trace, "print every syntax element written, as `m4mesh trace` prints them");
+
+  GltfCompressArgs gltf_args;
+  gltf_args.encoding.codec = "auto";
+  CLI::App* gltf_cmd = app.add_subcommand("gltf", "Compress a glTF file's morph-target animations into m4mesh streams (M4MESH_vertex_animation), keeping the rest of the file");
+  gltf_cmd->add_option("input", gltf_args.input, "a .glb or .gltf file")->required();
+  gltf_cmd->add_option("-o,--output", gltf_args.output, "the compressed file (.glb)")->required();
+  add_codec_options(*gltf_cmd, gltf_args.encoding);
+  gltf_cmd->add_flag("--required", gltf_args.required, "list the extension in extensionsRequired too (loaders without it refuse the file instead of showing the rest pose)");
+  gltf_cmd->footer("Default: --codec auto --target-kg 0.1 (every codec, the smallest stream whose decoded KG error is at most 0.1 %).");
 
   Decode3dArgs decode3d_args;
   CLI::App* decode3d_cmd = app.add_subcommand("decode3d", "Decode a mesh3d stream into OBJ or PLY frames, a .m4seq, .pc2 or .f32 file");
@@ -277,6 +287,7 @@ int run_m4mesh(int argc, const char* const* argv) {
     if (*serve_cmd) return run_serve(serve_options);
     if (*generate_cmd) return run_generate_suite(suite_folder);
     if (*encode3d_cmd) return console::set_input(encode3d_args.input), run_encode3d(encode3d_args);
+    if (*gltf_cmd) return console::set_input(gltf_args.input), run_gltf_compress(gltf_args);
     if (*decode3d_cmd) return console::set_input(decode3d_args.input), run_decode3d(decode3d_args);
     if (*metrics_cmd) return run_metrics(metrics_args);  // names each input as it reads it
     if (*progressive_cmd) return run_progressive(progressive_args);

@@ -28,17 +28,6 @@ namespace {
 
 using console::say;
 
-// A frame rate as the container's fraction num / den (each 1 … 65535): the
-// smallest power-of-ten den that holds it exactly, else the largest that fits.
-std::pair<uint32_t, uint32_t> frame_rate_fraction(double fps) {
-  uint32_t fitting = 1;
-  for (uint32_t den = 1; den <= 1000 && fps * den <= 65535; den *= 10) {
-    fitting = den;
-    if (std::abs(fps * den - std::round(fps * den)) < 1e-6 * fps * den) break;
-  }
-  return {static_cast<uint32_t>(std::max(1L, std::lround(fps * fitting))), fitting};
-}
-
 // The frames to code and their rate: a glTF animation baked, or a sequence
 // (read frame by frame when large: open_sequence).
 std::pair<std::unique_ptr<FrameSource>, double> read_input(const Encode3dArgs& args) {
@@ -61,6 +50,15 @@ bool starts_as_stream(const std::string& path) {
 
 }  // namespace
 
+std::pair<uint32_t, uint32_t> frame_rate_fraction(double fps) {
+  uint32_t fitting = 1;
+  for (uint32_t den = 1; den <= 1000 && fps * den <= 65535; den *= 10) {
+    fitting = den;
+    if (std::abs(fps * den - std::round(fps * den)) < 1e-6 * fps * den) break;
+  }
+  return {static_cast<uint32_t>(std::max(1L, std::lround(fps * fitting))), fitting};
+}
+
 void add_codec_options(CLI::App& command, Encode3dArgs& args) {
   std::string names;
   for (const Codec3d& c : codecs3d())
@@ -70,6 +68,7 @@ void add_codec_options(CLI::App& command, Encode3dArgs& args) {
   command.add_option("--target-kg", args.target_kg,
                      "the smallest stream whose decoded KG error is at most this (percent), searching the codec's quality parameter");
   command.add_option("--target-psnr", args.target_psnr, "the smallest stream whose decoded PSNR is at least this (dB)");
+  command.add_option("--max-error", args.max_error, "the smallest stream with no decoded vertex farther than this from its original (the model's units)");
   command.add_option("--threads", args.threads, "trials at once in --codec auto and in cpca-wpt's own search (default 0: every core; the stream kept does not depend on it)");
   // One flag per option name; codecs that share a name share the flag.
   std::set<std::string> added;
@@ -125,10 +124,10 @@ int run_encode3d(const Encode3dArgs& args) {
   // Codecs count their own steps: frames.
   console::Progress progress("encoding", sequence.frame_count());
   options.progress = [&](size_t done, size_t total) { progress.update(done, total); };
-  const QualityTarget target{args.target_kg, args.target_psnr};
+  const QualityTarget target{args.target_kg, args.target_psnr, args.max_error};
   const bool targeted = target.set();
   if (targeted) check_target(target);
-  if (args.codec == "auto" && !targeted) throw usage_error("--codec auto needs --target-kg or --target-psnr");
+  if (args.codec == "auto" && !targeted) throw usage_error("--codec auto needs --target-kg, --target-psnr or --max-error");
   if (targeted && args.trace) throw usage_error("--trace and a quality target: trace the stream the search keeps");
   const double vertex_frames_all = static_cast<double>(sequence.vertex_count()) * static_cast<double>(sequence.frame_count());
   const double bits = 8.0 / vertex_frames_all;
@@ -137,11 +136,11 @@ int run_encode3d(const Encode3dArgs& args) {
     progress.finish();
     trials.push_back(t);
     if (t.bytes == 0 && !t.meets) {  // left out: the reason in the last column
-      say("  %-14s %-22s %10s       %8s       %9s       %8s  left out: %s", t.codec.c_str(), "-", "-", "-", "-", "-", t.note.c_str());
+      say("  %-14s %-22s %10s       %8s       %9s       %8s      %10s  left out: %s", t.codec.c_str(), "-", "-", "-", "-", "-", "-", t.note.c_str());
       return;
     }
-    say("  %-14s %-22s %10llu bytes %8.4f bpvf  KG %9.5f  PSNR %8.3f  %s%s%s", t.codec.c_str(), t.parameter.c_str(),
-        static_cast<unsigned long long>(t.bytes), t.bpvf(), t.kg, t.psnr, t.meets ? "meets" : "misses", t.note.empty() ? "" : "  ",
+    say("  %-14s %-22s %10llu bytes %8.4f bpvf  KG %9.5f  PSNR %8.3f  max %10.4g  %s%s%s", t.codec.c_str(), t.parameter.c_str(),
+        static_cast<unsigned long long>(t.bytes), t.bpvf(), t.kg, t.psnr, t.max_error, t.meets ? "meets" : "misses", t.note.empty() ? "" : "  ",
         t.note.c_str());
   };
   const auto start = std::chrono::steady_clock::now();

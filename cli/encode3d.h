@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "encoder/mesh3d/codec_options.h"
 
@@ -19,7 +20,7 @@ struct Encode3dArgs {
   std::string output;
   std::string codec = "bfs3d";       // or "auto": every codec at the target, the smallest kept
   CodecOptionValues codec_options;  // only those given
-  std::optional<double> target_kg, target_psnr;  // a quality target
+  std::optional<double> target_kg, target_psnr, max_error;  // a quality target
   bool no_hash = false;
   bool reorder = false;      // vertices renumbered in coding order
   std::string position_blend = "auto";  // the base meshes' blend: auto or 0 … 16
@@ -31,6 +32,9 @@ struct Encode3dArgs {
   bool trace = false;
   unsigned threads = 0;  // --codec auto: codecs searched at once; 0: every core
 };
+// A frame rate as the container's fraction num / den (each 1 … 65535): the
+// smallest power-of-ten den that holds it exactly, else the largest that fits.
+std::pair<uint32_t, uint32_t> frame_rate_fraction(double fps);
 // Adds --codec, the quality targets and every registered codec's own
 // options to `command`.
 void add_codec_options(CLI::App& command, Encode3dArgs& args);

@@ -1,5 +1,3 @@
-#include <tiny_gltf.h>
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -10,6 +8,7 @@
 #include <set>
 
 #include "cli/gltf.h"
+#include "cli/gltf_asset.h"
 #include "common/error.h"
 
 namespace m4mesh {
@@ -17,180 +16,20 @@ namespace m4mesh {
 namespace {
 
 constexpr uint64_t kMostVertices = uint64_t{1} << 24;
-// The most numbers an accessor without a buffer view (all zeros) may stand for.
-constexpr size_t kMostUnbackedNumbers = size_t{1} << 24;
-
 using Matrix = Eigen::Matrix4d;
-
-class Asset {
- public:
-  Asset(const std::string& path, tinygltf::Model model) : path_(path), model_(std::move(model)) {}
-
-  Error error(const std::string& message) const { return Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, path_ + ": " + message); }
-  const tinygltf::Model& model() const { return model_; }
-
-  // Accessor `index` as `components` numbers per element (floats, or
-  // integers, normalized when the accessor says so), sparse values applied.
-  std::vector<double> numbers(int index, int components, const std::string& what) const {
-    const tinygltf::Accessor& a = accessor(index, what);
-    if (tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type)) != components)
-      throw error(what + ": accessor " + std::to_string(index) + " has " + std::to_string(tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type))) +
-                  " components an element, not " + std::to_string(components));
-    // Memory only for what the buffers hold: elements without a buffer view (zeros) are capped.
-    if (a.bufferView >= 0) check_elements(a.bufferView, a.byteOffset, a.count, a.componentType, components, what);
-    else if (a.count * static_cast<size_t>(components) > kMostUnbackedNumbers)
-      throw error(what + ": accessor " + std::to_string(index) + " holds " + std::to_string(a.count) + " elements and no buffer view");
-    std::vector<double> out(a.count * static_cast<size_t>(components), 0.0);
-    if (a.bufferView >= 0) read_elements(a.bufferView, a.byteOffset, a.count, a.componentType, components, a.normalized, what, out.data());
-    if (a.sparse.isSparse) {
-      const auto count = static_cast<size_t>(a.sparse.count);
-      if (a.sparse.count < 1 || count > a.count) throw error(what + ": a sparse accessor of " + std::to_string(a.sparse.count) + " values");
-      check_elements(a.sparse.indices.bufferView, static_cast<size_t>(a.sparse.indices.byteOffset), count, a.sparse.indices.componentType, 1, what);
-      check_elements(a.sparse.values.bufferView, static_cast<size_t>(a.sparse.values.byteOffset), count, a.componentType, components, what);
-      std::vector<double> at(count), values(count * static_cast<size_t>(components));
-      read_elements(a.sparse.indices.bufferView, static_cast<size_t>(a.sparse.indices.byteOffset), count, a.sparse.indices.componentType, 1, false,
-                    what + " (sparse indices)", at.data());
-      read_elements(a.sparse.values.bufferView, static_cast<size_t>(a.sparse.values.byteOffset), count, a.componentType, components, a.normalized,
-                    what + " (sparse values)", values.data());
-      for (size_t k = 0; k < count; ++k) {
-        if (at[k] >= static_cast<double>(a.count)) throw error(what + ": a sparse index past the accessor's " + std::to_string(a.count) + " elements");
-        std::copy_n(values.begin() + static_cast<ptrdiff_t>(k) * components, components, out.begin() + static_cast<ptrdiff_t>(at[k]) * components);
-      }
-    }
-    return out;
-  }
-
-  // Accessor `index` as whole numbers (indices, joints).
-  std::vector<uint32_t> integers(int index, int components, const std::string& what) const {
-    const tinygltf::Accessor& a = accessor(index, what);
-    if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-        a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-      throw error(what + ": accessor " + std::to_string(index) + " is not of unsigned integers");
-    const std::vector<double> values = numbers(index, components, what);
-    return {values.begin(), values.end()};
-  }
-
-  size_t count(int index, const std::string& what) const { return accessor(index, what).count; }
-
- private:
-  const tinygltf::Accessor& accessor(int index, const std::string& what) const {
-    if (index < 0 || static_cast<size_t>(index) >= model_.accessors.size()) throw error(what + ": no accessor " + std::to_string(index));
-    const tinygltf::Accessor& a = model_.accessors[static_cast<size_t>(index)];
-    if (a.count > (size_t{1} << 32)) throw error(what + ": an accessor of " + std::to_string(a.count) + " elements");
-    return a;
-  }
-
-  // That `count` elements of `components` numbers lie inside a buffer view inside its buffer.
-  void check_elements(int view_index, size_t offset, size_t count, int type, int components, const std::string& what) const {
-    if (view_index < 0 || static_cast<size_t>(view_index) >= model_.bufferViews.size()) throw error(what + ": no buffer view " + std::to_string(view_index));
-    const tinygltf::BufferView& view = model_.bufferViews[static_cast<size_t>(view_index)];
-    if (view.buffer < 0 || static_cast<size_t>(view.buffer) >= model_.buffers.size()) throw error(what + ": no buffer " + std::to_string(view.buffer));
-    const size_t data = model_.buffers[static_cast<size_t>(view.buffer)].data.size();
-    if (type != TINYGLTF_COMPONENT_TYPE_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_SHORT &&
-        type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT && type != TINYGLTF_COMPONENT_TYPE_FLOAT)
-      throw error(what + ": component type " + std::to_string(type) + " is not glTF's");
-    const int size = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(type));
-    const uint64_t element = uint64_t{static_cast<uint32_t>(size)} * static_cast<uint32_t>(components);
-    const uint64_t stride = view.byteStride != 0 ? view.byteStride : element;
-    // count ≤ 2³² and stride < 2⁸ (glTF caps it at 252): no overflow.
-    const uint64_t needed = count == 0 ? 0 : std::min<uint64_t>(offset, uint64_t{1} << 48) + (count - 1) * std::min<uint64_t>(stride, 256) + element;
-    if (stride < element || stride > 252 || view.byteOffset > data || view.byteLength > data - view.byteOffset || needed > view.byteLength)
-      throw error(what + ": " + std::to_string(count) + " elements past the end of buffer view " + std::to_string(view_index));
-  }
-
-  // `count` elements of `components` numbers from a buffer view (check_elements first).
-  void read_elements(int view_index, size_t offset, size_t count, int type, int components, bool normalized, const std::string& what, double* out) const {
-    check_elements(view_index, offset, count, type, components, what);
-    const tinygltf::BufferView& view = model_.bufferViews[static_cast<size_t>(view_index)];
-    const std::vector<unsigned char>& data = model_.buffers[static_cast<size_t>(view.buffer)].data;
-    const int size = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(type));
-    const size_t element = static_cast<size_t>(size) * static_cast<size_t>(components);
-    const size_t stride = view.byteStride != 0 ? view.byteStride : element;
-    const unsigned char* base = data.data() + view.byteOffset + offset;
-    for (size_t k = 0; k < count; ++k)
-      for (int c = 0; c < components; ++c) {
-        const unsigned char* at = base + k * stride + static_cast<size_t>(c * size);
-        out[k * static_cast<size_t>(components) + static_cast<size_t>(c)] = component(at, type, normalized);
-      }
-  }
-
-  static double component(const unsigned char* at, int type, bool normalized) {
-    auto load = [at]<class T>(T) {
-      T value;
-      std::memcpy(&value, at, sizeof value);
-      return value;
-    };
-    switch (type) {
-      case TINYGLTF_COMPONENT_TYPE_FLOAT:
-        return load(float{});
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        return normalized ? load(uint8_t{}) / 255.0 : load(uint8_t{});
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-        return normalized ? load(uint16_t{}) / 65535.0 : load(uint16_t{});
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-        return load(uint32_t{});
-      case TINYGLTF_COMPONENT_TYPE_BYTE:
-        return normalized ? std::max(load(int8_t{}) / 127.0, -1.0) : load(int8_t{});
-      default:  // TINYGLTF_COMPONENT_TYPE_SHORT (check_elements let no other in)
-        return normalized ? std::max(load(int16_t{}) / 32767.0, -1.0) : load(int16_t{});
-    }
-  }
-
-  std::string path_;
-  tinygltf::Model model_;
-};
-
-// One animation sampler: its key times and values (`width` numbers a key).
-struct Sampler {
-  std::vector<double> times;
-  std::vector<double> values;  // CUBICSPLINE: in-tangent, value, out-tangent per key
-  std::string interpolation;
-  size_t width = 0;
-
-  // Where t falls: key k, and how far towards key k + 1 (0: at k; held before the first key and after the last).
-  std::pair<size_t, double> segment(double t) const {
-    const size_t after = static_cast<size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin());
-    if (after == 0) return {0, 0.0};
-    if (after == times.size() || interpolation == "STEP" || times[after - 1] == t) return {after - 1, 0.0};
-    return {after - 1, (t - times[after - 1]) / (times[after] - times[after - 1])};
-  }
-
-  // Key k's value (CUBICSPLINE: part 0 the in-tangent, 1 the value, 2 the out-tangent).
-  std::vector<double> key(size_t k, size_t part = 1) const {
-    const size_t start = interpolation == "CUBICSPLINE" ? (3 * k + part) * width : k * width;
-    return std::vector<double>(values.begin() + static_cast<ptrdiff_t>(start), values.begin() + static_cast<ptrdiff_t>(start + width));
-  }
-
-  // The value at time t.
-  std::vector<double> at(double t) const {
-    const auto [k, u] = segment(t);
-    if (u == 0) return key(k);
-    const std::vector<double> a = key(k), b = key(k + 1);
-    std::vector<double> out(width);
-    if (interpolation != "CUBICSPLINE") {
-      for (size_t i = 0; i < width; ++i) out[i] = a[i] + u * (b[i] - a[i]);
-      return out;
-    }
-    const double span = times[k + 1] - times[k], u2 = u * u, u3 = u2 * u;
-    const std::vector<double> out_tangent = key(k, 2), in_tangent = key(k + 1, 0);
-    for (size_t i = 0; i < width; ++i)
-      out[i] = (2 * u3 - 3 * u2 + 1) * a[i] + (u3 - 2 * u2 + u) * span * out_tangent[i] + (-2 * u3 + 3 * u2) * b[i] + (u3 - u2) * span * in_tangent[i];
-    return out;
-  }
-};
 
 // The animated parts of the scene at one time: per node, its animated
 // translation, rotation, scale and morph weights.
 struct Channels {
-  std::map<std::pair<int, std::string>, Sampler> samplers;  // (node, path)
+  std::map<std::pair<int, std::string>, GltfSampler> samplers;  // (node, path)
 
-  const Sampler* find(int node, const std::string& path) const {
+  const GltfSampler* find(int node, const std::string& path) const {
     const auto it = samplers.find({node, path});
     return it == samplers.end() ? nullptr : &it->second;
   }
 };
 
-Channels channels_of(const Asset& asset, const tinygltf::Animation& animation) {
+Channels channels_of(const GltfAsset& asset, const tinygltf::Animation& animation) {
   Channels channels;
   const tinygltf::Model& model = asset.model();
   for (const tinygltf::AnimationChannel& channel : animation.channels) {
@@ -208,23 +47,7 @@ Channels channels_of(const Asset& asset, const tinygltf::Animation& animation) {
     }
     if (width == 0) continue;
     const std::string what = "animation '" + animation.name + "', " + path + " of node " + std::to_string(channel.target_node);
-    Sampler sampler;
-    sampler.interpolation = s.interpolation.empty() ? "LINEAR" : s.interpolation;
-    if (sampler.interpolation != "LINEAR" && sampler.interpolation != "STEP" && sampler.interpolation != "CUBICSPLINE")
-      throw asset.error(what + ": unknown interpolation " + sampler.interpolation);
-    sampler.times = asset.numbers(s.input, 1, what + " (times)");
-    sampler.width = width;
-    if (sampler.times.empty()) throw asset.error(what + ": no keyframe");
-    for (size_t k = 0; k < sampler.times.size(); ++k)
-      if (!std::isfinite(sampler.times[k]) || (k > 0 && sampler.times[k] <= sampler.times[k - 1]))
-        throw asset.error(what + ": key times must increase");
-    const size_t per_key = sampler.interpolation == "CUBICSPLINE" ? 3 : 1;
-    const size_t output = asset.count(s.output, what);
-    const size_t elements_per_key = path == "weights" ? width : 1;
-    if (output != sampler.times.size() * per_key * elements_per_key)
-      throw asset.error(what + ": " + std::to_string(output) + " output values for " + std::to_string(sampler.times.size()) + " keys");
-    sampler.values = asset.numbers(s.output, path == "weights" ? 1 : static_cast<int>(width), what + " (values)");
-    channels.samplers[{channel.target_node, path}] = std::move(sampler);
+    channels.samplers[{channel.target_node, path}] = GltfSampler::read(asset, s, width, path == "weights" ? width : 1, what);
   }
   return channels;
 }
@@ -236,15 +59,15 @@ Matrix local_transform(const tinygltf::Node& node, int index, const Channels& ch
   Eigen::Vector3d scale = node.scale.size() == 3 ? Eigen::Vector3d(node.scale[0], node.scale[1], node.scale[2]) : Eigen::Vector3d::Ones();
   Eigen::Quaterniond rotation = node.rotation.size() == 4 ? Eigen::Quaterniond(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2])
                                                           : Eigen::Quaterniond::Identity();
-  if (const Sampler* s = channels.find(index, "translation")) {
+  if (const GltfSampler* s = channels.find(index, "translation")) {
     const std::vector<double> v = s->at(t);
     translation = {v[0], v[1], v[2]};
   }
-  if (const Sampler* s = channels.find(index, "scale")) {
+  if (const GltfSampler* s = channels.find(index, "scale")) {
     const std::vector<double> v = s->at(t);
     scale = {v[0], v[1], v[2]};
   }
-  if (const Sampler* s = channels.find(index, "rotation")) {
+  if (const GltfSampler* s = channels.find(index, "rotation")) {
     auto quaternion = [](const std::vector<double>& v) { return Eigen::Quaterniond(v[3], v[0], v[1], v[2]); };
     const auto [k, u] = s->segment(t);
     // LINEAR rotations are spherical between the keys.
@@ -288,7 +111,7 @@ std::vector<Vec3> vec3s(const std::vector<double>& xyz) {
   return out;
 }
 
-Geometry geometry_of(const Asset& asset, const tinygltf::Mesh& mesh, bool skinned) {
+Geometry geometry_of(const GltfAsset& asset, const tinygltf::Mesh& mesh, bool skinned) {
   Geometry g;
   const std::string name = "mesh '" + mesh.name + "'";
   if (mesh.primitives.empty()) throw asset.error(name + " has no primitive");
@@ -358,7 +181,7 @@ struct Choice {
 };
 
 // The nodes that carry a mesh; the one the user named, or the only one.
-Choice choose_mesh(const Asset& asset, const std::string& wanted) {
+Choice choose_mesh(const GltfAsset& asset, const std::string& wanted) {
   const tinygltf::Model& model = asset.model();
   std::vector<Choice> found;
   for (size_t n = 0; n < model.nodes.size(); ++n) {
@@ -378,7 +201,7 @@ Choice choose_mesh(const Asset& asset, const std::string& wanted) {
   throw asset.error(std::to_string(found.size()) + " meshes (" + names + "): choose one with --mesh NAME");
 }
 
-const tinygltf::Animation& choose_animation(const Asset& asset, const std::string& wanted) {
+const tinygltf::Animation& choose_animation(const GltfAsset& asset, const std::string& wanted) {
   const std::vector<tinygltf::Animation>& animations = asset.model().animations;
   if (animations.empty()) throw asset.error("no animation: nothing moves, so there is no sequence to code");
   std::string names;
@@ -392,7 +215,7 @@ const tinygltf::Animation& choose_animation(const Asset& asset, const std::strin
 }
 
 // The times frames are taken at: every key of the channels, or `fps` over their span.
-std::pair<std::vector<double>, double> sample_times(const Asset& asset, const Channels& channels, std::optional<double> fps, uint64_t most) {
+std::pair<std::vector<double>, double> sample_times(const GltfAsset& asset, const Channels& channels, std::optional<double> fps, uint64_t most) {
   std::set<double> keys;
   for (const auto& [target, sampler] : channels.samplers) keys.insert(sampler.times.begin(), sampler.times.end());
   if (keys.empty()) throw asset.error("the animation moves nothing of the scene");
@@ -416,7 +239,7 @@ std::pair<std::vector<double>, double> sample_times(const Asset& asset, const Ch
 }
 
 // The chosen mesh baked at every sample time.
-GltfAnimation bake(const Asset& asset, const GltfSelection& selection, const GltfLimits& limits) {
+GltfAnimation bake(const GltfAsset& asset, const GltfSelection& selection, const GltfLimits& limits) {
   if (selection.fps && !(*selection.fps > 0 && *selection.fps <= 1000)) throw usage_error("--fps: a rate above 0 and at most 1000");
   const tinygltf::Model& m = asset.model();
 
@@ -471,7 +294,7 @@ GltfAnimation bake(const Asset& asset, const GltfSelection& selection, const Glt
   const std::vector<double> rest_weights(mesh.weights.begin(), mesh.weights.end());
   for (const double t : times) {
     std::vector<double> weights = rest_weights;
-    if (const Sampler* s = channels.find(choice.node, "weights")) weights = s->at(t);
+    if (const GltfSampler* s = channels.find(choice.node, "weights")) weights = s->at(t);
     weights.resize(g.targets.size(), 0.0);
     // Per vertex: its morph targets of weight ≠ 0 and its joints.
     work += g.base.size() * (1 + static_cast<uint64_t>(std::count_if(weights.begin(), weights.end(), [](double w) { return w != 0; })) + 4 * g.influence_sets);
@@ -504,40 +327,16 @@ GltfAnimation bake(const Asset& asset, const GltfSelection& selection, const Glt
   return out;
 }
 
-// Images are not needed: left undecoded.
-tinygltf::TinyGLTF loader() {
-  tinygltf::TinyGLTF loader;
-  loader.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) { return true; }, nullptr);
-  return loader;
-}
-
-Error unreadable(const std::string& path, const std::string& error, const std::string& warning) {
-  return Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, path + ": not a glTF 2.0 asset m4mesh can read: " + (error.empty() ? warning : error));
-}
-
 }  // namespace
 
 bool is_gltf_path(const std::string& path) { return path.ends_with(".glb") || path.ends_with(".gltf"); }
 
 GltfAnimation read_gltf(const std::string& path, const GltfSelection& selection, const GltfLimits& limits) {
-  if (!std::filesystem::is_regular_file(path)) throw Error(ErrorKind::kIo, "", kNoPlane, kNoOffset, path + ": no such file");
-  tinygltf::Model model;
-  std::string error, warning;
-  tinygltf::TinyGLTF reader = loader();
-  const bool loaded = path.ends_with(".glb") ? reader.LoadBinaryFromFile(&model, &error, &warning, path) : reader.LoadASCIIFromFile(&model, &error, &warning, path);
-  if (!loaded) throw unreadable(path, error, warning);
-  return bake(Asset(path, std::move(model)), selection, limits);
+  return bake(load_gltf_asset(path), selection, limits);
 }
 
 GltfAnimation read_glb(std::span<const uint8_t> bytes, const std::string& name, const GltfSelection& selection, const GltfLimits& limits) {
-  if (bytes.size() > UINT32_MAX) throw Error(ErrorKind::kInput, "", kNoPlane, kNoOffset, name + ": over 4 GB, past GLB's own limit");
-  tinygltf::Model model;
-  std::string error, warning;
-  tinygltf::TinyGLTF reader = loader();
-  // No base folder: a GLB read from memory takes no file beside it.
-  if (!reader.LoadBinaryFromMemory(&model, &error, &warning, bytes.data(), static_cast<unsigned int>(bytes.size()), "/nonexistent"))
-    throw unreadable(name, error, warning);
-  return bake(Asset(name, std::move(model)), selection, limits);
+  return bake(load_glb_asset(bytes, name), selection, limits);
 }
 
 }  // namespace m4mesh

@@ -1,10 +1,12 @@
 // libFuzzer target: a GLB animation baked (encode3d's glTF input), at its
-// keyframes and at a given rate, within limits a fuzzer's time allows.
+// keyframes and at a given rate, and compressed (m4mesh gltf, bfs3d), within
+// limits a fuzzer's time allows.
 #include <cstddef>
 #include <cstdint>
 #include <span>
 
 #include "cli/gltf.h"
+#include "cli/gltf_compress.h"
 #include "common/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -14,6 +16,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       read_glb(std::span<const uint8_t>(data, size), "fuzz.glb", {.mesh = "", .animation = "", .fps = fps}, {.most_positions = 1 << 16, .most_work = 1 << 20});
     } catch (const Error&) {
     }
+  }
+  GltfCompressArgs compressing;
+  compressing.encoding.codec = "bfs3d";
+  compressing.limits = {.most_positions = 1 << 16, .most_work = 1 << 20};
+  try {
+    compress_glb(std::span<const uint8_t>(data, size), "fuzz.glb", compressing);
+  } catch (const Error&) {
   }
   return 0;
 }

@@ -118,6 +118,7 @@ void QualityMeter::measure(uint32_t frame, std::span<const Float3> decoded) {
     spread_ += (o[i].x - mean.x) * (o[i].x - mean.x) + (o[i].y - mean.y) * (o[i].y - mean.y) + (o[i].z - mean.z) * (o[i].z - mean.z);
     const double e = distance(o[i], d);
     squared_distances_ += e * e;
+    max_error_ = std::max(max_error_, e);
   }
   ++next_;
 }

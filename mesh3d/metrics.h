@@ -71,7 +71,7 @@ std::vector<std::string> metrics_warnings(const MeshSequence& original);
 
 double kg_error(const MeshSequence& original, const MeshSequence& decoded);
 
-// The KG error and PSNR of decoded frames against a source's frames,
+// The KG error, PSNR and max error of decoded frames against a source's frames,
 // measured as the frames come (each once, in any order): a frame waits for
 // the earlier ones, so that the sums run in frame order and give exactly
 // what kg_error() and psnr() give for the whole sequences.
@@ -83,6 +83,7 @@ class QualityMeter {
   // Once every frame is added.
   double kg() const;
   double psnr() const;
+  double max_error() const { return max_error_; }
 
  private:
   void measure(uint32_t frame, std::span<const Float3> decoded);
@@ -91,7 +92,7 @@ class QualityMeter {
   FrameReader reader_;
   std::map<uint32_t, std::vector<Float3>> waiting_;
   uint32_t next_ = 0;
-  double error_ = 0, spread_ = 0, squared_distances_ = 0;
+  double error_ = 0, spread_ = 0, squared_distances_ = 0, max_error_ = 0;
 };
 // The largest distance between two points (exact; fast unless many points
 // lie near the sphere about their box's centre that holds them all).

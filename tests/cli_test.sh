@@ -158,7 +158,20 @@ grep -q " meets$" "$work/target" || fail "target search lines: $(cat "$work/targ
 "$m4mesh" encode3d tests/data/tetra-frames -o "$work/auto.m4m" --codec auto --target-kg 2 2> "$work/auto" || fail "encode3d --codec auto"
 grep -q "^kept: " "$work/auto" || fail "--codec auto report: $(cat "$work/auto")"
 if "$m4mesh" encode3d tests/data/tetra-frames -o "$work/none.m4m" --codec auto 2> "$work/err"; then fail "--codec auto without a target"; fi
-grep -q "needs --target-kg or --target-psnr" "$work/err" || fail "--codec auto without a target: $(cat "$work/err")"
+grep -q "needs --target-kg, --target-psnr or --max-error" "$work/err" || fail "--codec auto without a target: $(cat "$work/err")"
+"$m4mesh" encode3d tests/data/tetra-frames -o "$work/max.m4m" --max-error 0.01 2> "$work/max" || fail "encode3d --max-error"
+grep -q " max .* meets$" "$work/max" || fail "--max-error search lines: $(cat "$work/max")"
+
+# m4mesh gltf: a glTF file's morph-target animation into the extension; its outputs obey the rules of every output.
+"$m4mesh" -q convert tests/data/tetra-frames "$work/morph.glb"
+"$m4mesh" gltf "$work/morph.glb" -o "$work/small.glb" --codec bfs3d 2> "$work/gltf" || fail "gltf: $(cat "$work/gltf")"
+grep -q "^animation 0, node 0, mesh 0, primitive 0: 4 frames of 5 vertices: .* bytes (bfs3d), KG" "$work/gltf" || fail "gltf report: $(cat "$work/gltf")"
+for args in "gltf $work/morph.glb -o $work/small.glb" "gltf $work/morph.glb -o $work/morph.glb" "gltf $work/morph.glb -o $work/small.gltf" "gltf $work/morph.glb -o $work/x.glb --max-error 1 --target-kg 1"; do
+  status=0; "$m4mesh" $args > /dev/null 2> "$work/err" || status=$?
+  [ "$status" = 2 ] || fail "$args: exit $status, $(cat "$work/err")"
+done
+status=0; "$m4mesh" gltf "$work/small.glb" -o "$work/twice.glb" 2> "$work/err" || status=$?
+[ "$status" = 1 ] && grep -q "already" "$work/err" && [ ! -e "$work/twice.glb" ] || fail "gltf of a compressed file: exit $status, $(cat "$work/err")"
 
 # One command family: decode takes a 3D stream to a sequence file; unknown output formats and streams given as frames are usage errors.
 bfs="$source/conformance/mesh3d/streams/bfs3d-01-average.m4m"

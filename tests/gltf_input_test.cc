@@ -1,7 +1,8 @@
 // glTF animations in (encode3d anim.glb): assets built here with
 // tinygltf, morph targets and a skin, baked to the positions worked out by
 // hand, and the errors for what cannot be taken. (m4mesh's own glTF read
-// back: gltf_test.cc.)
+// back: gltf_test.cc.) And `m4mesh gltf` (compress_gltf) on such assets:
+// the streams it writes for a morph-target animation, and its errors.
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 #include <unistd.h>
@@ -15,6 +16,7 @@
 
 #include "cli/app.h"
 #include "cli/gltf.h"
+#include "cli/gltf_compress.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "decoder/mesh3d/container_decoder.h"
@@ -284,6 +286,109 @@ TEST_F(GltfInput, WhatCannotBeTakenIsNamed) {
   EXPECT_NE(error_of((folder_ / "none.glb").string()).find("no such file"), std::string::npos);
   write_file_atomically((folder_ / "text.glb").string(), std::string("not a glb"));
   EXPECT_NE(error_of((folder_ / "text.glb").string()).find("not a glTF 2.0 asset"), std::string::npos);
+}
+
+// The morph animation above, compressed: the weights channel, the targets
+// and the default weights go; the extension names the node, the times and
+// a stream whose frames are base + Σ wₖ targetₖ at the keys (within the
+// codec's error), the node's translation not applied.
+TEST_F(GltfInput, CompressedMorphTargetsAreStreamsOfTheFramesAtTheirKeys) {
+  tinygltf::Mesh mesh;
+  tinygltf::Primitive p = tetrahedron(kTetrahedron);
+  const std::vector<float> up{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, out{1, 0, 0, 2, 0, 0, 3, 0, 0, 4, 0, 0};
+  p.targets = {{{"POSITION", accessor(up, TINYGLTF_TYPE_VEC3)}}, {{"POSITION", accessor(out, TINYGLTF_TYPE_VEC3)}}};
+  mesh.primitives.push_back(p);
+  mesh.weights = {0, 0};
+  model_.meshes.push_back(mesh);
+  tinygltf::Node node;
+  node.mesh = 0;
+  node.translation = {1, 2, 3};
+  const int n = add_node(node);
+  animate(n, "weights", {0, 1, 2}, {0, 0, 1, 0, 0.5f, 0.5f});
+  const std::string path = save("morph.glb");
+
+  GltfCompressArgs args;
+  args.encoding.codec = "bfs3d";
+  const GltfCompressResult compressed = compress_gltf(path, args);
+  ASSERT_EQ(compressed.streams.size(), 1u);
+  EXPECT_EQ(compressed.streams[0].frames, 3u);
+  tinygltf::Model model;
+  std::string error, warning;
+  ASSERT_TRUE(tinygltf::TinyGLTF().LoadBinaryFromMemory(&model, &error, &warning, compressed.glb.data(), static_cast<unsigned>(compressed.glb.size())))
+      << error;
+  EXPECT_TRUE(model.meshes[0].primitives[0].targets.empty());
+  EXPECT_TRUE(model.meshes[0].weights.empty());
+  EXPECT_EQ(std::count(model.extensionsUsed.begin(), model.extensionsUsed.end(), kGltfExtensionName), 1);
+  EXPECT_TRUE(model.extensionsRequired.empty());
+  // The animation keeps one channel, the node's translation held.
+  ASSERT_EQ(model.animations[0].channels.size(), 1u);
+  EXPECT_EQ(model.animations[0].channels[0].target_path, "translation");
+  const tinygltf::Value& channel = model.animations[0].extensions.at(kGltfExtensionName).Get("channels").Get(0);
+  EXPECT_EQ(channel.Get("node").GetNumberAsInt(), n);
+  EXPECT_EQ(channel.Get("interpolation").Get<std::string>(), "LINEAR");
+  const tinygltf::Accessor& times = model.accessors[static_cast<size_t>(channel.Get("input").GetNumberAsInt())];
+  EXPECT_EQ(times.count, 3u);
+  const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(channel.Get("primitives").Get(0).Get("bufferView").GetNumberAsInt())];
+  const std::span<const uint8_t> stream(model.buffers[0].data.data() + view.byteOffset, view.byteLength);
+  const MeshSequence decoded = decode_mesh3d(stream);
+  ASSERT_EQ(decoded.frames.size(), 3u);
+  const double w_up[] = {0, 1, 0.5}, w_out[] = {0, 0, 0.5};
+  for (size_t f = 0; f < 3; ++f)
+    for (size_t v = 0; v < 4; ++v) {
+      const Vec3 q = decoded.frames[f][v];
+      EXPECT_NEAR(q.x, kTetrahedron[3 * v] + w_out[f] * out[3 * v], 1e-2) << f << " " << v;
+      EXPECT_NEAR(q.y, kTetrahedron[3 * v + 1], 1e-2) << f << " " << v;
+      EXPECT_NEAR(q.z, kTetrahedron[3 * v + 2] + w_up[f], 1e-2) << f << " " << v;
+    }
+  // Compressed once is enough.
+  const std::string again = (folder_ / "again.glb").string();
+  write_file_atomically(again, std::string(compressed.glb.begin(), compressed.glb.end()));
+  try {
+    compress_gltf(again, args);
+    ADD_FAILURE() << "compressed twice";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("uses M4MESH_vertex_animation already"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(GltfInput, WhatTheCompressorCannotTakeIsNamed) {
+  auto error_compressing = [&](const std::string& path) -> std::string {
+    try {
+      GltfCompressArgs args;
+      args.encoding.codec = "bfs3d";
+      compress_gltf(path, args);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  tinygltf::Mesh mesh;
+  mesh.name = "blob";
+  tinygltf::Primitive p = tetrahedron(kTetrahedron);
+  p.targets = {{{"POSITION", accessor(std::vector<float>(12, 0.5f), TINYGLTF_TYPE_VEC3)}}};
+  mesh.primitives = {p, p};
+  model_.meshes.push_back(mesh);
+  tinygltf::Node node;
+  node.mesh = 0;
+  animate(add_node(node), "weights", {0, 1}, {0, 1});
+  model_.meshes[0].primitives[1].mode = TINYGLTF_MODE_POINTS;
+  const std::string points = save("points.glb");
+  EXPECT_NE(error_compressing(points).find("mesh 0 'blob', primitive 1 is not of triangles (mode 0)"), std::string::npos) << error_compressing(points);
+
+  model_.meshes[0].primitives[1].mode = TINYGLTF_MODE_TRIANGLES;
+  model_.meshes[0].primitives[1].targets[0]["POSITION"] = accessor(std::vector<float>(9, 0.5f), TINYGLTF_TYPE_VEC3);
+  const std::string short_target = save("short-target.glb");
+  EXPECT_NE(error_compressing(short_target).find("mesh 0 'blob', primitive 1, morph target 0: 3 positions for 4 vertices"), std::string::npos)
+      << error_compressing(short_target);
+
+  model_.extensionsUsed = {"EXT_meshopt_compression"};
+  const std::string meshopt = save("meshopt.glb");
+  EXPECT_NE(error_compressing(meshopt).find("decompress it first"), std::string::npos) << error_compressing(meshopt);
+
+  model_.extensionsUsed.clear();
+  model_.animations.clear();
+  const std::string still = save("still.glb");
+  EXPECT_NE(error_compressing(still).find("no animation drives morph targets"), std::string::npos) << error_compressing(still);
 }
 
 }  // namespace

@@ -44,6 +44,33 @@ TEST(QualityTarget, EveryCodecMeetsAKgTargetWithItsCoarsestSetting) {
   }
 }
 
+// --max-error: no decoded vertex farther from its original than the target
+// (measured as `m4mesh metrics` measures it), one knob value coarser farther.
+TEST(QualityTarget, EveryCodecMeetsAMaxErrorWithItsCoarsestSetting) {
+  const MeshSequence s = test::test_sequence(8, 24);
+  const double target = 0.0015 * diameter(s.frames[0]);
+  for (const char* name : kCodecs) {
+    Encode3dOptions options;
+    options.codec = name;
+    std::vector<TargetTrial> trials;
+    const Encode3dResult r = encode_to_target(s, options, {.max_error = target}, [&](const TargetTrial& t) { trials.push_back(t); });
+    const double reached = compare_sequences(s, decode_mesh3d(r.stream)).max_error;
+    EXPECT_LE(reached, target) << name;
+    const auto kept = std::find_if(trials.rbegin(), trials.rend(), [](const TargetTrial& t) { return t.meets; });
+    ASSERT_NE(kept, trials.rend()) << name;
+    EXPECT_DOUBLE_EQ(kept->max_error, reached) << name;
+    const QualityKnob& knob = codec_encoding(codec3d_by_name(name)).quality;
+    const std::string value = kept->parameter.substr(kept->parameter.find(' ') + 1);
+    const size_t index = static_cast<size_t>(std::find(knob.coarse_to_fine.begin(), knob.coarse_to_fine.end(), value) - knob.coarse_to_fine.begin());
+    ASSERT_LT(index, knob.coarse_to_fine.size()) << name << ": " << kept->parameter;
+    EXPECT_GT(index, 0u) << name << ": the target is met at the coarsest setting, so nothing shows it chose well";
+    if (index == 0) continue;
+    options.codec_options[knob.option] = knob.coarse_to_fine[index - 1];
+    for (const auto& [option, beside] : knob.beside) options.codec_options.try_emplace(option, beside);
+    EXPECT_GT(compare_sequences(s, decode_mesh3d(encode_mesh3d(s, options).stream)).max_error, target) << name << " at " << knob.coarse_to_fine[index - 1];
+  }
+}
+
 TEST(QualityTarget, PsnrTargetsAndTheSmallestCodec) {
   const MeshSequence s = test::test_sequence(8, 22);
   Encode3dOptions options;
@@ -115,7 +142,8 @@ TEST(QualityTarget, UnreachableAndConflictingTargetsAreUsageErrors) {
   Encode3dOptions options;
   EXPECT_THROW(encode_to_target(s, options, {}, [](const TargetTrial&) {}), Error);
   for (const QualityTarget& nonsense : {QualityTarget{.kg = -1}, QualityTarget{.kg = 0}, QualityTarget{.kg = std::nan("")},
-                                        QualityTarget{.psnr = -5}, QualityTarget{.psnr = INFINITY}, QualityTarget{.kg = 1, .psnr = 40}}) {
+                                        QualityTarget{.psnr = -5}, QualityTarget{.psnr = INFINITY}, QualityTarget{.kg = 1, .psnr = 40},
+                                        QualityTarget{.max_error = 0}, QualityTarget{.kg = 1, .max_error = 0.1}}) {
     try {
       encode_to_target(s, options, nonsense, [](const TargetTrial&) { ADD_FAILURE() << "a trial for a target that is not one"; });
       ADD_FAILURE() << "accepted";

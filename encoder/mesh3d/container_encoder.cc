@@ -88,6 +88,7 @@ class ContainerSink final : public UnitSink {
     if (!meter_) return;
     result.kg = meter_->kg();
     result.psnr = meter_->psnr();
+    result.max_error = meter_->max_error();
   }
 
  private:

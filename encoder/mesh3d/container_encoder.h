@@ -47,7 +47,7 @@ struct Encode3dResult {
   uint64_t other_bytes = 0;              // object payload and end code
   std::vector<CodecStatistic> statistics;  // the codec's own
   MeshSequence decoded;                    // with keep_decoded: every frame as the decoder outputs it
-  double kg = 0, psnr = 0;                 // with measure: of the decoder's output against the input
+  double kg = 0, psnr = 0, max_error = 0;  // with measure: of the decoder's output against the input
   std::vector<uint32_t> input_of;          // with reorder: the input number of each output vertex
 
   uint64_t base_bytes() const { return unit_bytes[static_cast<uint32_t>(UnitType::kBaseMesh)]; }

@@ -32,7 +32,8 @@ TargetTrial trial(const FrameSource& s, Encode3dOptions options, const QualityTa
   result = encode_mesh3d(s, options);
   TargetTrial t{options.codec, parameter, "", result.stream_bytes, result.kg, result.psnr, false,
                 static_cast<double>(s.vertex_count()) * s.frame_count()};
-  t.meets = target.kg ? t.kg <= *target.kg : t.psnr >= *target.psnr;
+  t.max_error = result.max_error;
+  t.meets = target.met_by(t.kg, t.psnr, t.max_error);
   return t;
 }
 
@@ -138,11 +139,12 @@ Encode3dResult code_whole(const FrameSource& s, const Encode3dOptions& options, 
 }  // namespace
 
 void check_target(const QualityTarget& target) {
-  if (target.kg.has_value() == target.psnr.has_value()) throw usage_error("give one quality target: --target-kg or --target-psnr");
-  const double value = target.kg ? *target.kg : *target.psnr;
-  if (!std::isfinite(value) || value <= 0)
-    throw usage_error(std::string(target.kg ? "--target-kg " : "--target-psnr ") + std::to_string(value) + ": a target is a finite number above 0" +
-                      (target.kg ? " (percent)" : " (dB)"));
+  if (target.kg.has_value() + target.psnr.has_value() + target.max_error.has_value() != 1)
+    throw usage_error("give one quality target: --target-kg, --target-psnr or --max-error");
+  const double value = target.kg ? *target.kg : target.psnr ? *target.psnr : *target.max_error;
+  const char* name = target.kg ? "--target-kg " : target.psnr ? "--target-psnr " : "--max-error ";
+  const char* unit = target.kg ? " (percent)" : target.psnr ? " (dB)" : " (the model's units)";
+  if (!std::isfinite(value) || value <= 0) throw usage_error(name + std::to_string(value) + ": a target is a finite number above 0" + unit);
 }
 
 std::vector<uint32_t> sample_frames(uint32_t vertex_count, uint32_t frame_count) {

@@ -1,6 +1,6 @@
 // Quality targets for every 3D codec: the smallest stream whose decoded
 // output, measured exactly as `m4mesh metrics` measures it, reaches a KG
-// error or a PSNR. The encoder searches the codec's quality knob (its
+// error, a PSNR or a max error. The encoder searches the codec's quality knob (its
 // registry row), or uses the codec's own KG search when it has one (an
 // option named target-kg); `--codec auto` tries every codec.
 #pragma once
@@ -14,11 +14,16 @@
 
 namespace m4mesh {
 
-// One of the two is set, to a finite number above 0 (check_target).
+// One of the three is set, to a finite number above 0 (check_target).
 struct QualityTarget {
-  std::optional<double> kg = std::nullopt;    // KG error at most this (percent)
-  std::optional<double> psnr = std::nullopt;  // PSNR at least this (dB)
-  bool set() const { return kg || psnr; }
+  std::optional<double> kg = std::nullopt;         // KG error at most this (percent)
+  std::optional<double> psnr = std::nullopt;       // PSNR at least this (dB)
+  std::optional<double> max_error = std::nullopt;  // no decoded vertex farther than this from its original (the model's units)
+  bool set() const { return kg || psnr || max_error; }
+  // Whether a decoding measured so meets the target.
+  bool met_by(double trial_kg, double trial_psnr, double trial_max_error) const {
+    return kg ? trial_kg <= *kg : psnr ? trial_psnr >= *psnr : trial_max_error <= *max_error;
+  }
 };
 
 // A usage error unless exactly one target is set, finite and above 0.
@@ -35,6 +40,7 @@ struct TargetTrial {
   double kg = 0, psnr = 0;
   bool meets = false;
   double vertex_frames = 0;  // of the frames coded (a sample's, or the whole sequence's)
+  double max_error = 0;
 
   double bpvf() const { return vertex_frames > 0 ? 8.0 * static_cast<double>(bytes) / vertex_frames : 0; }
 };

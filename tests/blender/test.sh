@@ -2,11 +2,13 @@
 # Blender and m4mesh's glTF both ways (ctest blender_gltf): Blender's
 # importer on decode3d's glTF animation (a small sequence, and the horse when
 # ../shared/data is there); then encode3d on a skin and on morph targets
-# Blender made and its exporter wrote.
-# Usage: test.sh M4MESH DATA_FOLDER
+# Blender made and its exporter wrote; then m4mesh gltf on the shape-key
+# sheet and on decode3d's glTF, imported again with blender/m4mesh_gltf.py.
+# Usage: test.sh M4MESH DATA_FOLDER PYTHON_FOLDER (build/python: the m4mesh package the add-on decodes with)
 set -eu
 m4mesh="$1"
 data="$2"
+python_folder="$3"
 here="$(cd "$(dirname "$0")" && pwd)"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
@@ -33,4 +35,13 @@ for name in skin sheet; do
   python3 "$here/compare_frames.py" "$work/$name.m4seq" "$work/$name.f32"
   "$m4mesh" -q -y encode3d "$work/$name.glb" -o "$work/$name.m4m"
   "$m4mesh" -q metrics "$work/$name.m4seq" "$work/$name.m4m" | grep -i kg
+done
+# M4MESH_vertex_animation: the compressed files back in Blender, through the add-on.
+for name in sheet s; do
+  echo "$name.glb compressed (m4mesh gltf), imported with blender/m4mesh_gltf.py:"
+  "$m4mesh" -q -y gltf "$work/$name.glb" -o "$work/$name-m4mesh.glb" --codec bfs3d
+  status=0
+  blender -b --factory-startup --python "$here/check_extension.py" -- "$work/$name-m4mesh.glb" "$here/../../blender" "$python_folder" > "$work/out" 2>&1 || status=$?
+  grep -E '^(ok|FAIL)' "$work/out" || tail -5 "$work/out"
+  [ "$status" -eq 0 ] || exit "$status"
 done

@@ -2,11 +2,11 @@
 // free loopback port, Debian's Chromium driven by playwright-core, and a
 // screenshot check that needs no image library (the page itself reads the
 // PNG back and counts its colours).
-import { spawn } from 'node:child_process';
-import { cpSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { execFileSync, spawn } from 'node:child_process';
+import { cpSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import http from 'node:http';
 import { tmpdir } from 'node:os';
-import { join } from 'node:path';
+import { join, resolve } from 'node:path';
 import { chromium } from 'playwright-core';
 
 // `m4mesh serve FOLDER --port 0 [--rate R]` (or several paths: streams
@@ -76,6 +76,20 @@ export function gatedServe(upstream, path, file) {
     },
     stop: () => (clearInterval(timer), server.closeAllConnections(), server.close()),
   })));
+}
+
+// The assembled npm package (build/web/package) as an application gets it:
+// `npm pack`, then installed offline into an empty application in `work`
+// beside the checkout's three.js (and `others` of web/node_modules).
+// Returns the application's folder.
+export function installPackage(packageDir, source, work, others = []) {
+  const tarball = execFileSync('npm', ['pack', packageDir, '--pack-destination', work, '--silent'], { encoding: 'utf8' }).trim().split('\n').pop();
+  const app = join(work, 'app');
+  mkdirSync(app);
+  writeFileSync(join(app, 'package.json'), JSON.stringify({ name: 'app', private: true, type: 'module' }));
+  execFileSync('npm', ['install', '--offline', '--no-audit', '--no-fund', '--ignore-scripts', '--silent', join(work, tarball),
+    ...['three', ...others].map((name) => resolve(source, 'web', 'node_modules', name))], { cwd: app, stdio: 'inherit' });
+  return app;
 }
 
 // A copy of the built site in a temporary folder, with `extra` files beside it ({ name: path }).

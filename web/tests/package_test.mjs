@@ -6,14 +6,13 @@
 // progressive stream's refinements arrive one after another, and a bad
 // stream's error names its element.
 // Usage: node package_test.mjs PACKAGE_DIR SOURCE_DIR
-import { execFileSync } from 'node:child_process';
 import { createHash } from 'node:crypto';
-import { mkdirSync, mkdtempSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
+import { mkdtempSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { createServer } from 'node:http';
 import { tmpdir } from 'node:os';
 import { basename, extname, join, normalize, relative } from 'node:path';
 import { pathToFileURL } from 'node:url';
-import { launch, unitOffsets } from './harness.mjs';
+import { installPackage, launch, unitOffsets } from './harness.mjs';
 
 const [packageDir, source] = process.argv.slice(2);
 const suite = join(source, 'conformance', 'mesh3d');
@@ -27,12 +26,7 @@ const check = (ok, what) => {
 };
 
 try {
-  const tarball = execFileSync('npm', ['pack', packageDir, '--pack-destination', work, '--silent'], { encoding: 'utf8' }).trim().split('\n').pop();
-  const app = join(work, 'app');
-  mkdirSync(app);
-  writeFileSync(join(app, 'package.json'), JSON.stringify({ name: 'app', private: true, type: 'module' }));
-  execFileSync('npm', ['install', '--offline', '--no-audit', '--no-fund', '--ignore-scripts', '--silent', join(work, tarball),
-    join(source, 'web', 'node_modules', 'three')], { cwd: app, stdio: 'inherit' });
+  const app = installPackage(packageDir, source, work);
   writeFileSync(join(app, 'index.html'), `<!doctype html><script type="importmap">
 {"imports": {"three": "/node_modules/three/build/three.module.js", "m4mesh": "/node_modules/m4mesh/index.js"}}
 </script><script type="module">
