@@ -14,13 +14,6 @@ import { M4MeshLoader } from './M4MeshLoader.js';
 
 export const EXTENSION_NAME = 'M4MESH_vertex_animation';
 
-// One channel's frames for one three.js mesh: the clip they play in and their key times.
-class MeshFrames {
-  constructor(animation, times, interpolation, frames) {
-    Object.assign(this, { animation, times, interpolation, frames });
-  }
-}
-
 export class M4MeshGLTFPlugin {
   // options.loader: the M4MeshLoader that decodes the streams (default: a new one, with the package's Worker).
   constructor(parser, options = {}) {
@@ -38,7 +31,7 @@ export class M4MeshGLTFPlugin {
       if (!Array.isArray(extension.channels) || extension.channels.length === 0) throw this.error(a, null, 'no channels');
       extension.channels.forEach((channel, c) => jobs.push(this.loadChannel(a, c, channel)));
     });
-    const byMesh = new Map();  // three.js mesh → its MeshFrames, in the file's order
+    const byMesh = new Map();  // three.js mesh → its channels' { animation, times, interpolation, frames }, in the file's order
     for (const pieces of await Promise.all(jobs))
       for (const [mesh, frames] of pieces) byMesh.set(mesh, [...(byMesh.get(mesh) ?? []), frames]);
     const owners = new Map();  // geometry → the mesh whose frames it holds
@@ -86,7 +79,7 @@ export class M4MeshGLTFPlugin {
         const vertices = mesh.geometry.attributes.position.count;
         if (decoded.frameCount !== times.length) throw this.error(a, c, `primitive ${p}: ${decoded.frameCount} frames for ${times.length} key times`);
         if (decoded.vertexCount !== vertices) throw this.error(a, c, `primitive ${p}: ${decoded.vertexCount} vertices, POSITION has ${vertices}`);
-        return [mesh, new MeshFrames(a, times, interpolation, decoded.frames)];
+        return [mesh, { animation: a, times, interpolation, frames: decoded.frames }];
       }),
     );
   }
