@@ -1,5 +1,5 @@
-// Directed edges of a mesh and a table from each to a number, shared by
-// the gate traversal and the mesh predictor.
+// Directed edges of a mesh and a table from each to a number, for the
+// gate traversal.
 #pragma once
 
 #include <cstddef>

@@ -8,13 +8,31 @@ MeshPredictor::MeshPredictor(std::span<const Triangle> faces, uint32_t vertex_co
   for (uint32_t v = 0; v < vertex_count; ++v) first_[v + 1] += first_[v];
   around_.resize(first_.back());
   std::vector<uint32_t> fill(first_.begin(), first_.end() - 1);
-  edges_.reserve(3 * faces.size());
   for (uint32_t f = 0; f < faces.size(); ++f)
-    for (int i = 0; i < 3; ++i) {
-      const NodeIndex from = faces[f].v[i], to = faces[f].v[(i + 1) % 3];
-      around_[fill[from]++] = f;
-      if (edges_.find(from, to) == DirectedEdgeIndex::kNone) edges_.insert(from, to, f);
+    for (NodeIndex v : faces[f].v) around_[fill[v]++] = f;
+  // Vertex by vertex: the first face of each directed edge from it, then the
+  // z of each face corner whose y it is; each face is visited at its corners only.
+  opposite_.assign(3 * faces.size(), kNoNode);
+  std::vector<uint32_t> seen_from(vertex_count, kNoNode), third_of(vertex_count);
+  for (uint32_t from = 0; from < vertex_count; ++from) {
+    for (uint32_t i = first_[from]; i < first_[from + 1]; ++i) {
+      const Triangle& t = faces_[around_[i]];
+      for (int k = 0; k < 3; ++k) {
+        const NodeIndex to = t.v[(k + 1) % 3];
+        if (t.v[k] == from && seen_from[to] != from) {
+          seen_from[to] = from;
+          third_of[to] = t.third(from, to);
+        }
+      }
     }
+    for (uint32_t i = first_[from]; i < first_[from + 1]; ++i) {
+      const Triangle& t = faces_[around_[i]];
+      for (int c = 0; c < 3; ++c) {
+        const NodeIndex x = t.v[(c + 1) % 3];  // corner c is v, c + 2 is y = from
+        if (t.v[(c + 2) % 3] == from) opposite_[3 * around_[i] + c] = seen_from[x] == from ? third_of[x] : kNoNode;
+      }
+    }
+  }
 }
 
 }  // namespace m4mesh

@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "mesh/topology.h"
-#include "mesh3d/directed_edge_index.h"
 #include "syntax/mesh3d/base_mesh.h"
 
 namespace m4mesh {
@@ -65,7 +64,7 @@ class MeshPredictor {
       const int corner = t.corner_of(v);
       const uint32_t x = t.v[(corner + 1) % 3], y = t.v[(corner + 2) % 3];
       if (!filter(x) || !filter(y)) continue;
-      if (const uint32_t z = opposite(y, x); z != kNoNode) visit(x, y, z);
+      if (const uint32_t z = opposite_[3 * around_[i] + corner]; z != kNoNode) visit(x, y, z);
     }
   }
 
@@ -101,15 +100,12 @@ class MeshPredictor {
   }
 
  private:
-  // The third vertex of the first face with the directed edge from→to; kNoNode without one.
-  uint32_t opposite(uint32_t from, uint32_t to) const {
-    const uint32_t face = edges_.find(from, to);
-    return face == DirectedEdgeIndex::kNone ? kNoNode : faces_[face].third(from, to);
-  }
-
   std::span<const Triangle> faces_;
+  // The faces around each vertex v, in face order: around_[first_[v]] … around_[first_[v + 1] − 1], once per corner of v.
   std::vector<uint32_t> first_, around_;
-  DirectedEdgeIndex edges_;  // the first face of each directed edge
+  // Per face corner v (3 f + corner) with x, y after it: the parallelogram's z, the third
+  // vertex of the first face with the directed edge y → x (kNoNode without one).
+  std::vector<uint32_t> opposite_;
 };
 
 }  // namespace m4mesh

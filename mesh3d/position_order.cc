@@ -1,23 +1,69 @@
 #include "mesh3d/position_order.h"
 
 #include <limits>
-#include <queue>
 
 namespace m4mesh {
 
 namespace {
 
 constexpr uint32_t kNotCandidate = std::numeric_limits<uint32_t>::max();
-
-// A candidate's support when it was queued, its parallelograms above its
-// known corners: more support first, then the earlier candidate.
-struct Entry {
-  uint64_t support;
-  uint32_t tie;
-  bool operator<(const Entry& other) const { return support != other.support ? support < other.support : tie > other.tie; }
-};
-// Both counts stay below 2^28: a face counts once per corner of the candidate, with at most two other corners.
+// A candidate's support, its parallelograms above its known corners. Both counts stay below 2^28: a face counts once
+// per corner of the candidate, with at most two other corners.
 constexpr uint64_t kParallelogram = uint64_t{1} << 32, kCorner = 1;
+
+// The candidates with support, by support (more first), then by index (lower first); each held once, raised in
+// place when its support grows (it never shrinks).
+class SupportHeap {
+ public:
+  SupportHeap(std::span<const uint64_t> support, uint32_t count) : support_(support), place_(count, kNotCandidate) {}
+
+  bool empty() const { return heap_.empty(); }
+
+  // i's support grew: i enters, or moves up.
+  void raise(uint32_t i) {
+    uint32_t at = place_[i];
+    if (at == kNotCandidate) {
+      at = static_cast<uint32_t>(heap_.size());
+      heap_.push_back(i);
+    }
+    while (at > 0) {
+      const uint32_t parent = (at - 1) / 2;
+      if (!ahead(i, heap_[parent])) break;
+      put(heap_[parent], at);
+      at = parent;
+    }
+    put(i, at);
+  }
+
+  uint32_t pop() {
+    const uint32_t top = heap_[0];
+    place_[top] = kNotCandidate;
+    const uint32_t last = heap_.back();
+    heap_.pop_back();
+    if (heap_.empty()) return top;
+    uint32_t at = 0;
+    for (;;) {
+      uint32_t child = 2 * at + 1;
+      if (child >= heap_.size()) break;
+      if (child + 1 < heap_.size() && ahead(heap_[child + 1], heap_[child])) ++child;
+      if (!ahead(heap_[child], last)) break;
+      put(heap_[child], at);
+      at = child;
+    }
+    put(last, at);
+    return top;
+  }
+
+ private:
+  bool ahead(uint32_t a, uint32_t b) const { return support_[a] != support_[b] ? support_[a] > support_[b] : a < b; }
+  void put(uint32_t i, uint32_t at) {
+    heap_[at] = i;
+    place_[i] = at;
+  }
+
+  std::span<const uint64_t> support_;
+  std::vector<uint32_t> heap_, place_;
+};
 
 }  // namespace
 
@@ -51,26 +97,21 @@ std::vector<uint32_t> PositionOrder::of(std::span<const uint32_t> candidates) {
 
   std::vector<uint8_t> known(count, 0);
   std::vector<uint64_t> support(count, 0);
-  std::vector<uint32_t> grown;  // the candidates whose support grew at this step, queued once each after it
-  std::vector<uint8_t> in_grown(count, 0);
-  // Candidates with support, queued again whenever it grows (only the latest entry counts). Those without come
-  // after them in the candidates' order, which first_unknown walks: no queue of every vertex.
-  std::priority_queue<Entry> queue;
+  // Those without support come after those with, in the candidates' order, which first_unknown walks: no heap of
+  // every vertex.
+  SupportHeap heap(support, count);
   uint32_t first_unknown = 0;
-  const auto is_stale = [&](const Entry& entry) { return known[entry.tie] || entry.support != support[entry.tie]; };
   const auto grow = [&](uint32_t i, uint64_t part) {
     if (i == kNotCandidate || known[i]) return;
     support[i] += part;
-    if (!in_grown[i]) in_grown[i] = 1, grown.push_back(i);
+    heap.raise(i);
   };
   std::vector<uint32_t> order;
   order.reserve(count);
   while (order.size() < count) {
-    while (!queue.empty() && is_stale(queue.top())) queue.pop();
     uint32_t i;
-    if (!queue.empty()) {
-      i = queue.top().tie;
-      queue.pop();
+    if (!heap.empty()) {
+      i = heap.pop();
     } else {
       while (known[first_unknown]) ++first_unknown;
       i = first_unknown;
@@ -83,11 +124,6 @@ std::vector<uint32_t> PositionOrder::of(std::span<const uint32_t> candidates) {
     });
     for (uint32_t k = first_use[i]; k < first_use[i + 1]; ++k)
       if (--unknown[uses[k]] == 0) grow(owner[uses[k]], kParallelogram);
-    for (const uint32_t g : grown) {
-      in_grown[g] = 0;
-      queue.push({support[g], g});
-    }
-    grown.clear();
   }
   for (const uint32_t v : candidates) local_[v] = kNotCandidate;
   return order;

@@ -51,23 +51,34 @@ for stream in "$work"/seeds-stream/*.m4m "$work"/seeds-mesh3d/*.m4m; do
   { cat "$stream"; printf '\074'; } > "$work/seeds-api/$(basename "$stream")"
 done
 
-total=0
-for target in decoder checker text mesh3d gltf api; do
-  seeds="$work/seeds-stream"
+# One fuzzer per core at a time, each for the same time; their reports in the targets' order.
+fuzz_one() {
+  local target=$1 seeds="$work/seeds-stream"
   [ "$target" = text ] && seeds="$work/seeds-text"
   [ "$target" = mesh3d ] && seeds="$work/seeds-mesh3d"
   [ "$target" = gltf ] && seeds="$work/seeds-gltf"
   [ "$target" = api ] && seeds="$work/seeds-api"
   mkdir -p "$work/corpus-$target"
-  log="$work/$target.log"
-  echo "== ${target}_fuzzer for ${seconds}s"
-  if ! "$build"/fuzz/${target}_fuzzer "$work/corpus-$target" "$seeds" -max_total_time="$seconds" -timeout=10 \
-       -rss_limit_mb=2048 -max_len=4096 -print_final_stats=1 -artifact_prefix="$build"/findings/ > "$log" 2>&1; then
-    tail -40 "$log"
+  local status=0
+  "$build"/fuzz/${target}_fuzzer "$work/corpus-$target" "$seeds" -max_total_time="$seconds" -timeout=10 \
+    -rss_limit_mb=2048 -max_len=4096 -print_final_stats=1 -artifact_prefix="$build"/findings/ > "$work/$target.log" 2>&1 || status=$?
+  echo "$status" > "$work/$target.status"
+}
+targets=(decoder checker text mesh3d gltf api)
+echo "== ${#targets[@]} fuzzers for ${seconds}s each, $(nproc) at a time"
+for target in "${targets[@]}"; do
+  while [ "$(jobs -rp | wc -l)" -ge "$(nproc)" ]; do wait -n || true; done
+  fuzz_one "$target" &
+done
+wait
+total=0
+for target in "${targets[@]}"; do
+  if [ "$(cat "$work/$target.status")" != 0 ]; then
+    tail -40 "$work/$target.log"
     echo "FAIL: ${target}_fuzzer found a problem (artifact in $build/findings/)"
     exit 1
   fi
-  runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$')
+  runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$work/$target.log" | grep -o '[0-9]*$')
   echo "${target}_fuzzer: $runs executions, no findings"
   total=$((total + runs))
 done
