@@ -88,6 +88,16 @@ void add_codec_options(CLI::App& command, Encode3dArgs& args) {
     }
 }
 
+Encode3dOptions encode3d_options(const Encode3dArgs& args) {
+  Encode3dOptions options;
+  options.codec = args.codec;
+  options.codec_options = args.codec_options;
+  options.hashes = !args.no_hash;
+  options.hash_group = args.hash_group;
+  options.threads = args.threads;
+  return options;
+}
+
 int run_encode3d(const Encode3dArgs& args) {
   refuse_trace_to_output(args.trace, args.output);
   refuse_overwriting(args.input, args.output);
@@ -101,11 +111,7 @@ int run_encode3d(const Encode3dArgs& args) {
                   sequence.vertex_count(), sequence.faces().size(),
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - reading).count());
   Trace trace(std::cout);
-  Encode3dOptions options;
-  options.codec = args.codec;
-  options.codec_options = args.codec_options;
-  options.hashes = !args.no_hash;
-  options.hash_group = args.hash_group;
+  Encode3dOptions options = encode3d_options(args);
   options.reorder = args.reorder;
   if (args.position_blend != "auto") {
     const std::string& text = args.position_blend;
@@ -116,7 +122,6 @@ int run_encode3d(const Encode3dArgs& args) {
   }
   std::tie(options.frame_rate_num, options.frame_rate_den) = frame_rate_fraction(fps);
   options.trace = args.trace ? &trace : nullptr;
-  options.threads = args.threads;
   // The stream goes to its file as it is written; the file appears when it is complete.
   AtomicFile output(args.output);
   options.output = [&](std::span<const uint8_t> bytes) { output.write({reinterpret_cast<const char*>(bytes.data()), bytes.size()}); };

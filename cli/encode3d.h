@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "encoder/mesh3d/codec_options.h"
+#include "encoder/mesh3d/container_encoder.h"
 
 namespace CLI {
 class App;
@@ -35,6 +36,9 @@ struct Encode3dArgs {
 // A frame rate as the container's fraction num / den (each 1 … 65535): the
 // smallest power-of-ten den that holds it exactly, else the largest that fits.
 std::pair<uint32_t, uint32_t> frame_rate_fraction(double fps);
+// What every command that encodes takes from its encode3d arguments: the
+// codec and its options, the hash units, the threads.
+Encode3dOptions encode3d_options(const Encode3dArgs& args);
 // Adds --codec, the quality targets and every registered codec's own
 // options to `command`.
 void add_codec_options(CLI::App& command, Encode3dArgs& args);

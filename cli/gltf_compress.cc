@@ -245,11 +245,13 @@ MeshSequence bake_primitive(const GltfAsset& asset, const tinygltf::Primitive& p
   return s;
 }
 
-// The bytes of accessor `index`'s buffer view, or 0 (shared views and sparse parts counted whole).
-uint64_t view_bytes(const tinygltf::Model& m, int accessor) {
+// The bytes of accessor `index`'s buffer view the first time that view is named in `counted`, else 0 (a view
+// shared by several accessors, or a sparse accessor's parts, counted whole, once).
+uint64_t view_bytes(const tinygltf::Model& m, int accessor, std::set<int>& counted) {
   if (accessor < 0 || static_cast<size_t>(accessor) >= m.accessors.size()) return 0;
   const int view = m.accessors[static_cast<size_t>(accessor)].bufferView;
-  return view < 0 || static_cast<size_t>(view) >= m.bufferViews.size() ? 0 : m.bufferViews[static_cast<size_t>(view)].byteLength;
+  if (view < 0 || static_cast<size_t>(view) >= m.bufferViews.size() || !counted.insert(view).second) return 0;
+  return m.bufferViews[static_cast<size_t>(view)].byteLength;
 }
 
 // The container's frame rate of keys spread from first to last (the key times themselves are the extension's).
@@ -259,12 +261,7 @@ std::pair<uint32_t, uint32_t> key_rate(const std::vector<double>& times) {
 }
 
 Encode3dResult encode(const MeshSequence& frames, const Encode3dArgs& args, const std::vector<double>& times, std::string& codec) {
-  Encode3dOptions options;
-  options.codec = args.codec;
-  options.codec_options = args.codec_options;
-  options.hashes = !args.no_hash;
-  options.hash_group = args.hash_group;
-  options.threads = args.threads;
+  Encode3dOptions options = encode3d_options(args);
   options.measure = true;
   std::tie(options.frame_rate_num, options.frame_rate_den) = key_rate(times);
   console::Progress progress("encoding", frames.frames.size());
@@ -312,6 +309,7 @@ GltfCompressResult compress(const GltfAsset& asset, const std::string& json_text
   std::set<int> meshes;
   std::map<int, std::set<int>> removed_channels;            // per animation
   std::map<int, std::tuple<int, double, double>> held_spans;  // per animation: its first replaced node, its keys' first and last time
+  std::set<int> replaced_views;  // the views whose bytes a stream's report counts already
   for (const Replacement& r : replacements) {
     const tinygltf::Animation& animation = m.animations[static_cast<size_t>(r.animation)];
     const tinygltf::AnimationSampler& s = animation.samplers[static_cast<size_t>(animation.channels[static_cast<size_t>(r.channel)].sampler)];
@@ -336,7 +334,7 @@ GltfCompressResult compress(const GltfAsset& asset, const std::string& json_text
       }
       report.stream_bytes = encoded.stream.size();
       for (const std::map<std::string, int>& target : mesh.primitives[p].targets)
-        for (const auto& attribute : target) report.replaced_bytes += view_bytes(m, attribute.second);
+        for (const auto& attribute : target) report.replaced_bytes += view_bytes(m, attribute.second, replaced_views);
       report.kg = encoded.kg, report.psnr = encoded.psnr, report.max_error = encoded.max_error;
       const auto view = static_cast<int64_t>(doc["bufferViews"].size());
       doc["bufferViews"].push_back(Json{{"buffer", 0}, {"byteLength", encoded.stream.size()}});
@@ -344,7 +342,7 @@ GltfCompressResult compress(const GltfAsset& asset, const std::string& json_text
       entry["primitives"].push_back(Json{{"bufferView", view}});
       result.streams.push_back(report);
     }
-    result.streams.back().replaced_bytes += view_bytes(m, s.output);
+    result.streams.back().replaced_bytes += view_bytes(m, s.output, replaced_views);
     doc["animations"][static_cast<size_t>(r.animation)]["extensions"][kGltfExtensionName]["channels"].push_back(entry);
     removed_channels[r.animation].insert(r.channel);
     held_spans.try_emplace(r.animation, r.node, weights.times.front(), weights.times.back());

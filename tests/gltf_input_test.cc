@@ -28,6 +28,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
+const std::vector<float> kTetrahedron{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+// save_morphing_tetrahedron's two morph targets.
+const std::vector<float> kUp{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, kOut{1, 0, 0, 2, 0, 0, 3, 0, 0, 4, 0, 0};
+
 class GltfInput : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -94,6 +98,20 @@ class GltfInput : public ::testing::Test {
     return path;
   }
 
+  // A tetrahedron (in `mesh`) with the morph targets kUp and kOut weighted 0, 1
+  // then ½ each (LINEAR) at 0, 1 and 2 s, on node 0, moved by (1, 2, 3); saved as morph.glb.
+  std::string save_morphing_tetrahedron(tinygltf::Mesh mesh) {
+    tinygltf::Primitive p = tetrahedron(kTetrahedron);
+    p.targets = {{{"POSITION", accessor(kUp, TINYGLTF_TYPE_VEC3)}}, {{"POSITION", accessor(kOut, TINYGLTF_TYPE_VEC3)}}};
+    mesh.primitives.push_back(p);
+    model_.meshes.push_back(mesh);
+    tinygltf::Node node;
+    node.mesh = 0;
+    node.translation = {1, 2, 3};
+    animate(add_node(node), "weights", {0, 1, 2}, {0, 0, 1, 0, 0.5f, 0.5f});
+    return save("morph.glb");
+  }
+
   // The error reading `path` gives, or "" when it reads.
   static std::string error_of(const std::string& path, const GltfSelection& selection = {}) {
     try {
@@ -141,24 +159,12 @@ class GltfInput : public ::testing::Test {
 
 GltfSelection pick(const std::string& mesh, std::optional<double> fps = std::nullopt) { return {.mesh = mesh, .animation = "", .fps = fps}; }
 
-const std::vector<float> kTetrahedron{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
-
 // Two morph targets weighted 0, 1 then ½ each (LINEAR), on a node moved by
 // (1, 2, 3): at 2 frames a second, every frame is base + Σ wₖ targetₖ + (1, 2, 3).
 TEST_F(GltfInput, MorphTargetsBakeAsTheirWeightsSay) {
   tinygltf::Mesh mesh;
   mesh.name = "blob";
-  tinygltf::Primitive p = tetrahedron(kTetrahedron);
-  const std::vector<float> up{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, out{1, 0, 0, 2, 0, 0, 3, 0, 0, 4, 0, 0};
-  p.targets = {{{"POSITION", accessor(up, TINYGLTF_TYPE_VEC3)}}, {{"POSITION", accessor(out, TINYGLTF_TYPE_VEC3)}}};
-  mesh.primitives.push_back(p);
-  model_.meshes.push_back(mesh);
-  tinygltf::Node node;
-  node.mesh = 0;
-  node.translation = {1, 2, 3};
-  const int n = add_node(node);
-  animate(n, "weights", {0, 1, 2}, {0, 0, 1, 0, 0.5f, 0.5f});
-  const std::string path = save("morph.glb");
+  const std::string path = save_morphing_tetrahedron(mesh);
 
   const GltfAnimation baked = read_gltf(path, pick("", 2.0));
   EXPECT_EQ(baked.fps, 2.0);
@@ -167,7 +173,7 @@ TEST_F(GltfInput, MorphTargetsBakeAsTheirWeightsSay) {
   const double w_up[] = {0, 0.5, 1, 0.75, 0.5}, w_out[] = {0, 0, 0, 0.25, 0.5};
   for (size_t f = 0; f < 5; ++f)
     for (size_t v = 0; v < 4; ++v)
-      expect_near(baked.sequence.frames[f][v], kTetrahedron[3 * v] + w_out[f] * out[3 * v] + 1, kTetrahedron[3 * v + 1] + 2,
+      expect_near(baked.sequence.frames[f][v], kTetrahedron[3 * v] + w_out[f] * kOut[3 * v] + 1, kTetrahedron[3 * v + 1] + 2,
                   kTetrahedron[3 * v + 2] + w_up[f] + 3, "frame " + std::to_string(f) + " vertex " + std::to_string(v));
   // At its keyframes (evenly spaced, one a second): three frames at 1 fps.
   const GltfAnimation keys = read_gltf(path, {});
@@ -294,18 +300,8 @@ TEST_F(GltfInput, WhatCannotBeTakenIsNamed) {
 // codec's error), the node's translation not applied.
 TEST_F(GltfInput, CompressedMorphTargetsAreStreamsOfTheFramesAtTheirKeys) {
   tinygltf::Mesh mesh;
-  tinygltf::Primitive p = tetrahedron(kTetrahedron);
-  const std::vector<float> up{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, out{1, 0, 0, 2, 0, 0, 3, 0, 0, 4, 0, 0};
-  p.targets = {{{"POSITION", accessor(up, TINYGLTF_TYPE_VEC3)}}, {{"POSITION", accessor(out, TINYGLTF_TYPE_VEC3)}}};
-  mesh.primitives.push_back(p);
   mesh.weights = {0, 0};
-  model_.meshes.push_back(mesh);
-  tinygltf::Node node;
-  node.mesh = 0;
-  node.translation = {1, 2, 3};
-  const int n = add_node(node);
-  animate(n, "weights", {0, 1, 2}, {0, 0, 1, 0, 0.5f, 0.5f});
-  const std::string path = save("morph.glb");
+  const std::string path = save_morphing_tetrahedron(mesh);
 
   GltfCompressArgs args;
   args.encoding.codec = "bfs3d";
@@ -324,7 +320,7 @@ TEST_F(GltfInput, CompressedMorphTargetsAreStreamsOfTheFramesAtTheirKeys) {
   ASSERT_EQ(model.animations[0].channels.size(), 1u);
   EXPECT_EQ(model.animations[0].channels[0].target_path, "translation");
   const tinygltf::Value& channel = model.animations[0].extensions.at(kGltfExtensionName).Get("channels").Get(0);
-  EXPECT_EQ(channel.Get("node").GetNumberAsInt(), n);
+  EXPECT_EQ(channel.Get("node").GetNumberAsInt(), 0);
   EXPECT_EQ(channel.Get("interpolation").Get<std::string>(), "LINEAR");
   const tinygltf::Accessor& times = model.accessors[static_cast<size_t>(channel.Get("input").GetNumberAsInt())];
   EXPECT_EQ(times.count, 3u);
@@ -336,7 +332,7 @@ TEST_F(GltfInput, CompressedMorphTargetsAreStreamsOfTheFramesAtTheirKeys) {
   for (size_t f = 0; f < 3; ++f)
     for (size_t v = 0; v < 4; ++v) {
       const Vec3 q = decoded.frames[f][v];
-      EXPECT_NEAR(q.x, kTetrahedron[3 * v] + w_out[f] * out[3 * v], 1e-2) << f << " " << v;
+      EXPECT_NEAR(q.x, kTetrahedron[3 * v] + w_out[f] * kOut[3 * v], 1e-2) << f << " " << v;
       EXPECT_NEAR(q.y, kTetrahedron[3 * v + 1], 1e-2) << f << " " << v;
       EXPECT_NEAR(q.z, kTetrahedron[3 * v + 2] + w_up[f], 1e-2) << f << " " << v;
     }
@@ -349,6 +345,23 @@ TEST_F(GltfInput, CompressedMorphTargetsAreStreamsOfTheFramesAtTheirKeys) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("uses M4MESH_vertex_animation already"), std::string::npos) << e.what();
   }
+}
+
+// Two primitives sharing one morph target's accessor: the report counts its view once.
+TEST_F(GltfInput, ReplacedBytesCountEachViewOnce) {
+  tinygltf::Mesh mesh;
+  tinygltf::Primitive p = tetrahedron(kTetrahedron);
+  p.targets = {{{"POSITION", accessor(kUp, TINYGLTF_TYPE_VEC3)}}};
+  mesh.primitives = {p, p};
+  model_.meshes.push_back(mesh);
+  tinygltf::Node node;
+  node.mesh = 0;
+  animate(add_node(node), "weights", {0, 1}, {0, 1});
+  GltfCompressArgs args;
+  args.encoding.codec = "bfs3d";
+  const GltfCompressResult compressed = compress_gltf(save("shared.glb"), args);
+  ASSERT_EQ(compressed.streams.size(), 2u);
+  EXPECT_EQ(compressed.streams[0].replaced_bytes + compressed.streams[1].replaced_bytes, kUp.size() * sizeof(float) + 2 * sizeof(float));
 }
 
 TEST_F(GltfInput, WhatTheCompressorCannotTakeIsNamed) {

@@ -43,7 +43,7 @@ TEST(Md5, LanesAgreeWithOpenSsl) {
   SplitMix64 random(11);
   for (size_t length : {size_t{0}, size_t{1}, size_t{55}, size_t{56}, size_t{63}, size_t{64}, size_t{65}, size_t{119}, size_t{120},
                         size_t{1000}, size_t{12 * 8431}}) {
-    for (size_t count = 0; count <= 2 * kMd5Lanes + 1; ++count) {
+    for (size_t count = 0; count <= 2 * kMd5Batch + 1; ++count) {
       std::vector<std::string> messages(count);
       std::vector<const uint8_t*> starts;
       for (std::string& m : messages) {

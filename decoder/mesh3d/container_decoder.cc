@@ -253,8 +253,8 @@ void Mesh3dDecoder::check_group_hash(size_t index, const UnitHeader& header) {
   std::vector<Digest> frames(hash.group_frames);
   if (codec_->holds_frames()) {
     // The codec's frames, a batch of MD5 lanes at a time, kept for their release.
-    for (uint32_t k = 0; k < hash.group_frames; k += kMd5Lanes) {
-      const uint32_t count = std::min<uint32_t>(kMd5Lanes, hash.group_frames - k);
+    for (uint32_t k = 0; k < hash.group_frames; k += kMd5Batch) {
+      const uint32_t count = std::min<uint32_t>(kMd5Batch, hash.group_frames - k);
       std::vector<std::span<const Float3>> positions;
       for (uint32_t j = 0; j < count; ++j) {
         std::vector<Float3>& held = hashed_[first + k + j];
