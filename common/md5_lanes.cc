@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "common/cpu.h"
 #include "common/md5.h"
 
 #if !defined(M4MESH_NO_SIMD) && (defined(__SSE2__) || defined(__wasm_simd128__))
@@ -178,11 +179,6 @@ __attribute__((target("avx2"))) void blocks8(LaneState<8>& state, const uint8_t*
   M4MESH_MD5_ROUNDS(M4MESH_STEP, M4MESH_F, M4MESH_G, M4MESH_H, M4MESH_I)
   const __m256i rounds[4] = {a, b, c, d};
   for (int i = 0; i < 4; ++i) _mm256_storeu_si256(reinterpret_cast<__m256i*>(state[i]), _mm256_add_epi32(in[i], rounds[i]));
-}
-
-bool has_avx2() {
-  static const bool has = __builtin_cpu_supports("avx2");
-  return has;
 }
 
 #endif
