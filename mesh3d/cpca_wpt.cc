@@ -160,18 +160,33 @@ std::array<int64_t, 3> coefficients_of(std::span<const int32_t> coefficients, ui
   return {coefficients[f], coefficients[f], coefficients[f]};
 }
 
+#ifdef M4MESH_CPCA_SIMD
+// The vector loops' scaled(p, u), p a product exact in binary64 (|p| ≤ 2^38): p + 1.5 · 2^52 (the bias) makes
+// its integer the low bits; `before` takes the bias out and adds the rounding half and 2^63, so that the
+// rounding shift is a logical one, and `after` takes 2^(63 − u) out after it; u ≤ 0 shifts left.
+struct TermScaling {
+  static constexpr uint64_t kBias = 0x4338000000000000, kTop = uint64_t{1} << 63;
+  explicit TermScaling(int u)
+      : before(u > 0 ? (uint64_t{1} << (u - 1)) + kTop - kBias : 0 - kBias),
+        after(u > 0 ? kTop >> u : 0),
+        right(u > 0 ? u : 0),
+        left(u < 0 ? -u : 0) {}
+  uint64_t before, after;
+  int right, left;
+};
+#endif
+
 #ifdef M4MESH_CPCA_AVX2
 // The SSE2 loop's arithmetic in AVX2's four lanes, twelve values at a time; returns how many it took. No FMA:
 // the product and the bias stay two roundings of exact values.
-template <bool kTrajectory, bool kSubtract>
-__attribute__((target("avx2"))) size_t add_terms_avx2(uint64_t* run, const int32_t* basis, size_t n, const std::array<int64_t, 3>& coefficient, int u) {
+template <bool kTrajectory, bool kSubtract, bool kRounded>
+__attribute__((target("avx2"))) size_t add_terms_avx2(uint64_t* run, const int32_t* basis, size_t n, const std::array<int64_t, 3>& coefficient,
+                                                      const TermScaling& scaling) {
   const double c0 = static_cast<double>(coefficient[0]), c1 = static_cast<double>(coefficient[1]), c2 = static_cast<double>(coefficient[2]);
   const __m256d lanes[3] = {_mm256_set_pd(c0, c2, c1, c0), _mm256_set_pd(c1, c0, c2, c1), _mm256_set_pd(c2, c1, c0, c2)};
-  const uint64_t bias = 0x4338000000000000, top = uint64_t{1} << 63;
-  const __m256d biased = _mm256_castsi256_pd(_mm256_set1_epi64x(static_cast<int64_t>(bias)));
-  const __m256i before = _mm256_set1_epi64x(static_cast<int64_t>(u > 0 ? (uint64_t{1} << (u - 1)) + top - bias : 0 - bias));
-  const __m256i after = _mm256_set1_epi64x(static_cast<int64_t>(u > 0 ? top >> u : 0));
-  const __m128i right = _mm_cvtsi32_si128(u > 0 ? u : 0), left = _mm_cvtsi32_si128(u < 0 ? -u : 0);
+  const __m256d biased = _mm256_castsi256_pd(_mm256_set1_epi64x(static_cast<int64_t>(TermScaling::kBias)));
+  const __m256i before = _mm256_set1_epi64x(static_cast<int64_t>(scaling.before)), after = _mm256_set1_epi64x(static_cast<int64_t>(scaling.after));
+  const __m128i right = _mm_cvtsi32_si128(scaling.right), left = _mm_cvtsi32_si128(scaling.left);
   size_t j = 0;
   const int32_t* next = basis;
   for (; j + 12 <= n; j += 12) {
@@ -188,7 +203,7 @@ __attribute__((target("avx2"))) size_t add_terms_avx2(uint64_t* run, const int32
     }
     for (size_t k = 0; k < 3; ++k) {
       const __m256i p = _mm256_add_epi64(_mm256_castpd_si256(_mm256_add_pd(_mm256_mul_pd(b[k], lanes[k]), biased)), before);
-      const __m256i term = u > 0 ? _mm256_sub_epi64(_mm256_srl_epi64(p, right), after) : _mm256_sll_epi64(p, left);
+      const __m256i term = kRounded ? _mm256_sub_epi64(_mm256_srl_epi64(p, right), after) : _mm256_sll_epi64(p, left);
       __m256i* at = reinterpret_cast<__m256i*>(run + j + 4 * k);
       _mm256_storeu_si256(at, kSubtract ? _mm256_sub_epi64(_mm256_loadu_si256(at), term) : _mm256_add_epi64(_mm256_loadu_si256(at), term));
     }
@@ -203,25 +218,20 @@ __attribute__((target("avx2"))) size_t add_terms_avx2(uint64_t* run, const int32
 template <bool kTrajectory, bool kSubtract>
 void add_terms(uint64_t* run, const int32_t* basis, size_t n, const std::array<int64_t, 3>& coefficient, int u) {
   size_t j = 0;
-#ifdef M4MESH_CPCA_AVX2
-  if (has_avx2()) j = add_terms_avx2<kTrajectory, kSubtract>(run, basis, n, coefficient, u);
-#endif
 #ifdef M4MESH_CPCA_SIMD
-  // Six values (three pairs) at a time. The product is exact in binary64
-  // (|p| ≤ 2^38) and becomes its integer by the 1.5 · 2^52 bias; the
-  // rounding shift is a logical one of p + 2^63, whose 2^(63 − u) is taken
-  // out after it.
+  // Six values (three pairs) at a time, after the AVX2 loop's twelve where the processor has it.
+  const TermScaling scaling(u);
   const __m128d pairs[3] = {_mm_set_pd(static_cast<double>(coefficient[1]), static_cast<double>(coefficient[0])),
                             _mm_set_pd(static_cast<double>(coefficient[0]), static_cast<double>(coefficient[2])),
                             _mm_set_pd(static_cast<double>(coefficient[2]), static_cast<double>(coefficient[1]))};
-  const uint64_t bias = 0x4338000000000000;
-  const __m128d biased = _mm_castsi128_pd(_mm_set1_epi64x(static_cast<int64_t>(bias)));
-  const uint64_t top = uint64_t{1} << 63;
-  const __m128i before = _mm_set1_epi64x(static_cast<int64_t>(u > 0 ? (uint64_t{1} << (u - 1)) + top - bias : 0 - bias));
-  const __m128i after = _mm_set1_epi64x(static_cast<int64_t>(u > 0 ? top >> u : 0));
-  const __m128i right = _mm_cvtsi32_si128(u > 0 ? u : 0), left = _mm_cvtsi32_si128(u < 0 ? -u : 0);
-  // The exponent's sign chooses the loop: a rounding shift right, or a shift left.
+  const __m128d biased = _mm_castsi128_pd(_mm_set1_epi64x(static_cast<int64_t>(TermScaling::kBias)));
+  const __m128i before = _mm_set1_epi64x(static_cast<int64_t>(scaling.before)), after = _mm_set1_epi64x(static_cast<int64_t>(scaling.after));
+  const __m128i right = _mm_cvtsi32_si128(scaling.right), left = _mm_cvtsi32_si128(scaling.left);
+  // The exponent's sign chooses the loops: a rounding shift right, or a shift left.
   const auto six_at_a_time = [&](auto rounded) {
+#ifdef M4MESH_CPCA_AVX2
+    if (has_avx2()) j = add_terms_avx2<kTrajectory, kSubtract, decltype(rounded)::value>(run, basis, n, coefficient, scaling);
+#endif
     const int32_t* next = basis + (kTrajectory ? j / 3 : j);
     for (; j + 6 <= n; j += 6) {
       __m128d b[3];

@@ -25,6 +25,10 @@ class PositionOrder {
  private:
   const MeshPredictor& predictor_;
   std::vector<uint32_t> local_;  // per vertex: its index among the candidates, kNotCandidate between calls
+  // One call's working arrays, kept for the next (see of()).
+  std::vector<uint32_t> owner_, corners_, first_use_, uses_, fill_, grown_;
+  std::vector<uint8_t> unknown_, state_;
+  std::vector<uint64_t> support_;
 };
 
 }  // namespace m4mesh
