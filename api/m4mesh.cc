@@ -10,11 +10,13 @@
 #include <new>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "bitstream/start_codes.h"
 #include "codecs3d/registry.h"
 #include "common/error.h"
+#include "common/parse_number.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "decoder/mesh3d/streaming_decoder.h"
 #include "decoder/mesh_object_decoder.h"
@@ -23,6 +25,14 @@
 
 namespace m4mesh {
 namespace {
+
+// codec_options' "max-error": the whole text a number (its range is checked with the target).
+double max_error_option(const char* text) {
+  double value = 0;
+  const char* end = text + std::strlen(text);
+  if (parse_double(text, end, value) != end || end == text) throw usage_error(std::string("codec_options: max-error '") + text + "' is not a number");
+  return value;
+}
 
 template <size_t N>
 void copy_text(char (&out)[N], const std::string& text) {
@@ -338,13 +348,17 @@ m4mesh_status m4mesh_encode3d(const float* positions, uint32_t frames, uint32_t 
     encode.frame_rate_num = static_cast<uint32_t>(std::llround(rate * 1000));
     encode.frame_rate_den = 1000;
     if (rate == std::floor(rate)) encode.frame_rate_num = static_cast<uint32_t>(rate), encode.frame_rate_den = 1;
+    QualityTarget target;
+    // max-error is a quality target among the codec's options, so that 1.0's struct keeps its size.
     if (o.codec_options)
       for (const char* const* p = o.codec_options; *p; p += 2) {
         if (!p[1]) throw usage_error(std::string("codec_options: option ") + p[0] + " has no value");
-        encode.codec_options[p[0]] = p[1];
+        if (std::string_view(p[0]) == "max-error")
+          target.max_error = max_error_option(p[1]);
+        else
+          encode.codec_options[p[0]] = p[1];
       }
     if (o.max_bytes > 0) encode.codec_options["max-bytes"] = std::to_string(o.max_bytes);
-    QualityTarget target;
     if (o.target_kg != 0) target.kg = o.target_kg;
     if (o.target_psnr != 0) target.psnr = o.target_psnr;
 

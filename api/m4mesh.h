@@ -159,7 +159,8 @@ typedef struct m4mesh_encode_options {
   uint64_t max_bytes;        /* > 0: cpca-wpt's stream budget (its max-bytes option) */
   int hashes;                /* 1: hash units of the decoded frames (the default) */
   double frame_rate;         /* frames per second; 0: 25 */
-  const char *const *codec_options; /* NULL, or name, value, name, value, …, NULL: the codec's options ("bits", "12") */
+  const char *const *codec_options; /* NULL, or name, value, name, value, …, NULL: the codec's options ("bits", "12"), and
+                                        the quality target "max-error", "E": no decoded vertex farther than E from its original */
 } m4mesh_encode_options;
 
 /* The defaults: bfs3d, no target, hash units, 25 frames per second. */

@@ -118,6 +118,8 @@ int run_m4mesh(int argc, const char* const* argv) {
   gltf_cmd->add_option("input", gltf_args.input, "a .glb or .gltf file")->required();
   gltf_cmd->add_option("-o,--output", gltf_args.output, "the compressed file (.glb)")->required();
   add_codec_options(*gltf_cmd, gltf_args.encoding);
+  gltf_cmd->add_flag("--bake-skins", gltf_args.bake_skins,
+                     "also bake each animation that moves a skin into streams (with the node's morph targets), and take the skin from its node");
   gltf_cmd->add_flag("--required", gltf_args.required, "list the extension in extensionsRequired too (loaders without it refuse the file instead of showing the rest pose)");
   gltf_cmd->footer("Default: --codec auto --target-kg 0.1 (every codec, the smallest stream whose decoded KG error is at most 0.1 %).");
 

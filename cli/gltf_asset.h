@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli/gltf.h"
 #include "common/error.h"
 
 namespace m4mesh {
@@ -67,5 +68,16 @@ struct GltfSampler {
   // The value at time t.
   std::vector<double> at(double t) const;
 };
+
+// Every key time of animation `animation`'s channels, each once, in order.
+std::vector<double> animation_key_times(const GltfAsset& asset, int animation);
+
+// Node `node`'s mesh as animation `animation` moves it, at `times`: per
+// primitive, its triangles and its positions after its morph targets (the
+// node's weights channel, else the mesh's default weights) and its skin
+// (linear blend), in the node's own space: a skin's positions taken back
+// through the node's world transform at each time, so that the node's
+// transform, once the skin is gone, puts them where the skin did.
+std::vector<MeshSequence> bake_in_node_space(const GltfAsset& asset, int animation, int node, std::span<const double> times, const GltfLimits& limits);
 
 }  // namespace m4mesh

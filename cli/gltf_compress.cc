@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -150,9 +151,11 @@ int64_t add_floats(Json& doc, std::map<int64_t, std::vector<uint8_t>>& new_views
   return static_cast<int64_t>(doc["accessors"].size() - 1);
 }
 
-// One weights channel replaced: the animation, the channel's node and the node's mesh.
+// One vertex animation replaced: the animation, its weights channel (−1: none), the channel's node and the node's
+// mesh; `skin`: the node's skin baked too (--bake-skins), so that the stream holds every pose of the mesh.
 struct Replacement {
   int animation, channel, node, mesh;
+  bool skin = false;
 };
 
 std::string mesh_name(const tinygltf::Model& model, int mesh) {
@@ -165,22 +168,56 @@ std::string animation_name(const tinygltf::Model& model, int animation) {
   return "animation " + std::to_string(animation) + (name.empty() ? "" : " '" + name + "'");
 }
 
-// Every weights channel that drives a node's morph targets.
-std::vector<Replacement> weights_channels(const GltfAsset& asset) {
+bool has_node(const tinygltf::Model& m, int node) { return node >= 0 && static_cast<size_t>(node) < m.nodes.size(); }
+
+// Whether a node carries a skin m4mesh may bake: a mesh with primitives, and a skin of the asset.
+bool bakes_skin(const tinygltf::Model& m, const tinygltf::Node& node) {
+  return node.skin >= 0 && static_cast<size_t>(node.skin) < m.skins.size() && node.mesh >= 0 && static_cast<size_t>(node.mesh) < m.meshes.size() &&
+         !m.meshes[static_cast<size_t>(node.mesh)].primitives.empty();
+}
+
+// Whether an animation moves a skin: a translation, rotation or scale channel on one of its joints or their
+// ancestors (`parent`: each node's, −1 for none).
+bool moves_skin(const tinygltf::Model& m, const std::vector<int>& parent, const tinygltf::Animation& animation, const tinygltf::Skin& skin) {
+  std::set<int> movers;
+  for (int joint : skin.joints)
+    for (int at = joint; has_node(m, at) && movers.insert(at).second;) at = parent[static_cast<size_t>(at)];
+  return std::any_of(animation.channels.begin(), animation.channels.end(), [&](const tinygltf::AnimationChannel& c) {
+    return c.target_path != "weights" && movers.count(c.target_node);
+  });
+}
+
+// Every weights channel that drives a node's morph targets; with `skins`, every skinned node an animation moves
+// (with its weights channel there, if any).
+std::vector<Replacement> replacements_of(const GltfAsset& asset, bool skins) {
   const tinygltf::Model& m = asset.model();
+  std::vector<int> parent(m.nodes.size(), -1);  // a node of several parents, or a cycle, is the baking's error
+  for (size_t n = 0; n < m.nodes.size(); ++n)
+    for (int child : m.nodes[n].children)
+      if (has_node(m, child)) parent[static_cast<size_t>(child)] = static_cast<int>(n);
   std::vector<Replacement> found;
-  for (size_t a = 0; a < m.animations.size(); ++a)
+  for (size_t a = 0; a < m.animations.size(); ++a) {
+    std::set<int> skinned;  // the nodes of this animation whose skin is baked
     for (size_t c = 0; c < m.animations[a].channels.size(); ++c) {
       const tinygltf::AnimationChannel& channel = m.animations[a].channels[c];
-      if (channel.target_path != "weights" || channel.target_node < 0 || static_cast<size_t>(channel.target_node) >= m.nodes.size()) continue;
-      const int mesh = m.nodes[static_cast<size_t>(channel.target_node)].mesh;
+      if (channel.target_path != "weights" || !has_node(m, channel.target_node)) continue;
+      const tinygltf::Node& node = m.nodes[static_cast<size_t>(channel.target_node)];
+      const int mesh = node.mesh;
       if (mesh < 0 || static_cast<size_t>(mesh) >= m.meshes.size() || m.meshes[static_cast<size_t>(mesh)].primitives.empty() ||
           m.meshes[static_cast<size_t>(mesh)].primitives.front().targets.empty())
         continue;
       if (channel.sampler < 0 || static_cast<size_t>(channel.sampler) >= m.animations[a].samplers.size())
         throw asset.error(animation_name(m, static_cast<int>(a)) + ", channel " + std::to_string(c) + ": no sampler " + std::to_string(channel.sampler));
-      found.push_back({static_cast<int>(a), static_cast<int>(c), channel.target_node, mesh});
+      const bool skin = skins && bakes_skin(m, node);
+      if (skin) skinned.insert(channel.target_node);
+      found.push_back({static_cast<int>(a), static_cast<int>(c), channel.target_node, mesh, skin});
     }
+    if (!skins) continue;
+    for (size_t n = 0; n < m.nodes.size(); ++n)
+      if (bakes_skin(m, m.nodes[n]) && !skinned.count(static_cast<int>(n)) &&
+          moves_skin(m, parent, m.animations[a], m.skins[static_cast<size_t>(m.nodes[n].skin)]))
+        found.push_back({static_cast<int>(a), -1, static_cast<int>(n), m.nodes[n].mesh, true});
+  }
   return found;
 }
 
@@ -297,8 +334,13 @@ GltfCompressResult compress(const GltfAsset& asset, const std::string& json_text
       }
 
   GltfCompressResult result;
-  const std::vector<Replacement> replacements = weights_channels(asset);
-  if (replacements.empty()) throw asset.error("no animation drives morph targets (a weights channel): nothing to compress");
+  const std::vector<Replacement> replacements = replacements_of(asset, args.bake_skins);
+  if (replacements.empty()) {
+    const bool skinned = std::any_of(m.nodes.begin(), m.nodes.end(), [&](const tinygltf::Node& n) { return bakes_skin(m, n); });
+    throw asset.error(args.bake_skins ? "no animation drives morph targets (a weights channel) or moves a skin: nothing to compress"
+                                      : std::string("no animation drives morph targets (a weights channel): nothing to compress") +
+                                            (skinned ? " (its skins' animations are baked with --bake-skins)" : ""));
+  }
 
   const std::set<int64_t> accessors_before = referenced(doc, [](Json& d, auto f) { for_each_accessor_index(d, f); });
   const std::set<int64_t> views_before = referenced(doc, [](Json& d, auto f) { for_each_view_index(d, f); });
@@ -310,25 +352,46 @@ GltfCompressResult compress(const GltfAsset& asset, const std::string& json_text
   std::map<int, std::set<int>> removed_channels;            // per animation
   std::map<int, std::tuple<int, double, double>> held_spans;  // per animation: its first replaced node, its keys' first and last time
   std::set<int> replaced_views;  // the views whose bytes a stream's report counts already
+  std::set<int> unskinned;  // the nodes whose skin is baked
   for (const Replacement& r : replacements) {
     const tinygltf::Animation& animation = m.animations[static_cast<size_t>(r.animation)];
-    const tinygltf::AnimationSampler& s = animation.samplers[static_cast<size_t>(animation.channels[static_cast<size_t>(r.channel)].sampler)];
     const tinygltf::Mesh& mesh = m.meshes[static_cast<size_t>(r.mesh)];
-    const std::string where = animation_name(m, r.animation) + ", weights of node " + std::to_string(r.node);
+    const std::string where = animation_name(m, r.animation) + (r.channel >= 0 ? ", weights of node " : ", skin of node ") + std::to_string(r.node);
     const size_t targets = mesh.primitives.front().targets.size();
-    const GltfSampler weights = GltfSampler::read(asset, s, targets, targets, where);
-    if (weights.interpolation == "CUBICSPLINE")
-      result.warnings.push_back(where + ": CUBICSPLINE weights are kept at their keys and played LINEAR between them");
-    Json entry{{"node", r.node}, {"input", s.input}, {"interpolation", weights.interpolation == "STEP" ? "STEP" : "LINEAR"}, {"primitives", Json::array()}};
+    // The keys: the weights channel's, or (a skin baked) every key of the animation, LINEAR unless each channel is STEP.
+    std::vector<double> times;
+    std::string interpolation = "LINEAR";
+    int64_t input = -1;
+    int64_t replaced_output = -1;
+    std::optional<GltfSampler> weights;
+    if (r.channel >= 0) {
+      const tinygltf::AnimationSampler& s = animation.samplers[static_cast<size_t>(animation.channels[static_cast<size_t>(r.channel)].sampler)];
+      weights = GltfSampler::read(asset, s, targets, targets, where);
+      if (weights->interpolation == "CUBICSPLINE")
+        result.warnings.push_back(where + ": CUBICSPLINE weights are kept at their keys and played LINEAR between them");
+      if (weights->interpolation == "STEP") interpolation = "STEP";
+      times = weights->times, input = s.input, replaced_output = s.output;
+    }
+    if (r.skin) {
+      times = animation_key_times(asset, r.animation);
+      if (times.empty()) throw asset.error(where + ": the animation has no keys to bake the skin at");
+      const bool steps = std::all_of(animation.samplers.begin(), animation.samplers.end(), [](const tinygltf::AnimationSampler& s) { return s.interpolation == "STEP"; });
+      interpolation = steps ? "STEP" : "LINEAR";
+      input = add_floats(doc, new_views, std::vector<float>(times.begin(), times.end()), "SCALAR", true);
+      unskinned.insert(r.node);
+    }
+    Json entry{{"node", r.node}, {"input", input}, {"interpolation", interpolation}, {"primitives", Json::array()}};
+    std::vector<MeshSequence> baked;
+    if (r.skin) baked = bake_in_node_space(asset, r.animation, r.node, times, args.limits);
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const std::string what = mesh_name(m, r.mesh) + ", primitive " + std::to_string(p);
       if (mesh.primitives[p].targets.size() != targets)
         throw asset.error(what + " has " + std::to_string(mesh.primitives[p].targets.size()) + " morph targets, primitive 0 " + std::to_string(targets));
-      const MeshSequence frames = bake_primitive(asset, mesh.primitives[p], weights, args.limits, what);
+      const MeshSequence frames = r.skin ? std::move(baked[p]) : bake_primitive(asset, mesh.primitives[p], *weights, args.limits, what);
       GltfStreamReport report{r.animation, r.node, r.mesh, static_cast<int>(p), "", static_cast<uint32_t>(frames.frames.size()), frames.vertex_count};
       Encode3dResult encoded;
       try {
-        encoded = encode(frames, args.encoding, weights.times, report.codec);
+        encoded = encode(frames, args.encoding, times, report.codec);
       } catch (const Error& e) {
         throw Error(e.kind(), "", kNoPlane, kNoOffset, path + ": " + what + ", " + where + ": " + e.message());
       }
@@ -342,11 +405,29 @@ GltfCompressResult compress(const GltfAsset& asset, const std::string& json_text
       entry["primitives"].push_back(Json{{"bufferView", view}});
       result.streams.push_back(report);
     }
-    result.streams.back().replaced_bytes += view_bytes(m, s.output, replaced_views);
+    if (replaced_output >= 0) result.streams.back().replaced_bytes += view_bytes(m, static_cast<int>(replaced_output), replaced_views);
     doc["animations"][static_cast<size_t>(r.animation)]["extensions"][kGltfExtensionName]["channels"].push_back(entry);
-    removed_channels[r.animation].insert(r.channel);
-    held_spans.try_emplace(r.animation, r.node, weights.times.front(), weights.times.back());
+    if (r.channel >= 0) removed_channels[r.animation].insert(r.channel);
+    held_spans.try_emplace(r.animation, r.node, times.front(), times.back());
     meshes.insert(r.mesh);
+  }
+
+  // A baked skin goes from its node; its mesh's joints and weights go when no node keeps a skin over it. The
+  // skin itself and its joints' channels stay (other nodes may hang from the joints).
+  for (int node : unskinned) doc["nodes"][static_cast<size_t>(node)].erase("skin");
+  for (int mesh : meshes) {
+    const bool still_skinned = std::any_of(m.nodes.begin(), m.nodes.end(), [&](const tinygltf::Node& n) {
+      return n.mesh == mesh && n.skin >= 0 && !unskinned.count(static_cast<int>(&n - m.nodes.data()));
+    });
+    if (still_skinned || std::none_of(replacements.begin(), replacements.end(), [&](const Replacement& r) { return r.mesh == mesh && r.skin; })) continue;
+    GltfStreamReport& report = *std::find_if(result.streams.begin(), result.streams.end(), [&](const GltfStreamReport& r) { return r.mesh == mesh; });
+    for (const tinygltf::Primitive& p : m.meshes[static_cast<size_t>(mesh)].primitives)
+      for (const auto& [name, accessor] : p.attributes)
+        if (name.starts_with("JOINTS_") || name.starts_with("WEIGHTS_")) report.replaced_bytes += view_bytes(m, accessor, replaced_views);
+    for (Json& p : doc["meshes"][static_cast<size_t>(mesh)]["primitives"])
+      if (Json* attributes = member(p, "attributes"))
+        for (auto it = attributes->begin(); it != attributes->end();)
+          it = it.key().starts_with("JOINTS_") || it.key().starts_with("WEIGHTS_") ? attributes->erase(it) : std::next(it);
   }
 
   // The morph targets go, with the weights that chose among them.
@@ -495,7 +576,7 @@ int run_gltf_compress(const GltfCompressArgs& args) {
     streams += r.stream_bytes, replaced += r.replaced_bytes;
   }
   write_file_atomically(args.output, {reinterpret_cast<const char*>(result.glb.data()), result.glb.size()});
-  say("%s: %zu bytes (%s in %llu bytes, for %llu bytes of morph targets and weights)", args.output.c_str(), result.glb.size(),
+  say("%s: %zu bytes (%s in %llu bytes, for %llu bytes of morph targets, weights, joints and skin weights)", args.output.c_str(), result.glb.size(),
       console::counted(result.streams.size(), "stream", "streams").c_str(), static_cast<unsigned long long>(streams),
       static_cast<unsigned long long>(replaced));
   return 0;

@@ -1,6 +1,7 @@
-// m4mesh gltf: a glTF 2.0 file whose morph-target animations are replaced
-// by m4mesh streams in the M4MESH_vertex_animation extension
-// (docs/gltf_extension.md), everything else of the file kept as it was.
+// m4mesh gltf: a glTF 2.0 file whose morph-target animations (and, with
+// bake_skins, skin animations) are replaced by m4mesh streams in the
+// M4MESH_vertex_animation extension (docs/extensions/), everything else of
+// the file kept as it was.
 #pragma once
 
 #include <cstdint>
@@ -21,6 +22,7 @@ struct GltfCompressArgs {
   std::string input, output;  // .glb or .gltf in; .glb out
   Encode3dArgs encoding;      // --codec, the quality target, the codecs' options
   bool required = false;      // the extension in extensionsRequired too
+  bool bake_skins = false;    // a skin's animations baked into streams too, the skin taken from its node
   GltfLimits limits;          // what one primitive's baking may take
 };
 
@@ -29,7 +31,7 @@ struct GltfStreamReport {
   int animation = -1, node = -1, mesh = -1, primitive = -1;
   std::string codec;
   uint32_t frames = 0, vertices = 0;
-  uint64_t stream_bytes = 0, replaced_bytes = 0;  // the stream; the targets' and weights' data it replaces
+  uint64_t stream_bytes = 0, replaced_bytes = 0;  // the stream; the targets', weights', joints' and skin weights' data it replaces
   double kg = 0, psnr = 0, max_error = 0;
 };
 

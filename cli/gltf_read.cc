@@ -103,6 +103,7 @@ struct Geometry {
   std::vector<std::array<uint32_t, 4>> joints;  // per vertex and influence set
   std::vector<std::array<double, 4>> weights;
   size_t influence_sets = 0;
+  std::vector<uint32_t> first_vertex, first_face;  // per primitive, then one past the last
 };
 
 std::vector<Vec3> vec3s(const std::vector<double>& xyz) {
@@ -127,6 +128,7 @@ Geometry geometry_of(const GltfAsset& asset, const tinygltf::Mesh& mesh, bool sk
     if (position == p.attributes.end()) throw asset.error(what + " has no POSITION");
     const std::vector<Vec3> base = vec3s(asset.numbers(position->second, 3, what + ", POSITION"));
     const auto first = static_cast<uint32_t>(g.base.size());
+    g.first_vertex.push_back(first), g.first_face.push_back(static_cast<uint32_t>(g.faces.size()));
     if (g.base.size() + base.size() > kMostVertices) throw asset.error(name + ": over " + std::to_string(kMostVertices) + " vertices");
     g.base.insert(g.base.end(), base.begin(), base.end());
     for (size_t t = 0; t < targets; ++t) {
@@ -172,6 +174,7 @@ Geometry geometry_of(const GltfAsset& asset, const tinygltf::Mesh& mesh, bool sk
       }
     }
   }
+  g.first_vertex.push_back(static_cast<uint32_t>(g.base.size())), g.first_face.push_back(static_cast<uint32_t>(g.faces.size()));
   return g;
 }
 
@@ -238,19 +241,9 @@ std::pair<std::vector<double>, double> sample_times(const GltfAsset& asset, cons
   return {times, 1 / step};
 }
 
-// The chosen mesh baked at every sample time.
-GltfAnimation bake(const GltfAsset& asset, const GltfSelection& selection, const GltfLimits& limits) {
-  if (selection.fps && !(*selection.fps > 0 && *selection.fps <= 1000)) throw usage_error("--fps: a rate above 0 and at most 1000");
+// Every node's parent (−1: a root), checked to be a tree.
+std::vector<int> parents_of(const GltfAsset& asset) {
   const tinygltf::Model& m = asset.model();
-
-  const Choice choice = choose_mesh(asset, selection.mesh);
-  const tinygltf::Node& node = m.nodes[static_cast<size_t>(choice.node)];
-  const bool skinned = node.skin >= 0;
-  if (skinned && static_cast<size_t>(node.skin) >= m.skins.size()) throw asset.error("node '" + choice.name + "': no skin " + std::to_string(node.skin));
-  const tinygltf::Mesh& mesh = m.meshes[static_cast<size_t>(node.mesh)];
-  const Geometry g = geometry_of(asset, mesh, skinned);
-  const Channels channels = channels_of(asset, choose_animation(asset, selection.animation));
-
   std::vector<int> parent(m.nodes.size(), -1);
   for (size_t n = 0; n < m.nodes.size(); ++n)
     for (int child : m.nodes[n].children) {
@@ -263,6 +256,27 @@ GltfAnimation bake(const GltfAsset& asset, const GltfSelection& selection, const
     for (int at = parent[n]; at >= 0; at = parent[static_cast<size_t>(at)])
       if (++steps > m.nodes.size()) throw asset.error("node " + std::to_string(n) + " is its own ancestor");
   }
+  return parent;
+}
+
+// A node's mesh at each time, every primitive's vertices after the last one's.
+struct Baked {
+  MeshSequence sequence;
+  Geometry geometry;
+};
+
+// Node `index`'s mesh at `times`, moved by `channels`: its morph targets, then its skin (linear blend) or, without
+// one, its node's world transform (in_node_space: a skin's positions taken back through that transform, else none).
+Baked bake_node(const GltfAsset& asset, const Channels& channels, int index, std::span<const double> times, bool in_node_space, const GltfLimits& limits) {
+  const tinygltf::Model& m = asset.model();
+  const tinygltf::Node& node = m.nodes[static_cast<size_t>(index)];
+  const std::string name = "node " + std::to_string(index) + (node.name.empty() ? "" : " '" + node.name + "'");
+  const bool skinned = node.skin >= 0;
+  if (skinned && static_cast<size_t>(node.skin) >= m.skins.size()) throw asset.error(name + ": no skin " + std::to_string(node.skin));
+  const tinygltf::Mesh& mesh = m.meshes[static_cast<size_t>(node.mesh)];
+  Baked baked{{}, geometry_of(asset, mesh, skinned)};
+  const Geometry& g = baked.geometry;
+  const std::vector<int> parent = parents_of(asset);
 
   std::vector<Matrix> inverse_bind;
   std::vector<int> joints;
@@ -282,26 +296,30 @@ GltfAnimation bake(const GltfAsset& asset, const GltfSelection& selection, const
         if (j >= joints.size()) throw asset.error("mesh '" + mesh.name + "': joint " + std::to_string(j) + " past the skin's " + std::to_string(joints.size()));
   }
 
-  const auto [times, fps] = sample_times(asset, channels, selection.fps, limits.most_positions);
   if (static_cast<double>(times.size()) * static_cast<double>(g.base.size()) > static_cast<double>(limits.most_positions))
     throw asset.error(std::to_string(times.size()) + " frames of " + std::to_string(g.base.size()) + " vertices are too many to bake: give a lower --fps");
   uint64_t work = 0;
-
-  GltfAnimation out;
-  out.fps = fps;
-  out.sequence.vertex_count = static_cast<uint32_t>(g.base.size());
-  out.sequence.faces = g.faces;
+  baked.sequence.vertex_count = static_cast<uint32_t>(g.base.size());
+  baked.sequence.faces = g.faces;
   const std::vector<double> rest_weights(mesh.weights.begin(), mesh.weights.end());
   for (const double t : times) {
     std::vector<double> weights = rest_weights;
-    if (const GltfSampler* s = channels.find(choice.node, "weights")) weights = s->at(t);
+    if (const GltfSampler* s = channels.find(index, "weights")) weights = s->at(t);
     weights.resize(g.targets.size(), 0.0);
     // Per vertex: its morph targets of weight ≠ 0 and its joints.
     work += g.base.size() * (1 + static_cast<uint64_t>(std::count_if(weights.begin(), weights.end(), [](double w) { return w != 0; })) + 4 * g.influence_sets);
     if (work > limits.most_work) throw asset.error("the animation takes over " + std::to_string(limits.most_work) + " vertex operations to bake: give a lower --fps");
     const std::vector<Matrix> world = world_transforms(m, parent, channels, t);
     std::vector<Matrix> skinning;
-    for (size_t j = 0; j < joints.size(); ++j) skinning.push_back(world[static_cast<size_t>(joints[j])] * inverse_bind[j]);
+    Matrix back = Matrix::Identity();  // from the world to the node's own space, when asked for
+    if (skinned && in_node_space) {
+      const Matrix& placed = world[static_cast<size_t>(index)];
+      const double determinant = placed.determinant();
+      if (!(std::abs(determinant) > 1e-300) || !std::isfinite(determinant))
+        throw asset.error(name + ": its transform at " + std::to_string(t) + " s has no inverse, so its skin's positions have no place in its own space");
+      back = placed.inverse();
+    }
+    for (size_t j = 0; j < joints.size(); ++j) skinning.push_back(back * world[static_cast<size_t>(joints[j])] * inverse_bind[j]);
     std::vector<Vec3> frame(g.base.size());
     for (size_t v = 0; v < g.base.size(); ++v) {
       Eigen::Vector4d p(g.base[v].x, g.base[v].y, g.base[v].z, 1);
@@ -315,16 +333,25 @@ GltfAnimation bake(const GltfAsset& asset, const GltfSelection& selection, const
             if (g.weights[at][i] != 0) q += g.weights[at][i] * (skinning[g.joints[at][i]] * p);
         }
       } else {
-        q = world[static_cast<size_t>(choice.node)] * p;
+        q = in_node_space ? p : Eigen::Vector4d(world[static_cast<size_t>(index)] * p);
       }
       for (int c = 0; c < 3; ++c)
         if (!(std::abs(q[c]) <= std::numeric_limits<float>::max()))
           throw asset.error("vertex " + std::to_string(v) + " at " + std::to_string(t) + " s is not a finite float32 position");
       frame[v] = {static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z())};
     }
-    out.sequence.frames.push_back(std::move(frame));
+    baked.sequence.frames.push_back(std::move(frame));
   }
-  return out;
+  return baked;
+}
+
+// The chosen mesh baked at every sample time.
+GltfAnimation bake(const GltfAsset& asset, const GltfSelection& selection, const GltfLimits& limits) {
+  if (selection.fps && !(*selection.fps > 0 && *selection.fps <= 1000)) throw usage_error("--fps: a rate above 0 and at most 1000");
+  const Choice choice = choose_mesh(asset, selection.mesh);
+  const Channels channels = channels_of(asset, choose_animation(asset, selection.animation));
+  const auto [times, fps] = sample_times(asset, channels, selection.fps, limits.most_positions);
+  return {bake_node(asset, channels, choice.node, times, false, limits).sequence, fps};
 }
 
 }  // namespace
@@ -337,6 +364,29 @@ GltfAnimation read_gltf(const std::string& path, const GltfSelection& selection,
 
 GltfAnimation read_glb(std::span<const uint8_t> bytes, const std::string& name, const GltfSelection& selection, const GltfLimits& limits) {
   return bake(load_glb_asset(bytes, name), selection, limits);
+}
+
+std::vector<double> animation_key_times(const GltfAsset& asset, int animation) {
+  const Channels channels = channels_of(asset, asset.model().animations.at(static_cast<size_t>(animation)));
+  std::set<double> keys;
+  for (const auto& [target, sampler] : channels.samplers) keys.insert(sampler.times.begin(), sampler.times.end());
+  return {keys.begin(), keys.end()};
+}
+
+std::vector<MeshSequence> bake_in_node_space(const GltfAsset& asset, int animation, int node, std::span<const double> times, const GltfLimits& limits) {
+  const Channels channels = channels_of(asset, asset.model().animations.at(static_cast<size_t>(animation)));
+  const Baked baked = bake_node(asset, channels, node, times, true, limits);
+  const Geometry& g = baked.geometry;
+  std::vector<MeshSequence> primitives(g.first_vertex.size() - 1);
+  for (size_t p = 0; p < primitives.size(); ++p) {
+    MeshSequence& s = primitives[p];
+    const uint32_t first = g.first_vertex[p];
+    s.vertex_count = g.first_vertex[p + 1] - first;
+    for (uint32_t f = g.first_face[p]; f < g.first_face[p + 1]; ++f)
+      s.faces.push_back({{NodeIndex{g.faces[f].v[0] - first}, NodeIndex{g.faces[f].v[1] - first}, NodeIndex{g.faces[f].v[2] - first}}});
+    for (const std::vector<Vec3>& frame : baked.sequence.frames) s.frames.emplace_back(frame.begin() + first, frame.begin() + first + s.vertex_count);
+  }
+  return primitives;
 }
 
 }  // namespace m4mesh

@@ -1,6 +1,6 @@
 // libFuzzer target: a GLB animation baked (encode3d's glTF input), at its
-// keyframes and at a given rate, and compressed (m4mesh gltf, bfs3d), within
-// limits a fuzzer's time allows.
+// keyframes and at a given rate, and compressed (m4mesh gltf, bfs3d), its
+// skins left and baked, within limits a fuzzer's time allows.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -20,9 +20,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   GltfCompressArgs compressing;
   compressing.encoding.codec = "bfs3d";
   compressing.limits = {.most_positions = 1 << 16, .most_work = 1 << 20};
-  try {
-    compress_glb(std::span<const uint8_t>(data, size), "fuzz.glb", compressing);
-  } catch (const Error&) {
+  for (const bool skins : {false, true}) {
+    compressing.bake_skins = skins;
+    try {
+      compress_glb(std::span<const uint8_t>(data, size), "fuzz.glb", compressing);
+    } catch (const Error&) {
+    }
   }
   return 0;
 }

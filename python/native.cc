@@ -133,6 +133,7 @@ py::bytes encode(const Frames& frames, const Faces& faces, const std::string& co
     std::replace(name.begin(), name.end(), '_', '-');
     if (name == "target-kg") target.kg = value.cast<double>();
     else if (name == "target-psnr") target.psnr = value.cast<double>();
+    else if (name == "max-error") target.max_error = value.cast<double>();
     else o.codec_options[name] = py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "1" : "0") : std::string(py::str(value));
   }
   const MeshSequence s = sequence_of(frames, faces);
@@ -372,9 +373,10 @@ PYBIND11_MODULE(_native, m) {
 
 codec: a name of m4mesh.codecs(), or "auto" (every codec at the target,
 the smallest stream kept). Its options as keywords, dashes as underscores
-(bits=12, me=5, theta_bits=6, noise="auto", …; True is "1"); target_kg=X
-or target_psnr=Y (a finite number above 0) searches the codec's quality
-for the smallest stream that reaches it. hashes, hash_group, reorder,
+(bits=12, me=5, theta_bits=6, noise="auto", …; True is "1"); target_kg=X,
+target_psnr=Y or max_error=E (no decoded vertex farther than E from its
+original, in the model's units; each a finite number above 0) searches the
+codec's quality for the smallest stream that reaches it. hashes, hash_group, reorder,
 position_blend (None: auto): as encode3d's.)");
   m.def("decode", &decode, py::arg("stream"),
         "(frames float32[F, V, 3], faces int32[T, 3]) of a 3D stream (bytes or any bytes-like object), every frame checked "

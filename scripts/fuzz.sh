@@ -41,10 +41,11 @@ for bits in 6 10; do
   "$build"/cli/m4mesh encode3d tests/data/tetra-frames -o "$work/seeds-mesh3d/tetra-$bits-p.m4m" --bits "$bits" --parallelogram > /dev/null 2>&1 || true
 done
 
-# glTF: a small animation as GLB (morph targets and a STEP weights animation), at two rates.
+# glTF: a small animation as GLB (morph targets and a STEP weights animation), at two rates, and a skin Blender exported.
 for fps in 25 7; do
   "$build"/cli/m4mesh -y convert tests/data/tetra-frames "$work/seeds-gltf/tetra-$fps.glb" --fps "$fps" > /dev/null 2>&1 || true
 done
+cp tests/data/blender-tube-skin.glb "$work/seeds-gltf/"
 
 # The C interface's inputs: a stream and the size of the pieces it is pushed in (its last byte + 1).
 for stream in "$work"/seeds-stream/*.m4m "$work"/seeds-mesh3d/*.m4m; do

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -180,6 +181,58 @@ TEST(CApi, EncodesAndDecodesBack) {
   o.codec_options = nullptr;
   EXPECT_EQ(m4mesh_encode3d(positions.data(), 5, 4, faces, 2, &o, &bytes, &size, &error), M4MESH_ERROR);
   EXPECT_EQ(error.kind, M4MESH_ERROR_USAGE) << error.message;  // auto needs a target
+}
+
+// The frames of a 3D stream, through the interface.
+std::vector<float> decoded_positions(const uint8_t* bytes, size_t size) {
+  m4mesh_decoder3d* d = m4mesh_decoder3d_new();
+  EXPECT_EQ(m4mesh_decoder3d_push(d, bytes, size), M4MESH_OK);
+  EXPECT_EQ(m4mesh_decoder3d_finish(d), M4MESH_OK);
+  m4mesh_header3d header;
+  EXPECT_EQ(m4mesh_decoder3d_header(d, &header), M4MESH_OK);
+  std::vector<float> all, frame(3 * size_t{header.vertices});
+  uint32_t index = 0;
+  while (m4mesh_decoder3d_next_frame(d, &index, frame.data(), frame.size()) == M4MESH_OK) all.insert(all.end(), frame.begin(), frame.end());
+  m4mesh_decoder3d_free(d);
+  return all;
+}
+
+// "max-error" among the codec options is the quality target: no decoded vertex farther than it from its original;
+// a looser one gives a smaller stream; a value that is no number, or one out of range, is a usage error.
+TEST(CApi, MaxErrorIsAQualityTarget) {
+  std::vector<float> positions;
+  for (int f = 0; f < 6; ++f)
+    for (int v = 0; v < 16; ++v) positions.insert(positions.end(), {float(v % 4), float(v / 4), 0.37f * std::sin(0.5f * float(f + v))});
+  std::vector<uint32_t> faces;
+  for (uint32_t y = 0; y < 3; ++y)
+    for (uint32_t x = 0; x < 3; ++x) faces.insert(faces.end(), {4 * y + x, 4 * y + x + 1, 4 * y + x + 5, 4 * y + x, 4 * y + x + 5, 4 * y + x + 4});
+  m4mesh_encode_options o;
+  m4mesh_encode_options_init(&o);
+  m4mesh_error error;
+  size_t sizes[2] = {0, 0};
+  const char* const targets[2] = {"0.002", "0.05"};
+  for (int t = 0; t < 2; ++t) {
+    const char* const options[] = {"max-error", targets[t], nullptr};
+    o.codec_options = options;
+    uint8_t* bytes = nullptr;
+    ASSERT_EQ(m4mesh_encode3d(positions.data(), 6, 16, faces.data(), 18, &o, &bytes, &sizes[t], &error), M4MESH_OK) << error.message;
+    const std::vector<float> decoded = decoded_positions(bytes, sizes[t]);
+    m4mesh_free(bytes);
+    ASSERT_EQ(decoded.size(), positions.size());
+    double farthest = 0;
+    for (size_t i = 0; i < positions.size(); i += 3)
+      farthest = std::max(farthest, std::hypot(double{decoded[i]} - positions[i], double{decoded[i + 1]} - positions[i + 1], double{decoded[i + 2]} - positions[i + 2]));
+    EXPECT_LE(farthest, std::stod(targets[t])) << targets[t];
+  }
+  EXPECT_LT(sizes[1], sizes[0]);
+  for (const char* wrong : {"far", "-1", "0", ""}) {
+    const char* const options[] = {"max-error", wrong, nullptr};
+    o.codec_options = options;
+    uint8_t* bytes = nullptr;
+    size_t size = 0;
+    EXPECT_EQ(m4mesh_encode3d(positions.data(), 6, 16, faces.data(), 18, &o, &bytes, &size, &error), M4MESH_ERROR) << wrong;
+    EXPECT_EQ(error.kind, M4MESH_ERROR_USAGE) << wrong << ": " << error.message;
+  }
 }
 
 // Bytes that cannot begin a stream fail at the push that completes four of

@@ -112,6 +112,39 @@ class GltfInput : public ::testing::Test {
     return save("morph.glb");
   }
 
+  // A tetrahedron ("arm", on node 2, itself moved by (100, 100, 100), which a skin ignores) skinned to two joints:
+  // a root that slides (0, 0, 0) → (2, 0, 0) and its child, one up, that turns 90° about z, over 0 … 1 s.
+  std::string save_skinned_arm(const std::string& name) {
+    tinygltf::Mesh mesh;
+    mesh.name = "arm";
+    tinygltf::Primitive p = tetrahedron({0, 0, 0, 1, 1, 0, 0, 1, 0, 0, 2, 1});
+    p.attributes["JOINTS_0"] = accessor(std::vector<uint16_t>{0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0}, TINYGLTF_TYPE_VEC4);
+    p.attributes["WEIGHTS_0"] = accessor(std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 0.5f, 0.5f, 0, 0, 1, 0, 0, 0}, TINYGLTF_TYPE_VEC4);
+    mesh.primitives.push_back(p);
+    model_.meshes.push_back(mesh);
+    tinygltf::Node root, child, skinned;
+    root.name = "root";
+    child.name = "child";
+    child.translation = {0, 1, 0};
+    const int c = add_node(child);
+    root.children = {c};
+    const int r = add_node(root);
+    skinned.mesh = 0;
+    skinned.skin = 0;
+    skinned.translation = {100, 100, 100};  // a skinned mesh's own node transform is ignored (glTF 2.0, 3.7.3)
+    add_node(skinned);
+    tinygltf::Skin skin;
+    skin.joints = {r, c};
+    const std::vector<float> inverse_bind{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,   // root: bound at the origin
+                                          1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1};  // child: bound one up
+    skin.inverseBindMatrices = accessor(inverse_bind, TINYGLTF_TYPE_MAT4);
+    model_.skins.push_back(skin);
+    animate(r, "translation", {0, 1}, {0, 0, 0, 2, 0, 0});
+    const float s = static_cast<float>(std::sqrt(0.5));
+    animate(c, "rotation", {0, 1}, {0, 0, 0, 1, 0, 0, s, s});
+    return save(name);
+  }
+
   // The error reading `path` gives, or "" when it reads.
   static std::string error_of(const std::string& path, const GltfSelection& selection = {}) {
     try {
@@ -194,35 +227,7 @@ TEST_F(GltfInput, MorphTargetsBakeAsTheirWeightsSay) {
 // one up) turns 90° about z. Vertex 0 follows the root, 1 and 3 the child,
 // 2 half each; at t = 1 the child's vertex (1, 1, 0) is at (2, 2, 0).
 TEST_F(GltfInput, ASkinBakesByLinearBlendSkinning) {
-  tinygltf::Mesh mesh;
-  mesh.name = "arm";
-  tinygltf::Primitive p = tetrahedron({0, 0, 0, 1, 1, 0, 0, 1, 0, 0, 2, 1});
-  p.attributes["JOINTS_0"] = accessor(std::vector<uint16_t>{0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0}, TINYGLTF_TYPE_VEC4);
-  p.attributes["WEIGHTS_0"] = accessor(std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 0.5f, 0.5f, 0, 0, 1, 0, 0, 0}, TINYGLTF_TYPE_VEC4);
-  mesh.primitives.push_back(p);
-  model_.meshes.push_back(mesh);
-  tinygltf::Node root, child, skinned;
-  root.name = "root";
-  child.name = "child";
-  child.translation = {0, 1, 0};
-  const int c = add_node(child);
-  root.children = {c};
-  const int r = add_node(root);
-  skinned.mesh = 0;
-  skinned.skin = 0;
-  skinned.translation = {100, 100, 100};  // a skinned mesh's own node transform is ignored (glTF 2.0, 3.7.3)
-  add_node(skinned);
-  tinygltf::Skin skin;
-  skin.joints = {r, c};
-  const std::vector<float> inverse_bind{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,   // root: bound at the origin
-                                        1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1};  // child: bound one up
-  skin.inverseBindMatrices = accessor(inverse_bind, TINYGLTF_TYPE_MAT4);
-  model_.skins.push_back(skin);
-  animate(r, "translation", {0, 1}, {0, 0, 0, 2, 0, 0});
-  const float s = static_cast<float>(std::sqrt(0.5));
-  animate(c, "rotation", {0, 1}, {0, 0, 0, 1, 0, 0, s, s});
-  const std::string path = save("skin.gltf");
-
+  const std::string path = save_skinned_arm("skin.gltf");
   const GltfAnimation baked = read_gltf(path, {});
   ASSERT_EQ(baked.sequence.frames.size(), 2u);
   const std::vector<Vec3>& rest = baked.sequence.frames[0];
@@ -236,9 +241,52 @@ TEST_F(GltfInput, ASkinBakesByLinearBlendSkinning) {
   // Half on each: the root takes (0, 1, 0) to (2, 1, 0); the child to (2 − 0, 1 + 0, 0) = (2, 1, 0) too: (0, 1, 0) is the joint itself.
   expect_near(moved[2], 2, 1, 0, "moved 2");
   // Between the keys: half the slide, the turn by 45° (spherical).
+  const float s = static_cast<float>(std::sqrt(0.5));
   const GltfAnimation half = read_gltf(path, pick("", 2.0));
   ASSERT_EQ(half.sequence.frames.size(), 3u);
   expect_near(half.sequence.frames[1][1], 1 + s, 1 + s, 0, "half-way 1");
+}
+
+// The skinned arm compressed with --bake-skins: the node loses its skin and its mesh the joints and weights; the
+// joints keep their channels; the stream's frames are the skinned positions in the node's own space (less its
+// (100, 100, 100)), so that its transform puts them where the skin did. Without --bake-skins, the error says so.
+TEST_F(GltfInput, ABakedSkinIsAStreamInItsNodesSpace) {
+  const std::string path = save_skinned_arm("skin.glb");
+  GltfCompressArgs args;
+  args.encoding.codec = "bfs3d";
+  try {
+    compress_gltf(path, args);
+    ADD_FAILURE() << "a skin compressed without --bake-skins";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("baked with --bake-skins"), std::string::npos) << e.what();
+  }
+  args.bake_skins = true;
+  const GltfCompressResult compressed = compress_gltf(path, args);
+  ASSERT_EQ(compressed.streams.size(), 1u);
+  EXPECT_EQ(compressed.streams[0].replaced_bytes, 16 * sizeof(uint16_t) + 16 * sizeof(float));  // JOINTS_0 and WEIGHTS_0
+  tinygltf::Model model;
+  std::string error, warning;
+  ASSERT_TRUE(tinygltf::TinyGLTF().LoadBinaryFromMemory(&model, &error, &warning, compressed.glb.data(), static_cast<unsigned>(compressed.glb.size())))
+      << error;
+  EXPECT_EQ(model.nodes[2].skin, -1);
+  EXPECT_EQ(model.skins.size(), 1u);
+  EXPECT_EQ(model.meshes[0].primitives[0].attributes.count("JOINTS_0"), 0u);
+  EXPECT_EQ(model.meshes[0].primitives[0].attributes.count("WEIGHTS_0"), 0u);
+  EXPECT_EQ(model.animations[0].channels.size(), 2u);
+  const tinygltf::Value& channel = model.animations[0].extensions.at(kGltfExtensionName).Get("channels").Get(0);
+  EXPECT_EQ(channel.Get("node").GetNumberAsInt(), 2);
+  EXPECT_EQ(channel.Get("interpolation").Get<std::string>(), "LINEAR");
+  EXPECT_EQ(model.accessors[static_cast<size_t>(channel.Get("input").GetNumberAsInt())].count, 2u);
+  const tinygltf::BufferView& view = model.bufferViews[static_cast<size_t>(channel.Get("primitives").Get(0).Get("bufferView").GetNumberAsInt())];
+  const MeshSequence decoded = decode_mesh3d(std::span<const uint8_t>(model.buffers[0].data.data() + view.byteOffset, view.byteLength));
+  ASSERT_EQ(decoded.frames.size(), 2u);
+  const double world[2][4][3] = {{{0, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 2, 1}}, {{2, 0, 0}, {2, 2, 0}, {2, 1, 0}, {1, 1, 1}}};
+  for (size_t f = 0; f < 2; ++f)
+    for (size_t v = 0; v < 4; ++v) {
+      EXPECT_NEAR(decoded.frames[f][v].x, world[f][v][0] - 100, 1e-2) << f << " " << v;
+      EXPECT_NEAR(decoded.frames[f][v].y, world[f][v][1] - 100, 1e-2) << f << " " << v;
+      EXPECT_NEAR(decoded.frames[f][v].z, world[f][v][2] - 100, 1e-2) << f << " " << v;
+    }
 }
 
 TEST_F(GltfInput, WhatCannotBeTakenIsNamed) {

@@ -1,8 +1,11 @@
 """Animations made in Blender and written by its own glTF exporter, for
-encode3d's glTF input (ctest blender_gltf, tests/blender/test.sh): a tube
-bent by a two-bone armature (a skin) and a sheet moved by two shape keys
-(morph targets). Beside each .glb, every frame's evaluated vertex positions
-in glTF's axes (Y up) as binary32 x y z, frame after frame.
+encode3d's glTF input and m4mesh gltf --bake-skins (ctest blender_gltf,
+tests/blender/test.sh): a tube bent by a two-bone armature (a skin), with
+UVs and a material whose base colour is a PNG texture, and a sheet moved by
+two shape keys (morph targets). Beside each .glb, every frame's evaluated
+vertex positions in glTF's axes (Y up) as binary32 x y z, frame after
+frame. tests/data/blender-tube-skin.glb is a copy of its skin.glb, for the
+tests that run without Blender.
 
     blender -b --factory-startup --python export_gltf.py -- FOLDER
 """
@@ -68,13 +71,35 @@ def tube(rings=9, around=8):
     return vertices, faces
 
 
+def paint(obj, vertices):
+    """UVs by planar projection (one per vertex, so the exporter splits none) and a material with a PNG texture."""
+    uv = obj.data.uv_layers.new(name="UVMap")
+    for loop in obj.data.loops:
+        x, _, z = vertices[loop.vertex_index]
+        uv.data[loop.index].uv = (x + 0.5, z / 2)
+    image = bpy.data.images.new("stripes", 8, 8)
+    image.pixels = [c for i in range(64) for c in ((1.0, 0.4, 0.1, 1.0) if (i // 8) % 2 else (0.1, 0.3, 1.0, 1.0))]
+    image.filepath_raw = os.path.join(folder, "stripes.png")
+    image.file_format = "PNG"
+    image.save()
+    material = bpy.data.materials.new("striped")
+    material.use_nodes = True
+    texture = material.node_tree.nodes.new("ShaderNodeTexImage")
+    texture.image = image
+    material.node_tree.links.new(texture.outputs["Color"], material.node_tree.nodes["Principled BSDF"].inputs["Base Color"])
+    obj.data.materials.append(material)
+
+
 def skinned():
     scene = new_scene()
     vertices, faces = tube()
     obj = mesh_object("tube", vertices, faces)
+    paint(obj, vertices)
     armature = bpy.data.armatures.new("bones")
     rig = bpy.data.objects.new("rig", armature)
     scene.collection.objects.link(rig)
+    # Placed, turned and scaled: the tube's node has a transform of its own, which a baked skin must undo.
+    rig.location, rig.rotation_euler, rig.scale = (0.5, 0.0, 0.25), (0.0, 0.0, 0.3), (1.25, 1.25, 1.25)
     bpy.context.view_layer.objects.active = rig
     bpy.ops.object.mode_set(mode="EDIT")
     lower = armature.edit_bones.new("lower")

@@ -151,12 +151,20 @@ def test_nan_frames_name_the_frame_and_vertex(tetra):
         assert caught.value.kind == "input" and "frame 2, vertex 1" in str(caught.value)
 
 
-@pytest.mark.parametrize("target", [{"target_kg": -1}, {"target_kg": 0}, {"target_kg": float("nan")}, {"target_psnr": -5}])
+@pytest.mark.parametrize("target", [{"target_kg": -1}, {"target_kg": 0}, {"target_kg": float("nan")}, {"target_psnr": -5},
+                                    {"max_error": 0}, {"max_error": 1, "target_kg": 1}])
 def test_a_target_that_is_not_one_is_a_usage_error(tetra, target):
     frames, faces = tetra
     with pytest.raises(m4mesh.Error) as caught:
         m4mesh.encode(frames, faces, **target)
     assert caught.value.kind == "usage"
+
+
+def test_max_error_bounds_every_decoded_vertex(tetra):
+    frames, faces = tetra
+    for bound in (0.001, 0.05):
+        decoded, _ = m4mesh.decode(m4mesh.encode(frames, faces, codec="bfs3d", max_error=bound))
+        assert float(np.linalg.norm(decoded.astype(np.float64) - frames, axis=2).max()) <= bound
 
 
 def test_auto_keeps_the_smallest_codec_at_the_target(tetra):

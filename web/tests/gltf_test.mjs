@@ -14,6 +14,8 @@
 //   value, the image byte for byte, the other channels' keys and values;
 // - glTF-Transform, with the package's extension, reads the output and
 //   writes it back, and that file plays exactly the same;
+// - a skinned tube Blender exported, compressed with --bake-skins, is valid
+//   and plays its stream exactly in Node and in Chromium;
 // - a file compressed already, and one without morph targets, are refused.
 // Usage: node gltf_test.mjs M4MESH PACKAGE_DIR SOURCE_DIR [DATA_DIR]
 import { execFileSync, spawnSync } from 'node:child_process';
@@ -155,6 +157,17 @@ try {
     }
   }
 
+  // The file's one stream taken out and decoded by m4mesh decode3d.
+  function decodedStream(parts, name) {
+    const extension = parts.json.animations[0].extensions?.M4MESH_vertex_animation;
+    check(extension?.channels?.length === 1 && extension.channels[0].primitives.length === 1, `${name}: one channel of one primitive's stream`);
+    const stream = join(work, `${name}.m4m`), decodedPath = join(work, `${name}.f32`);
+    writeFileSync(stream, viewBytes(parts, extension.channels[0].primitives[0].bufferView));
+    execFileSync(m4mesh, ['-q', '-y', 'decode3d', stream, '-o', decodedPath]);
+    const bytes = readFileSync(decodedPath);
+    return new Float32Array(bytes.buffer, bytes.byteOffset, bytes.length / 4);
+  }
+
   const assets = [{ name: 'tetra', frames: join(source, 'tests', 'data', 'tetra-frames'), args: ['--codec', 'bfs3d'] }];
   const horse = data && join(data, 'horse-gallop');
   if (horse && existsSync(horse)) assets.push({ name: 'horse', frames: horse, args: ['--target-kg', '0.5', '--codec', 'bfs3d'], moveNode: true });
@@ -171,14 +184,7 @@ try {
     await validate(after, `${asset.name}: the output`);
     const a = glbParts(before), b = glbParts(after);
 
-    // The streams taken out of the file and decoded by m4mesh decode3d.
-    const extension = b.json.animations[0].extensions?.M4MESH_vertex_animation;
-    check(extension?.channels?.length === 1 && extension.channels[0].primitives.length === 1, `${asset.name}: one channel of one primitive's stream`);
-    const stream = join(work, `${asset.name}.m4m`), decodedPath = join(work, `${asset.name}.f32`);
-    writeFileSync(stream, viewBytes(b, extension.channels[0].primitives[0].bufferView));
-    execFileSync(m4mesh, ['-q', '-y', 'decode3d', stream, '-o', decodedPath]);
-    const decodedBytes = readFileSync(decodedPath);
-    const decoded = new Float32Array(decodedBytes.buffer, decodedBytes.byteOffset, decodedBytes.length / 4);
+    const decoded = decodedStream(b, asset.name);
 
     await playsExactly(after, decoded, asset, asset.name);
     played.push({ file: `${asset.name}-m4mesh.glb`, decoded, name: asset.name });
@@ -223,6 +229,39 @@ try {
     const rewritten = Buffer.from(await io.writeBinary(transformed));
     await validate(rewritten, `${asset.name}: written back by glTF-Transform`);
     await playsExactly(rewritten, decoded, asset, `${asset.name}, written back by glTF-Transform`);
+  }
+
+  // A skin Blender's exporter wrote (tests/data/blender-tube-skin.glb, tests/blender/export_gltf.py's tube: a textured
+  // material, a placed armature), compressed with --bake-skins: valid, a mesh that is no longer skinned, whose
+  // clip plays the stream's frames exactly (the rest of that file: ctest blender_gltf).
+  {
+    const output = join(work, 'tube-m4mesh.glb');
+    execFileSync(m4mesh, ['-q', 'gltf', join(source, 'tests', 'data', 'blender-tube-skin.glb'), '-o', output, '--codec', 'bfs3d', '--bake-skins']);
+    const after = readFileSync(output);
+    await validate(after, 'tube, its skin baked: the output');
+    const decoded = decodedStream(glbParts(after), 'tube');
+    await playsExactly(after, decoded, {}, 'tube, its skin baked');
+    const gltf = await load(after, true);
+    check(!gltf.scene.getObjectByProperty('isSkinnedMesh', true), 'tube, its skin baked: a mesh, no longer a skinned one');
+    // In the world, at every key, where three.js skins the uncompressed file's tube (within the stream's error).
+    const skinned = await load(readFileSync(join(source, 'tests', 'data', 'blender-tube-skin.glb')), false);
+    const baked = gltf.scene.getObjectByProperty('isMesh', true), original = skinned.scene.getObjectByProperty('isSkinnedMesh', true);
+    const players = [gltf, skinned].map((g) => {
+      const mixer = new THREE.AnimationMixer(g.scene);
+      mixer.clipAction(g.animations[0]).setLoop(THREE.LoopOnce, 1).play().clampWhenFinished = true;
+      return mixer;
+    });
+    const times = gltf.animations[0].tracks.find((t) => t.name.endsWith('.morphTargetInfluences')).times;
+    const p = new THREE.Vector3(), q = new THREE.Vector3();
+    let farthest = 0;
+    for (const t of times) {
+      players.forEach((mixer) => mixer.setTime(t));
+      gltf.scene.updateMatrixWorld(true), skinned.scene.updateMatrixWorld(true);
+      for (let v = 0; v < original.geometry.attributes.position.count; ++v)
+        farthest = Math.max(farthest, baked.localToWorld(baked.getVertexPosition(v, p)).distanceTo(original.localToWorld(original.getVertexPosition(v, q))));
+    }
+    check(farthest < 1e-3, `tube, its skin baked: in the world, at its ${times.length} keys, every vertex within ${farthest.toExponential(1)} of the skinned original's`);
+    played.push({ file: 'tube-m4mesh.glb', decoded, name: 'tube, its skin baked' });
   }
 
   // Chromium: the package and three.js through an import map, each file over HTTP, decoded in the package's worker.
