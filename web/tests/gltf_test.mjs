@@ -1,7 +1,8 @@
 // M4MESH_vertex_animation end to end, in Node: glTF files with a
 // morph-target animation and what else a real asset has (a textured
 // material, normals and UVs, another mesh, a camera, another animation,
-// extras), built with glTF-Transform from m4mesh's own glTF of a sequence;
+// extras), built with glTF-Transform from m4mesh's own glTF of a sequence
+// (a tetrahedron's, and the horse's, the cow's and the flag's);
 // `m4mesh gltf` compresses each; then
 // - the Khronos validator reports no error on the input or the output;
 // - three.js's GLTFLoader with the npm package's M4MeshGLTFPlugin plays
@@ -169,9 +170,12 @@ try {
   }
 
   const assets = [{ name: 'tetra', frames: join(source, 'tests', 'data', 'tetra-frames'), args: ['--codec', 'bfs3d'] }];
-  const horse = data && join(data, 'horse-gallop');
-  if (horse && existsSync(horse)) assets.push({ name: 'horse', frames: horse, args: ['--target-kg', '0.5', '--codec', 'bfs3d'], moveNode: true });
-  else console.log(`skip the horse: no ${horse ?? '../shared/data'}`);
+  // The project's sequences, when ../shared/data is there.
+  for (const [name, path, extra] of [['horse', 'horse-gallop', { moveNode: true }], ['cow', 'pcow', {}], ['flag', 'cloth/flag/flag.pc2', {}]]) {
+    const frames = data && join(data, path);
+    if (frames && existsSync(frames)) assets.push({ name, frames, args: ['--target-kg', '0.5', '--codec', 'bfs3d'], ...extra });
+    else console.log(`skip the ${name}: no ${frames ?? '../shared/data'}`);
+  }
 
   const played = [];  // the compressed files and their decoded frames, for Chromium
   for (const asset of assets) {
