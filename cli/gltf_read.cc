@@ -266,7 +266,8 @@ struct Baked {
 };
 
 // Node `index`'s mesh at `times`, moved by `channels`: its morph targets, then its skin (linear blend) or, without
-// one, its node's world transform (in_node_space: a skin's positions taken back through that transform, else none).
+// one, its node's world transform. in_node_space: in the node's own space instead (a skin's positions taken back
+// through the node's world transform, a mesh without one left as its morph targets make it).
 Baked bake_node(const GltfAsset& asset, const Channels& channels, int index, std::span<const double> times, bool in_node_space, const GltfLimits& limits) {
   const tinygltf::Model& m = asset.model();
   const tinygltf::Node& node = m.nodes[static_cast<size_t>(index)];

@@ -199,7 +199,7 @@ export class M4MeshLoader extends Loader {
     });
     finished.catch(() => {});  // awaited below, once the stream is fed
     try {
-      channel.send({ type: 'open', session: id });
+      channel.send({ type: 'open', session: id, box: false });  // the box would take every frame twice
       await feed((chunk) => {
         const copy = chunk.slice();  // its own buffer, transferred to the worker
         channel.send({ type: 'push', session: id, chunk: copy.buffer }, [copy.buffer]);

@@ -1,9 +1,10 @@
 // The decoding protocol of the package's worker (worker.js; docs/web.md):
-// messages in — open, push (a chunk of the stream as it downloads), end,
-// frame (ask for one), drop (forget a final frame taken) — and out through
-// `post`: status (JSON of the decoder, the faces once, the box the frames
-// fill), frame (transferred, not copied), planes (a 2D stream, decoded
-// when its download ends), failure. The stream's kind comes from the C++
+// messages in — open (`box: false`: no box wanted), push (a chunk of the
+// stream as it downloads), end, frame (ask for one), drop (forget a final
+// frame taken) — and out through `post`: status (JSON of the decoder, the
+// faces once, the box the frames fill, which takes every frame once more),
+// frame (transferred, not copied), planes (a 2D stream, decoded when its
+// download ends), failure. The stream's kind comes from the C++
 // (streamKind); a 3D stream's units are decoded as soon as they are whole.
 // M4MeshLoader runs it in a worker, or in its own thread where there is
 // none (Node).
@@ -12,9 +13,9 @@
 export function createSession(module, post) {
   let session = null;
 
-  function open(id) {
+  function open(id, wantsBox) {
     session?.stream?.delete();
-    session = { id, module, kind: null, head: [], stream: null, chunks: [], facesSent: false, box: null, boxFrames: 0, version: 0 };
+    session = { id, module, kind: null, head: [], stream: null, chunks: [], facesSent: false, wantsBox, box: null, boxFrames: 0, version: 0 };
   }
 
   function concatenate(chunks) {
@@ -53,7 +54,7 @@ export function createSession(module, post) {
         transfer.push(message.faces.buffer);
         session.facesSent = true;
       }
-      if (status.framesDecoded > 0) message.box = frameBox(status);
+      if (status.framesDecoded > 0 && session.wantsBox) message.box = frameBox(status);
     }
     post(message, transfer);
   }
@@ -96,7 +97,7 @@ export function createSession(module, post) {
 
   return (data) => {
     try {
-      if (data.type === 'open') open(data.session);
+      if (data.type === 'open') open(data.session, data.box !== false);
       else if (!session || data.session !== session.id) return;  // an older stream's message
       else if (data.type === 'push') push(new Uint8Array(data.chunk));
       else if (data.type === 'end') end();
