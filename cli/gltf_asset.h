@@ -69,15 +69,20 @@ struct GltfSampler {
   std::vector<double> at(double t) const;
 };
 
-// Every key time of animation `animation`'s channels, each once, in order.
-std::vector<double> animation_key_times(const GltfAsset& asset, int animation);
+// Every node's parent (−1: a root); an input error unless the nodes make trees.
+std::vector<int> gltf_parents(const GltfAsset& asset);
 
-// Node `node`'s mesh as animation `animation` moves it, at `times`: per
-// primitive, its triangles and its positions after its morph targets (the
+struct GltfNodeFrames {
+  std::vector<double> times;             // every key of the animation's channels, each once, in order
+  std::vector<MeshSequence> primitives;  // per primitive: its triangles, its positions at each time
+};
+
+// Node `node`'s mesh as animation `animation` moves it, at every key of the
+// animation: per primitive, its positions after its morph targets (the
 // node's weights channel, else the mesh's default weights) and its skin
 // (linear blend), in the node's own space: a skin's positions taken back
 // through the node's world transform at each time, so that the node's
 // transform, once the skin is gone, puts them where the skin did.
-std::vector<MeshSequence> bake_in_node_space(const GltfAsset& asset, int animation, int node, std::span<const double> times, const GltfLimits& limits);
+GltfNodeFrames bake_in_node_space(const GltfAsset& asset, int animation, int node, const GltfLimits& limits);
 
 }  // namespace m4mesh

@@ -191,10 +191,7 @@ bool moves_skin(const tinygltf::Model& m, const std::vector<int>& parent, const 
 // (with its weights channel there, if any).
 std::vector<Replacement> replacements_of(const GltfAsset& asset, bool skins) {
   const tinygltf::Model& m = asset.model();
-  std::vector<int> parent(m.nodes.size(), -1);  // a node of several parents, or a cycle, is the baking's error
-  for (size_t n = 0; n < m.nodes.size(); ++n)
-    for (int child : m.nodes[n].children)
-      if (has_node(m, child)) parent[static_cast<size_t>(child)] = static_cast<int>(n);
+  const std::vector<int> parent = skins ? gltf_parents(asset) : std::vector<int>();
   std::vector<Replacement> found;
   for (size_t a = 0; a < m.animations.size(); ++a) {
     std::set<int> skinned;  // the nodes of this animation whose skin is baked
@@ -372,22 +369,21 @@ GltfCompressResult compress(const GltfAsset& asset, const std::string& json_text
       if (weights->interpolation == "STEP") interpolation = "STEP";
       times = weights->times, input = s.input, replaced_output = s.output;
     }
+    GltfNodeFrames baked;
     if (r.skin) {
-      times = animation_key_times(asset, r.animation);
-      if (times.empty()) throw asset.error(where + ": the animation has no keys to bake the skin at");
+      baked = bake_in_node_space(asset, r.animation, r.node, args.limits);
+      times = baked.times;
       const bool steps = std::all_of(animation.samplers.begin(), animation.samplers.end(), [](const tinygltf::AnimationSampler& s) { return s.interpolation == "STEP"; });
       interpolation = steps ? "STEP" : "LINEAR";
       input = add_floats(doc, new_views, std::vector<float>(times.begin(), times.end()), "SCALAR", true);
       unskinned.insert(r.node);
     }
     Json entry{{"node", r.node}, {"input", input}, {"interpolation", interpolation}, {"primitives", Json::array()}};
-    std::vector<MeshSequence> baked;
-    if (r.skin) baked = bake_in_node_space(asset, r.animation, r.node, times, args.limits);
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
       const std::string what = mesh_name(m, r.mesh) + ", primitive " + std::to_string(p);
       if (mesh.primitives[p].targets.size() != targets)
         throw asset.error(what + " has " + std::to_string(mesh.primitives[p].targets.size()) + " morph targets, primitive 0 " + std::to_string(targets));
-      const MeshSequence frames = r.skin ? std::move(baked[p]) : bake_primitive(asset, mesh.primitives[p], *weights, args.limits, what);
+      const MeshSequence frames = r.skin ? std::move(baked.primitives[p]) : bake_primitive(asset, mesh.primitives[p], *weights, args.limits, what);
       GltfStreamReport report{r.animation, r.node, r.mesh, static_cast<int>(p), "", static_cast<uint32_t>(frames.frames.size()), frames.vertex_count};
       Encode3dResult encoded;
       try {

@@ -13,6 +13,23 @@
 
 namespace m4mesh {
 
+std::vector<int> gltf_parents(const GltfAsset& asset) {
+  const tinygltf::Model& m = asset.model();
+  std::vector<int> parent(m.nodes.size(), -1);
+  for (size_t n = 0; n < m.nodes.size(); ++n)
+    for (int child : m.nodes[n].children) {
+      if (child < 0 || static_cast<size_t>(child) >= m.nodes.size() || parent[static_cast<size_t>(child)] >= 0 || static_cast<size_t>(child) == n)
+        throw asset.error("node " + std::to_string(n) + ": child " + std::to_string(child) + " is not a node of one parent");
+      parent[static_cast<size_t>(child)] = static_cast<int>(n);
+    }
+  for (size_t n = 0; n < m.nodes.size(); ++n) {  // a cycle would never reach a root
+    size_t steps = 0;
+    for (int at = parent[n]; at >= 0; at = parent[static_cast<size_t>(at)])
+      if (++steps > m.nodes.size()) throw asset.error("node " + std::to_string(n) + " is its own ancestor");
+  }
+  return parent;
+}
+
 namespace {
 
 constexpr uint64_t kMostVertices = uint64_t{1} << 24;
@@ -218,9 +235,15 @@ const tinygltf::Animation& choose_animation(const GltfAsset& asset, const std::s
 }
 
 // The times frames are taken at: every key of the channels, or `fps` over their span.
-std::pair<std::vector<double>, double> sample_times(const GltfAsset& asset, const Channels& channels, std::optional<double> fps, uint64_t most) {
+// Every key of the channels, each once, in order.
+std::set<double> keys_of(const Channels& channels) {
   std::set<double> keys;
   for (const auto& [target, sampler] : channels.samplers) keys.insert(sampler.times.begin(), sampler.times.end());
+  return keys;
+}
+
+std::pair<std::vector<double>, double> sample_times(const GltfAsset& asset, const Channels& channels, std::optional<double> fps, uint64_t most) {
+  const std::set<double> keys = keys_of(channels);
   if (keys.empty()) throw asset.error("the animation moves nothing of the scene");
   const double start = *keys.begin(), end = *keys.rbegin();
   std::vector<double> times;
@@ -241,24 +264,6 @@ std::pair<std::vector<double>, double> sample_times(const GltfAsset& asset, cons
   return {times, 1 / step};
 }
 
-// Every node's parent (−1: a root), checked to be a tree.
-std::vector<int> parents_of(const GltfAsset& asset) {
-  const tinygltf::Model& m = asset.model();
-  std::vector<int> parent(m.nodes.size(), -1);
-  for (size_t n = 0; n < m.nodes.size(); ++n)
-    for (int child : m.nodes[n].children) {
-      if (child < 0 || static_cast<size_t>(child) >= m.nodes.size() || parent[static_cast<size_t>(child)] >= 0 || static_cast<size_t>(child) == n)
-        throw asset.error("node " + std::to_string(n) + ": child " + std::to_string(child) + " is not a node of one parent");
-      parent[static_cast<size_t>(child)] = static_cast<int>(n);
-    }
-  for (size_t n = 0; n < m.nodes.size(); ++n) {  // a cycle would never reach a root
-    size_t steps = 0;
-    for (int at = parent[n]; at >= 0; at = parent[static_cast<size_t>(at)])
-      if (++steps > m.nodes.size()) throw asset.error("node " + std::to_string(n) + " is its own ancestor");
-  }
-  return parent;
-}
-
 // A node's mesh at each time, every primitive's vertices after the last one's.
 struct Baked {
   MeshSequence sequence;
@@ -277,7 +282,7 @@ Baked bake_node(const GltfAsset& asset, const Channels& channels, int index, std
   const tinygltf::Mesh& mesh = m.meshes[static_cast<size_t>(node.mesh)];
   Baked baked{{}, geometry_of(asset, mesh, skinned)};
   const Geometry& g = baked.geometry;
-  const std::vector<int> parent = parents_of(asset);
+  const std::vector<int> parent = gltf_parents(asset);
 
   std::vector<Matrix> inverse_bind;
   std::vector<int> joints;
@@ -367,27 +372,22 @@ GltfAnimation read_glb(std::span<const uint8_t> bytes, const std::string& name, 
   return bake(load_glb_asset(bytes, name), selection, limits);
 }
 
-std::vector<double> animation_key_times(const GltfAsset& asset, int animation) {
+GltfNodeFrames bake_in_node_space(const GltfAsset& asset, int animation, int node, const GltfLimits& limits) {
   const Channels channels = channels_of(asset, asset.model().animations.at(static_cast<size_t>(animation)));
-  std::set<double> keys;
-  for (const auto& [target, sampler] : channels.samplers) keys.insert(sampler.times.begin(), sampler.times.end());
-  return {keys.begin(), keys.end()};
-}
-
-std::vector<MeshSequence> bake_in_node_space(const GltfAsset& asset, int animation, int node, std::span<const double> times, const GltfLimits& limits) {
-  const Channels channels = channels_of(asset, asset.model().animations.at(static_cast<size_t>(animation)));
-  const Baked baked = bake_node(asset, channels, node, times, true, limits);
+  const std::set<double> keys = keys_of(channels);
+  GltfNodeFrames out{{keys.begin(), keys.end()}, {}};
+  const Baked baked = bake_node(asset, channels, node, out.times, true, limits);
   const Geometry& g = baked.geometry;
-  std::vector<MeshSequence> primitives(g.first_vertex.size() - 1);
-  for (size_t p = 0; p < primitives.size(); ++p) {
-    MeshSequence& s = primitives[p];
+  out.primitives.resize(g.first_vertex.size() - 1);
+  for (size_t p = 0; p < out.primitives.size(); ++p) {
+    MeshSequence& s = out.primitives[p];
     const uint32_t first = g.first_vertex[p];
     s.vertex_count = g.first_vertex[p + 1] - first;
     for (uint32_t f = g.first_face[p]; f < g.first_face[p + 1]; ++f)
       s.faces.push_back({{NodeIndex{g.faces[f].v[0] - first}, NodeIndex{g.faces[f].v[1] - first}, NodeIndex{g.faces[f].v[2] - first}}});
     for (const std::vector<Vec3>& frame : baked.sequence.frames) s.frames.emplace_back(frame.begin() + first, frame.begin() + first + s.vertex_count);
   }
-  return primitives;
+  return out;
 }
 
 }  // namespace m4mesh
