@@ -34,6 +34,11 @@ class CodecDecoder3d {
   // A frame's decoded positions. Valid for the frames the last unit
   // reported; with holds_frames(), for every frame it holds.
   virtual void frame(uint32_t index, std::span<Float3> positions) const = 0;
+  // frame() for frames first, first + 1, … into positions[0], [1], …: a
+  // codec whose frames share their work gives them at once.
+  virtual void frames(uint32_t first, std::span<const std::span<Float3>> positions) const {
+    for (size_t k = 0; k < positions.size(); ++k) frame(first + static_cast<uint32_t>(k), positions[k]);
+  }
   // Whether the codec keeps frames after the unit that decoded them (a
   // progressive codec, whose units refine frames already decoded);
   // otherwise the container copies each reported frame out before the

@@ -13,6 +13,7 @@
 #endif
 #endif
 
+#include "common/bit_cast.h"
 #include "common/cpu.h"
 #include "mesh3d/position_order.h"
 
@@ -129,6 +130,48 @@ void CpcaSlots::convert(const uint64_t* values, size_t first_slot, size_t slots,
   }
 #endif
   for (; s < slots; ++s) positions[vertex[s]] = position(values + 3 * s);
+}
+
+void CpcaSlots::convert_blocked(const uint64_t* values, size_t first_slot, size_t slots, std::span<Float3> positions) const {
+  const NodeIndex* vertex = vertex_of_slot_.data() + first_slot;
+  size_t s = 0;
+#ifdef M4MESH_CPCA_SIMD
+  // A block a time, two members of an axis a vector, convert()'s IEEE steps; a block with a value beyond 2^51 in
+  // magnitude takes position().
+  const __m128i bias = _mm_set1_epi64x(0x4338000000000000), half_range = _mm_set1_epi64x(int64_t{1} << 51);
+  const __m128d biased = _mm_castsi128_pd(bias);
+  for (; s + kCpcaBlock <= slots; s += kCpcaBlock) {
+    const uint64_t* block = values + 3 * s;
+    __m128i x[6];
+    __m128i outside = _mm_setzero_si128();
+    for (size_t k = 0; k < 6; ++k) {
+      x[k] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(block + 2 * k));
+      outside = _mm_or_si128(outside, _mm_srli_epi64(_mm_add_epi64(x[k], half_range), 52));
+    }
+    alignas(16) float axes[3][kCpcaBlock];
+    if (_mm_movemask_epi8(_mm_cmpeq_epi32(outside, _mm_setzero_si128())) != 0xFFFF) {
+      for (size_t m = 0; m < kCpcaBlock; ++m) {
+        const uint64_t member[3] = {block[m], block[kCpcaBlock + m], block[2 * kCpcaBlock + m]};
+        positions[vertex[s + m]] = position(member);
+      }
+      continue;
+    }
+    for (size_t a = 0; a < 3; ++a) {
+      const __m128d origin = _mm_set1_pd(origin_[a]), unit = _mm_set1_pd(unit_[a]);
+      const __m128 low = _mm_cvtpd_ps(_mm_add_pd(origin, _mm_mul_pd(_mm_sub_pd(_mm_castsi128_pd(_mm_add_epi64(x[2 * a], bias)), biased), unit)));
+      const __m128 high = _mm_cvtpd_ps(_mm_add_pd(origin, _mm_mul_pd(_mm_sub_pd(_mm_castsi128_pd(_mm_add_epi64(x[2 * a + 1], bias)), biased), unit)));
+      _mm_store_ps(axes[a], _mm_movelh_ps(low, high));
+    }
+    for (size_t m = 0; m < kCpcaBlock; ++m) positions[vertex[s + m]] = {axes[0][m], axes[1][m], axes[2][m]};
+  }
+#else
+  for (; s + kCpcaBlock <= slots; s += kCpcaBlock)
+    for (size_t m = 0; m < kCpcaBlock; ++m) {
+      const uint64_t member[3] = {values[3 * s + m], values[3 * s + kCpcaBlock + m], values[3 * s + 2 * kCpcaBlock + m]};
+      positions[vertex[s + m]] = position(member);
+    }
+#endif
+  convert(values + 3 * s, first_slot + s, slots - s, positions);
 }
 
 namespace {
@@ -262,7 +305,154 @@ void add_terms(uint64_t* run, const int32_t* basis, size_t n, const std::array<i
   }
 }
 
+#ifdef M4MESH_CPCA_AVX2
+// The terms on a block's three axes (acc[a]: its members' axis a), the products exact in int64 lanes.
+template <bool kTrajectory, bool kRounded, class Lanes>
+__attribute__((target("avx2"))) inline void add_block_avx2(__m256i (&acc)[3], const std::vector<Lanes>& terms, size_t block) {
+  for (const Lanes& t : terms) {
+    const int32_t* b = t.blocked + (kTrajectory ? 1 : 3) * kCpcaBlock * block;
+    const __m128i right = _mm_cvtsi64_si128(static_cast<int64_t>(t.right)), left = _mm_cvtsi64_si128(static_cast<int64_t>(t.left));
+    const __m256i members = _mm256_cvtepi32_epi64(_mm_loadu_si128(reinterpret_cast<const __m128i*>(b)));
+    for (size_t a = 0; a < 3; ++a) {
+      const __m256i basis = kTrajectory ? members : _mm256_cvtepi32_epi64(_mm_loadu_si128(reinterpret_cast<const __m128i*>(b + kCpcaBlock * a)));
+      const __m256i p = _mm256_mul_epi32(basis, _mm256_set1_epi64x(static_cast<int64_t>(t.coefficient[a])));
+      const __m256i term = kRounded ? _mm256_srl_epi64(_mm256_add_epi64(p, _mm256_set1_epi64x(static_cast<int64_t>(t.before))), right)
+                                    : _mm256_sll_epi64(p, left);
+      acc[a] = _mm256_add_epi64(acc[a], term);
+    }
+  }
+}
+
+template <class Lanes>
+__attribute__((target("avx2"))) size_t sum_blocks_avx2(const uint64_t* mean, size_t members, uint64_t* run, const std::array<uint64_t, 3>& start,
+                                                       const std::vector<Lanes> (&lanes)[2][2]) {
+  size_t i = 0;
+  for (; i + kCpcaBlock <= members; i += kCpcaBlock) {
+    __m256i acc[3];
+    for (size_t a = 0; a < 3; ++a)
+      acc[a] = _mm256_add_epi64(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(mean + 3 * i + kCpcaBlock * a)),
+                                _mm256_set1_epi64x(static_cast<int64_t>(start[a])));
+    add_block_avx2<false, false>(acc, lanes[0][0], i / kCpcaBlock);
+    add_block_avx2<false, true>(acc, lanes[0][1], i / kCpcaBlock);
+    add_block_avx2<true, false>(acc, lanes[1][0], i / kCpcaBlock);
+    add_block_avx2<true, true>(acc, lanes[1][1], i / kCpcaBlock);
+    for (size_t a = 0; a < 3; ++a) _mm256_storeu_si256(reinterpret_cast<__m256i*>(run + 3 * i + kCpcaBlock * a), acc[a]);
+  }
+  return i;
+}
+#endif
+
+#ifdef M4MESH_CPCA_SIMD
+// The terms on a block's three axes, two members a vector (acc[2a + h]: members 2h, 2h + 1, axis a), the
+// products exact in binary64 lanes (TermScaling).
+template <bool kTrajectory, bool kRounded, class Lanes>
+inline void add_block_sse2(__m128i (&acc)[6], const std::vector<Lanes>& terms, size_t block) {
+  const __m128d biased = _mm_castsi128_pd(_mm_set1_epi64x(static_cast<int64_t>(TermScaling::kBias)));
+  for (const Lanes& t : terms) {
+    const int32_t* b = t.blocked + (kTrajectory ? 1 : 3) * kCpcaBlock * block;
+    const __m128i before = _mm_set1_epi64x(static_cast<int64_t>(t.before));
+    const __m128i right = _mm_cvtsi64_si128(static_cast<int64_t>(t.right)), left = _mm_cvtsi64_si128(static_cast<int64_t>(t.left));
+    for (size_t a = 0; a < 3; ++a) {
+      const __m128d w = _mm_castsi128_pd(_mm_set1_epi64x(static_cast<int64_t>(t.coefficient[a])));
+      for (size_t h = 0; h < 2; ++h) {
+        const int32_t* pair = b + (kTrajectory ? 0 : kCpcaBlock * a) + 2 * h;
+        const __m128d basis = _mm_cvtepi32_pd(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(pair)));
+        const __m128i p = _mm_add_epi64(_mm_castpd_si128(_mm_add_pd(_mm_mul_pd(basis, w), biased)), before);
+        const __m128i term = kRounded ? _mm_srl_epi64(p, right) : _mm_sll_epi64(p, left);
+        acc[2 * a + h] = _mm_add_epi64(acc[2 * a + h], term);
+      }
+    }
+  }
+}
+
+template <class Lanes>
+size_t sum_blocks_sse2(const uint64_t* mean, size_t members, uint64_t* run, const std::array<uint64_t, 3>& start,
+                       const std::vector<Lanes> (&lanes)[2][2]) {
+  size_t i = 0;
+  for (; i + kCpcaBlock <= members; i += kCpcaBlock) {
+    __m128i acc[6];
+    for (size_t k = 0; k < 6; ++k)
+      acc[k] = _mm_add_epi64(_mm_loadu_si128(reinterpret_cast<const __m128i*>(mean + 3 * i + 2 * k)), _mm_set1_epi64x(static_cast<int64_t>(start[k / 2])));
+    add_block_sse2<false, false>(acc, lanes[0][0], i / kCpcaBlock);
+    add_block_sse2<false, true>(acc, lanes[0][1], i / kCpcaBlock);
+    add_block_sse2<true, false>(acc, lanes[1][0], i / kCpcaBlock);
+    add_block_sse2<true, true>(acc, lanes[1][1], i / kCpcaBlock);
+    for (size_t k = 0; k < 6; ++k) _mm_storeu_si128(reinterpret_cast<__m128i*>(run + 3 * i + 2 * k), acc[k]);
+  }
+  return i;
+}
+#endif
+
 }  // namespace
+
+CpcaTermSum::CpcaTermSum() {
+#ifdef M4MESH_CPCA_AVX2
+  avx2_ = has_avx2();
+#endif
+}
+
+void CpcaTermSum::clear() {
+  starts_.clear(), after_ = 0;
+  for (std::vector<Term>& terms : terms_) terms.clear();
+  for (auto& by_rounding : lanes_)
+    for (std::vector<Lanes>& lanes : by_rounding) lanes.clear();
+}
+
+void CpcaTermSum::translate(const int32_t* translation, uint32_t shift) { starts_.emplace_back(translation, exponent_of(shift)); }
+
+void CpcaTermSum::add(const int32_t* basis, [[maybe_unused]] const int32_t* blocked, const int32_t* coefficients, uint32_t shift,
+                      bool trajectory) {
+  const int u = exponent_of(shift);
+  terms_[trajectory].push_back({basis, coefficients, u});
+#ifdef M4MESH_CPCA_SIMD
+  const TermScaling scaling(u);
+  // AVX2 multiplies in int64 lanes (no bias to take out), SSE2 in binary64 ones.
+  lanes_[trajectory][u > 0].push_back({blocked, coefficients, {}, avx2_ ? scaling.before + TermScaling::kBias : scaling.before,
+                                       static_cast<uint64_t>(scaling.right), static_cast<uint64_t>(scaling.left)});
+  after_ += scaling.after;
+#endif
+}
+
+size_t CpcaTermSum::sum_blocks([[maybe_unused]] const uint64_t* mean, [[maybe_unused]] size_t members, [[maybe_unused]] uint64_t* run) const {
+#ifdef M4MESH_CPCA_SIMD
+  // The rounded terms' 2^(63 − u) taken out once, with the translations.
+  std::array<uint64_t, 3> start;
+  for (size_t axis = 0; axis < 3; ++axis) start[axis] = offset_[axis] - after_;
+#ifdef M4MESH_CPCA_AVX2
+  if (avx2_) return sum_blocks_avx2(mean, members, run, start, lanes_);
+#endif
+  return sum_blocks_sse2(mean, members, run, start, lanes_);
+#else
+  return 0;
+#endif
+}
+
+void CpcaTermSum::sum(uint32_t n, const uint64_t* mean, size_t members, uint64_t* run) {
+  offset_ = {};
+  for (const auto& [translation, u] : starts_)
+    for (size_t axis = 0; axis < 3; ++axis) offset_[axis] += static_cast<uint64_t>(scaled(translation[3 * size_t{n} + axis], u));
+#ifdef M4MESH_CPCA_SIMD
+  for (size_t trajectory = 0; trajectory < 2; ++trajectory)
+    for (std::vector<Lanes>& by_rounding : lanes_[trajectory])
+      for (Lanes& t : by_rounding)
+        for (size_t axis = 0; axis < 3; ++axis) {
+          const int32_t w = t.coefficients[trajectory ? 3 * size_t{n} + axis : n];
+          t.coefficient[axis] = avx2_ ? static_cast<uint64_t>(int64_t{w}) : bit_cast<uint64_t>(static_cast<double>(w));
+        }
+#endif
+  const size_t whole = members / kCpcaBlock * kCpcaBlock;
+  for (size_t j = 3 * sum_blocks(mean, members, run); j < 3 * members; ++j) {
+    // In a whole block, value j is member j mod 4 of it, axis (j mod 12) / 4; after them, member j / 3, axis j mod 3.
+    const bool in_block = j < 3 * whole;
+    const size_t member = in_block ? j / (3 * kCpcaBlock) * kCpcaBlock + j % kCpcaBlock : j / 3;
+    const size_t axis = in_block ? j % (3 * kCpcaBlock) / kCpcaBlock : j % 3;
+    uint64_t value = mean[j] + offset_[axis];
+    for (const Term& t : terms_[0]) value += static_cast<uint64_t>(scaled(int64_t{t.basis[3 * member + axis]} * t.coefficients[n], t.u));
+    for (const Term& t : terms_[1])
+      value += static_cast<uint64_t>(scaled(int64_t{t.basis[member]} * t.coefficients[3 * size_t{n} + axis], t.u));
+    run[j] = value;
+  }
+}
 
 void cpca_add_terms(std::span<uint64_t> run, std::span<const int32_t> basis, const std::array<int64_t, 3>& lanes, uint32_t shift,
                     bool trajectory, bool subtract) {
@@ -304,36 +494,49 @@ void CpcaAnimation::refine(uint32_t cluster, std::span<const int32_t> basis, std
 
 CpcaSegment::CpcaSegment(const CpcaHeader& header, std::span<const IntPoint3> mean_shape, std::span<const std::vector<NodeIndex>> members,
                          uint32_t frames)
-    : slots_(header, mean_shape, members), frames_(frames), terms_(members.size()), run_(3 * slots_.largest_cluster()) {}
+    : slots_(header, mean_shape, members),
+      blocked_mean_(slots_.mean().size()),
+      frames_(frames),
+      terms_(members.size()),
+      run_(3 * slots_.largest_cluster()),
+      sums_(members.size()) {
+  for (uint32_t c = 0; c < members.size(); ++c)
+    cpca_blocked(slots_.mean().data() + slots_.first_value(c), members[c].size(), blocked_mean_.data() + slots_.first_value(c));
+}
 
 void CpcaSegment::translate(uint32_t cluster, std::vector<int32_t> translation, uint32_t shift) {
-  terms_[cluster].push_back({kCpcaStart, shift, nullptr, std::move(translation)});
+  const Term& term = terms_[cluster].emplace_back(Term{nullptr, std::move(translation), {}});
+  sums_[cluster].translate(term.values.data(), shift);
 }
 
 void CpcaSegment::refine(uint32_t cluster, std::shared_ptr<const std::vector<int32_t>> basis, std::vector<int32_t> coefficients, uint32_t shift,
                          bool trajectory) {
-  terms_[cluster].push_back({trajectory ? kCpcaTrajectory : kCpcaComponent, shift, std::move(basis), std::move(coefficients)});
+  std::vector<int32_t> blocked;
+  if (!trajectory) {
+    blocked.resize(basis->size());
+    cpca_blocked(basis->data(), basis->size() / 3, blocked.data());
+  }
+  const Term& term = terms_[cluster].emplace_back(Term{std::move(basis), std::move(coefficients), std::move(blocked)});
+  sums_[cluster].add(term.basis->data(), trajectory ? term.basis->data() : term.blocked.data(), term.values.data(), shift, trajectory);
 }
 
 void CpcaSegment::reset(uint32_t frames) {
   frames_ = frames;
   for (std::vector<Term>& cluster : terms_) cluster.clear();
+  for (CpcaTermSum& sum : sums_) sum.clear();
 }
 
-void CpcaSegment::frame(uint32_t f, std::span<Float3> positions) const {
-  const std::vector<uint64_t>& mean = slots_.mean();
+void CpcaSegment::frame(uint32_t f, std::span<Float3> positions) const { frames(f, std::span(&positions, 1)); }
+
+// Cluster by cluster, each of its frames in turn: a cluster's basis and its terms' coefficients for these frames
+// are read from the cache after the first frame, not from memory once a frame.
+void CpcaSegment::frames(uint32_t first_frame, std::span<const std::span<Float3>> positions) const {
   for (uint32_t c = 0; c < terms_.size(); ++c) {
-    const size_t first = slots_.first_value(c), count = slots_.value_count(c);
-    uint64_t* run = run_.data();
-    std::copy_n(mean.begin() + static_cast<ptrdiff_t>(first), count, run);
-    for (const Term& term : terms_[c]) {
-      const bool trajectory = term.kind == kCpcaTrajectory;
-      if (term.kind == kCpcaStart)
-        add_translation(run, count, translation_terms(term.values, f, exponent_of(term.shift), false));
-      else
-        cpca_add_terms(std::span(run, count), *term.basis, coefficients_of(term.values, f, trajectory), term.shift, trajectory);
+    const size_t first = slots_.first_value(c), members = slots_.value_count(c) / 3;
+    for (size_t k = 0; k < positions.size(); ++k) {
+      sums_[c].sum(first_frame + static_cast<uint32_t>(k), blocked_mean_.data() + first, members, run_.data());
+      slots_.convert_blocked(run_.data(), first / 3, members, positions[k]);
     }
-    slots_.convert(run, first / 3, count / 3, positions);
   }
 }
 

@@ -297,6 +297,8 @@ class CpcaSlots {
   Float3 position(const uint64_t* values) const;
   // The positions of the slots from `first_slot` on, given their integers, into their vertices.
   void convert(const uint64_t* values, size_t first_slot, size_t slots, std::span<Float3> positions) const;
+  // The same, the integers in cpca_blocked's order.
+  void convert_blocked(const uint64_t* values, size_t first_slot, size_t slots, std::span<Float3> positions) const;
   NodeIndex slot_of(NodeIndex v) const { return slot_of_vertex_[v]; }
 
  private:
@@ -313,6 +315,62 @@ class CpcaSlots {
 // `subtract` takes them away. |basis| ≤ 2^15, |lanes| ≤ 2^23.
 void cpca_add_terms(std::span<uint64_t> run, std::span<const int32_t> basis, const std::array<int64_t, 3>& lanes, uint32_t shift,
                     bool trajectory, bool subtract = false);
+
+// A cluster's values in blocks (CpcaTermSum): each whole block of
+// kCpcaBlock members axis by axis (x of its members, then y, then z), the
+// members after the last whole block as they were (3 a member).
+inline constexpr size_t kCpcaBlock = 4;
+template <class T>
+void cpca_blocked(const T* values, size_t members, T* blocked) {
+  size_t i = 0;
+  for (; i + kCpcaBlock <= members; i += kCpcaBlock)
+    for (size_t m = 0; m < kCpcaBlock; ++m)
+      for (size_t axis = 0; axis < 3; ++axis) blocked[3 * i + kCpcaBlock * axis + m] = values[3 * (i + m) + axis];
+  std::copy(values + 3 * i, values + 3 * members, blocked + 3 * i);
+}
+
+// A segment's terms on a cluster, summed a frame at a time and a block at
+// a time with every term in SIMD lanes (CpcaSegment::frames): each value
+// is loaded and stored once, not once a term, and a trajectory
+// component's basis value meets the three axes' coefficients with no
+// shuffle. The terms' values stay with their owner (CpcaSegment).
+class CpcaTermSum {
+ public:
+  CpcaTermSum();
+  // No terms.
+  void clear();
+  // A start: translation[3n + a] on frame n, axis a.
+  void translate(const int32_t* translation, uint32_t shift);
+  // A component's terms, as cpca_add_terms adds them on frame n with lanes coefficients[n] (trajectory:
+  // coefficients[3n + a]); `blocked` is basis in cpca_blocked's order (a trajectory's basis is its own).
+  void add(const int32_t* basis, const int32_t* blocked, const int32_t* coefficients, uint32_t shift, bool trajectory);
+  // Frame n's run of the cluster's `members` members, in cpca_blocked's order: mean + translations + terms.
+  void sum(uint32_t n, const uint64_t* mean, size_t members, uint64_t* run);
+
+ private:
+  // The whole blocks' sums; returns how many members they took.
+  size_t sum_blocks(const uint64_t* mean, size_t members, uint64_t* run) const;
+
+  struct Term {
+    const int32_t* basis;
+    const int32_t* coefficients;
+    int u;
+  };
+  // A term as the vector loops take it: frame n's coefficient per axis (int64, or binary64's bits without AVX2),
+  // what is added before the shift, and the shift.
+  struct Lanes {
+    const int32_t* blocked;
+    const int32_t* coefficients;
+    std::array<uint64_t, 3> coefficient;
+    uint64_t before, right, left;
+  };
+  [[maybe_unused]] bool avx2_ = false;
+  std::vector<std::pair<const int32_t*, int>> starts_;  // translations and u
+  std::array<uint64_t, 3> offset_{};                      // frame n's translations
+  uint64_t after_ = 0;                                    // what the vector loops' rounded terms add beyond their values: 2^(63 − u) each
+  std::vector<Term> terms_[2];                            // per trajectory (1) or not (0), for the members after the whole blocks
+  std::vector<Lanes> lanes_[2][2];                        // per trajectory, then rounded (u > 0)
+};
 
 // A segment's frames as decoded so far, every integer kept: refinements add
 // to them at once and can be undone exactly (the encoder's analysis).
@@ -349,6 +407,8 @@ class CpcaSegment {
  public:
   CpcaSegment(const CpcaHeader& header, std::span<const IntPoint3> mean_shape, std::span<const std::vector<NodeIndex>> members,
               uint32_t frames);
+  CpcaSegment(const CpcaSegment&) = delete;  // sums_ points into terms_
+  CpcaSegment& operator=(const CpcaSegment&) = delete;
 
   uint32_t frames() const { return frames_; }
   // CpcaAnimation::translate and refine, kept to be summed.
@@ -359,21 +419,25 @@ class CpcaSegment {
   void reset(uint32_t frames);
 
   void frame(uint32_t f, std::span<Float3> positions) const;
+  // Frames first, first + 1, … into positions[0], [1], …, the same as frame() on each.
+  void frames(uint32_t first, std::span<const std::span<Float3>> positions) const;
   // A frame no refinement has reached: the mean shape.
   void mean_frame(std::span<Float3> positions) const;
 
  private:
+  // A refinement's values, which sums_ points into.
   struct Term {
-    uint32_t kind;  // kCpcaStart, kCpcaTrajectory, or kCpcaComponent for either of the others
-    uint32_t shift;
-    std::shared_ptr<const std::vector<int32_t>> basis;
-    std::vector<int32_t> values;  // a start's translations, else the coefficients
+    std::shared_ptr<const std::vector<int32_t>> basis;  // none for a start
+    std::vector<int32_t> values;                        // a start's translations, else the coefficients
+    std::vector<int32_t> blocked;                       // a component's basis in cpca_blocked's order (a trajectory's is its own)
   };
 
   CpcaSlots slots_;
+  std::vector<uint64_t> blocked_mean_;  // the mean shape's integers, each cluster in cpca_blocked's order
   uint32_t frames_;
   std::vector<std::vector<Term>> terms_;  // per cluster, in the order decoded
   mutable std::vector<uint64_t> run_;     // one cluster's integers of the frame being summed
+  mutable std::vector<CpcaTermSum> sums_;  // per cluster
 };
 
 }  // namespace m4mesh

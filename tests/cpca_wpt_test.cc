@@ -111,8 +111,9 @@ TEST(CpcaReconstruction, TermsAreTheDocumentsIntegers) {
 }
 
 // The whole reconstruction, step by step as the document gives it, to
-// binary32: CpcaAnimation and CpcaSegment (SIMD conversion included) give
-// the same positions, at the value limits and over shifts.
+// binary32: CpcaAnimation and CpcaSegment (SIMD sums and conversion
+// included, one frame or a batch) give the same positions, at the value
+// limits and over shifts.
 TEST(CpcaReconstruction, FramesAreTheDocumentsPositions) {
   SplitMix64 random(71);
   CpcaHeader header;
@@ -121,10 +122,11 @@ TEST(CpcaReconstruction, FramesAreTheDocumentsPositions) {
     header.origin[axis] = bit_cast<uint32_t>(-1.5f + static_cast<float>(axis));
     header.step[axis] = bit_cast<uint32_t>(0.001f * static_cast<float>(axis + 1));
   }
-  const uint32_t vertices = 61, frames = 5;
+  const uint32_t vertices = 67, frames = 5;
+  // Sizes odd and even, whole blocks of 4 only (24), none (3).
   std::vector<uint32_t> cluster_of(vertices);
-  for (uint32_t v = 0; v < vertices; ++v) cluster_of[v] = v < 40 ? static_cast<uint32_t>(random.uniform(0, 2)) : 3;  // sizes odd and even
-  const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, 4);
+  for (uint32_t v = 0; v < vertices; ++v) cluster_of[v] = v < 40 ? static_cast<uint32_t>(random.uniform(0, 2)) : v < 64 ? 3 : 4;
+  const std::vector<std::vector<NodeIndex>> members = cpca_members(cluster_of, 5);
   std::vector<IntPoint3> mean(vertices);
   for (IntPoint3& p : mean)
     for (int axis = 0; axis < 3; ++axis) p[axis] = random.uniform(-(1 << 20), 1 << 20);
@@ -163,9 +165,15 @@ TEST(CpcaReconstruction, FramesAreTheDocumentsPositions) {
         }
       }
   std::vector<Float3> eager(vertices), lazy(vertices);
+  // Also every frame from frame 1 on at once.
+  std::vector<std::vector<Float3>> batch(frames - 1, std::vector<Float3>(vertices));
+  segment.frames(1, std::vector<std::span<Float3>>(batch.begin(), batch.end()));
   for (uint32_t f = 0; f < frames; ++f) {
     animation.frame(f, eager);
     segment.frame(f, lazy);
+    if (f > 0) {
+      ASSERT_EQ(batch[f - 1], lazy) << "frame " << f << " in a batch";
+    }
     for (uint32_t v = 0; v < vertices; ++v)
       for (int axis = 0; axis < 3; ++axis) {
         const auto P = static_cast<int64_t>(expected[(size_t{f} * vertices + v) * 3 + static_cast<size_t>(axis)]);

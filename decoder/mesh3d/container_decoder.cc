@@ -255,14 +255,14 @@ void Mesh3dDecoder::check_group_hash(size_t index, const UnitHeader& header) {
     // The codec's frames, a batch of MD5 lanes at a time, kept for their release.
     for (uint32_t k = 0; k < hash.group_frames; k += kMd5Batch) {
       const uint32_t count = std::min<uint32_t>(kMd5Batch, hash.group_frames - k);
-      std::vector<std::span<const Float3>> positions;
+      std::vector<std::span<Float3>> positions;
       for (uint32_t j = 0; j < count; ++j) {
         std::vector<Float3>& held = hashed_[first + k + j];
         held.resize(header_.vertex_count);
-        codec_->frame(first + k + j, held);
         positions.push_back(held);
       }
-      frame_digests(positions, std::span(frames).subspan(k, count));
+      codec_->frames(first + k, positions);
+      frame_digests(std::vector<std::span<const Float3>>(positions.begin(), positions.end()), std::span(frames).subspan(k, count));
     }
   } else {
     for (uint32_t k = 0; k < hash.group_frames; ++k) {

@@ -103,6 +103,13 @@ class CpcaDecoder final : public CodecDecoder3d {
     else
       animation_->mean_frame(positions);
   }
+  void frames(uint32_t first, std::span<const std::span<Float3>> positions) const override {
+    // Those of the segment at once, then any beyond it.
+    const uint32_t end = first_frame_ + animation_->frames();
+    const size_t within = first >= end ? 0 : std::min<size_t>(positions.size(), end - first);
+    if (within > 0) animation_->frames(first - first_frame_, positions.first(within));
+    for (size_t k = within; k < positions.size(); ++k) frame(first + static_cast<uint32_t>(k), positions[k]);
+  }
   bool holds_frames() const override { return true; }
   uint32_t frames_decoded() const override { return animation_ ? object_.frame_count : 0; }
   uint32_t first_held_frame(const UnitHeader& next) const override {
