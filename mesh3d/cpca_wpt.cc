@@ -393,23 +393,23 @@ CpcaTermSum::CpcaTermSum() {
 
 void CpcaTermSum::clear() {
   starts_.clear(), after_ = 0;
-  for (std::vector<Term>& terms : terms_) terms.clear();
   for (auto& by_rounding : lanes_)
     for (std::vector<Lanes>& lanes : by_rounding) lanes.clear();
 }
 
 void CpcaTermSum::translate(const int32_t* translation, uint32_t shift) { starts_.emplace_back(translation, exponent_of(shift)); }
 
-void CpcaTermSum::add(const int32_t* basis, [[maybe_unused]] const int32_t* blocked, const int32_t* coefficients, uint32_t shift,
-                      bool trajectory) {
+void CpcaTermSum::add(const int32_t* basis, const int32_t* blocked, const int32_t* coefficients, uint32_t shift, bool trajectory) {
   const int u = exponent_of(shift);
-  terms_[trajectory].push_back({basis, coefficients, u});
+  Lanes& term = lanes_[trajectory][u > 0].emplace_back(Lanes{basis, blocked, coefficients, u, {}, 0, 0, 0});
 #ifdef M4MESH_CPCA_SIMD
   const TermScaling scaling(u);
   // AVX2 multiplies in int64 lanes (no bias to take out), SSE2 in binary64 ones.
-  lanes_[trajectory][u > 0].push_back({blocked, coefficients, {}, avx2_ ? scaling.before + TermScaling::kBias : scaling.before,
-                                       static_cast<uint64_t>(scaling.right), static_cast<uint64_t>(scaling.left)});
+  term.before = avx2_ ? scaling.before + TermScaling::kBias : scaling.before;
+  term.right = static_cast<uint64_t>(scaling.right), term.left = static_cast<uint64_t>(scaling.left);
   after_ += scaling.after;
+#else
+  (void)term;
 #endif
 }
 
@@ -447,9 +447,11 @@ void CpcaTermSum::sum(uint32_t n, const uint64_t* mean, size_t members, uint64_t
     const size_t member = in_block ? j / (3 * kCpcaBlock) * kCpcaBlock + j % kCpcaBlock : j / 3;
     const size_t axis = in_block ? j % (3 * kCpcaBlock) / kCpcaBlock : j % 3;
     uint64_t value = mean[j] + offset_[axis];
-    for (const Term& t : terms_[0]) value += static_cast<uint64_t>(scaled(int64_t{t.basis[3 * member + axis]} * t.coefficients[n], t.u));
-    for (const Term& t : terms_[1])
-      value += static_cast<uint64_t>(scaled(int64_t{t.basis[member]} * t.coefficients[3 * size_t{n} + axis], t.u));
+    for (size_t rounded = 0; rounded < 2; ++rounded) {
+      for (const Lanes& t : lanes_[0][rounded]) value += static_cast<uint64_t>(scaled(int64_t{t.basis[3 * member + axis]} * t.coefficients[n], t.u));
+      for (const Lanes& t : lanes_[1][rounded])
+        value += static_cast<uint64_t>(scaled(int64_t{t.basis[member]} * t.coefficients[3 * size_t{n} + axis], t.u));
+    }
     run[j] = value;
   }
 }

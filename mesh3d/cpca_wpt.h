@@ -351,16 +351,13 @@ class CpcaTermSum {
   // The whole blocks' sums; returns how many members they took.
   size_t sum_blocks(const uint64_t* mean, size_t members, uint64_t* run) const;
 
-  struct Term {
-    const int32_t* basis;
-    const int32_t* coefficients;
-    int u;
-  };
-  // A term as the vector loops take it: frame n's coefficient per axis (int64, or binary64's bits without AVX2),
-  // what is added before the shift, and the shift.
+  // A term: its values, u, and as the vector loops take it, frame n's coefficient per axis (int64, or binary64's
+  // bits without AVX2), what is added before the shift, and the shift.
   struct Lanes {
+    const int32_t* basis;
     const int32_t* blocked;
     const int32_t* coefficients;
+    int u;
     std::array<uint64_t, 3> coefficient;
     uint64_t before, right, left;
   };
@@ -368,8 +365,7 @@ class CpcaTermSum {
   std::vector<std::pair<const int32_t*, int>> starts_;  // translations and u
   std::array<uint64_t, 3> offset_{};                      // frame n's translations
   uint64_t after_ = 0;                                    // what the vector loops' rounded terms add beyond their values: 2^(63 − u) each
-  std::vector<Term> terms_[2];                            // per trajectory (1) or not (0), for the members after the whole blocks
-  std::vector<Lanes> lanes_[2][2];                        // per trajectory, then rounded (u > 0)
+  std::vector<Lanes> lanes_[2][2];                        // per trajectory (1) or not (0), then rounded (u > 0)
 };
 
 // A segment's frames as decoded so far, every integer kept: refinements add
