@@ -1,6 +1,7 @@
 #include "mesh/topology.h"
 
 #include <algorithm>
+#include <span>
 
 namespace m4mesh {
 
@@ -34,35 +35,32 @@ bool same_faces(std::span<const Triangle> a, std::span<const Triangle> b) {
 }
 
 TriangleNeighbours triangle_neighbours(std::span<const Triangle> triangles, size_t node_count) {
-  // Directed edges grouped by their first node.
+  // Directed edges grouped by their first node, each group in triangle order; an edge leaves v[corner].
   std::vector<uint32_t> first(node_count + 1, 0);
   for (const Triangle& t : triangles)
     for (NodeIndex from : t.v) ++first[from + 1];
   for (size_t i = 1; i <= node_count; ++i) first[i] += first[i - 1];
   struct Edge {
     NodeIndex to;
-    uint32_t triangle;
+    uint32_t triangle, corner;
   };
   std::vector<Edge> edges(triangles.size() * 3);
   std::vector<uint32_t> fill(first.begin(), first.end() - 1);
   for (uint32_t k = 0; k < triangles.size(); ++k)
-    for (int j = 0; j < 3; ++j) edges[fill[triangles[k].v[j]]++] = Edge{triangles[k].v[(j + 1) % 3], k};
+    for (uint32_t j = 0; j < 3; ++j) edges[fill[triangles[k].v[j]]++] = Edge{triangles[k].v[(j + 1) % 3], k, j};
 
-  // Each node's edges by their end, then by triangle: the first edge a → b
-  // found is that of the lowest triangle, and a node of any degree is
-  // searched in logarithmic time.
-  for (size_t n = 0; n < node_count; ++n)
-    std::sort(edges.begin() + first[n], edges.begin() + first[n + 1],
-              [](const Edge& x, const Edge& y) { return x.to != y.to ? x.to < y.to : x.triangle < y.triangle; });
-
+  // Node by node: the first (lowest) triangle of each edge a → b, then the
+  // neighbour of every triangle across its edge b → a, which lies opposite
+  // the corner after a's. Linear whatever the degrees.
   TriangleNeighbours neighbours(triangles.size(), {kNoTriangle, kNoTriangle, kNoTriangle});
-  for (uint32_t k = 0; k < triangles.size(); ++k) {
-    for (int j = 0; j < 3; ++j) {
-      // The edge opposite v[j] runs v[j+1] → v[j+2]; its neighbour holds v[j+2] → v[j+1].
-      const NodeIndex a = triangles[k].v[(j + 2) % 3], b = triangles[k].v[(j + 1) % 3];
-      const auto begin = edges.begin() + first[a], end = edges.begin() + first[a + 1];
-      const auto e = std::lower_bound(begin, end, b, [](const Edge& x, NodeIndex to) { return x.to < to; });
-      if (e != end && e->to == b) neighbours[k][j] = e->triangle;
+  std::vector<uint32_t> seen_from(node_count, kNoNode), first_triangle(node_count);
+  for (uint32_t a = 0; a < node_count; ++a) {
+    const std::span<const Edge> from_a(edges.data() + first[a], edges.data() + first[a + 1]);
+    for (const Edge& e : from_a)
+      if (seen_from[e.to] != a) seen_from[e.to] = a, first_triangle[e.to] = e.triangle;
+    for (const Edge& e : from_a) {
+      const NodeIndex b = triangles[e.triangle].v[(e.corner + 2) % 3];
+      if (seen_from[b] == a) neighbours[e.triangle][(e.corner + 1) % 3] = first_triangle[b];
     }
   }
   return neighbours;

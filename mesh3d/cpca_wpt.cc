@@ -11,6 +11,10 @@
 #include <immintrin.h>
 #define M4MESH_CPCA_AVX2 1  // chosen at run time, where the processor has it
 #endif
+#ifdef __wasm_simd128__
+#include <wasm_simd128.h>
+#define M4MESH_CPCA_WASM 1  // SIMD128's own integer products for the block sums
+#endif
 #endif
 
 #include "common/bit_cast.h"
@@ -383,11 +387,52 @@ size_t sum_blocks_sse2(const uint64_t* mean, size_t members, uint64_t* run, cons
 }
 #endif
 
+#ifdef M4MESH_CPCA_WASM
+// The terms on a block's three axes, two members a vector (acc[2a + h]: members 2h, 2h + 1, axis a), the
+// products exact in int64 lanes (i64x2.extmul) as AVX2's.
+template <bool kTrajectory, bool kRounded, class Lanes>
+inline void add_block_wasm(v128_t (&acc)[6], const std::vector<Lanes>& terms, size_t block) {
+  for (const Lanes& t : terms) {
+    const int32_t* b = t.blocked + (kTrajectory ? 1 : 3) * kCpcaBlock * block;
+    const v128_t before = wasm_i64x2_splat(static_cast<int64_t>(t.before));
+    const v128_t members = wasm_v128_load(b);
+    for (size_t a = 0; a < 3; ++a) {
+      const v128_t basis = kTrajectory ? members : wasm_v128_load(b + kCpcaBlock * a);
+      const v128_t w = wasm_v128_load(t.coefficient[a].data());
+      const v128_t p[2] = {wasm_i64x2_extmul_low_i32x4(basis, w), wasm_i64x2_extmul_high_i32x4(basis, w)};
+      for (size_t h = 0; h < 2; ++h) {
+        const v128_t term = kRounded ? wasm_u64x2_shr(wasm_i64x2_add(p[h], before), static_cast<uint32_t>(t.right))
+                                     : wasm_i64x2_shl(p[h], static_cast<uint32_t>(t.left));
+        acc[2 * a + h] = wasm_i64x2_add(acc[2 * a + h], term);
+      }
+    }
+  }
+}
+
+template <class Lanes>
+size_t sum_blocks_wasm(const uint64_t* mean, size_t members, uint64_t* run, const std::array<uint64_t, 3>& start,
+                       const std::vector<Lanes> (&lanes)[2][2]) {
+  size_t i = 0;
+  for (; i + kCpcaBlock <= members; i += kCpcaBlock) {
+    v128_t acc[6];
+    for (size_t k = 0; k < 6; ++k) acc[k] = wasm_i64x2_add(wasm_v128_load(mean + 3 * i + 2 * k), wasm_i64x2_splat(static_cast<int64_t>(start[k / 2])));
+    add_block_wasm<false, false>(acc, lanes[0][0], i / kCpcaBlock);
+    add_block_wasm<false, true>(acc, lanes[0][1], i / kCpcaBlock);
+    add_block_wasm<true, false>(acc, lanes[1][0], i / kCpcaBlock);
+    add_block_wasm<true, true>(acc, lanes[1][1], i / kCpcaBlock);
+    for (size_t k = 0; k < 6; ++k) wasm_v128_store(run + 3 * i + 2 * k, acc[k]);
+  }
+  return i;
+}
+#endif
+
 }  // namespace
 
 CpcaTermSum::CpcaTermSum() {
-#ifdef M4MESH_CPCA_AVX2
-  avx2_ = has_avx2();
+#if defined(M4MESH_CPCA_WASM)
+  integer_ = true;
+#elif defined(M4MESH_CPCA_AVX2)
+  integer_ = has_avx2();
 #endif
 }
 
@@ -404,8 +449,8 @@ void CpcaTermSum::add(const int32_t* basis, const int32_t* blocked, const int32_
   Lanes& term = lanes_[trajectory][u > 0].emplace_back(Lanes{basis, blocked, coefficients, u, {}, 0, 0, 0});
 #ifdef M4MESH_CPCA_SIMD
   const TermScaling scaling(u);
-  // AVX2 multiplies in int64 lanes (no bias to take out), SSE2 in binary64 ones.
-  term.before = avx2_ ? scaling.before + TermScaling::kBias : scaling.before;
+  // AVX2 and SIMD128 multiply in int64 lanes (no bias to take out), SSE2 in binary64 ones.
+  term.before = integer_ ? scaling.before + TermScaling::kBias : scaling.before;
   term.right = static_cast<uint64_t>(scaling.right), term.left = static_cast<uint64_t>(scaling.left);
   after_ += scaling.after;
 #else
@@ -418,10 +463,14 @@ size_t CpcaTermSum::sum_blocks([[maybe_unused]] const uint64_t* mean, [[maybe_un
   // The rounded terms' 2^(63 − u) taken out once, with the translations.
   std::array<uint64_t, 3> start;
   for (size_t axis = 0; axis < 3; ++axis) start[axis] = offset_[axis] - after_;
+#if defined(M4MESH_CPCA_WASM)
+  return sum_blocks_wasm(mean, members, run, start, lanes_);
+#else
 #ifdef M4MESH_CPCA_AVX2
-  if (avx2_) return sum_blocks_avx2(mean, members, run, start, lanes_);
+  if (integer_) return sum_blocks_avx2(mean, members, run, start, lanes_);
 #endif
   return sum_blocks_sse2(mean, members, run, start, lanes_);
+#endif
 #else
   return 0;
 #endif
@@ -437,7 +486,11 @@ void CpcaTermSum::sum(uint32_t n, const uint64_t* mean, size_t members, uint64_t
       for (Lanes& t : by_rounding)
         for (size_t axis = 0; axis < 3; ++axis) {
           const int32_t w = t.coefficients[trajectory ? 3 * size_t{n} + axis : n];
-          t.coefficient[axis] = avx2_ ? static_cast<uint64_t>(int64_t{w}) : bit_cast<uint64_t>(static_cast<double>(w));
+#ifdef M4MESH_CPCA_WASM
+          t.coefficient[axis] = {w, w, w, w};
+#else
+          t.coefficient[axis] = integer_ ? static_cast<uint64_t>(int64_t{w}) : bit_cast<uint64_t>(static_cast<double>(w));
+#endif
         }
 #endif
   const size_t whole = members / kCpcaBlock * kCpcaBlock;

@@ -351,17 +351,21 @@ class CpcaTermSum {
   // The whole blocks' sums; returns how many members they took.
   size_t sum_blocks(const uint64_t* mean, size_t members, uint64_t* run) const;
 
-  // A term: its values, u, and as the vector loops take it, frame n's coefficient per axis (int64, or binary64's
-  // bits without AVX2), what is added before the shift, and the shift.
+  // A term: its values, u, and as the vector loops take it, frame n's coefficient per axis (int64 with AVX2,
+  // binary64's bits with SSE2, four int32 with SIMD128), what is added before the shift, and the shift.
   struct Lanes {
     const int32_t* basis;
     const int32_t* blocked;
     const int32_t* coefficients;
     int u;
+#ifdef __wasm_simd128__
+    alignas(16) std::array<int32_t, 4> coefficient[3];  // a splat in memory: LLVM 14 then keeps i64x2.extmul
+#else
     std::array<uint64_t, 3> coefficient;
+#endif
     uint64_t before, right, left;
   };
-  [[maybe_unused]] bool avx2_ = false;
+  [[maybe_unused]] bool integer_ = false;  // products in int64 lanes (AVX2, WebAssembly SIMD128), else binary64
   std::vector<std::pair<const int32_t*, int>> starts_;  // translations and u
   std::array<uint64_t, 3> offset_{};                      // frame n's translations
   uint64_t after_ = 0;                                    // what the vector loops' rounded terms add beyond their values: 2^(63 − u) each

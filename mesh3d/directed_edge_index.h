@@ -13,7 +13,9 @@ struct HalfEdge {
   uint32_t from, to;
 };
 
-// Directed edge → a number: open addressing, linear probing.
+// Directed edge → a number: open addressing, linear probing; a slot holds
+// its key and value together, so that a probe reads one cache line.
+// Vertices are below kNone.
 class DirectedEdgeIndex {
  public:
   static constexpr uint32_t kNone = 0xFFFFFFFF;
@@ -23,9 +25,13 @@ class DirectedEdgeIndex {
   void insert(uint32_t from, uint32_t to, uint32_t value);
 
  private:
-  size_t slot(uint64_t key) const { return static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_); }
-  std::vector<uint64_t> keys_;
-  std::vector<uint32_t> values_;
+  struct Slot {
+    uint32_t from = kNone, to = kNone, value = kNone;
+  };
+  size_t slot(uint32_t from, uint32_t to) const {
+    return static_cast<size_t>((((uint64_t{from} << 32) | to) * 0x9E3779B97F4A7C15ull) >> shift_);
+  }
+  std::vector<Slot> slots_;
   size_t count_ = 0;
   int shift_ = 64;
 };

@@ -23,7 +23,8 @@ uint32_t GateTraversal::new_vertex() {
 
 bool GateTraversal::next_gate(HalfEdge& gate) {
   while (next_gate_ < gates_.size()) {
-    const Edge& e = edges_[gates_[next_gate_++]];
+    gate_edge_ = gates_[next_gate_++];
+    const Edge& e = edges_[gate_edge_];
     if (e.open) {
       gate = {e.from, e.to};
       return true;
@@ -116,7 +117,7 @@ bool GateTraversal::add_face(const Triangle& face) {
 bool GateTraversal::attach(HalfEdge gate, uint32_t c) {
   if (c >= visited()) return false;
   const bool numbered_here = degree_[c] == 0;
-  const Triangle in_front = faces_[edges_[index_.find(gate.from, gate.to)].face];
+  const Triangle in_front = faces_[edges_[edge_of(gate)].face];
   if (!add_face(Triangle{{gate.to, gate.from, c}})) return false;
   if (numbered_here) parents_[c] = {{gate.from, gate.to, in_front.third(gate.from, gate.to)}};
   return true;
@@ -124,6 +125,11 @@ bool GateTraversal::attach(HalfEdge gate, uint32_t c) {
 
 bool GateTraversal::seed(const Triangle& face) { return add_face(face); }
 
-void GateTraversal::border(HalfEdge gate) { close(index_.find(gate.from, gate.to)); }
+void GateTraversal::border(HalfEdge gate) { close(edge_of(gate)); }
+
+uint32_t GateTraversal::edge_of(HalfEdge gate) const {
+  if (gate_edge_ != kNone && edges_[gate_edge_].from == gate.from && edges_[gate_edge_].to == gate.to) return gate_edge_;
+  return index_.find(gate.from, gate.to);
+}
 
 }  // namespace m4mesh

@@ -72,6 +72,8 @@ class GateTraversal {
   bool add_face(const Triangle& face);
   void link(uint32_t from, uint32_t to);
   void close(uint32_t e);
+  // The half-edge of a gate: the one next_gate gave last, without a lookup.
+  uint32_t edge_of(HalfEdge gate) const;
 
   std::vector<Triangle> faces_;
   std::vector<Triangle> parents_;
@@ -81,6 +83,7 @@ class GateTraversal {
   DirectedEdgeIndex index_;
   std::vector<uint32_t> gates_;
   size_t next_gate_ = 0;
+  uint32_t gate_edge_ = kNone;  // the last gate's half-edge
 };
 
 }  // namespace m4mesh

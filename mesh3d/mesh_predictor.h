@@ -68,6 +68,9 @@ class MeshPredictor {
     }
   }
 
+  // Face corners: how many parallelograms there can be.
+  size_t corners() const { return around_.size(); }
+
   // Calls visit(face) for every face around v, once per corner of v.
   template <class Visit>
   void for_each_face(uint32_t v, Visit visit) const {

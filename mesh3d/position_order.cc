@@ -75,7 +75,11 @@ class SupportHeap {
 }  // namespace
 
 PositionOrder::PositionOrder(const MeshPredictor& predictor, uint32_t vertex_count)
-    : predictor_(predictor), local_(vertex_count, kNotCandidate) {}
+    : predictor_(predictor), local_(vertex_count, kNotCandidate) {
+  // Room for every parallelogram, so that the lists never move (pages are touched only as they fill).
+  owner_.reserve(predictor.corners());
+  corners_.reserve(3 * predictor.corners());
+}
 
 // Supports only grow, each by one event: a corner becomes known, or the last
 // of a parallelogram's three vertices does. Arrays are by candidate, so a

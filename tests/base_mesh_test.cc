@@ -208,6 +208,26 @@ TEST(PositionOrder, IsTheDefinitionsOrder) {
   }
 }
 
+// Its definition: across the edge of t opposite v[j], the lowest triangle
+// holding v[j + 2] → v[j + 1]; on the awkward meshes and as given (repeated,
+// degenerate and wrongly turned faces, a vertex at two corners).
+TEST(TriangleNeighbours, IsTheLowestTriangleOnTheReverseEdge) {
+  for (uint64_t seed = 1; seed <= 10; ++seed) {
+    TestMesh m = awkward_mesh(seed);
+    m.faces.push_back({{7, 8, 7}});
+    const TriangleNeighbours neighbours = triangle_neighbours(m.faces, m.vertex_count);
+    for (uint32_t k = 0; k < m.faces.size(); ++k)
+      for (int j = 0; j < 3; ++j) {
+        const NodeIndex a = m.faces[k].v[(j + 2) % 3], b = m.faces[k].v[(j + 1) % 3];
+        uint32_t expected = kNoTriangle;
+        for (uint32_t t = 0; t < m.faces.size() && expected == kNoTriangle; ++t)
+          for (int i = 0; i < 3; ++i)
+            if (m.faces[t].v[i] == a && m.faces[t].v[(i + 1) % 3] == b) expected = t;
+        ASSERT_EQ(neighbours[k][j], expected) << "seed " << seed << ", triangle " << k << ", corner " << j;
+      }
+  }
+}
+
 // Two faces on the edge 1 – 2 and a vertex in no face, candidates given
 // from the highest number: 4 and 3 come first as given (no support), 2 and
 // 1 then tie on one corner each, so 2 as given earlier; 1 follows with
