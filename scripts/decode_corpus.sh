@@ -5,7 +5,9 @@
 # build/decode-corpus (made once, with a NAME.m4m.missed for a target out of a
 # codec's reach; delete it to code again), then decoded by
 # bench/decode_bench.cc on one core (taskset -c 0): vertex-frames a second,
-# the first frame and the base mesh alone, the median of 5.
+# the first frame and the base mesh alone, the median of 5, and the stream's
+# arithmetic-coded bins decoded alone (as vertex-frames a second if decoding
+# took only their time).
 #   bash scripts/decode_corpus.sh [BUILD]      # BUILD: build (default)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -45,11 +47,12 @@ M4MESH_DECODE_STREAMS="$list" taskset -c 0 "$build/bench/m4mesh_decode_bench" --
 python3 - "$corpus/results.json" <<'PYTHON'
 import json, sys
 runs = {b["run_name"]: b for b in json.load(open(sys.argv[1]))["benchmarks"] if b.get("aggregate_name") == "median"}
-print(f"{'stream':<30} {'ms':>9} {'M vf/s':>8} {'first frame ms':>15} {'base mesh ms':>13}")
+print(f"{'stream':<30} {'ms':>9} {'M vf/s':>8} {'first frame ms':>15} {'base mesh ms':>13} {'bins alone M vf/s':>18} {'ns/bin':>7}")
 for name, b in runs.items():
     if not name.startswith("Decode/"):
         continue
     stream = name[len("Decode/"):]
-    first, base = runs.get("FirstFrame/" + stream, {}), runs.get("BaseMesh/" + stream, {})
-    print(f"{stream[:-4]:<30} {b['real_time']:>9.2f} {b['vf/s'] / 1e6:>8.2f} {first.get('real_time', 0):>15.2f} {base.get('real_time', 0):>13.2f}")
+    first, base, bins = (runs.get(f"{part}/{stream}", {}) for part in ("FirstFrame", "BaseMesh", "Bins"))
+    print(f"{stream[:-4]:<30} {b['real_time']:>9.2f} {b['vf/s'] / 1e6:>8.2f} {first.get('real_time', 0):>15.2f} {base.get('real_time', 0):>13.2f}"
+          f" {bins.get('vf/s', 0) / 1e6:>18.1f} {1e9 / bins['bins/s'] if bins.get('bins/s') else 0:>7.2f}")
 PYTHON
