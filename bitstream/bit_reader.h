@@ -58,13 +58,9 @@ class BitReader {
       cache_bits_ += 8 * bytes;
       return;
     }
-    while (cache_bits_ <= 56) {
-      const uint64_t byte = consumed_bytes_ < size_ ? data_[consumed_bytes_] : 0;
-      cache_ |= byte << (56 - cache_bits_);
-      cache_bits_ += 8;
-      ++consumed_bytes_;
-    }
+    refill_near_end();
   }
+  void refill_near_end();
 
   const uint8_t* data_;
   size_t size_;

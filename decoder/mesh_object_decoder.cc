@@ -98,19 +98,20 @@ void Decoder::decode_motion(const MeshMotion& motion, uint64_t plane_start) {
   const NodeIndex* node = order_.node.data();
   const NodeMotion* coded = motion.nodes.data();
   Point* v = vectors_.data();
+  // The vectors in coded order (each prediction reads vectors decoded before it), then the
+  // positions in node order: the chain of predictions touches no position.
+  for (size_t k = 0; k < count; ++k) {
+    const NodeMotion& c = coded[k];
+    const Point w = predicted_vector(order_, k, v);
+    const Point vector{range.wrap(w.x + range.difference(c.delta_mv_x, c.delta_mv_x_res)),
+                       range.wrap(w.y + range.difference(c.delta_mv_y, c.delta_mv_y_res))};
+    v[node[k]] = c.node_motion_vector_flag ? vector : Point{0, 0};
+  }
   Point* p = nodes_.data();
   bool overflow = false;
-  for (size_t k = 0; k < count; ++k) {
-    const NodeIndex n = node[k];
-    Point vector{0, 0};
-    if (coded[k].node_motion_vector_flag) {
-      const Point w = predicted_vector(order_, k, v);
-      vector.x = range.wrap(w.x + range.difference(coded[k].delta_mv_x, coded[k].delta_mv_x_res));
-      vector.y = range.wrap(w.y + range.difference(coded[k].delta_mv_y, coded[k].delta_mv_y_res));
-    }
-    v[n] = vector;
-    p[n].x += vector.x;
-    p[n].y += vector.y;
+  for (size_t n = 0; n < nodes_.size(); ++n) {
+    p[n].x += v[n].x;
+    p[n].y += v[n].y;
     overflow |= p[n].x > kPositionLimit || p[n].x < -kPositionLimit || p[n].y > kPositionLimit ||
                 p[n].y < -kPositionLimit;
   }

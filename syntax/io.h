@@ -6,6 +6,7 @@
 // contents are described with syntax/mesh3d/entropy_io.h.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <span>
@@ -51,32 +52,47 @@ class IOBase {
     if (!ok) fail(kind, element, message);
   }
   // Records where a field (or a structure: "base_mesh") starts, for later
-  // errors. Called for every field read: names are string literals, so the
-  // pointer usually matches before any characters are compared.
+  // errors. Called for every field read: names are string literals, so a
+  // slot chosen by the name's address usually holds it already.
   void note_start(const char* name, uint64_t offset) {
-    for (FieldStart& f : starts_)
-      if (f.name == name) {
-        f.offset = offset;
-        return;
-      }
-    if (const size_t i = index_of(name); i < starts_.size())
-      starts_[i].offset = offset;
-    else
-      starts_.push_back({name, offset});
+    FieldStart& slot = recent_[recent_slot(name)];
+    if (slot.name == name) [[likely]] {
+      slot.offset = offset;
+      return;
+    }
+    note_new_start(slot, name, offset);
   }
   // Where an error about the element is placed (fail()).
   uint64_t start_of(const char* element) const {
+    for (const FieldStart& held : recent_)
+      if (held.name != nullptr && std::string_view(held.name) == element) return held.offset;
     const size_t i = index_of(element);
     return i < starts_.size() ? starts_[i].offset : element_start_;
   }
 
  protected:
-
   struct FieldStart {
-    const char* name;
-    uint64_t offset;
+    const char* name = nullptr;
+    uint64_t offset = 0;
   };
-  // The entry of that name, or starts_.size().
+  static size_t recent_slot(const char* name) {
+    return static_cast<size_t>((reinterpret_cast<uintptr_t>(name) * 0x9e3779b97f4a7c15u) >> 58);
+  }
+  // Where the name's slot holds another name: that one, and any copy of
+  // this name's text held under another address, move to starts_.
+  [[gnu::noinline]] void note_new_start(FieldStart& slot, const char* name, uint64_t offset) {
+    for (FieldStart& held : recent_)
+      if (held.name != nullptr && std::string_view(held.name) == name) move_to_starts(held);
+    if (slot.name != nullptr) move_to_starts(slot);
+    slot = {name, offset};
+  }
+  void move_to_starts(FieldStart& held) {
+    const size_t i = index_of(held.name);
+    if (i == starts_.size()) starts_.push_back(held);
+    starts_[i].offset = held.offset;
+    held = {};
+  }
+  // The entry of that name in starts_, or starts_.size().
   size_t index_of(const char* name) const {
     for (size_t i = 0; i < starts_.size(); ++i)
       if (std::string_view(starts_[i].name) == name) return i;
@@ -85,7 +101,11 @@ class IOBase {
   int64_t plane_ = kNoPlane;
   uint64_t element_start_ = 0;
   Trace* trace_ = nullptr;
-  std::vector<FieldStart> starts_;  // one per field name, so bounded by the syntax
+  // The latest start of each name read: in its recent_slot, else (moved out
+  // of it) in starts_. A text is held once in recent_, and an entry there is
+  // newer than starts_' of the same text. Both are bounded by the syntax's names.
+  std::array<FieldStart, 64> recent_{};
+  std::vector<FieldStart> starts_;
 };
 
 class ReadIO : public IOBase {
@@ -99,10 +119,12 @@ class ReadIO : public IOBase {
   void field(const char* name, int bits, T& value) {
     element_start_ = reader_.position();
     note_start(name, element_start_);
-    uint32_t raw = reader_.read(bits);
-    if (reader_.overrun()) truncated(name);
+    const uint32_t raw = reader_.read(bits);
+    if (reader_.overrun()) [[unlikely]]
+      truncated(name);
     value = static_cast<T>(raw);
-    if (trace_) trace_->element(element_start_, name, bits, static_cast<int64_t>(raw));
+    if (trace_) [[unlikely]]
+      trace_->element(element_start_, name, bits, static_cast<int64_t>(raw));
   }
 
   template <class T>
@@ -117,14 +139,15 @@ class ReadIO : public IOBase {
   void vlc(const char* name, const VlcTable& table, T& symbol) {
     element_start_ = reader_.position();
     note_start(name, element_start_);
-    VlcTable::Match match = table.match(reader_.peek(table.max_length()));
-    if (match.length == 0 || static_cast<uint64_t>(match.length) > reader_.bits_left()) {
-      if (reader_.bits_left() < static_cast<uint64_t>(table.max_length()) || match.length != 0) truncated(name);
-      fail(ErrorKind::kInvalidCode, name, "bits are not a code of the table");
-    }
+    const VlcTable::Match match = table.match(reader_.peek(table.max_length()));
+    if (match.length == 0) [[unlikely]]
+      not_a_code(name, table);
     reader_.skip(match.length);
+    if (reader_.overrun()) [[unlikely]]
+      truncated(name);
     symbol = static_cast<T>(match.symbol);
-    if (trace_) trace_->element(element_start_, name, match.length, match.symbol);
+    if (trace_) [[unlikely]]
+      trace_->element(element_start_, name, match.length, match.symbol);
   }
 
   void start_code(const char* name, uint32_t code) {
@@ -195,7 +218,14 @@ class ReadIO : public IOBase {
   }
 
  private:
-  [[noreturn]] void truncated(const char* name) const { fail(ErrorKind::kTruncated, name, "the data ends inside this element"); }
+  [[noreturn, gnu::cold, gnu::noinline]] void truncated(const char* name) const {
+    fail(ErrorKind::kTruncated, name, "the data ends inside this element");
+  }
+  // The peeked bits are no code of the table: the data's end where it cuts them short.
+  [[noreturn, gnu::cold, gnu::noinline]] void not_a_code(const char* name, const VlcTable& table) const {
+    if (reader_.bits_left() < static_cast<uint64_t>(table.max_length())) truncated(name);
+    fail(ErrorKind::kInvalidCode, name, "bits are not a code of the table");
+  }
 
   BitReader& reader_;
 };

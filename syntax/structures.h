@@ -42,13 +42,15 @@ struct MeshGeometry {
   DelaunayGeometry delaunay;
 };
 
-// One node of MeshMotion, in traversal order.
+// One node of MeshMotion, in traversal order. 16-bit fields: a store to an
+// 8-bit one may alias any object, so the reader's state could not stay in
+// registers while a P-plane is read.
 struct NodeMotion {
-  uint8_t node_motion_vector_flag = 0;
-  int8_t delta_mv_x = 0;  // VLC value m, −32 … 32
-  uint8_t delta_mv_x_res = 0;
-  int8_t delta_mv_y = 0;
-  uint8_t delta_mv_y_res = 0;
+  uint16_t node_motion_vector_flag = 0;
+  int16_t delta_mv_x = 0;  // VLC value m, −32 … 32
+  uint16_t delta_mv_x_res = 0;
+  int16_t delta_mv_y = 0;
+  uint16_t delta_mv_y_res = 0;
 };
 
 struct MeshMotion {

@@ -35,7 +35,7 @@ struct MotionRange {
     return m < 0 ? -magnitude : magnitude;
   }
   // The VLC value and residual that code d (d inside [low, high]).
-  void code(int d, int8_t& m, uint8_t& res) const {
+  void code(int d, int16_t& m, uint16_t& res) const {
     if (d == 0) {
       m = 0;
       res = 0;
@@ -43,8 +43,8 @@ struct MotionRange {
     }
     int magnitude = d < 0 ? -d : d;
     int code = ((magnitude - 1) >> r_size) + 1;
-    m = static_cast<int8_t>(d < 0 ? -code : code);
-    res = static_cast<uint8_t>((magnitude - 1) & (f - 1));
+    m = static_cast<int16_t>(d < 0 ? -code : code);
+    res = static_cast<uint16_t>((magnitude - 1) & (f - 1));
   }
 
   int r_size;

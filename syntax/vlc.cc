@@ -39,6 +39,7 @@ VlcTable::VlcTable(std::vector<VlcRow> rows) : rows_(std::move(rows)) {
   max_symbol_ = hi->symbol;
   if (static_cast<size_t>(max_symbol_ - min_symbol_ + 1) != rows_.size())
     throw std::logic_error("VLC symbols are not a contiguous range");
+  if (min_symbol_ < INT8_MIN || max_symbol_ > INT8_MAX) throw std::logic_error("VLC symbols outside int8_t");
   codes_.resize(rows_.size());
   for (const VlcRow& row : rows_) {
     codes_[row.symbol - min_symbol_] = row.code;
@@ -51,7 +52,7 @@ VlcTable::VlcTable(std::vector<VlcRow> rows) : rows_(std::move(rows)) {
     for (uint32_t tail = 0; tail < (1u << free_bits); ++tail) {
       Match& slot = lookup_[first | tail];
       if (slot.length != 0) throw std::logic_error("VLC table is not prefix-free");
-      slot = Match{row.symbol, row.code.length};
+      slot = Match{static_cast<int8_t>(row.symbol), static_cast<uint8_t>(row.code.length)};
     }
   }
 }

@@ -24,7 +24,7 @@ struct VlcRow {
 
 class VlcTable {
  public:
-  // rows must be prefix-free; symbols must be a contiguous range.
+  // rows must be prefix-free; symbols must be a contiguous range within int8_t.
   explicit VlcTable(std::vector<VlcRow> rows);
 
   int max_length() const { return max_length_; }
@@ -36,9 +36,10 @@ class VlcTable {
   // The code of a symbol; has_symbol(symbol) must hold.
   const VlcCode& code(int symbol) const { return codes_[symbol - min_symbol_]; }
 
+  // Two bytes, so that the motion table's 8,192 entries stay in the L1 cache.
   struct Match {
-    int symbol;
-    int length;  // 0: the bits are not a code of this table
+    int8_t symbol;
+    uint8_t length;  // 0: the bits are not a code of this table
   };
   // Matches the code at the top of `peeked`, which holds max_length() bits.
   Match match(uint32_t peeked) const { return lookup_[peeked]; }

@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 #include "bitstream/bit_reader.h"
 #include "bitstream/bit_writer.h"
 #include "bitstream/start_codes.h"
@@ -107,6 +110,37 @@ TEST(Stuffing, BadPatternsAreErrors) {
   r.skip(5);
   syntax::ReadIO io(r);
   EXPECT_THROW(io.next_start_code(), Error);
+}
+
+// An error names an element read earlier and is placed at its latest start,
+// however many names were read (more than the table of recent names holds)
+// and whichever copy of a name's text was used.
+TEST(ReadIO, ErrorsArePlacedAtTheLatestFieldOfTheirName) {
+  constexpr int kNames = 100, kReads = 350;
+  std::vector<std::string> texts, copies;
+  for (int i = 0; i < kNames; ++i) texts.push_back("field_" + std::to_string(i));
+  copies = texts;  // the same texts at other addresses
+  const std::vector<uint8_t> bytes(kReads / 8 + 1, 0);
+  BitReader r(bytes.data(), bytes.size());
+  syntax::ReadIO io(r);
+  for (int i = 0; i < kReads; ++i) {
+    uint32_t bit = 0;
+    io.field((i / kNames % 2 ? copies : texts)[i % kNames].c_str(), 1, bit);
+  }
+  const auto placed = [&](const char* name) {
+    try {
+      io.fail(ErrorKind::kOutOfRange, name, "test");
+    } catch (const Error& e) {
+      return e.bit_offset();
+    }
+    return int64_t{-1};
+  };
+  for (int i = 0; i < kNames; ++i) {
+    const int latest = (kReads - 1 - i) / kNames * kNames + i;
+    EXPECT_EQ(placed(texts[i].c_str()), latest) << texts[i];
+    EXPECT_EQ(placed(("field_" + std::to_string(i)).c_str()), latest) << texts[i];
+  }
+  EXPECT_EQ(placed("never_read"), kReads - 1);  // the element in hand
 }
 
 TEST(StartCodes, NextbitsBytealignedLooksAheadWithoutConsuming) {

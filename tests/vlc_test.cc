@@ -118,8 +118,8 @@ TEST(Values, MotionDifferencesRoundTripInEveryRange) {
     EXPECT_EQ(range.low, -32 << (code - 1));
     EXPECT_EQ(range.high, (32 << (code - 1)) - 1);
     for (int d = range.low; d <= range.high; ++d) {
-      int8_t m;
-      uint8_t res;
+      int16_t m;
+      uint16_t res;
       range.code(d, m, res);
       ASSERT_GE(m, -32);
       ASSERT_LE(m, 32);
