@@ -95,6 +95,26 @@ TEST(Bfs3d, SeekStartsAtTheLastIntraRefresh) {
   EXPECT_EQ(early.seek(3), 0u);  // no refresh before frame 4
 }
 
+// Frames are hashed in batches after they are handed out: every group
+// size, below, at and above a batch, checks every frame as decoded.
+TEST(Bfs3d, EveryHashGroupSizeChecksTheFramesAsDecoded) {
+  const MeshSequence s = test_sequence(40, 9);
+  for (const uint32_t group : {1u, 3u, 16u, 17u, 40u}) {
+    Encode3dOptions options;
+    options.hash_group = group;
+    const std::vector<uint8_t> stream = encode_mesh3d(s, options).stream;
+    Mesh3dDecoder decoder(stream, verifying());
+    std::vector<std::vector<Float3>> handed_out;
+    while (decoder.next_frame()) handed_out.push_back(decoder.positions());
+    ASSERT_EQ(handed_out.size(), s.frames.size());
+    for (uint32_t f = 0; f < s.frames.size(); ++f) EXPECT_TRUE(decoder.hash_result(f).value_or(false)) << "group " << group << ", frame " << f;
+    Decode3dOptions unhashed;
+    unhashed.hashes = HashCheck::kSkip;
+    Mesh3dDecoder plain(stream, unhashed);
+    for (uint32_t f = 0; plain.next_frame(); ++f) EXPECT_EQ(handed_out[f], plain.positions()) << "group " << group << ", frame " << f;
+  }
+}
+
 TEST(Bfs3d, EncoderIsDeterministicAndHashesCatchChanges) {
   const MeshSequence s = test_sequence(4, 7);
   const std::vector<uint8_t> stream = encode_mesh3d(s).stream;

@@ -1,6 +1,8 @@
 #include "decoder/mesh3d/container_decoder.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <utility>
 
 #include "bitstream/bit_reader.h"
 #include "codecs3d/registry.h"
@@ -31,6 +33,8 @@ namespace {
 
 // Frame buffers kept for reuse once their frame is handed out.
 constexpr size_t kSpareFrames = 64;
+// The most bytes of frames kept for their digests to be taken together.
+constexpr size_t kDigestBatchBytes = size_t{16} << 20;
 
 }  // namespace
 
@@ -211,6 +215,27 @@ void Mesh3dDecoder::take_held_frame(uint32_t frame, std::vector<Float3>& positio
   codec_->frame(frame, positions);
 }
 
+void Mesh3dDecoder::take_digests() {
+  if (undigested_.empty()) return;
+  // Each frame's latest decoding: not handed out yet, handed out now, or before.
+  const auto buffer = [&](uint32_t f) -> std::span<const Float3> {
+    if (auto it = ready_.find(f); it != ready_.end()) return it->second;
+    if (!positions_.empty() && frame_index_ == f) return positions_;
+    for (auto it = handed_out_.rbegin(); it != handed_out_.rend(); ++it)
+      if (it->first == f) return it->second;
+    throw std::logic_error("a frame to hash has no buffer");
+  };
+  std::vector<std::span<const Float3>> frames;
+  for (const uint32_t f : undigested_) frames.push_back(buffer(f));
+  std::vector<Digest> digests(frames.size());
+  frame_digests(frames, digests);
+  for (size_t k = 0; k < digests.size(); ++k) digests_[undigested_[k]] = digests[k];
+  undigested_.clear();
+  for (auto& [f, positions] : handed_out_)
+    if (spare_.size() < kSpareFrames) spare_.push_back(std::move(positions));
+  handed_out_.clear();
+}
+
 bool Mesh3dDecoder::holds(uint32_t frame) const { return frame >= held_from_ && frame < decoded_count_; }
 
 void Mesh3dDecoder::check_hash(size_t index) {
@@ -222,6 +247,7 @@ void Mesh3dDecoder::check_hash(size_t index) {
   FrameHash hash;
   read_unit_data(index, frame, [&](syntax::ReadIO& io) { syntax::describe(io, hash); });
   if (options_.hashes == HashCheck::kSkip) return;
+  take_digests();
   Digest digest;
   if (codec_->holds_frames()) {
     std::vector<Float3> positions(header_.vertex_count);
@@ -250,6 +276,7 @@ void Mesh3dDecoder::check_group_hash(size_t index, const UnitHeader& header) {
     }
   });
   if (options_.hashes == HashCheck::kSkip) return;
+  take_digests();
   std::vector<Digest> frames(hash.group_frames);
   if (codec_->holds_frames()) {
     // The codec's frames, a batch of MD5 lanes at a time, kept for their release.
@@ -346,8 +373,9 @@ bool Mesh3dDecoder::next_unit() {
       }
       slot.resize(header_.vertex_count);
       codec_->frame(f, slot);
-      if (options_.hashes != HashCheck::kSkip) digests_[f] = frame_digest(slot);
+      if (options_.hashes != HashCheck::kSkip) undigested_.push_back(f);
     }
+    if (undigested_.size() * header_.vertex_count * sizeof(Float3) >= kDigestBatchBytes || undigested_.size() >= kMd5Batch) take_digests();
   }
   while (next_unit_ < parts_.units() && is_hash_unit(next_unit_)) check_hash(next_unit_++);
   return true;
@@ -396,8 +424,11 @@ std::optional<bool> Mesh3dDecoder::hash_result(uint32_t frame) const {
 bool Mesh3dDecoder::next_frame() {
   for (;;) {
     if (auto it = ready_.find(next_display_); it != ready_.end()) {
-      // A frame's buffer is kept for the frames to come, as many as one unit releases at most.
-      if (spare_.size() < kSpareFrames) spare_.push_back(std::move(positions_));
+      // A frame's buffer is kept for its digest, then for the frames to come, as many as one unit releases at most.
+      if (!positions_.empty() && std::find(undigested_.begin(), undigested_.end(), frame_index_) != undigested_.end())
+        handed_out_.emplace_back(frame_index_, std::move(positions_));
+      else if (spare_.size() < kSpareFrames)
+        spare_.push_back(std::move(positions_));
       positions_ = std::move(it->second);
       ready_.erase(it);
       frame_index_ = next_display_++;

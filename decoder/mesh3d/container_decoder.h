@@ -16,6 +16,7 @@
 #include <ostream>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "codecs3d/codec_decoder.h"
@@ -159,6 +160,8 @@ class Mesh3dDecoder {
   void release_before(uint32_t first_held);
   // A held frame into `positions`: the one its hash unit made, else the codec's.
   void take_held_frame(uint32_t frame, std::vector<Float3>& positions);
+  // The digests of the frames decoded since the last call, in MD5 lanes.
+  void take_digests();
   void finish();
   // An error of a unit header's element (unit_type, frame_index).
   [[noreturn]] void fail(ErrorKind kind, size_t index, int64_t frame, const char* element, const std::string& message) const;
@@ -184,6 +187,10 @@ class Mesh3dDecoder {
   // Unless kSkip, the MD5 of every frame as it was decoded (a codec that
   // holds every frame is hashed when a hash unit is read).
   std::map<uint32_t, Digest> digests_;
+  // Frames decoded whose digests are not taken yet: hashed together when a batch is full or a hash unit needs
+  // them. Their buffers are in ready_, in positions_ or, handed out before, in handed_out_.
+  std::vector<uint32_t> undigested_;
+  std::vector<std::pair<uint32_t, std::vector<Float3>>> handed_out_;
   // A progressive codec's held frames as made for their hash unit, until a unit changes them or they are taken.
   std::map<uint32_t, std::vector<Float3>> hashed_;
   // Display order: frames copied out of the codec until their turn.
