@@ -64,6 +64,7 @@ class IOBase {
   }
   // Where an error about the element is placed (fail()).
   uint64_t start_of(const char* element) const {
+    if (const FieldStart& slot = recent_[recent_slot(element)]; slot.name == element) return slot.offset;
     for (const FieldStart& held : recent_)
       if (held.name != nullptr && std::string_view(held.name) == element) return held.offset;
     const size_t i = index_of(element);
@@ -205,11 +206,11 @@ class ReadIO : public IOBase {
   // The error names `element` and is placed where `placed_at` starts (as fail() places it without).
   void require_remaining_bytes(const char* element, uint64_t expected, const char* placed_at = nullptr) const {
     const uint64_t left = reader_.bits_left() / 8;
-    const uint64_t at = start_of(placed_at ? placed_at : element);
+    const char* at = placed_at ? placed_at : element;
     if (expected > left)
-      fail_at(ErrorKind::kOutOfRange, element, at, std::to_string(expected) + " bytes where the unit holds " + std::to_string(left));
+      fail_at(ErrorKind::kOutOfRange, element, start_of(at), std::to_string(expected) + " bytes where the unit holds " + std::to_string(left));
     if (expected < left)
-      fail_at(ErrorKind::kStructure, element, at, std::to_string(left - expected) + " bytes left over after " + std::to_string(expected));
+      fail_at(ErrorKind::kStructure, element, start_of(at), std::to_string(left - expected) + " bytes left over after " + std::to_string(expected));
   }
   // A length field must not exceed the bytes left.
   void require_length(const char* element, uint64_t length) const {
