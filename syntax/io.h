@@ -64,7 +64,6 @@ class IOBase {
   }
   // Where an error about the element is placed (fail()).
   uint64_t start_of(const char* element) const {
-    if (const FieldStart& slot = recent_[recent_slot(element)]; slot.name == element) return slot.offset;
     for (const FieldStart& held : recent_)
       if (held.name != nullptr && std::string_view(held.name) == element) return held.offset;
     const size_t i = index_of(element);
