@@ -63,10 +63,13 @@ class GateTraversal {
 
  private:
   static constexpr uint32_t kNone = DirectedEdgeIndex::kNone;
-  struct Edge {
-    uint32_t from, to;
-    uint32_t face;  // the face that has this half-edge
-    bool open;
+  // Half-edge e is the side of face e / 3 from its corner e % 3 to the next.
+  HalfEdge half_edge(uint32_t e) const {
+    const Triangle& t = faces_[e / 3];
+    const uint32_t k = e % 3;
+    return {t.v[k], t.v[k == 2 ? 0 : k + 1]};
+  }
+  struct Links {
     uint32_t out_prev, out_next, in_prev, in_next;  // lists of open half-edges per vertex
   };
   bool add_face(const Triangle& face);
@@ -79,7 +82,8 @@ class GateTraversal {
   std::vector<Triangle> parents_;
   std::vector<uint32_t> degree_;  // faces around each vertex
   std::vector<uint32_t> out_head_, in_head_;
-  std::vector<Edge> edges_;
+  std::vector<Links> links_;   // per half-edge
+  std::vector<uint8_t> open_;  // per half-edge
   DirectedEdgeIndex index_;
   std::vector<uint32_t> gates_;
   size_t next_gate_ = 0;

@@ -25,7 +25,7 @@ class TraversalOracle {
       : faces_(faces), coding_of_(vertex_count, kUnnumbered), coded_(faces.size(), false) {
     // In input order, a face is loose when it is degenerate or when a face
     // before it that is not loose has one of its directed edges.
-    owner_.reserve(3 * faces.size());
+    owner_.reserve(3 * faces.size() / 2);  // a closed mesh's edges
     for (uint32_t f = 0; f < faces.size(); ++f) {
       const auto [a, b, c] = faces[f].v;
       const bool loose = a == b || b == c || c == a || owner_.find(a, b) != DirectedEdgeIndex::kNone ||
