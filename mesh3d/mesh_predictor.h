@@ -60,22 +60,13 @@ class MeshPredictor {
   template <class Filter, class Visit>
   void for_each_parallelogram(uint32_t v, Filter filter, Visit visit) const {
     for (uint32_t i = first_[v]; i < first_[v + 1]; ++i) {
-      const Triangle& t = faces_[around_[i]];
-      const int corner = t.corner_of(v);
-      const uint32_t x = t.v[(corner + 1) % 3], y = t.v[(corner + 2) % 3];
-      if (!filter(x) || !filter(y)) continue;
-      if (const uint32_t z = opposite_[3 * around_[i] + corner]; z != kNoNode) visit(x, y, z);
+      const Corner& c = corners_[i];
+      if (filter(c.x) && filter(c.y) && c.z != kNoNode) visit(c.x, c.y, c.z);
     }
   }
 
   // Face corners: how many parallelograms there can be.
-  size_t corners() const { return around_.size(); }
-
-  // Calls visit(face) for every face around v, once per corner of v.
-  template <class Visit>
-  void for_each_face(uint32_t v, Visit visit) const {
-    for (uint32_t i = first_[v]; i < first_[v + 1]; ++i) visit(faces_[around_[i]]);
-  }
+  size_t corners() const { return corners_.size(); }
 
   // The mean (floor) of the known corners of the faces around v, each
   // counted once per face; false (p untouched) when none is known.
@@ -97,18 +88,23 @@ class MeshPredictor {
   // once per face (a face listed once per corner of v).
   template <class Known, class Visit>
   void for_each_known_corner(uint32_t v, Known known, Visit visit) const {
-    for (uint32_t i = first_[v]; i < first_[v + 1]; ++i)
-      for (NodeIndex u : faces_[around_[i]].v)
-        if (u != v && known(u)) visit(u);
+    for (uint32_t i = first_[v]; i < first_[v + 1]; ++i) {
+      const Corner& c = corners_[i];
+      if (c.x != v && known(c.x)) visit(c.x);
+      if (c.y != v && known(c.y)) visit(c.y);
+    }
   }
 
  private:
-  std::span<const Triangle> faces_;
-  // The faces around each vertex v, in face order: around_[first_[v]] … around_[first_[v + 1] − 1], once per corner of v.
-  std::vector<uint32_t> first_, around_;
-  // Per face corner v (3 f + corner) with x, y after it: the parallelogram's z, the third
-  // vertex of the first face with the directed edge y → x (kNoNode without one).
-  std::vector<uint32_t> opposite_;
+  // A face around v seen from v's first corner in it: the corners x, y after
+  // it and the parallelogram's z, the third vertex of the first face with
+  // the directed edge y → x (kNoNode without one).
+  struct Corner {
+    uint32_t x, y, z;
+  };
+  // The faces around each vertex v, in face order, once per corner of v: corners_[first_[v]] … corners_[first_[v + 1] − 1].
+  std::vector<uint32_t> first_;
+  std::vector<Corner> corners_;
 };
 
 }  // namespace m4mesh

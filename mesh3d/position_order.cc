@@ -129,10 +129,7 @@ std::vector<uint32_t> PositionOrder::of(std::span<const uint32_t> candidates) {
     }
     state_[i] = kKnown;
     order.push_back(candidates[i]);
-    predictor_.for_each_face(candidates[i], [&](const Triangle& face) {
-      for (const NodeIndex u : face.v)
-        if (u != candidates[i]) grow(local_[u], kCorner);
-    });
+    predictor_.for_each_known_corner(candidates[i], [](uint32_t) { return true; }, [&](uint32_t u) { grow(local_[u], kCorner); });
     for (uint32_t k = first_use_[i]; k < first_use_[i + 1]; ++k)
       if (--unknown_[uses_[k]] == 0) grow(owner_[uses_[k]], kParallelogram);
     for (const uint32_t g : grown_) state_[g] = kUnknown, heap.raise(g, support_[g]);
