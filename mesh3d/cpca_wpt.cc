@@ -31,7 +31,12 @@ std::vector<std::vector<NodeIndex>> cpca_members(std::span<const uint32_t> clust
 
 CpcaMeshPrediction::CpcaMeshPrediction(std::span<const Triangle> faces, std::span<const uint32_t> coding_order,
                                        std::span<const uint32_t> cluster_of, uint32_t cluster_count, std::span<const IntPoint3> mean_shape)
-    : predictor_(faces, static_cast<uint32_t>(cluster_of.size())),
+    : CpcaMeshPrediction(MeshPredictor(faces, static_cast<uint32_t>(cluster_of.size())), coding_order, cluster_of, cluster_count,
+                         mean_shape) {}
+
+CpcaMeshPrediction::CpcaMeshPrediction(MeshPredictor predictor, std::span<const uint32_t> coding_order, std::span<const uint32_t> cluster_of,
+                                       uint32_t cluster_count, std::span<const IntPoint3> mean_shape)
+    : predictor_(std::move(predictor)),
       mean_shape_(mean_shape.begin(), mean_shape.end()),
       rank_(cluster_of.size()),
       slot_(cluster_of.size()),

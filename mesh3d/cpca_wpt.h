@@ -29,10 +29,9 @@ std::vector<std::vector<NodeIndex>> cpca_members(std::span<const uint32_t> clust
 
 // cluster_map_prediction 1 (docs/codec_cpca_wpt.md, "The cluster map"):
 // every vertex's cluster ranked by the clusters of its neighbours numbered
-// before it, over the base mesh's faces in output numbers.
+// before it, over the base mesh's faces in output numbers (`around`).
 template <class IO>
-void describe_cluster_map_by_neighbours(IO& io, std::span<const Triangle> faces, std::span<uint32_t> cluster_of, uint32_t cluster_count) {
-  const MeshPredictor around(faces, static_cast<uint32_t>(cluster_of.size()));
+void describe_cluster_map_by_neighbours(IO& io, const MeshPredictor& around, std::span<uint32_t> cluster_of, uint32_t cluster_count) {
   syntax::CpcaRankContexts contexts;
   std::vector<uint32_t> count(cluster_count, 0);
   std::vector<uint32_t> held;  // the clusters the vertex's earlier neighbours hold
@@ -64,14 +63,14 @@ void describe_cluster_map_by_neighbours(IO& io, std::span<const Triangle> faces,
 }
 
 // The header's cluster map read, as its cluster_map_prediction says; with
-// prediction 1 `faces` are the base mesh's (output numbers).
+// prediction 1 `around` is over the base mesh's faces (output numbers).
 template <bool kTraced>
-std::vector<uint32_t> read_cluster_map(const CpcaHeader& h, std::span<const Triangle> faces, uint32_t vertex_count,
+std::vector<uint32_t> read_cluster_map(const CpcaHeader& h, const MeshPredictor& around, uint32_t vertex_count,
                                        const syntax::SectionPlace& place, Trace* trace = nullptr) {
   std::vector<uint32_t> cluster_of(vertex_count);
   syntax::EntropyReadIO<kTraced> symbols(h.map_bins, h.map_raw, place, trace);
   if (h.map_prediction == kCpcaMapByNeighbours) {
-    describe_cluster_map_by_neighbours(symbols, faces, cluster_of, h.cluster_count);
+    describe_cluster_map_by_neighbours(symbols, around, cluster_of, h.cluster_count);
     symbols.finish("cluster_not_first");
   } else {
     syntax::describe_cluster_map(symbols, cluster_of, h.cluster_count);
@@ -87,7 +86,8 @@ template <bool kTraced>
 std::string write_cluster_map(CpcaHeader& h, std::span<const Triangle> faces, std::vector<uint32_t> cluster_of, std::vector<uint8_t>& bins,
                               std::vector<uint8_t>& raw, const syntax::SectionPlace& place, Trace* like = nullptr) {
   syntax::EntropyWriteIO<kTraced> symbols(place, like);
-  if (h.map_prediction == kCpcaMapByNeighbours) describe_cluster_map_by_neighbours(symbols, faces, cluster_of, h.cluster_count);
+  if (h.map_prediction == kCpcaMapByNeighbours)
+    describe_cluster_map_by_neighbours(symbols, MeshPredictor(faces, static_cast<uint32_t>(cluster_of.size())), cluster_of, h.cluster_count);
   else syntax::describe_cluster_map(symbols, cluster_of, h.cluster_count);
   bins = symbols.finish_bins();
   raw = symbols.finish_raw();
@@ -116,6 +116,9 @@ class CpcaMeshPrediction {
   // mean_shape: its decoded positions. The member order is the position
   // order over the cluster (docs/codec_cpca_wpt.md).
   CpcaMeshPrediction(std::span<const Triangle> faces, std::span<const uint32_t> coding_order, std::span<const uint32_t> cluster_of,
+                     uint32_t cluster_count, std::span<const IntPoint3> mean_shape);
+  // The same with the faces' predictor built already (a decoder's, shared with the cluster map).
+  CpcaMeshPrediction(MeshPredictor predictor, std::span<const uint32_t> coding_order, std::span<const uint32_t> cluster_of,
                      uint32_t cluster_count, std::span<const IntPoint3> mean_shape);
 
   // Every member's fit support and shape found once and

@@ -140,6 +140,30 @@ GateTraversal strip(uint32_t faces, HalfEdge& gate) {
   return t;
 }
 
+TEST(DirectedEdgeIndex, KeepsBothDirectionsOfAnEdgeApartAsItGrows) {
+  // 3,000 edges, no reserve (the table grows from empty); every other one
+  // also the other way, inserted second, half of them from the higher end.
+  DirectedEdgeIndex index;
+  const auto ends = [](uint32_t i) { return HalfEdge{i, 5003 + (i * 7919) % 5003}; };
+  constexpr uint32_t kEdges = 3000;
+  for (uint32_t i = 0; i < kEdges; ++i) {
+    auto [a, b] = ends(i);
+    if (i % 4 == 1) std::swap(a, b);
+    EXPECT_EQ(index.insert_and_find_reverse(a, b, 2 * i), DirectedEdgeIndex::kNone);
+    if (i % 2 == 0) {
+      EXPECT_EQ(index.insert_and_find_reverse(b, a, 2 * i + 1), 2 * i);
+    }
+  }
+  for (uint32_t i = 0; i < kEdges; ++i) {
+    auto [a, b] = ends(i);
+    if (i % 4 == 1) std::swap(a, b);
+    EXPECT_EQ(index.find(a, b), 2 * i);
+    EXPECT_EQ(index.find(b, a), i % 2 == 0 ? 2 * i + 1 : DirectedEdgeIndex::kNone);
+    EXPECT_EQ(index.find(a, a), DirectedEdgeIndex::kNone);
+    EXPECT_EQ(index.find(a, b + 1), DirectedEdgeIndex::kNone);
+  }
+}
+
 TEST(GateTraversal, FrontAlternatesBothWaysWithoutGateCandidatesOrRepeats) {
   // Faces (1, 0, 3), (2, 1, 4), (0, 2, 5), (3, 0, 6): the open loop
   // 0 → 6 → 3 → 1 → 4 → 2 → 5 → 0, the next gate 3 → 1. Candidates 4 (after

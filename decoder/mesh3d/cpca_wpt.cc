@@ -54,26 +54,27 @@ class CpcaDecoder final : public CodecDecoder3d {
         previous_start_(header.cluster_count) {
     header_.map_bins = map_.bins;
     header_.map_raw = map_.raw;
-    if (header_.map_prediction == kCpcaMapByDifference) read_map({}, header_trace);
+    if (header_.map_prediction == kCpcaMapByDifference) read_map(MeshPredictor({}, 0), header_trace);
   }
 
   void decode_unit(const UnitHeader& unit, syntax::ReadIO& io, std::vector<uint32_t>& decoded) override {
     if (unit.type() == UnitType::kBaseMesh) {
       if (animation_) io.fail(ErrorKind::kStructure, "unit_type", "a second base mesh unit: the mean shape is sent once");
       BaseMesh base = read_base_mesh(io, object_, trace_);
+      MeshPredictor around(base.faces, object_.vertex_count);
       if (header_.map_prediction == kCpcaMapByNeighbours) {
         try {
           if (trace_) {
             Trace in_object = trace_->in_object();
-            read_map(base.faces, &in_object);
+            read_map(around, &in_object);
           } else {
-            read_map(base.faces, nullptr);
+            read_map(around, nullptr);
           }
         } catch (const Error& e) {
           throw in_object_payload(e);
         }
       }
-      mesh_.emplace(base.faces, base.coding_order, cluster_of_, header_.cluster_count, base.positions);
+      mesh_.emplace(std::move(around), base.coding_order, cluster_of_, header_.cluster_count, base.positions);
       faces_ = std::move(base.faces);
       animation_.emplace(header_, base.positions, members_, frames_of(0));
       report(decoded);
@@ -153,9 +154,9 @@ class CpcaDecoder final : public CodecDecoder3d {
   }
 
   // The cluster map's symbols, placed in the object payload; every cluster must have a vertex.
-  void read_map(std::span<const Triangle> faces, Trace* trace) {
-    cluster_of_ = trace ? read_cluster_map<true>(header_, faces, object_.vertex_count, map_.place, trace)
-                        : read_cluster_map<false>(header_, faces, object_.vertex_count, map_.place);
+  void read_map(const MeshPredictor& around, Trace* trace) {
+    cluster_of_ = trace ? read_cluster_map<true>(header_, around, object_.vertex_count, map_.place, trace)
+                        : read_cluster_map<false>(header_, around, object_.vertex_count, map_.place);
     members_ = cpca_members(cluster_of_, header_.cluster_count);
     for (uint32_t c = 0; c < header_.cluster_count; ++c)
       if (members_[c].empty())
@@ -290,7 +291,7 @@ std::vector<uint32_t> cpca_cluster_map(const ContainerParts& parts) {
     syntax::describe(io, unit);
     faces = read_base_mesh(io, object, nullptr).faces;
   }
-  return read_cluster_map<false>(header, faces, object.vertex_count, syntax::SectionPlace{});
+  return read_cluster_map<false>(header, MeshPredictor(faces, object.vertex_count), object.vertex_count, syntax::SectionPlace{});
 }
 
 }  // namespace m4mesh
