@@ -28,7 +28,7 @@ class SupportHeap {
       at = static_cast<uint32_t>(heap_.size());
       heap_.emplace_back();
     }
-    const Entry raised{support, i};
+    const Entry raised = entry(i, support);
     while (at > 0) {
       const uint32_t parent = (at - 1) / 2;
       if (!ahead(raised, heap_[parent])) break;
@@ -39,7 +39,7 @@ class SupportHeap {
   }
 
   uint32_t pop() {
-    const uint32_t top = heap_[0].i;
+    const uint32_t top = heap_[0].i();
     place_[top] = kNotCandidate;
     const Entry last = heap_.back();
     heap_.pop_back();
@@ -58,14 +58,17 @@ class SupportHeap {
   }
 
  private:
+  // A candidate's support above its complemented index: the greater key is ahead, in one comparison.
+  __extension__ using Key = unsigned __int128;
   struct Entry {
-    uint64_t support;
-    uint32_t i;
+    Key key;
+    uint32_t i() const { return ~static_cast<uint32_t>(key); }
   };
-  static bool ahead(const Entry& a, const Entry& b) { return a.support != b.support ? a.support > b.support : a.i < b.i; }
+  static Entry entry(uint32_t i, uint64_t support) { return {(static_cast<Key>(support) << 32) | ~i}; }
+  static bool ahead(const Entry& a, const Entry& b) { return a.key > b.key; }
   void put(const Entry& e, uint32_t at) {
     heap_[at] = e;
-    place_[e.i] = at;
+    place_[e.i()] = at;
   }
 
   std::vector<Entry> heap_;
