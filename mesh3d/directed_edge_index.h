@@ -36,7 +36,7 @@ class DirectedEdgeIndex {
   size_t slot(uint32_t low, uint32_t high) const {
     return static_cast<size_t>((((uint64_t{low} << 32) | high) * 0x9E3779B97F4A7C15ull) >> shift_);
   }
-  // The slot of edge a–b, or the empty slot where it would go.
+  // The slot of edge low–high, or the empty slot where it would go.
   size_t place(uint32_t low, uint32_t high) const;
   std::vector<Slot> slots_;
   size_t count_ = 0;
