@@ -127,24 +127,70 @@ inline void transpose4(const uint8_t* const lane[4], int k, __m128i out[4]) {
     a = M4MESH_V_ADD(b, M4MESH_V_OR(M4MESH_V_SLL(sum, s), M4MESH_V_SRL(sum, 32 - (s))));                               \
   } while (false)
 
-#define M4MESH_V_XOR _mm_xor_si128
-#define M4MESH_V_AND _mm_and_si128
-#define M4MESH_V_OR _mm_or_si128
-#define M4MESH_V_ADD _mm_add_epi32
-#define M4MESH_V_SET1 _mm_set1_epi32
-#define M4MESH_V_SLL _mm_slli_epi32
-#define M4MESH_V_SRL _mm_srli_epi32
+// 4N lanes as N vectors of four (SSE2, or SIMD128): N chains of steps,
+// each one's latency hidden behind the others' (a rotation takes three
+// operations, so a step's chain is long).
+template <int N>
+struct Vectors {
+  __m128i v[N];
+};
+#define M4MESH_VECTORS_OF(name, op)                                      \
+  template <int N>                                                       \
+  inline Vectors<N> name(const Vectors<N>& x, const Vectors<N>& y) {     \
+    Vectors<N> out;                                                      \
+    for (int i = 0; i < N; ++i) out.v[i] = op(x.v[i], y.v[i]);          \
+    return out;                                                          \
+  }
+M4MESH_VECTORS_OF(vectors_xor, _mm_xor_si128)
+M4MESH_VECTORS_OF(vectors_and, _mm_and_si128)
+M4MESH_VECTORS_OF(vectors_or, _mm_or_si128)
+M4MESH_VECTORS_OF(vectors_add, _mm_add_epi32)
+#undef M4MESH_VECTORS_OF
+template <int N>
+Vectors<N> vectors_set1(int value) {
+  Vectors<N> out;
+  for (int i = 0; i < N; ++i) out.v[i] = _mm_set1_epi32(value);
+  return out;
+}
+template <int kShift, int N>
+Vectors<N> vectors_sll(const Vectors<N>& x) {
+  Vectors<N> out;
+  for (int i = 0; i < N; ++i) out.v[i] = _mm_slli_epi32(x.v[i], kShift);
+  return out;
+}
+template <int kShift, int N>
+Vectors<N> vectors_srl(const Vectors<N>& x) {
+  Vectors<N> out;
+  for (int i = 0; i < N; ++i) out.v[i] = _mm_srli_epi32(x.v[i], kShift);
+  return out;
+}
 
-// One 64-byte block of each of four lanes' messages (SSE2, or SIMD128).
-void blocks4(LaneState<4>& state, const uint8_t* const lane[4]) {
-  __m128i w[16];
-  for (int k = 0; k < 4; ++k) transpose4(lane, k, w + 4 * k);
-  __m128i in[4];
-  for (int i = 0; i < 4; ++i) in[i] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(state[i]));
-  __m128i a = in[0], b = in[1], c = in[2], d = in[3];
+#define M4MESH_V_XOR vectors_xor
+#define M4MESH_V_AND vectors_and
+#define M4MESH_V_OR vectors_or
+#define M4MESH_V_ADD vectors_add
+#define M4MESH_V_SET1(x) vectors_set1<N>(x)
+#define M4MESH_V_SLL(x, s) vectors_sll<s>(x)
+#define M4MESH_V_SRL(x, s) vectors_srl<s>(x)
+
+// One 64-byte block of each of 4N lanes' messages: lanes 4q … 4q + 3 in vector q.
+template <int N>
+void blocks_of_vectors(LaneState<4 * N>& state, const uint8_t* const lane[4 * N]) {
+  Vectors<N> w[16];
+  for (int k = 0; k < 4; ++k)
+    for (int q = 0; q < N; ++q) {
+      __m128i words[4];
+      transpose4(lane + 4 * q, k, words);
+      for (int j = 0; j < 4; ++j) w[4 * k + j].v[q] = words[j];
+    }
+  Vectors<N> in[4];
+  for (int i = 0; i < 4; ++i)
+    for (int q = 0; q < N; ++q) in[i].v[q] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(state[i] + 4 * q));
+  Vectors<N> a = in[0], b = in[1], c = in[2], d = in[3];
   M4MESH_MD5_ROUNDS(M4MESH_STEP, M4MESH_F, M4MESH_G, M4MESH_H, M4MESH_I)
-  const __m128i rounds[4] = {a, b, c, d};
-  for (int i = 0; i < 4; ++i) _mm_storeu_si128(reinterpret_cast<__m128i*>(state[i]), _mm_add_epi32(in[i], rounds[i]));
+  const Vectors<N> rounds[4] = {a, b, c, d};
+  for (int i = 0; i < 4; ++i)
+    for (int q = 0; q < N; ++q) _mm_storeu_si128(reinterpret_cast<__m128i*>(state[i] + 4 * q), _mm_add_epi32(in[i].v[q], rounds[i].v[q]));
 }
 
 #ifdef M4MESH_MD5_AVX2
@@ -257,16 +303,21 @@ void lanes(const uint8_t* const messages[N], size_t length, std::array<uint8_t, 
 
 }  // namespace
 
-void md5_of_equal_lengths(std::span<const uint8_t* const> messages, size_t length, std::span<std::array<uint8_t, 16>> out) {
+void md5_of_equal_lengths(std::span<const uint8_t* const> messages, size_t length, std::span<std::array<uint8_t, 16>> out,
+                          [[maybe_unused]] int widest_bits) {
   size_t k = 0;
 #ifdef M4MESH_MD5_LANES
 #ifdef M4MESH_MD5_AVX2
-  if (has_avx512f())
+  if (widest_bits >= 512 && has_avx512f())
     for (; k + 16 <= messages.size(); k += 16) lanes<16>(messages.data() + k, length, out.data() + k, blocks16);
-  if (has_avx2())
+  if (widest_bits >= 256 && has_avx2())
     for (; k + 8 <= messages.size(); k += 8) lanes<8>(messages.data() + k, length, out.data() + k, blocks8);
 #endif
-  for (; k + 4 <= messages.size(); k += 4) lanes<4>(messages.data() + k, length, out.data() + k, blocks4);
+  if (widest_bits >= 128) {
+    for (; k + 16 <= messages.size(); k += 16) lanes<16>(messages.data() + k, length, out.data() + k, blocks_of_vectors<4>);
+    for (; k + 8 <= messages.size(); k += 8) lanes<8>(messages.data() + k, length, out.data() + k, blocks_of_vectors<2>);
+    for (; k + 4 <= messages.size(); k += 4) lanes<4>(messages.data() + k, length, out.data() + k, blocks_of_vectors<1>);
+  }
 #endif
   one_by_one(messages.subspan(k), length, out.subspan(k));
 }

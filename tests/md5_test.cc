@@ -38,24 +38,28 @@ TEST(Md5, Rfc1321AgreesWithOpenSsl) {
 }
 
 // Digests side by side in SIMD lanes are each message's own, for every
-// length across the block and its padding, and any count of messages.
+// length across the block and its padding, any count of messages, and
+// every width of vectors this processor has (a narrower one takes what a
+// wider one leaves).
 TEST(Md5, LanesAgreeWithOpenSsl) {
   SplitMix64 random(11);
-  for (size_t length : {size_t{0}, size_t{1}, size_t{55}, size_t{56}, size_t{63}, size_t{64}, size_t{65}, size_t{119}, size_t{120},
-                        size_t{1000}, size_t{12 * 8431}}) {
-    for (size_t count = 0; count <= 2 * kMd5Batch + 1; ++count) {
-      std::vector<std::string> messages(count);
-      std::vector<const uint8_t*> starts;
-      for (std::string& m : messages) {
-        for (size_t i = 0; i < length; ++i) m += static_cast<char>(random.uniform(-128, 127));
-        starts.push_back(reinterpret_cast<const uint8_t*>(m.data()));
-      }
-      std::vector<std::array<uint8_t, 16>> digests(count);
-      md5_of_equal_lengths(starts, length, digests);
-      for (size_t k = 0; k < count; ++k) {
-        std::string hex;
-        for (uint8_t b : digests[k]) hex += "0123456789abcdef"[b >> 4], hex += "0123456789abcdef"[b & 15];
-        EXPECT_EQ(hex, md5_hex(messages[k])) << "length " << length << ", message " << k << " of " << count;
+  for (const int widest_bits : {512, 256, 128, 0}) {
+    for (size_t length : {size_t{0}, size_t{1}, size_t{55}, size_t{56}, size_t{63}, size_t{64}, size_t{65}, size_t{119}, size_t{120},
+                          size_t{1000}, size_t{12 * 8431}}) {
+      for (size_t count = 0; count <= 2 * kMd5Batch + 1; ++count) {
+        std::vector<std::string> messages(count);
+        std::vector<const uint8_t*> starts;
+        for (std::string& m : messages) {
+          for (size_t i = 0; i < length; ++i) m += static_cast<char>(random.uniform(-128, 127));
+          starts.push_back(reinterpret_cast<const uint8_t*>(m.data()));
+        }
+        std::vector<std::array<uint8_t, 16>> digests(count);
+        md5_of_equal_lengths(starts, length, digests, widest_bits);
+        for (size_t k = 0; k < count; ++k) {
+          std::string hex;
+          for (uint8_t b : digests[k]) hex += "0123456789abcdef"[b >> 4], hex += "0123456789abcdef"[b & 15];
+          EXPECT_EQ(hex, md5_hex(messages[k])) << widest_bits << "-bit vectors, length " << length << ", message " << k << " of " << count;
+        }
       }
     }
   }

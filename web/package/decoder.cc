@@ -66,7 +66,7 @@ class Stream3d {
     std::vector<uint32_t> flat;
     if (const Mesh3dDecoder* decoder = stream_.decoder())
       for (const Triangle& t : decoder->faces()) flat.insert(flat.end(), t.v.begin(), t.v.end());
-    return copy_out<uint32_t>("Uint32Array", flat);
+    return copy_out(std::span<const uint32_t>(flat));
   }
   // Frame `index` as x, y, z per vertex: a final frame kept here, else a
   // progressive codec's latest refinement of it; empty when neither.
@@ -83,20 +83,15 @@ class Stream3d {
   void drop(uint32_t index) { frames_.erase(index); }
 
  private:
+  // A copy the caller owns: slice() of a view of the module's memory, whose
+  // numbers are little-endian as JavaScript's typed arrays are.
   template <class T>
-  static val copy_out(const char* type, const std::vector<T>& values) {
-    val out = val::global(type).new_(values.size());
-    out.call<void>("set", val(emscripten::typed_memory_view(values.size(), values.data())));
-    return out;
+  static val copy_out(std::span<const T> values) {
+    return val(emscripten::typed_memory_view(values.size(), values.data())).call<val>("slice");
   }
-  // Positions as one Float32Array, copied once: byte for byte, since the
-  // module's floats and JavaScript's are both little-endian binary32.
+  // Positions as one Float32Array.
   static val copy_out(std::span<const Float3> positions) {
-    val out = val::global("Float32Array").new_(3 * positions.size());
-    val::global("Uint8Array")
-        .new_(out["buffer"])
-        .call<void>("set", val(emscripten::typed_memory_view(positions.size_bytes(), reinterpret_cast<const uint8_t*>(positions.data()))));
-    return out;
+    return copy_out(std::span<const float>(positions.empty() ? nullptr : positions.data()->data(), 3 * positions.size()));
   }
 
   // Runs `take` (push or finish), which decodes units and returns how
