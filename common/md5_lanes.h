@@ -1,9 +1,9 @@
 // Several MD5 digests at once, one message a SIMD lane (natively
 // AVX-512's sixteen or AVX2's eight where the processor has them, else
 // SSE2's sixteen, eight or four in as many vectors of four; WebAssembly
-// SIMD128's the same through Emscripten's SSE2 headers), for messages of one length:
-// the frames a group hash unit covers. Each digest is the one Md5 gives;
-// without SIMD the messages are hashed one after the other.
+// SIMD128's the same through Emscripten's SSE2 headers), for messages of
+// one length: the frames a group hash unit covers. Each digest is the one
+// Md5 gives; without SIMD the messages are hashed one after the other.
 #pragma once
 
 #include <array>
