@@ -134,12 +134,12 @@ template <int N>
 struct Vectors {
   __m128i v[N];
 };
-#define M4MESH_VECTORS_OF(name, op)                                      \
-  template <int N>                                                       \
-  inline Vectors<N> name(const Vectors<N>& x, const Vectors<N>& y) {     \
-    Vectors<N> out;                                                      \
-    for (int i = 0; i < N; ++i) out.v[i] = op(x.v[i], y.v[i]);          \
-    return out;                                                          \
+#define M4MESH_VECTORS_OF(name, op)                                  \
+  template <int N>                                                   \
+  inline Vectors<N> name(const Vectors<N>& x, const Vectors<N>& y) { \
+    Vectors<N> out;                                                  \
+    for (int i = 0; i < N; ++i) out.v[i] = op(x.v[i], y.v[i]);       \
+    return out;                                                      \
   }
 M4MESH_VECTORS_OF(vectors_xor, _mm_xor_si128)
 M4MESH_VECTORS_OF(vectors_and, _mm_and_si128)
