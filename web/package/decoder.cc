@@ -63,10 +63,8 @@ class Stream3d {
   }
 
   val faces() const {
-    std::vector<uint32_t> flat;
-    if (const Mesh3dDecoder* decoder = stream_.decoder())
-      for (const Triangle& t : decoder->faces()) flat.insert(flat.end(), t.v.begin(), t.v.end());
-    return copy_out(std::span<const uint32_t>(flat));
+    const Mesh3dDecoder* decoder = stream_.decoder();
+    return copy_out(decoder ? std::span<const Triangle>(decoder->faces()) : std::span<const Triangle>());
   }
   // Frame `index` as x, y, z per vertex: a final frame kept here, else a
   // progressive codec's latest refinement of it; empty when neither.
@@ -92,6 +90,11 @@ class Stream3d {
   // Positions as one Float32Array.
   static val copy_out(std::span<const Float3> positions) {
     return copy_out(std::span<const float>(positions.empty() ? nullptr : positions.data()->data(), 3 * positions.size()));
+  }
+  // Faces as one Uint32Array of their vertices.
+  static val copy_out(std::span<const Triangle> faces) {
+    static_assert(sizeof(Triangle) == 3 * sizeof(uint32_t));
+    return copy_out(std::span<const uint32_t>(faces.empty() ? nullptr : faces.data()->v.data(), 3 * faces.size()));
   }
 
   // Runs `take` (push or finish), which decodes units and returns how
