@@ -9,6 +9,7 @@
 #include "bench/sequences.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
+#include "mesh3d/lcc.h"
 #include "mesh3d/metrics.h"
 
 namespace m4mesh {
@@ -41,6 +42,40 @@ void BM_LccDecode(benchmark::State& state) {
       static_cast<double>(state.iterations()) * s.vertex_count * static_cast<double>(s.frames.size() - 1), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_LccDecode)->Unit(benchmark::kMillisecond);
+
+// Placing one frame's vertices from their indices (the decoder's
+// reconstruction alone), the flag's last frame measured and quantized as
+// the encoder does: by chunks of paired steps (what the decoder does) and
+// one step after the other (the reference).
+void BM_LccPlacement(benchmark::State& state) {
+  const MeshSequence& s = bench::sequence(kFlag);
+  const LccModel model(s.faces, s.frames[0], 12, 10, 0.5);
+  const std::vector<Vec3>& target = s.frames.back();
+  std::vector<Vec3> positions = s.frames[0];
+  std::vector<int32_t> indices(3 * model.order().steps.size());
+  for (size_t k = 0; k < model.order().steps.size(); ++k) {
+    const LccStep& step = model.order().steps[k];
+    const LccFrame frame = lcc_frame(target[step.a], target[step.b], target[step.c]);
+    const Cylindrical c = to_cylindrical(frame, target[step.d]);
+    const double scale = static_cast<double>(model.rh_limit()) / (model.rh_step() * static_cast<double>(model.rh_limit()));
+    indices[3 * k] = lcc_wrapped_angle(static_cast<int64_t>(std::nearbyint(c.theta * model.theta_limit() / std::numbers::pi)), model.theta_limit());
+    indices[3 * k + 1] = static_cast<int32_t>(std::clamp(std::nearbyint((c.radius / model.edge_length() - model.reference_radius(k)) * scale), -1.0 * model.rh_limit(), 1.0 * model.rh_limit()));
+    indices[3 * k + 2] = static_cast<int32_t>(std::clamp(std::nearbyint((c.height / model.edge_length() - model.reference_height(k)) * scale), -1.0 * model.rh_limit(), 1.0 * model.rh_limit()));
+  }
+  const bool paired = state.range(0) == 1;
+  for (auto _ : state) {
+    if (paired) {
+      for (size_t chunk = 0; chunk * kLccStepChunk < model.order().steps.size(); ++chunk) model.place_chunk(chunk, indices, positions);
+    } else {
+      for (size_t k = 0; k < model.order().steps.size(); ++k)
+        positions[model.order().steps[k].d] = model.place(k, positions, indices[3 * k], indices[3 * k + 1], indices[3 * k + 2]);
+    }
+    benchmark::DoNotOptimize(positions.data());
+  }
+  state.SetLabel(flag_label() + (paired ? ", paired" : ", one by one"));
+  state.counters["steps/s"] = benchmark::Counter(static_cast<double>(state.iterations() * model.order().steps.size()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_LccPlacement)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 void BM_LccEncode(benchmark::State& state) {
   const MeshSequence& s = bench::sequence(kFlag);

@@ -15,6 +15,9 @@
 #ifdef __GLIBC__
 #include <malloc.h>
 #endif
+#ifdef __linux__
+#include <sched.h>
+#endif
 
 namespace m4mesh {
 
@@ -27,8 +30,18 @@ inline void use_one_heap() {
 #endif
 }
 
-// The threads to run on: `threads`, or every core for 0.
-inline unsigned worker_count(unsigned threads) { return threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency()); }
+// The cores this process may run on: its affinity mask's (taskset, a
+// container's CPU set) where the system has one, else every core.
+inline unsigned available_cores() {
+#ifdef __linux__
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
+#endif
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+// The threads to run on: `threads`, or one per available core for 0.
+inline unsigned worker_count(unsigned threads) { return threads > 0 ? threads : available_cores(); }
 
 // Runs task(i) for every i below `count` on up to worker_count(threads)
 // threads, and finished(i) for each i in increasing order as soon as

@@ -4,6 +4,11 @@
 #include <cmath>
 #include <numbers>
 
+#if !defined(M4MESH_NO_SIMD) && (defined(__SSE2__) || defined(__wasm_simd128__))
+#include <emmintrin.h>
+#define M4MESH_LCC_PAIRS 1
+#endif
+
 namespace m4mesh {
 
 namespace {
@@ -195,6 +200,7 @@ LccModel::LccModel(std::span<const Triangle> faces, std::span<const Vec3> refere
       rh_limit_(int32_t{1} << rh_bits),
       rh_step_(rh_range / static_cast<double>(int64_t{1} << rh_bits)),
       angles_(theta_bits + 1) {
+  pair_steps(reference.size());
   reference_radius_.reserve(order_.steps.size());
   reference_height_.reserve(order_.steps.size());
   for (const LccStep& step : order_.steps) {
@@ -202,6 +208,90 @@ LccModel::LccModel(std::span<const Triangle> faces, std::span<const Vec3> refere
     reference_radius_.push_back(c.radius / edge_length_);
     reference_height_.push_back(c.height / edge_length_);
   }
+}
+
+// Within a chunk, a step's depth is one more than the deepest of the
+// chunk's steps it waits for; steps of one depth are paired in order.
+void LccModel::pair_steps(size_t vertex_count) {
+  std::vector<uint32_t> depth_of_vertex(vertex_count, 0), depth(kLccStepChunk), start, by_depth(kLccStepChunk);
+  for (size_t first = 0; first < order_.steps.size(); first += kLccStepChunk) {
+    const size_t end = std::min(first + kLccStepChunk, order_.steps.size());
+    start.assign(end - first + 2, 0);
+    for (size_t k = first; k < end; ++k) {
+      const LccStep& s = order_.steps[k];
+      depth[k - first] = 1 + std::max({depth_of_vertex[s.a], depth_of_vertex[s.b], depth_of_vertex[s.c]});
+      depth_of_vertex[s.d] = depth[k - first];
+      ++start[depth[k - first] + 1];
+    }
+    for (size_t d = 1; d < start.size(); ++d) start[d] += start[d - 1];
+    for (size_t k = first; k < end; ++k) by_depth[start[depth[k - first]]++] = static_cast<uint32_t>(k);
+    chunk_pairs_.push_back(static_cast<uint32_t>(pairs_.size()));
+    for (size_t i = 0; i < end - first;) {
+      const uint32_t k = by_depth[i];
+      const bool paired = i + 1 < end - first && depth[by_depth[i + 1] - first] == depth[k - first];
+      pairs_.push_back({k, paired ? by_depth[i + 1] : StepPair::kAlone});
+      i += paired ? 2 : 1;
+    }
+    for (size_t k = first; k < end; ++k) depth_of_vertex[order_.steps[k].d] = 0;
+  }
+  chunk_pairs_.push_back(static_cast<uint32_t>(pairs_.size()));
+}
+
+void LccModel::place_chunk(size_t chunk, std::span<const int32_t> indices, std::span<Vec3> positions) const {
+  for (uint32_t i = chunk_pairs_[chunk]; i < chunk_pairs_[chunk + 1]; ++i) place_pair(pairs_[i], indices, positions);
+}
+
+void LccModel::place_pair(const StepPair& pair, std::span<const int32_t> indices, std::span<Vec3> positions) const {
+  const auto alone = [&](uint32_t k) { positions[order_.steps[k].d] = place(k, positions, indices[3 * k], indices[3 * k + 1], indices[3 * k + 2]); };
+#ifdef M4MESH_LCC_PAIRS
+  if (pair.second != StepPair::kAlone) {
+    // Lane 0 is the first step, lane 1 the second; each lane makes place()'s IEEE operations in place()'s order.
+    const LccStep &s0 = order_.steps[pair.first], &s1 = order_.steps[pair.second];
+    struct Lanes3 {
+      __m128d x, y, z;
+    };
+    const auto load = [&](NodeIndex v0, NodeIndex v1) {
+      return Lanes3{_mm_set_pd(positions[v1].x, positions[v0].x), _mm_set_pd(positions[v1].y, positions[v0].y), _mm_set_pd(positions[v1].z, positions[v0].z)};
+    };
+    const auto sub = [](const Lanes3& l, const Lanes3& r) { return Lanes3{_mm_sub_pd(l.x, r.x), _mm_sub_pd(l.y, r.y), _mm_sub_pd(l.z, r.z)}; };
+    const auto cross3 = [](const Lanes3& l, const Lanes3& r) {
+      return Lanes3{_mm_sub_pd(_mm_mul_pd(l.y, r.z), _mm_mul_pd(l.z, r.y)), _mm_sub_pd(_mm_mul_pd(l.z, r.x), _mm_mul_pd(l.x, r.z)),
+                    _mm_sub_pd(_mm_mul_pd(l.x, r.y), _mm_mul_pd(l.y, r.x))};
+    };
+    const auto dot3 = [](const Lanes3& l, const Lanes3& r) {
+      return _mm_add_pd(_mm_add_pd(_mm_mul_pd(l.x, r.x), _mm_mul_pd(l.y, r.y)), _mm_mul_pd(l.z, r.z));
+    };
+    const Lanes3 a = load(s0.a, s1.a), b = load(s0.b, s1.b), c = load(s0.c, s1.c);
+    const Lanes3 edge = sub(c, b), normal = cross3(sub(b, a), sub(c, a));
+    const __m128d edge_length = _mm_sqrt_pd(dot3(edge, edge)), normal_length = _mm_sqrt_pd(dot3(normal, normal));
+    const __m128d zero = _mm_setzero_pd();
+    if (_mm_movemask_pd(_mm_and_pd(_mm_cmpgt_pd(edge_length, zero), _mm_cmpgt_pd(normal_length, zero))) == 3) {
+      const Lanes3 z{_mm_div_pd(edge.x, edge_length), _mm_div_pd(edge.y, edge_length), _mm_div_pd(edge.z, edge_length)};
+      const Lanes3 y{_mm_div_pd(normal.x, normal_length), _mm_div_pd(normal.y, normal_length), _mm_div_pd(normal.z, normal_length)};
+      const Lanes3 x = cross3(z, y);
+      const __m128d half = _mm_set1_pd(0.5);
+      const Lanes3 origin{_mm_mul_pd(_mm_add_pd(b.x, c.x), half), _mm_mul_pd(_mm_add_pd(b.y, c.y), half), _mm_mul_pd(_mm_add_pd(b.z, c.z), half)};
+      const uint32_t k0 = pair.first, k1 = pair.second;
+      const size_t angle0 = static_cast<size_t>(indices[3 * k0] + theta_limit_), angle1 = static_cast<size_t>(indices[3 * k1] + theta_limit_);
+      const __m128d step = _mm_set1_pd(rh_step_), length = _mm_set1_pd(edge_length_);
+      const __m128d rho = _mm_set_pd(static_cast<double>(indices[3 * k1 + 1]), static_cast<double>(indices[3 * k0 + 1]));
+      const __m128d zeta = _mm_set_pd(static_cast<double>(indices[3 * k1 + 2]), static_cast<double>(indices[3 * k0 + 2]));
+      const __m128d radius = _mm_mul_pd(_mm_add_pd(_mm_mul_pd(rho, step), _mm_set_pd(reference_radius_[k1], reference_radius_[k0])), length);
+      const __m128d height = _mm_mul_pd(_mm_add_pd(_mm_mul_pd(zeta, step), _mm_set_pd(reference_height_[k1], reference_height_[k0])), length);
+      const __m128d u = _mm_mul_pd(radius, _mm_set_pd(angles_.cos(angle1), angles_.cos(angle0)));
+      const __m128d v = _mm_mul_pd(radius, _mm_set_pd(angles_.sin(angle1), angles_.sin(angle0)));
+      const auto axis = [&](__m128d o, __m128d xa, __m128d ya, __m128d za) {
+        return _mm_add_pd(_mm_add_pd(_mm_add_pd(o, _mm_mul_pd(u, xa)), _mm_mul_pd(v, ya)), _mm_mul_pd(height, za));
+      };
+      const __m128d px = axis(origin.x, x.x, y.x, z.x), py = axis(origin.y, x.y, y.y, z.y), pz = axis(origin.z, x.z, y.z, z.z);
+      positions[s0.d] = {_mm_cvtsd_f64(px), _mm_cvtsd_f64(py), _mm_cvtsd_f64(pz)};
+      positions[s1.d] = {_mm_cvtsd_f64(_mm_unpackhi_pd(px, px)), _mm_cvtsd_f64(_mm_unpackhi_pd(py, py)), _mm_cvtsd_f64(_mm_unpackhi_pd(pz, pz))};
+      return;
+    }
+  }
+#endif
+  alone(pair.first);
+  if (pair.second != StepPair::kAlone) alone(pair.second);
 }
 
 Vec3 LccModel::place_in(const LccFrame& frame, size_t k, int32_t theta, int32_t rho, int32_t zeta) const {

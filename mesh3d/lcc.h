@@ -98,6 +98,9 @@ class AngleTable {
   std::vector<double> cos_, sin_;
 };
 
+// Steps are placed a chunk at a time (the decoder's symbols arrive in chunks).
+inline constexpr size_t kLccStepChunk = 1024;
+
 // What decoding a frame needs, fixed for the stream after the reference
 // mesh: the coding order, the reference's own radius and height at every
 // step, the average edge length L of the reference, the angle table and
@@ -126,9 +129,24 @@ class LccModel {
   }
   // The same in step k's frame, already built.
   Vec3 place_in(const LccFrame& frame, size_t k, int32_t theta, int32_t rho, int32_t zeta) const;
+  // place() for every step of chunk `chunk` (steps chunk · kLccStepChunk
+  // onwards, its vertices' positions before it in `positions`), each from
+  // its indices (t, i, j at 3k): the values of place() in coding order,
+  // computed two steps at a time where neither waits for the other.
+  void place_chunk(size_t chunk, std::span<const int32_t> indices, std::span<Vec3> positions) const;
 
  private:
+  // Two steps of a chunk placed together; second is kAlone for a step placed by itself.
+  struct StepPair {
+    static constexpr uint32_t kAlone = UINT32_MAX;
+    uint32_t first, second;
+  };
+  void pair_steps(size_t vertex_count);
+  void place_pair(const StepPair& pair, std::span<const int32_t> indices, std::span<Vec3> positions) const;
+
   LccOrder order_;
+  std::vector<StepPair> pairs_;      // chunk by chunk, by depth within the chunk
+  std::vector<uint32_t> chunk_pairs_;  // the first pair of each chunk, and their end
   std::vector<double> reference_radius_, reference_height_;
   double edge_length_ = 1;
   int32_t theta_limit_, rh_limit_;

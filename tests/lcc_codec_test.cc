@@ -4,7 +4,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 
+#include "common/parallel.h"
 #include "decoder/mesh3d/container_decoder.h"
 #include "encoder/mesh3d/container_encoder.h"
 #include "mesh3d/lcc.h"
@@ -195,6 +197,22 @@ TEST(LccCodec, BadOptionsAreUsageErrors) {
   EXPECT_THROW(encode_mesh3d(s, lcc({{"mode", "fast"}})), Error);
   EXPECT_THROW(encode_mesh3d(s, lcc({{"theta-bits", "16"}})), Error);
   EXPECT_THROW(encode_mesh3d(s, lcc({{"reference", "/nonexistent/rest.obj"}})), Error);
+}
+
+// Frames of 4096 steps and more place their vertices while their symbols
+// are decoded, on two cores; on one, after them: the same positions.
+TEST(LccCodec, LargeFramesDecodeTheSameOnOneCore) {
+  const std::vector<uint8_t> stream = encode_mesh3d(rolling_sheet(3, 70), lcc()).stream;
+  const MeshSequence decoded = decode_mesh3d(stream);
+  std::optional<MeshSequence> alone;
+  if (!test::on_one_core([&] {
+        EXPECT_EQ(available_cores(), 1u);
+        alone = decode_mesh3d(stream);
+      }))
+    GTEST_SKIP() << "no thread affinity here";
+  ASSERT_TRUE(alone);
+  EXPECT_EQ(alone->frames, decoded.frames);
+  EXPECT_GE(decoded.vertex_count, 3 + 4096u);  // the root triangle, then 4096 steps
 }
 
 TEST(LccCodec, CorruptAndTruncatedStreamsFailCleanly) {

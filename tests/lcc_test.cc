@@ -70,6 +70,46 @@ TEST(Lcc, DegenerateTrianglesGetAFiniteFrame) {
   }
 }
 
+// The decoder places a chunk's steps two at a time: the same bits as
+// place() one step after the other, degenerate triangles included (the
+// closed sphere's root triangle made collinear, the sheet's a point).
+TEST(Lcc, ChunksPlaceWhatStepsPlaceOneByOne) {
+  MeshSequence s = test::test_sequence(1, 31);
+  // A 40 × 40 sheet after it, for more than one chunk.
+  const uint32_t n = 40, first = s.vertex_count;
+  for (uint32_t i = 0; i < n; ++i)
+    for (uint32_t j = 0; j < n; ++j) s.frames[0].push_back({0.1 * i, 0.1 * j, 0.01 * ((i * 7 + j * 3) % 5)});
+  for (uint32_t i = 0; i + 1 < n; ++i)
+    for (uint32_t j = 0; j + 1 < n; ++j) {
+      const uint32_t v = first + i * n + j;
+      s.faces.push_back({{v, v + n, v + 1}});
+      s.faces.push_back({{v + 1, v + n, v + n + 1}});
+    }
+  s.vertex_count = static_cast<uint32_t>(s.frames[0].size());
+  const LccModel model(s.faces, s.frames[0], 9, 8, 0.75);
+  const LccOrder& order = model.order();
+  std::vector<Vec3> one_by_one = s.frames[0];
+  const Vec3 root = one_by_one[order.direct[0]], along{0.25, -0.5, 0.125};
+  one_by_one[order.direct[1]] = {root.x + along.x, root.y + along.y, root.z + along.z};
+  one_by_one[order.direct[2]] = {root.x + 2 * along.x, root.y + 2 * along.y, root.z + 2 * along.z};
+  for (size_t i = 4; i < 6; ++i) one_by_one[order.direct[i]] = one_by_one[order.direct[3]];
+  std::vector<Vec3> chunked = one_by_one;
+  test::Random random(71);
+  std::vector<int32_t> indices(3 * order.steps.size());
+  for (size_t k = 0; k < order.steps.size(); ++k) {
+    indices[3 * k] = random.uniform(-model.theta_limit(), model.theta_limit() - 1);
+    indices[3 * k + 1] = random.uniform(-model.rh_limit(), model.rh_limit());
+    indices[3 * k + 2] = random.uniform(-model.rh_limit(), model.rh_limit());
+  }
+  for (size_t k = 0; k < order.steps.size(); ++k)
+    one_by_one[order.steps[k].d] = model.place(k, one_by_one, indices[3 * k], indices[3 * k + 1], indices[3 * k + 2]);
+  for (size_t chunk = 0; chunk * kLccStepChunk < order.steps.size(); ++chunk) model.place_chunk(chunk, indices, chunked);
+  ASSERT_GT(order.steps.size(), kLccStepChunk);  // more than one chunk
+  for (size_t v = 0; v < s.vertex_count; ++v)
+    for (int axis = 0; axis < 3; ++axis)
+      ASSERT_EQ(bit_cast<uint64_t>((&chunked[v].x)[axis]), bit_cast<uint64_t>((&one_by_one[v].x)[axis])) << "vertex " << v << " axis " << axis;
+}
+
 TEST(Lcc, AngleTableMatchesTheCircle) {
   for (int bits : {3, 6, 12, 16}) {
     const AngleTable table(bits);

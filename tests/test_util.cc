@@ -2,12 +2,16 @@
 
 #include <gtest/gtest.h>
 #include <unistd.h>
+#ifdef __linux__
+#include <sched.h>
+#endif
 
 #include <cmath>
 #include <fstream>
 #include <numbers>
 #include <set>
 #include <stdexcept>
+#include <thread>
 
 #include "decoder/mesh3d/container_decoder.h"
 #include "decoder/mesh_object_decoder.h"
@@ -15,6 +19,27 @@
 #include "mesh/cdt.h"
 
 namespace m4mesh::test {
+
+bool on_one_core(const std::function<void()>& work) {
+#ifdef __linux__
+  bool pinned = false;
+  std::thread([&] {
+    cpu_set_t set;
+    if (sched_getaffinity(0, sizeof set, &set) != 0) return;
+    int first = 0;
+    while (!CPU_ISSET(first, &set)) ++first;
+    CPU_ZERO(&set);
+    CPU_SET(first, &set);
+    if (sched_setaffinity(0, sizeof set, &set) != 0) return;
+    pinned = true;
+    work();
+  }).join();
+  return pinned;
+#else
+  (void)work;
+  return false;
+#endif
+}
 
 TempDir::TempDir() {
   const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -20,6 +21,11 @@ std::vector<uint8_t> bytes_from_bits(std::string_view bits);
 std::string bits_of(const std::vector<uint8_t>& bytes);
 
 using Random = SplitMix64;
+
+// Runs `work` on a thread whose affinity is one core (the first of the
+// process's): what a process under `taskset -c N` sees. False where the
+// system cannot pin a thread.
+bool on_one_core(const std::function<void()>& work);
 
 // A folder of the running test's own under the temporary folder, removed with everything in it.
 class TempDir {

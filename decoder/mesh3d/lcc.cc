@@ -18,9 +18,9 @@ namespace m4mesh {
 namespace {
 
 // Frames of at least this many steps place their vertices on one thread
-// while their symbols are decoded on another, kStepChunk steps at a time.
+// while their symbols are decoded on another, kLccStepChunk steps at a
+// time, where the process may run on two cores.
 constexpr size_t kPipelinedSteps = 4096;
-constexpr size_t kStepChunk = 1024;
 constexpr uint32_t kSymbolsFailed = UINT32_MAX;
 
 class LccDecoder final : public CodecDecoder3d {
@@ -73,7 +73,7 @@ class LccDecoder final : public CodecDecoder3d {
       syntax::EntropyReadIO<true> symbols(data.bins, data.raw, place, trace_);
       read_symbols(symbols, predicted, nullptr);
       place_vertices(io, prediction, indices, nullptr);
-    } else if (model_->order().steps.size() < kPipelinedSteps) {
+    } else if (!pipelined_) {
       syntax::EntropyReadIO<false> symbols(data.bins, data.raw, place);
       read_symbols(symbols, predicted, nullptr);
       place_vertices(io, prediction, indices, nullptr);
@@ -107,6 +107,7 @@ class LccDecoder final : public CodecDecoder3d {
     residuals_.direct.resize(3 * model_->order().direct.size());
     residuals_.steps.resize(3 * model_->order().steps.size());
     coder_.emplace();
+    pipelined_ = model_->order().steps.size() >= kPipelinedSteps && available_cores() >= 2;
   }
 
   // The frame's symbols, in chunks of steps; `decoded` (when set) says
@@ -123,8 +124,8 @@ class LccDecoder final : public CodecDecoder3d {
     try {
       syntax::describe_symbols(io, *coder_, predicted, residuals_.direct, {}, model_->theta_limit(), model_->rh_limit());
       publish(1);
-      for (size_t k = 0; k < steps.size() / 3; k += kStepChunk) {
-        const size_t end = std::min(k + kStepChunk, steps.size() / 3);
+      for (size_t k = 0; k < steps.size() / 3; k += kLccStepChunk) {
+        const size_t end = std::min(k + kLccStepChunk, steps.size() / 3);
         syntax::describe_symbols(io, *coder_, predicted, {}, steps.subspan(3 * k, 3 * (end - k)), model_->theta_limit(), model_->rh_limit());
         publish(static_cast<uint32_t>(1 + end));
       }
@@ -159,9 +160,9 @@ class LccDecoder final : public CodecDecoder3d {
     for (size_t i = 0; i < direct.size(); ++i)
       next_[direct[i]] = lcc_grid_position(header_, {indices.direct[3 * i], indices.direct[3 * i + 1], indices.direct[3 * i + 2]});
     const int32_t theta_limit = model_->theta_limit(), rh_limit = model_->rh_limit();
-    const std::vector<LccStep>& steps = model_->order().steps;
-    for (size_t k = 0; k < steps.size();) {
-      const size_t end = std::min(k + kStepChunk, steps.size());
+    const size_t step_count = model_->order().steps.size();
+    for (size_t chunk = 0, k = 0; k < step_count; ++chunk) {
+      const size_t end = std::min(k + kLccStepChunk, step_count);
       if (!wait_for(1 + end)) return;
       for (; k < end; ++k) {
         int32_t* step = &indices.steps[3 * k];
@@ -172,8 +173,8 @@ class LccDecoder final : public CodecDecoder3d {
             fail_reconstruction(io, ErrorKind::kOutOfRange, j == 1 ? "rho" : "zeta",
                                 "step " + std::to_string(k) + ": prediction and residual leave ±2^rh_bits");
         }
-        next_[steps[k].d] = model_->place(k, next_, step[0], step[1], step[2]);
       }
+      model_->place_chunk(chunk, indices.steps, next_);
     }
   }
 
@@ -186,6 +187,7 @@ class LccDecoder final : public CodecDecoder3d {
   std::vector<Vec3> positions_, next_;  // the last frame decoded, the one being decoded
   LccIndices residuals_;
   std::optional<syntax::ResidualCoder<syntax::kLccChannels>> coder_;
+  bool pipelined_ = false;
 };
 
 }  // namespace
