@@ -37,7 +37,7 @@ for name in horse cow flag dance dog handstand; do
           continue
         fi
       fi
-      streams+=("$PWD/$out")
+      streams+=("$(realpath "$out")")
     done
   done
 done
