@@ -28,14 +28,21 @@ struct MotionOrder3d {
 // (v0, v1). Vertices in no face come last, in index order, predicted from zero.
 MotionOrder3d bfs3d_order(std::span<const Triangle> faces, size_t vertex_count);
 
-// The predicted motion of the k-th coded vertex on one axis from the motion
-// of the vertices coded before it: the average of its base edge's ends
-// (a, b), or with `parallelogram` and a vertex c across that edge, a + b − c.
-inline int64_t predict_motion(const MotionOrder3d& order, size_t k, std::span<const std::array<int32_t, 3>> motion, int axis,
-                              bool parallelogram) {
-  const int64_t a = motion[order.pred_a[k]][axis], b = motion[order.pred_b[k]][axis];
-  if (parallelogram && order.pred_c[k] != order.zero_slot) return a + b - motion[order.pred_c[k]][axis];
-  return (a + b + 1) >> 1;
+// The predicted motion of the k-th coded vertex, per axis, from the
+// motion of the vertices coded before it: the average of its base edge's
+// ends (a, b), or with `parallelogram` and a vertex c across that edge,
+// a + b − c.
+inline std::array<int64_t, 3> predict_motion(const MotionOrder3d& order, size_t k, std::span<const std::array<int32_t, 3>> motion,
+                                             bool parallelogram) {
+  const std::array<int32_t, 3>&a = motion[order.pred_a[k]], &b = motion[order.pred_b[k]];
+  std::array<int64_t, 3> predicted;
+  if (parallelogram && order.pred_c[k] != order.zero_slot) {
+    const std::array<int32_t, 3>& c = motion[order.pred_c[k]];
+    for (int axis = 0; axis < 3; ++axis) predicted[axis] = int64_t{a[axis]} + b[axis] - c[axis];
+  } else {
+    for (int axis = 0; axis < 3; ++axis) predicted[axis] = (int64_t{a[axis]} + b[axis] + 1) >> 1;
+  }
+  return predicted;
 }
 
 }  // namespace m4mesh

@@ -64,8 +64,9 @@ class Bfs3dDecoder final : public GridFrameDecoder {
     const bool parallelogram = header_.prediction == kPredictParallelogram;
     for (size_t k = 0; k < order_.node.size(); ++k) {
       const NodeIndex n = order_.node[k];
+      const std::array<int64_t, 3> predicted = predict_motion(order_, k, motion_, parallelogram);
       for (int axis = 0; axis < 3; ++axis) {
-        const int64_t q = positions[n][axis] + predict_motion(order_, k, motion_, axis, parallelogram) + residuals_[axis][k];
+        const int64_t q = positions[n][axis] + predicted[axis] + residuals_[axis][k];
         if (q > kMaxQuantized || q < -kMaxQuantized)
           fail_reconstruction(io, ErrorKind::kOutOfRange, "motion_residual", "vertex " + std::to_string(n) + " leaves ±2^26 grid steps");
         motion_[n][axis] = static_cast<int32_t>(q - positions[n][axis]);

@@ -47,9 +47,10 @@ class Bfs3dEncoder final : public GridFrameEncoder {
     const bool parallelogram = header_.prediction == kPredictParallelogram;
     for (size_t k = 0; k < order_.node.size(); ++k) {
       const NodeIndex n = order_.node[k];
+      const std::array<int64_t, 3> predicted = predict_motion(order_, k, motion_, parallelogram);
       for (int axis = 0; axis < 3; ++axis) {
         const int32_t v = current_[n][axis] - positions[n][axis];
-        residuals_[axis][k] = static_cast<int32_t>(v - predict_motion(order_, k, motion_, axis, parallelogram));
+        residuals_[axis][k] = static_cast<int32_t>(v - predicted[axis]);
         motion_[n][axis] = v;
       }
     }
