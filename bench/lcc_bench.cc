@@ -5,6 +5,10 @@
 // frame tuned to the same KG, in one run.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
 #include "anchors/draco_reference.h"
 #include "bench/sequences.h"
 #include "decoder/mesh3d/container_decoder.h"
@@ -44,23 +48,26 @@ void BM_LccDecode(benchmark::State& state) {
 BENCHMARK(BM_LccDecode)->Unit(benchmark::kMillisecond);
 
 // Placing one frame's vertices from their indices (the decoder's
-// reconstruction alone), the flag's last frame measured and quantized as
-// the encoder does: by chunks of paired steps (what the decoder does) and
-// one step after the other (the reference).
+// reconstruction alone): the indices of the flag's last frame, each vertex
+// measured in its own triangle's frame; by chunks of paired steps (what
+// the decoder does) and one step after the other (the reference).
 void BM_LccPlacement(benchmark::State& state) {
   const MeshSequence& s = bench::sequence(kFlag);
   const LccModel model(s.faces, s.frames[0], 12, 10, 0.5);
   const std::vector<Vec3>& target = s.frames.back();
   std::vector<Vec3> positions = s.frames[0];
   std::vector<int32_t> indices(3 * model.order().steps.size());
+  const auto rh_index = [&](double value) {
+    const double limit = model.rh_limit();
+    return static_cast<int32_t>(std::clamp(std::nearbyint(value / model.rh_step()), -limit, limit));
+  };
   for (size_t k = 0; k < model.order().steps.size(); ++k) {
     const LccStep& step = model.order().steps[k];
-    const LccFrame frame = lcc_frame(target[step.a], target[step.b], target[step.c]);
-    const Cylindrical c = to_cylindrical(frame, target[step.d]);
-    const double scale = static_cast<double>(model.rh_limit()) / (model.rh_step() * static_cast<double>(model.rh_limit()));
-    indices[3 * k] = lcc_wrapped_angle(static_cast<int64_t>(std::nearbyint(c.theta * model.theta_limit() / std::numbers::pi)), model.theta_limit());
-    indices[3 * k + 1] = static_cast<int32_t>(std::clamp(std::nearbyint((c.radius / model.edge_length() - model.reference_radius(k)) * scale), -1.0 * model.rh_limit(), 1.0 * model.rh_limit()));
-    indices[3 * k + 2] = static_cast<int32_t>(std::clamp(std::nearbyint((c.height / model.edge_length() - model.reference_height(k)) * scale), -1.0 * model.rh_limit(), 1.0 * model.rh_limit()));
+    const Cylindrical c = to_cylindrical(lcc_frame(target[step.a], target[step.b], target[step.c]), target[step.d]);
+    const auto theta = static_cast<int64_t>(std::nearbyint(c.theta * model.theta_limit() / std::numbers::pi));
+    indices[3 * k] = lcc_wrapped_angle(theta, model.theta_limit());
+    indices[3 * k + 1] = rh_index(c.radius / model.edge_length() - model.reference_radius(k));
+    indices[3 * k + 2] = rh_index(c.height / model.edge_length() - model.reference_height(k));
   }
   const bool paired = state.range(0) == 1;
   for (auto _ : state) {

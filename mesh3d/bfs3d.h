@@ -34,7 +34,8 @@ MotionOrder3d bfs3d_order(std::span<const Triangle> faces, size_t vertex_count);
 // a + b − c.
 inline std::array<int64_t, 3> predict_motion(const MotionOrder3d& order, size_t k, std::span<const std::array<int32_t, 3>> motion,
                                              bool parallelogram) {
-  const std::array<int32_t, 3>&a = motion[order.pred_a[k]], &b = motion[order.pred_b[k]];
+  const std::array<int32_t, 3>& a = motion[order.pred_a[k]];
+  const std::array<int32_t, 3>& b = motion[order.pred_b[k]];
   std::array<int64_t, 3> predicted;
   if (parallelogram && order.pred_c[k] != order.zero_slot) {
     const std::array<int32_t, 3>& c = motion[order.pred_c[k]];

@@ -2,6 +2,7 @@
 // cylindrical frames and the angle table.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <set>
@@ -72,7 +73,7 @@ TEST(Lcc, DegenerateTrianglesGetAFiniteFrame) {
 
 // The decoder places a chunk's steps two at a time: the same bits as
 // place() one step after the other, degenerate triangles included (the
-// closed sphere's root triangle made collinear, the sheet's a point).
+// closed sphere's root triangle made collinear, the open sheet's a point).
 TEST(Lcc, ChunksPlaceWhatStepsPlaceOneByOne) {
   MeshSequence s = test::test_sequence(1, 31);
   // A 40 × 40 sheet after it, for more than one chunk.
@@ -105,9 +106,8 @@ TEST(Lcc, ChunksPlaceWhatStepsPlaceOneByOne) {
     one_by_one[order.steps[k].d] = model.place(k, one_by_one, indices[3 * k], indices[3 * k + 1], indices[3 * k + 2]);
   for (size_t chunk = 0; chunk * kLccStepChunk < order.steps.size(); ++chunk) model.place_chunk(chunk, indices, chunked);
   ASSERT_GT(order.steps.size(), kLccStepChunk);  // more than one chunk
-  for (size_t v = 0; v < s.vertex_count; ++v)
-    for (int axis = 0; axis < 3; ++axis)
-      ASSERT_EQ(bit_cast<uint64_t>((&chunked[v].x)[axis]), bit_cast<uint64_t>((&one_by_one[v].x)[axis])) << "vertex " << v << " axis " << axis;
+  const auto bits = [](const Vec3& p) { return std::array{bit_cast<uint64_t>(p.x), bit_cast<uint64_t>(p.y), bit_cast<uint64_t>(p.z)}; };
+  for (size_t v = 0; v < s.vertex_count; ++v) ASSERT_EQ(bits(chunked[v]), bits(one_by_one[v])) << "vertex " << v;
 }
 
 TEST(Lcc, AngleTableMatchesTheCircle) {
