@@ -228,7 +228,7 @@ int run_m4mesh(int argc, const char* const* argv) {
   rd_cmd->add_option("-o,--output", rd_args.output, "rows as .csv or .json (- : CSV on standard output)")->required();
   rd_cmd->add_option("--codecs", rd_args.codecs, "comma-separated codecs (default: every codec)")->delimiter(',');
   rd_cmd->add_flag("--json", rd_args.json, "JSON whatever the output's name");
-  rd_cmd->add_option("--threads", rd_args.threads, "points measured at once (default 0: every core; the points do not depend on it, their times do)");
+  rd_cmd->add_option("--threads", rd_args.threads, "points measured at once (default 0: every core this process may use; the points do not depend on it, their times do)");
 
   CLI::App* demo_cmd = app.add_subcommand("demo", "Encode and decode an embedded waving-flag animation, check bit-exactness");
   demo_cmd->add_option("--cols", demo_options.cols, "nodes per row")->check(CLI::Range(2, 1023));

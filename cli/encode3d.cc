@@ -69,7 +69,7 @@ void add_codec_options(CLI::App& command, Encode3dArgs& args) {
                      "the smallest stream whose decoded KG error is at most this (percent), searching the codec's quality parameter");
   command.add_option("--target-psnr", args.target_psnr, "the smallest stream whose decoded PSNR is at least this (dB)");
   command.add_option("--max-error", args.max_error, "the smallest stream with no decoded vertex farther than this from its original (the model's units)");
-  command.add_option("--threads", args.threads, "trials at once in --codec auto and in cpca-wpt's own search (default 0: every core; the stream kept does not depend on it)");
+  command.add_option("--threads", args.threads, "trials at once in --codec auto and in cpca-wpt's own search (default 0: every core this process may use; the stream kept does not depend on it)");
   // One flag per option name; codecs that share a name share the flag.
   std::set<std::string> added;
   for (const Codec3d& c : codecs3d())
