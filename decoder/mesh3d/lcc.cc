@@ -161,10 +161,10 @@ class LccDecoder final : public CodecDecoder3d {
       next_[direct[i]] = lcc_grid_position(header_, {indices.direct[3 * i], indices.direct[3 * i + 1], indices.direct[3 * i + 2]});
     const int32_t theta_limit = model_->theta_limit(), rh_limit = model_->rh_limit();
     const size_t step_count = model_->order().steps.size();
-    for (size_t chunk = 0, k = 0; k < step_count; ++chunk) {
-      const size_t end = std::min(k + kLccStepChunk, step_count);
+    for (size_t first = 0; first < step_count; first += kLccStepChunk) {
+      const size_t end = std::min(first + kLccStepChunk, step_count);
       if (!wait_for(1 + end)) return;
-      for (; k < end; ++k) {
+      for (size_t k = first; k < end; ++k) {
         int32_t* step = &indices.steps[3 * k];
         step[0] = lcc_wrapped_angle(int64_t{prediction.steps[3 * k]} + residuals_.steps[3 * k], theta_limit);
         for (size_t j = 1; j < 3; ++j) {
@@ -174,7 +174,7 @@ class LccDecoder final : public CodecDecoder3d {
                                 "step " + std::to_string(k) + ": prediction and residual leave ±2^rh_bits");
         }
       }
-      model_->place_chunk(chunk, indices.steps, next_);
+      model_->place_chunk(first / kLccStepChunk, indices.steps, next_);
     }
   }
 
