@@ -4,11 +4,14 @@
 // coding of the same grid positions, all in one run; and its coding speed.
 #include <benchmark/benchmark.h>
 
+#include <numeric>
+
 #include "anchors/draco_reference.h"
 #include "bench/sequences.h"
 #include "codecs3d/codec_decoder.h"
 #include "codecs3d/codec_encoder.h"
 #include "encoder/mesh3d/base_mesh.h"
+#include "mesh3d/position_order.h"
 #include "mesh3d/quantization.h"
 
 namespace m4mesh {
@@ -85,6 +88,23 @@ void BM_BaseMeshDecode(benchmark::State& state) {
   state.counters["vertices/s"] = benchmark::Counter(static_cast<double>(state.iterations()) * s.vertex_count, benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_BaseMeshDecode)->Arg(0)->Arg(2)->Unit(benchmark::kMillisecond);
+
+// The position order alone (PositionOrder::of over every vertex), on the faces as a decoder has them.
+void BM_PositionOrder(benchmark::State& state) {
+  const MeshSequence& s = bench::sequence(kSequences[state.range(0)]);
+  const std::vector<uint8_t> unit = base_unit(s, grid_positions(s, 12), false);
+  const ObjectHeader header{kFormatVersion, 1, s.vertex_count, static_cast<uint32_t>(s.faces.size()), 1, 25, 1};
+  BitReader reader(unit.data(), unit.size());
+  syntax::ReadIO io(reader);
+  const BaseMesh base = read_base_mesh(io, header, nullptr);
+  const MeshPredictor predictor(base.faces, s.vertex_count);
+  std::vector<uint32_t> all(s.vertex_count);
+  std::iota(all.begin(), all.end(), 0u);
+  for (auto _ : state) benchmark::DoNotOptimize(PositionOrder(predictor, s.vertex_count).of(all).data());
+  state.SetLabel(bench::label(kSequences[state.range(0)]));
+  state.counters["vertices/s"] = benchmark::Counter(static_cast<double>(state.iterations()) * s.vertex_count, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_PositionOrder)->Arg(0)->Arg(2)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace m4mesh

@@ -13,13 +13,15 @@ namespace m4mesh {
 constexpr bool kCanonicalInMemory = std::endian::native == std::endian::little;
 
 void append_frame_bytes(std::span<const Float3> positions, std::vector<uint8_t>& out) {
+  if constexpr (kCanonicalInMemory) {
+    // Copied as they are, with no zeros written first.
+    const auto* first = reinterpret_cast<const uint8_t*>(positions.data());
+    out.insert(out.end(), first, first + positions.size() * sizeof(Float3));
+    return;
+  }
   const size_t at = out.size();
   out.resize(at + positions.size() * 12);
   uint8_t* bytes = out.data() + at;
-  if constexpr (kCanonicalInMemory) {
-    std::memcpy(bytes, positions.data(), positions.size() * sizeof(Float3));
-    return;
-  }
   for (const Float3& p : positions)
     for (float f : p) {
       const uint32_t bits = bit_cast<uint32_t>(f);
