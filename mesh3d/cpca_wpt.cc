@@ -332,10 +332,11 @@ __attribute__((target("avx2"))) inline void add_block_avx2(__m256i (&acc)[3], co
   }
 }
 
+// From member `first` (a whole block's).
 template <class Lanes>
-__attribute__((target("avx2"))) size_t sum_blocks_avx2(const uint64_t* mean, size_t members, uint64_t* run, const std::array<uint64_t, 3>& start,
-                                                       const std::vector<Lanes> (&lanes)[2][2]) {
-  size_t i = 0;
+__attribute__((target("avx2"))) size_t sum_blocks_avx2(const uint64_t* mean, size_t first, size_t members, uint64_t* run,
+                                                       const std::array<uint64_t, 3>& start, const std::vector<Lanes> (&lanes)[2][2]) {
+  size_t i = first;
   for (; i + kCpcaBlock <= members; i += kCpcaBlock) {
     __m256i acc[3];
     for (size_t a = 0; a < 3; ++a)
@@ -346,6 +347,57 @@ __attribute__((target("avx2"))) size_t sum_blocks_avx2(const uint64_t* mean, siz
     add_block_avx2<true, false>(acc, lanes[1][0], i / kCpcaBlock);
     add_block_avx2<true, true>(acc, lanes[1][1], i / kCpcaBlock);
     for (size_t a = 0; a < 3; ++a) _mm256_storeu_si256(reinterpret_cast<__m256i*>(run + 3 * i + kCpcaBlock * a), acc[a]);
+  }
+  return i;
+}
+
+// The terms on two blocks' values in int32 lanes (acc[k]: values 8k … 8k + 7 of the two), where narrow_on
+// found that they and their sums fit: a trajectory component's members meet their axes' coefficients as
+// the two blocks' values are laid out (x, y | z, x | y, z of the first block, then the second).
+template <bool kTrajectory, bool kRounded, class Lanes>
+__attribute__((target("avx2"))) inline void add_pair_narrow_avx2(__m256i (&acc)[3], const std::vector<Lanes>& terms, size_t block) {
+  for (const Lanes& t : terms) {
+    const int32_t* b = t.blocked + (kTrajectory ? 1 : 3) * kCpcaBlock * block;
+    __m256i basis[3];
+    if constexpr (kTrajectory) {
+      const __m256i members = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b));
+      basis[0] = _mm256_permute2x128_si256(members, members, 0x00);
+      basis[1] = members;
+      basis[2] = _mm256_permute2x128_si256(members, members, 0x11);
+    } else {
+      for (size_t k = 0; k < 3; ++k) basis[k] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b + 2 * kCpcaBlock * k));
+    }
+    const __m128i right = _mm_cvtsi64_si128(static_cast<int64_t>(t.right)), left = _mm_cvtsi64_si128(static_cast<int64_t>(t.left));
+    const __m256i half = _mm256_set1_epi32(t.half);
+    for (size_t k = 0; k < 3; ++k) {
+      const __m256i p = _mm256_mullo_epi32(basis[k], _mm256_load_si256(reinterpret_cast<const __m256i*>(t.narrow.data() + 2 * kCpcaBlock * k)));
+      acc[k] = _mm256_add_epi32(acc[k], kRounded ? _mm256_sra_epi32(_mm256_add_epi32(p, half), right) : _mm256_sll_epi32(p, left));
+    }
+  }
+}
+
+// Two whole blocks at a time, the terms summed in int32 lanes and then added to the mean in int64 ones;
+// returns how many members it took.
+template <class Lanes>
+__attribute__((target("avx2"))) size_t sum_pairs_narrow_avx2(const uint64_t* mean, size_t members, uint64_t* run, const std::array<uint64_t, 3>& start,
+                                                             const std::vector<Lanes> (&lanes)[2][2]) {
+  size_t i = 0;
+  for (; i + 2 * kCpcaBlock <= members; i += 2 * kCpcaBlock) {
+    __m256i acc[3] = {_mm256_setzero_si256(), _mm256_setzero_si256(), _mm256_setzero_si256()};
+    add_pair_narrow_avx2<false, false>(acc, lanes[0][0], i / kCpcaBlock);
+    add_pair_narrow_avx2<false, true>(acc, lanes[0][1], i / kCpcaBlock);
+    add_pair_narrow_avx2<true, false>(acc, lanes[1][0], i / kCpcaBlock);
+    add_pair_narrow_avx2<true, true>(acc, lanes[1][1], i / kCpcaBlock);
+    for (size_t k = 0; k < 3; ++k) {
+      const __m256i sums[2] = {_mm256_cvtepi32_epi64(_mm256_castsi256_si128(acc[k])), _mm256_cvtepi32_epi64(_mm256_extracti128_si256(acc[k], 1))};
+      for (size_t h = 0; h < 2; ++h) {
+        // Four values of one axis: the blocks' x, y, z, x, y, z in turn.
+        const size_t at = 3 * i + kCpcaBlock * (2 * k + h);
+        const __m256i base = _mm256_add_epi64(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(mean + at)),
+                                              _mm256_set1_epi64x(static_cast<int64_t>(start[(2 * k + h) % 3])));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(run + at), _mm256_add_epi64(base, sums[h]));
+      }
+    }
   }
   return i;
 }
@@ -414,6 +466,46 @@ inline void add_block_wasm(v128_t (&acc)[6], const std::vector<Lanes>& terms, si
   }
 }
 
+// The terms on a block's three axes in int32 lanes (acc[a]: its members' axis a), where narrow_on found that
+// they and their sums fit.
+template <bool kTrajectory, bool kRounded, class Lanes>
+inline void add_block_narrow_wasm(v128_t (&acc)[3], const std::vector<Lanes>& terms, size_t block) {
+  for (const Lanes& t : terms) {
+    const int32_t* b = t.blocked + (kTrajectory ? 1 : 3) * kCpcaBlock * block;
+    const v128_t members = wasm_v128_load(b);
+    const v128_t half = wasm_i32x4_splat(t.half);
+    for (size_t a = 0; a < 3; ++a) {
+      const v128_t basis = kTrajectory ? members : wasm_v128_load(b + kCpcaBlock * a);
+      const v128_t p = wasm_i32x4_mul(basis, wasm_v128_load(t.narrow.data() + kCpcaBlock * a));
+      acc[a] = wasm_i32x4_add(acc[a], kRounded ? wasm_i32x4_shr(wasm_i32x4_add(p, half), static_cast<uint32_t>(t.right))
+                                               : wasm_i32x4_shl(p, static_cast<uint32_t>(t.left)));
+    }
+  }
+}
+
+// A whole block at a time, the terms summed in int32 lanes and then added to the mean in int64 ones; returns
+// how many members it took.
+template <class Lanes>
+size_t sum_blocks_narrow_wasm(const uint64_t* mean, size_t members, uint64_t* run, const std::array<uint64_t, 3>& start,
+                              const std::vector<Lanes> (&lanes)[2][2]) {
+  size_t i = 0;
+  for (; i + kCpcaBlock <= members; i += kCpcaBlock) {
+    v128_t acc[3] = {wasm_i32x4_splat(0), wasm_i32x4_splat(0), wasm_i32x4_splat(0)};
+    add_block_narrow_wasm<false, false>(acc, lanes[0][0], i / kCpcaBlock);
+    add_block_narrow_wasm<false, true>(acc, lanes[0][1], i / kCpcaBlock);
+    add_block_narrow_wasm<true, false>(acc, lanes[1][0], i / kCpcaBlock);
+    add_block_narrow_wasm<true, true>(acc, lanes[1][1], i / kCpcaBlock);
+    for (size_t a = 0; a < 3; ++a) {
+      const v128_t sums[2] = {wasm_i64x2_extend_low_i32x4(acc[a]), wasm_i64x2_extend_high_i32x4(acc[a])};
+      for (size_t h = 0; h < 2; ++h) {
+        const size_t at = 3 * i + kCpcaBlock * a + 2 * h;
+        wasm_v128_store(run + at, wasm_i64x2_add(wasm_i64x2_add(wasm_v128_load(mean + at), wasm_i64x2_splat(static_cast<int64_t>(start[a]))), sums[h]));
+      }
+    }
+  }
+  return i;
+}
+
 template <class Lanes>
 size_t sum_blocks_wasm(const uint64_t* mean, size_t members, uint64_t* run, const std::array<uint64_t, 3>& start,
                        const std::vector<Lanes> (&lanes)[2][2]) {
@@ -449,9 +541,12 @@ void CpcaTermSum::clear() {
 
 void CpcaTermSum::translate(const int32_t* translation, uint32_t shift) { starts_.emplace_back(translation, exponent_of(shift)); }
 
-void CpcaTermSum::add(const int32_t* basis, const int32_t* blocked, const int32_t* coefficients, uint32_t shift, bool trajectory) {
+void CpcaTermSum::add(const int32_t* basis, const int32_t* blocked, const int32_t* coefficients, uint32_t shift, bool trajectory,
+                      int32_t largest_basis) {
   const int u = exponent_of(shift);
-  Lanes& term = lanes_[trajectory][u > 0].emplace_back(Lanes{basis, blocked, coefficients, u, {}, 0, 0, 0});
+  Lanes& term = lanes_[trajectory][u > 0].emplace_back(Lanes{basis, blocked, coefficients, u, largest_basis, {}, 0, 0, 0, {}, 0});
+  // A rounding half beyond int32 never meets the narrow loops (narrow_on).
+  term.half = u > 0 && u < 32 ? int32_t{1} << (u - 1) : 0;
 #ifdef M4MESH_CPCA_SIMD
   const TermScaling scaling(u);
   // AVX2 and SIMD128 multiply in int64 lanes (no bias to take out), SSE2 in binary64 ones.
@@ -463,22 +558,46 @@ void CpcaTermSum::add(const int32_t* basis, const int32_t* blocked, const int32_
 #endif
 }
 
-size_t CpcaTermSum::sum_blocks([[maybe_unused]] const uint64_t* mean, [[maybe_unused]] size_t members, [[maybe_unused]] uint64_t* run) const {
+size_t CpcaTermSum::sum_blocks([[maybe_unused]] const uint64_t* mean, [[maybe_unused]] size_t members, [[maybe_unused]] uint64_t* run,
+                               [[maybe_unused]] bool narrow) const {
 #ifdef M4MESH_CPCA_SIMD
   // The rounded terms' 2^(63 − u) taken out once, with the translations.
   std::array<uint64_t, 3> start;
   for (size_t axis = 0; axis < 3; ++axis) start[axis] = offset_[axis] - after_;
 #if defined(M4MESH_CPCA_WASM)
+  if (narrow) return sum_blocks_narrow_wasm(mean, members, run, offset_, lanes_);
   return sum_blocks_wasm(mean, members, run, start, lanes_);
 #else
 #ifdef M4MESH_CPCA_AVX2
-  if (integer_) return sum_blocks_avx2(mean, members, run, start, lanes_);
+  if (integer_) return sum_blocks_avx2(mean, narrow ? sum_pairs_narrow_avx2(mean, members, run, offset_, lanes_) : 0, members, run, start, lanes_);
 #endif
   return sum_blocks_sse2(mean, members, run, start, lanes_);
 #endif
 #else
   return 0;
 #endif
+}
+
+bool CpcaTermSum::narrow_on(uint32_t n) {
+  constexpr uint64_t kNarrow = uint64_t{1} << 31;
+  uint64_t sum = 0;  // of the terms' greatest magnitudes
+  for (size_t trajectory = 0; trajectory < 2; ++trajectory)
+    for (std::vector<Lanes>& by_rounding : lanes_[trajectory])
+      for (Lanes& t : by_rounding) {
+        uint64_t coefficient = 0;  // the greatest |coefficient| of the axes
+        for (size_t axis = 0; axis < 3; ++axis) {
+          const int32_t w = t.coefficients[trajectory ? 3 * size_t{n} + axis : n];
+          for (size_t k = axis; k < 6; k += 3) std::fill_n(t.narrow.begin() + static_cast<ptrdiff_t>(kCpcaBlock * k), kCpcaBlock, w);
+          coefficient = std::max<uint64_t>(coefficient, static_cast<uint64_t>(w < 0 ? -int64_t{w} : int64_t{w}));
+        }
+        // |b × w| ≤ 2^38, and with a rounding half h below 2^31: then |term| ≤ (|b × w| + h) / 2^u.
+        const uint64_t product = coefficient * static_cast<uint64_t>(t.largest_basis);
+        const uint64_t reach = t.u > 0 ? product + (uint64_t{1} << (t.u - 1)) : product;
+        if (reach >= kNarrow) return false;
+        sum += t.u > 0 ? reach >> t.u : reach << -t.u;
+        if (sum >= kNarrow) return false;
+      }
+  return true;
 }
 
 void CpcaTermSum::sum(uint32_t n, const uint64_t* mean, size_t members, uint64_t* run) {
@@ -499,7 +618,12 @@ void CpcaTermSum::sum(uint32_t n, const uint64_t* mean, size_t members, uint64_t
         }
 #endif
   const size_t whole = members / kCpcaBlock * kCpcaBlock;
-  for (size_t j = 3 * sum_blocks(mean, members, run); j < 3 * members; ++j) {
+#if defined(M4MESH_CPCA_AVX2) || defined(M4MESH_CPCA_WASM)
+  const bool narrow = integer_ && narrow_on(n);
+#else
+  const bool narrow = false;
+#endif
+  for (size_t j = 3 * sum_blocks(mean, members, run, narrow); j < 3 * members; ++j) {
     // In a whole block, value j is member j mod 4 of it, axis (j mod 12) / 4; after them, member j / 3, axis j mod 3.
     const bool in_block = j < 3 * whole;
     const size_t member = in_block ? j / (3 * kCpcaBlock) * kCpcaBlock + j % kCpcaBlock : j / 3;
@@ -577,7 +701,9 @@ void CpcaSegment::refine(uint32_t cluster, std::shared_ptr<const std::vector<int
     cpca_blocked(basis->data(), basis->size() / 3, blocked.data());
   }
   const Term& term = terms_[cluster].emplace_back(Term{std::move(basis), std::move(coefficients), std::move(blocked)});
-  sums_[cluster].add(term.basis->data(), trajectory ? term.basis->data() : term.blocked.data(), term.values.data(), shift, trajectory);
+  int32_t largest = 0;
+  for (const int32_t b : *term.basis) largest = std::max(largest, b < 0 ? -b : b);
+  sums_[cluster].add(term.basis->data(), trajectory ? term.basis->data() : term.blocked.data(), term.values.data(), shift, trajectory, largest);
 }
 
 void CpcaSegment::reset(uint32_t frames) {

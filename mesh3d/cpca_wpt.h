@@ -345,28 +345,37 @@ class CpcaTermSum {
   // A start: translation[3n + a] on frame n, axis a.
   void translate(const int32_t* translation, uint32_t shift);
   // A component's terms, as cpca_add_terms adds them on frame n with lanes coefficients[n] (trajectory:
-  // coefficients[3n + a]); `blocked` is basis in cpca_blocked's order (a trajectory's basis is its own).
-  void add(const int32_t* basis, const int32_t* blocked, const int32_t* coefficients, uint32_t shift, bool trajectory);
+  // coefficients[3n + a]); `blocked` is basis in cpca_blocked's order (a trajectory's basis is its own), and
+  // largest_basis the greatest |basis value|.
+  void add(const int32_t* basis, const int32_t* blocked, const int32_t* coefficients, uint32_t shift, bool trajectory, int32_t largest_basis);
   // Frame n's run of the cluster's `members` members, in cpca_blocked's order: mean + translations + terms.
   void sum(uint32_t n, const uint64_t* mean, size_t members, uint64_t* run);
 
  private:
   // The whole blocks' sums; returns how many members they took.
-  size_t sum_blocks(const uint64_t* mean, size_t members, uint64_t* run) const;
+  size_t sum_blocks(const uint64_t* mean, size_t members, uint64_t* run, bool narrow) const;
+  // Whether frame n's terms and every partial sum of them fit in int32 (the narrow loops'); fills their
+  // narrow coefficients.
+  bool narrow_on(uint32_t n);
 
   // A term: its values, u, and as the vector loops take it, frame n's coefficient per axis (int64 with AVX2,
-  // binary64's bits with SSE2, four int32 with SIMD128), what is added before the shift, and the shift.
+  // binary64's bits with SSE2, four int32 with SIMD128), what is added before the shift, and the shift; for
+  // the narrow loops, frame n's coefficient of the axes x, y, z, x, y, z four times each (the axes of two
+  // blocks' values) and the rounding half.
   struct Lanes {
     const int32_t* basis;
     const int32_t* blocked;
     const int32_t* coefficients;
     int u;
+    int32_t largest_basis;
 #ifdef __wasm_simd128__
     alignas(16) std::array<int32_t, 4> coefficient[3];  // a splat in memory: LLVM 14 then keeps i64x2.extmul
 #else
     std::array<uint64_t, 3> coefficient;
 #endif
     uint64_t before, right, left;
+    alignas(32) std::array<int32_t, 6 * kCpcaBlock> narrow;
+    int32_t half;
   };
   [[maybe_unused]] bool integer_ = false;  // products in int64 lanes (AVX2, WebAssembly SIMD128), else binary64
   std::vector<std::pair<const int32_t*, int>> starts_;  // translations and u

@@ -110,12 +110,16 @@ TEST(CpcaReconstruction, TermsAreTheDocumentsIntegers) {
         }
 }
 
+// Bounds of a reconstruction test's values: the basis's, and the coefficients' on every frame but the last
+// (on which they reach kCpcaMaxCoefficient).
+struct ValueLimits {
+  int32_t basis = kCpcaMaxBasis, coefficient = kCpcaMaxCoefficient;
+};
+
 // The whole reconstruction, step by step as the document gives it, to
 // binary32: CpcaAnimation and CpcaSegment (SIMD sums and conversion
-// included, one frame or a batch) give the same positions, at the value
-// limits and over shifts.
-TEST(CpcaReconstruction, FramesAreTheDocumentsPositions) {
-  SplitMix64 random(71);
+// included, one frame or a batch) give the same positions.
+void expect_frames_are_the_documents(SplitMix64& random, ValueLimits limits, std::initializer_list<uint32_t> shifts) {
   CpcaHeader header;
   header.fraction_bits = kCpcaMaxFractionBits;
   for (int axis = 0; axis < 3; ++axis) {
@@ -138,13 +142,16 @@ TEST(CpcaReconstruction, FramesAreTheDocumentsPositions) {
         expected[(size_t{f} * vertices + v) * 3 + static_cast<size_t>(axis)] = static_cast<uint64_t>(int64_t{mean[v][axis]}) << header.fraction_bits;
   CpcaAnimation animation(header, mean, members, frames);
   CpcaSegment segment(header, mean, members, frames);
-  for (uint32_t shift : {0u, 1u, 15u, 16u, 17u, 30u, 47u, 63u})
+  for (uint32_t shift : shifts)
     for (uint32_t c = 0; c < members.size(); ++c)
       for (const uint32_t kind : {kCpcaStart, kCpcaComponent, kCpcaTrajectory}) {
-        const size_t count = members[c].size();
-        std::vector<int32_t> values(kind == kCpcaComponent ? frames : 3 * frames), basis(kind == kCpcaComponent ? 3 * count : count);
-        for (int32_t& x : values) x = value_to_limit(random, kind == kCpcaStart ? kCpcaMaxTranslation : kCpcaMaxCoefficient);
-        for (int32_t& x : basis) x = value_to_limit(random, kCpcaMaxBasis);
+        const size_t count = members[c].size(), lanes = kind == kCpcaComponent ? 1 : 3;
+        std::vector<int32_t> values(lanes * frames), basis(kind == kCpcaComponent ? 3 * count : count);
+        for (size_t k = 0; k < values.size(); ++k)
+          values[k] = value_to_limit(random, kind == kCpcaStart           ? kCpcaMaxTranslation
+                                             : k / lanes + 1 == frames ? kCpcaMaxCoefficient
+                                                                       : limits.coefficient);
+        for (int32_t& x : basis) x = value_to_limit(random, limits.basis);
         for (uint32_t f = 0; f < frames; ++f)
           for (size_t i = 0; i < count; ++i)
             for (size_t axis = 0; axis < 3; ++axis) {
@@ -184,6 +191,28 @@ TEST(CpcaReconstruction, FramesAreTheDocumentsPositions) {
         ASSERT_EQ(bit_cast<uint32_t>(animation.position(f, v)[axis]), bit_cast<uint32_t>(position));
       }
   }
+}
+
+// At the value limits and over every kind of shift.
+TEST(CpcaReconstruction, FramesAreTheDocumentsPositions) {
+  SplitMix64 random(71);
+  expect_frames_are_the_documents(random, {}, {0u, 1u, 15u, 16u, 17u, 30u, 47u, 63u});
+}
+
+// Values whose terms and sums fit in int32 on every frame but the last (the narrow loops' with SIMD), at
+// shifts of either sign.
+TEST(CpcaReconstruction, SmallTermsAreTheDocumentsPositions) {
+  SplitMix64 random(73);
+  expect_frames_are_the_documents(random, {1 << 9, 1 << 10}, {10u, 16u, 17u, 20u, 24u});
+}
+
+// Beyond int32: products that reach 2^31 with their rounding half, products under 2^31 whose terms (shifted
+// left) do not fit, and terms under 2^31 whose sums do not.
+TEST(CpcaReconstruction, TermsAndSumsBeyondInt32AreTheDocumentsPositions) {
+  SplitMix64 random(74);
+  expect_frames_are_the_documents(random, {1 << 13, 1 << 18}, {17u});
+  expect_frames_are_the_documents(random, {1 << 12, 1 << 16}, {12u});
+  expect_frames_are_the_documents(random, {1 << 12, 1 << 18}, {16u, 16u, 16u});
 }
 
 TEST(CpcaWpt, EveryPrefixDecodesAndTheErrorNeverGrows) {
