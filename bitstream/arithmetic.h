@@ -33,12 +33,15 @@ inline constexpr uint32_t kLowest = 128;
 // The lower (bin 0) sub-range's size.
 inline uint32_t bound(uint32_t range, const BinContext& context) { return (range >> 15) * context.p0; }
 
+// The count stops at kWarmedUp, where the shift reaches kLastShift; a 0
+// only raises p0 and a 1 only lowers it, so each needs one bound.
+static_assert(kFirstShift + kWarmedUp / kShiftEvery == kLastShift);
 inline void adapt(BinContext& context, int bin) {
-  const int shift = std::min(kFirstShift + context.bins / kShiftEvery, kLastShift);
-  uint32_t p0 = context.p0;
-  p0 = bin == 0 ? p0 + ((32768 - p0) >> shift) : p0 - (p0 >> shift);
-  context.p0 = static_cast<uint16_t>(std::clamp(p0, kLowest, 32768 - kLowest));
-  if (context.bins < kWarmedUp) ++context.bins;
+  const int shift = kFirstShift + context.bins / kShiftEvery;
+  const uint32_t p0 = context.p0;
+  const uint32_t raised = std::min(p0 + ((32768 - p0) >> shift), 32768 - kLowest), lowered = std::max(p0 - (p0 >> shift), kLowest);
+  context.p0 = static_cast<uint16_t>(bin == 0 ? raised : lowered);
+  context.bins = static_cast<uint16_t>(context.bins + (context.bins < kWarmedUp));
 }
 
 }  // namespace arithmetic
