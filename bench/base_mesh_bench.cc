@@ -1,7 +1,8 @@
 // The base mesh on every sequence of ../shared/data (synthetic when
 // absent): bits per vertex of its first frame at 10, 12 and 14 bits, in
 // input order and with --reorder, beside Draco's edgebreaker and sequential
-// coding of the same grid positions, all in one run; and its coding speed.
+// coding of the same grid positions, all in one run; its decoding speed,
+// and its position order's alone.
 #include <benchmark/benchmark.h>
 
 #include <numeric>
