@@ -335,7 +335,7 @@ __attribute__((target("avx2"))) inline void add_block_avx2(__m256i (&acc)[3], co
 // From member `first` (a whole block's).
 template <class Lanes>
 __attribute__((target("avx2"))) size_t sum_blocks_avx2(const uint64_t* mean, size_t first, size_t members, uint64_t* run,
-                                                       const std::array<uint64_t, 3>& start, const std::vector<Lanes> (&lanes)[2][2]) {
+                                                       const std::array<uint64_t, 3>& start, const std::vector<Lanes> (&lanes)[2][3]) {
   size_t i = first;
   for (; i + kCpcaBlock <= members; i += kCpcaBlock) {
     __m256i acc[3];
@@ -346,27 +346,36 @@ __attribute__((target("avx2"))) size_t sum_blocks_avx2(const uint64_t* mean, siz
     add_block_avx2<false, true>(acc, lanes[0][1], i / kCpcaBlock);
     add_block_avx2<true, false>(acc, lanes[1][0], i / kCpcaBlock);
     add_block_avx2<true, true>(acc, lanes[1][1], i / kCpcaBlock);
+    add_block_avx2<false, false>(acc, lanes[0][2], i / kCpcaBlock);
+    add_block_avx2<true, false>(acc, lanes[1][2], i / kCpcaBlock);
     for (size_t a = 0; a < 3; ++a) _mm256_storeu_si256(reinterpret_cast<__m256i*>(run + 3 * i + kCpcaBlock * a), acc[a]);
   }
   return i;
 }
 
+// Two blocks' basis values as they meet values 8k … 8k + 7 of the two (basis[k]): a trajectory component's
+// members meet their axes' coefficients as the two blocks' values are laid out (x, y | z, x | y, z of the
+// first block, then the second).
+template <bool kTrajectory>
+__attribute__((target("avx2"))) inline void load_pair_avx2(const int32_t* blocked, size_t block, __m256i (&basis)[3]) {
+  const int32_t* b = blocked + (kTrajectory ? 1 : 3) * kCpcaBlock * block;
+  if constexpr (kTrajectory) {
+    const __m256i members = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b));
+    basis[0] = _mm256_permute2x128_si256(members, members, 0x00);
+    basis[1] = members;
+    basis[2] = _mm256_permute2x128_si256(members, members, 0x11);
+  } else {
+    for (size_t k = 0; k < 3; ++k) basis[k] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b + 2 * kCpcaBlock * k));
+  }
+}
+
 // The terms on two blocks' values in int32 lanes (acc[k]: values 8k … 8k + 7 of the two), where narrow_on
-// found that they and their sums fit: a trajectory component's members meet their axes' coefficients as
-// the two blocks' values are laid out (x, y | z, x | y, z of the first block, then the second).
+// found that they and their sums fit.
 template <bool kTrajectory, bool kRounded, class Lanes>
 __attribute__((target("avx2"))) inline void add_pair_narrow_avx2(__m256i (&acc)[3], const std::vector<Lanes>& terms, size_t block) {
   for (const Lanes& t : terms) {
-    const int32_t* b = t.blocked + (kTrajectory ? 1 : 3) * kCpcaBlock * block;
     __m256i basis[3];
-    if constexpr (kTrajectory) {
-      const __m256i members = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b));
-      basis[0] = _mm256_permute2x128_si256(members, members, 0x00);
-      basis[1] = members;
-      basis[2] = _mm256_permute2x128_si256(members, members, 0x11);
-    } else {
-      for (size_t k = 0; k < 3; ++k) basis[k] = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(b + 2 * kCpcaBlock * k));
-    }
+    load_pair_avx2<kTrajectory>(t.blocked, block, basis);
     const __m128i right = _mm_cvtsi64_si128(static_cast<int64_t>(t.right)), left = _mm_cvtsi64_si128(static_cast<int64_t>(t.left));
     const __m256i half = _mm256_set1_epi32(t.half);
     for (size_t k = 0; k < 3; ++k) {
@@ -376,11 +385,23 @@ __attribute__((target("avx2"))) inline void add_pair_narrow_avx2(__m256i (&acc)[
   }
 }
 
+// The same with term pairs (CpcaTermSum::TermPair): a multiply-add of int16 halves a pair.
+template <bool kTrajectory, class TermPair>
+__attribute__((target("avx2"))) inline void add_term_pairs_avx2(__m256i (&acc)[3], const std::vector<TermPair>& pairs, size_t block) {
+  for (const TermPair& p : pairs) {
+    __m256i basis[3];
+    load_pair_avx2<kTrajectory>(p.basis.data(), block, basis);
+    for (size_t k = 0; k < 3; ++k)
+      acc[k] = _mm256_add_epi32(acc[k], _mm256_madd_epi16(basis[k], _mm256_load_si256(reinterpret_cast<const __m256i*>(p.narrow.data() + 2 * kCpcaBlock * k))));
+  }
+}
+
 // Two whole blocks at a time, the terms summed in int32 lanes and then added to the mean in int64 ones;
 // returns how many members it took.
-template <class Lanes>
+template <class Lanes, class TermPair>
 __attribute__((target("avx2"))) size_t sum_pairs_narrow_avx2(const uint64_t* mean, size_t members, uint64_t* run, const std::array<uint64_t, 3>& start,
-                                                             const std::vector<Lanes> (&lanes)[2][2]) {
+                                                             const std::vector<Lanes> (&lanes)[2][3], const std::vector<TermPair> (&term_pairs)[2],
+                                                             bool paired) {
   size_t i = 0;
   for (; i + 2 * kCpcaBlock <= members; i += 2 * kCpcaBlock) {
     __m256i acc[3] = {_mm256_setzero_si256(), _mm256_setzero_si256(), _mm256_setzero_si256()};
@@ -388,6 +409,13 @@ __attribute__((target("avx2"))) size_t sum_pairs_narrow_avx2(const uint64_t* mea
     add_pair_narrow_avx2<false, true>(acc, lanes[0][1], i / kCpcaBlock);
     add_pair_narrow_avx2<true, false>(acc, lanes[1][0], i / kCpcaBlock);
     add_pair_narrow_avx2<true, true>(acc, lanes[1][1], i / kCpcaBlock);
+    if (paired) {
+      add_term_pairs_avx2<false>(acc, term_pairs[0], i / kCpcaBlock);
+      add_term_pairs_avx2<true>(acc, term_pairs[1], i / kCpcaBlock);
+    } else {
+      add_pair_narrow_avx2<false, false>(acc, lanes[0][2], i / kCpcaBlock);
+      add_pair_narrow_avx2<true, false>(acc, lanes[1][2], i / kCpcaBlock);
+    }
     for (size_t k = 0; k < 3; ++k) {
       const __m256i sums[2] = {_mm256_cvtepi32_epi64(_mm256_castsi256_si128(acc[k])), _mm256_cvtepi32_epi64(_mm256_extracti128_si256(acc[k], 1))};
       for (size_t h = 0; h < 2; ++h) {
@@ -428,7 +456,7 @@ inline void add_block_sse2(__m128i (&acc)[6], const std::vector<Lanes>& terms, s
 
 template <class Lanes>
 size_t sum_blocks_sse2(const uint64_t* mean, size_t members, uint64_t* run, const std::array<uint64_t, 3>& start,
-                       const std::vector<Lanes> (&lanes)[2][2]) {
+                       const std::vector<Lanes> (&lanes)[2][3]) {
   size_t i = 0;
   for (; i + kCpcaBlock <= members; i += kCpcaBlock) {
     __m128i acc[6];
@@ -438,6 +466,8 @@ size_t sum_blocks_sse2(const uint64_t* mean, size_t members, uint64_t* run, cons
     add_block_sse2<false, true>(acc, lanes[0][1], i / kCpcaBlock);
     add_block_sse2<true, false>(acc, lanes[1][0], i / kCpcaBlock);
     add_block_sse2<true, true>(acc, lanes[1][1], i / kCpcaBlock);
+    add_block_sse2<false, false>(acc, lanes[0][2], i / kCpcaBlock);
+    add_block_sse2<true, false>(acc, lanes[1][2], i / kCpcaBlock);
     for (size_t k = 0; k < 6; ++k) _mm_storeu_si128(reinterpret_cast<__m128i*>(run + 3 * i + 2 * k), acc[k]);
   }
   return i;
@@ -483,11 +513,24 @@ inline void add_block_narrow_wasm(v128_t (&acc)[3], const std::vector<Lanes>& te
   }
 }
 
+// The same with term pairs (CpcaTermSum::TermPair): a multiply-add of int16 halves a pair.
+template <bool kTrajectory, class TermPair>
+inline void add_term_pairs_wasm(v128_t (&acc)[3], const std::vector<TermPair>& pairs, size_t block) {
+  for (const TermPair& p : pairs) {
+    const int32_t* b = p.basis.data() + (kTrajectory ? 1 : 3) * kCpcaBlock * block;
+    const v128_t members = wasm_v128_load(b);
+    for (size_t a = 0; a < 3; ++a) {
+      const v128_t basis = kTrajectory ? members : wasm_v128_load(b + kCpcaBlock * a);
+      acc[a] = wasm_i32x4_add(acc[a], wasm_i32x4_dot_i16x8(basis, wasm_v128_load(p.narrow.data() + kCpcaBlock * a)));
+    }
+  }
+}
+
 // A whole block at a time, the terms summed in int32 lanes and then added to the mean in int64 ones; returns
 // how many members it took.
-template <class Lanes>
+template <class Lanes, class TermPair>
 size_t sum_blocks_narrow_wasm(const uint64_t* mean, size_t members, uint64_t* run, const std::array<uint64_t, 3>& start,
-                              const std::vector<Lanes> (&lanes)[2][2]) {
+                              const std::vector<Lanes> (&lanes)[2][3], const std::vector<TermPair> (&term_pairs)[2], bool paired) {
   size_t i = 0;
   for (; i + kCpcaBlock <= members; i += kCpcaBlock) {
     v128_t acc[3] = {wasm_i32x4_splat(0), wasm_i32x4_splat(0), wasm_i32x4_splat(0)};
@@ -495,6 +538,13 @@ size_t sum_blocks_narrow_wasm(const uint64_t* mean, size_t members, uint64_t* ru
     add_block_narrow_wasm<false, true>(acc, lanes[0][1], i / kCpcaBlock);
     add_block_narrow_wasm<true, false>(acc, lanes[1][0], i / kCpcaBlock);
     add_block_narrow_wasm<true, true>(acc, lanes[1][1], i / kCpcaBlock);
+    if (paired) {
+      add_term_pairs_wasm<false>(acc, term_pairs[0], i / kCpcaBlock);
+      add_term_pairs_wasm<true>(acc, term_pairs[1], i / kCpcaBlock);
+    } else {
+      add_block_narrow_wasm<false, false>(acc, lanes[0][2], i / kCpcaBlock);
+      add_block_narrow_wasm<true, false>(acc, lanes[1][2], i / kCpcaBlock);
+    }
     for (size_t a = 0; a < 3; ++a) {
       const v128_t sums[2] = {wasm_i64x2_extend_low_i32x4(acc[a]), wasm_i64x2_extend_high_i32x4(acc[a])};
       for (size_t h = 0; h < 2; ++h) {
@@ -508,7 +558,7 @@ size_t sum_blocks_narrow_wasm(const uint64_t* mean, size_t members, uint64_t* ru
 
 template <class Lanes>
 size_t sum_blocks_wasm(const uint64_t* mean, size_t members, uint64_t* run, const std::array<uint64_t, 3>& start,
-                       const std::vector<Lanes> (&lanes)[2][2]) {
+                       const std::vector<Lanes> (&lanes)[2][3]) {
   size_t i = 0;
   for (; i + kCpcaBlock <= members; i += kCpcaBlock) {
     v128_t acc[6];
@@ -517,6 +567,8 @@ size_t sum_blocks_wasm(const uint64_t* mean, size_t members, uint64_t* run, cons
     add_block_wasm<false, true>(acc, lanes[0][1], i / kCpcaBlock);
     add_block_wasm<true, false>(acc, lanes[1][0], i / kCpcaBlock);
     add_block_wasm<true, true>(acc, lanes[1][1], i / kCpcaBlock);
+    add_block_wasm<false, false>(acc, lanes[0][2], i / kCpcaBlock);
+    add_block_wasm<true, false>(acc, lanes[1][2], i / kCpcaBlock);
     for (size_t k = 0; k < 6; ++k) wasm_v128_store(run + 3 * i + 2 * k, acc[k]);
   }
   return i;
@@ -535,16 +587,18 @@ CpcaTermSum::CpcaTermSum() {
 
 void CpcaTermSum::clear() {
   starts_.clear(), after_ = 0;
-  for (auto& by_rounding : lanes_)
-    for (std::vector<Lanes>& lanes : by_rounding) lanes.clear();
+  for (auto& by_kind : lanes_)
+    for (std::vector<Lanes>& lanes : by_kind) lanes.clear();
+  for (std::vector<TermPair>& pairs : term_pairs_) pairs.clear();
+  unpaired_ = {};
 }
 
 void CpcaTermSum::translate(const int32_t* translation, uint32_t shift) { starts_.emplace_back(translation, exponent_of(shift)); }
 
-void CpcaTermSum::add(const int32_t* basis, const int32_t* blocked, const int32_t* coefficients, uint32_t shift, bool trajectory,
+void CpcaTermSum::add(const int32_t* basis, const int32_t* blocked, size_t count, const int32_t* coefficients, uint32_t shift, bool trajectory,
                       int32_t largest_basis) {
   const int u = exponent_of(shift);
-  Lanes& term = lanes_[trajectory][u > 0].emplace_back(Lanes{basis, blocked, coefficients, u, largest_basis, {}, 0, 0, 0, {}, 0});
+  Lanes& term = lanes_[trajectory][u > 0 ? kRounded : kUnrounded].emplace_back(Lanes{basis, blocked, coefficients, u, largest_basis, {}, 0, 0, 0, {}, 0});
   // A rounding half beyond int32 never meets the narrow loops (narrow_on).
   term.half = u > 0 && u < 32 ? int32_t{1} << (u - 1) : 0;
 #ifdef M4MESH_CPCA_SIMD
@@ -556,20 +610,40 @@ void CpcaTermSum::add(const int32_t* basis, const int32_t* blocked, const int32_
 #else
   (void)term;
 #endif
+  // The second of two terms that pair: both move to kPaired, their basis values interleaved.
+  if (u > 0 || largest_basis >= 1 << 15) return;
+  std::vector<Lanes>& unrounded = lanes_[trajectory][kUnrounded];
+  if (unpaired_[trajectory] == 0) {
+    unpaired_[trajectory] = unrounded.size();
+    return;
+  }
+  const size_t first = unpaired_[trajectory] - 1;
+  unpaired_[trajectory] = 0;
+  std::vector<Lanes>& paired = lanes_[trajectory][kPaired];
+  paired.push_back(unrounded[first]);
+  paired.push_back(unrounded.back());
+  unrounded.pop_back();
+  unrounded.erase(unrounded.begin() + static_cast<ptrdiff_t>(first));
+  TermPair& pair = term_pairs_[trajectory].emplace_back();
+  pair.basis.resize(count);
+  const int32_t *low = paired[paired.size() - 2].blocked, *high = paired.back().blocked;
+  for (size_t j = 0; j < count; ++j) pair.basis[j] = static_cast<int32_t>(static_cast<uint16_t>(low[j]) | uint32_t{static_cast<uint16_t>(high[j])} << 16);
 }
 
 size_t CpcaTermSum::sum_blocks([[maybe_unused]] const uint64_t* mean, [[maybe_unused]] size_t members, [[maybe_unused]] uint64_t* run,
-                               [[maybe_unused]] bool narrow) const {
+                               [[maybe_unused]] bool narrow, [[maybe_unused]] bool paired) const {
 #ifdef M4MESH_CPCA_SIMD
   // The rounded terms' 2^(63 − u) taken out once, with the translations.
   std::array<uint64_t, 3> start;
   for (size_t axis = 0; axis < 3; ++axis) start[axis] = offset_[axis] - after_;
 #if defined(M4MESH_CPCA_WASM)
-  if (narrow) return sum_blocks_narrow_wasm(mean, members, run, offset_, lanes_);
+  if (narrow) return sum_blocks_narrow_wasm(mean, members, run, offset_, lanes_, term_pairs_, paired);
   return sum_blocks_wasm(mean, members, run, start, lanes_);
 #else
 #ifdef M4MESH_CPCA_AVX2
-  if (integer_) return sum_blocks_avx2(mean, narrow ? sum_pairs_narrow_avx2(mean, members, run, offset_, lanes_) : 0, members, run, start, lanes_);
+  if (integer_)
+    return sum_blocks_avx2(mean, narrow ? sum_pairs_narrow_avx2(mean, members, run, offset_, lanes_, term_pairs_, paired) : 0, members, run, start,
+                           lanes_);
 #endif
   return sum_blocks_sse2(mean, members, run, start, lanes_);
 #endif
@@ -582,8 +656,8 @@ bool CpcaTermSum::narrow_on(uint32_t n) {
   constexpr uint64_t kNarrow = uint64_t{1} << 31;
   uint64_t sum = 0;  // of the terms' greatest magnitudes
   for (size_t trajectory = 0; trajectory < 2; ++trajectory)
-    for (std::vector<Lanes>& by_rounding : lanes_[trajectory])
-      for (Lanes& t : by_rounding) {
+    for (std::vector<Lanes>& by_kind : lanes_[trajectory])
+      for (Lanes& t : by_kind) {
         uint64_t coefficient = 0;  // the greatest |coefficient| of the axes
         for (size_t axis = 0; axis < 3; ++axis) {
           const int32_t w = t.coefficients[trajectory ? 3 * size_t{n} + axis : n];
@@ -600,14 +674,32 @@ bool CpcaTermSum::narrow_on(uint32_t n) {
   return true;
 }
 
+bool CpcaTermSum::term_pairs_on(uint32_t n) {
+  for (size_t trajectory = 0; trajectory < 2; ++trajectory)
+    for (size_t p = 0; p < term_pairs_[trajectory].size(); ++p) {
+      const Lanes* terms = &lanes_[trajectory][kPaired][2 * p];
+      for (size_t axis = 0; axis < 3; ++axis) {
+        uint32_t halves = 0;
+        for (size_t k = 0; k < 2; ++k) {
+          const int64_t w = int64_t{terms[k].coefficients[trajectory ? 3 * size_t{n} + axis : n]} * (int64_t{1} << -terms[k].u);
+          if (w < -(1 << 15) || w >= 1 << 15) return false;
+          halves |= uint32_t{static_cast<uint16_t>(w)} << (16 * k);
+        }
+        for (size_t g = axis; g < 6; g += 3)
+          std::fill_n(term_pairs_[trajectory][p].narrow.begin() + static_cast<ptrdiff_t>(kCpcaBlock * g), kCpcaBlock, static_cast<int32_t>(halves));
+      }
+    }
+  return true;
+}
+
 void CpcaTermSum::sum(uint32_t n, const uint64_t* mean, size_t members, uint64_t* run) {
   offset_ = {};
   for (const auto& [translation, u] : starts_)
     for (size_t axis = 0; axis < 3; ++axis) offset_[axis] += static_cast<uint64_t>(scaled(translation[3 * size_t{n} + axis], u));
 #ifdef M4MESH_CPCA_SIMD
   for (size_t trajectory = 0; trajectory < 2; ++trajectory)
-    for (std::vector<Lanes>& by_rounding : lanes_[trajectory])
-      for (Lanes& t : by_rounding)
+    for (std::vector<Lanes>& by_kind : lanes_[trajectory])
+      for (Lanes& t : by_kind)
         for (size_t axis = 0; axis < 3; ++axis) {
           const int32_t w = t.coefficients[trajectory ? 3 * size_t{n} + axis : n];
 #ifdef M4MESH_CPCA_WASM
@@ -623,15 +715,16 @@ void CpcaTermSum::sum(uint32_t n, const uint64_t* mean, size_t members, uint64_t
 #else
   const bool narrow = false;
 #endif
-  for (size_t j = 3 * sum_blocks(mean, members, run, narrow); j < 3 * members; ++j) {
+  const bool paired = narrow && term_pairs_on(n);
+  for (size_t j = 3 * sum_blocks(mean, members, run, narrow, paired); j < 3 * members; ++j) {
     // In a whole block, value j is member j mod 4 of it, axis (j mod 12) / 4; after them, member j / 3, axis j mod 3.
     const bool in_block = j < 3 * whole;
     const size_t member = in_block ? j / (3 * kCpcaBlock) * kCpcaBlock + j % kCpcaBlock : j / 3;
     const size_t axis = in_block ? j % (3 * kCpcaBlock) / kCpcaBlock : j % 3;
     uint64_t value = mean[j] + offset_[axis];
-    for (size_t rounded = 0; rounded < 2; ++rounded) {
-      for (const Lanes& t : lanes_[0][rounded]) value += static_cast<uint64_t>(scaled(int64_t{t.basis[3 * member + axis]} * t.coefficients[n], t.u));
-      for (const Lanes& t : lanes_[1][rounded])
+    for (size_t kind = 0; kind < 3; ++kind) {
+      for (const Lanes& t : lanes_[0][kind]) value += static_cast<uint64_t>(scaled(int64_t{t.basis[3 * member + axis]} * t.coefficients[n], t.u));
+      for (const Lanes& t : lanes_[1][kind])
         value += static_cast<uint64_t>(scaled(int64_t{t.basis[member]} * t.coefficients[3 * size_t{n} + axis], t.u));
     }
     run[j] = value;
@@ -703,7 +796,8 @@ void CpcaSegment::refine(uint32_t cluster, std::shared_ptr<const std::vector<int
   const Term& term = terms_[cluster].emplace_back(Term{std::move(basis), std::move(coefficients), std::move(blocked)});
   int32_t largest = 0;
   for (const int32_t b : *term.basis) largest = std::max(largest, b < 0 ? -b : b);
-  sums_[cluster].add(term.basis->data(), trajectory ? term.basis->data() : term.blocked.data(), term.values.data(), shift, trajectory, largest);
+  sums_[cluster].add(term.basis->data(), trajectory ? term.basis->data() : term.blocked.data(), term.basis->size(), term.values.data(), shift,
+                     trajectory, largest);
 }
 
 void CpcaSegment::reset(uint32_t frames) {

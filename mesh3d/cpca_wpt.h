@@ -345,18 +345,22 @@ class CpcaTermSum {
   // A start: translation[3n + a] on frame n, axis a.
   void translate(const int32_t* translation, uint32_t shift);
   // A component's terms, as cpca_add_terms adds them on frame n with lanes coefficients[n] (trajectory:
-  // coefficients[3n + a]); `blocked` is basis in cpca_blocked's order (a trajectory's basis is its own), and
-  // largest_basis the greatest |basis value|.
-  void add(const int32_t* basis, const int32_t* blocked, const int32_t* coefficients, uint32_t shift, bool trajectory, int32_t largest_basis);
+  // coefficients[3n + a]); `blocked` is basis in cpca_blocked's order (a trajectory's basis is its own), `count`
+  // values, and largest_basis the greatest |basis value|.
+  void add(const int32_t* basis, const int32_t* blocked, size_t count, const int32_t* coefficients, uint32_t shift, bool trajectory,
+           int32_t largest_basis);
   // Frame n's run of the cluster's `members` members, in cpca_blocked's order: mean + translations + terms.
   void sum(uint32_t n, const uint64_t* mean, size_t members, uint64_t* run);
 
  private:
   // The whole blocks' sums; returns how many members they took.
-  size_t sum_blocks(const uint64_t* mean, size_t members, uint64_t* run, bool narrow) const;
+  size_t sum_blocks(const uint64_t* mean, size_t members, uint64_t* run, bool narrow, bool paired) const;
   // Whether frame n's terms and every partial sum of them fit in int32 (the narrow loops'); fills their
   // narrow coefficients.
   bool narrow_on(uint32_t n);
+  // After narrow_on: whether frame n's coefficients of the paired terms, shifted left by their −u, fit in
+  // int16; fills the term pairs' coefficients.
+  bool term_pairs_on(uint32_t n);
 
   // A term: its values, u, and as the vector loops take it, frame n's coefficient per axis (int64 with AVX2,
   // binary64's bits with SSE2, four int32 with SIMD128), what is added before the shift, and the shift; for
@@ -377,11 +381,22 @@ class CpcaTermSum {
     alignas(32) std::array<int32_t, 6 * kCpcaBlock> narrow;
     int32_t half;
   };
+  // Two terms of one kind with u ≤ 0 and |basis| < 2^15 (lanes_[·][kPaired][2p] and [2p + 1] of pair p): where
+  // frame n's coefficients shifted left by −u fit in int16 too, each int32 lane takes both terms' products
+  // and their sum in one multiply-add of int16 halves (the first term's low), exact: b₁ · (w₁ · 2^−u₁) +
+  // b₂ · (w₂ · 2^−u₂) is the sum of their terms.
+  struct TermPair {
+    std::vector<int32_t> basis;                            // both terms' basis values as halves, in `blocked`'s order
+    alignas(32) std::array<int32_t, 6 * kCpcaBlock> narrow;  // frame n's shifted coefficients as halves, axes as Lanes::narrow's
+  };
+  static constexpr size_t kUnrounded = 0, kRounded = 1, kPaired = 2;
   [[maybe_unused]] bool integer_ = false;  // products in int64 lanes (AVX2, WebAssembly SIMD128), else binary64
   std::vector<std::pair<const int32_t*, int>> starts_;  // translations and u
   std::array<uint64_t, 3> offset_{};                      // frame n's translations
   uint64_t after_ = 0;                                    // what the vector loops' rounded terms add beyond their values: 2^(63 − u) each
-  std::vector<Lanes> lanes_[2][2];                        // per trajectory (1) or not (0), then rounded (u > 0)
+  std::vector<Lanes> lanes_[2][3];                        // per trajectory (1) or not (0), then kUnrounded (u ≤ 0), kRounded, kPaired
+  std::vector<TermPair> term_pairs_[2];                   // per trajectory
+  std::array<size_t, 2> unpaired_{};                      // per trajectory: 1 + the index in kUnrounded of a term that pairs, else 0
 };
 
 // A segment's frames as decoded so far, every integer kept: refinements add

@@ -215,6 +215,16 @@ TEST(CpcaReconstruction, TermsAndSumsBeyondInt32AreTheDocumentsPositions) {
   expect_frames_are_the_documents(random, {1 << 12, 1 << 18}, {16u, 16u, 16u});
 }
 
+// Terms with u ≤ 0 in pairs, with a term left over and rounded ones beside them: coefficients that fit int16
+// once shifted left (a multiply-add of int16 halves a pair with SIMD); then ones that do not while the terms
+// and their sums still fit int32; then basis values of 2^15, which no int16 half holds.
+TEST(CpcaReconstruction, PairedTermsAreTheDocumentsPositions) {
+  SplitMix64 random(75);
+  expect_frames_are_the_documents(random, {1 << 9, 1 << 6}, {12u, 14u, 17u, 16u, 13u, 15u});
+  expect_frames_are_the_documents(random, {1 << 9, 1 << 12}, {12u, 12u, 13u});
+  expect_frames_are_the_documents(random, {1 << 15, 1 << 3}, {16u, 15u});
+}
+
 TEST(CpcaWpt, EveryPrefixDecodesAndTheErrorNeverGrows) {
   const MeshSequence s = test::test_sequence(12, 7);
   struct Case {
