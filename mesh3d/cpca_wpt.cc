@@ -610,8 +610,9 @@ void CpcaTermSum::add(const int32_t* basis, const int32_t* blocked, size_t count
 #else
   (void)term;
 #endif
-  // The second of two terms that pair: both move to kPaired, their basis values interleaved.
-  if (u > 0 || largest_basis >= 1 << 15) return;
+  // The second of two terms that pair: both move to kPaired, their basis values interleaved. Only the
+  // narrow loops (integer_) read pairs.
+  if (!integer_ || u > 0 || largest_basis >= 1 << 15) return;
   std::vector<Lanes>& unrounded = lanes_[trajectory][kUnrounded];
   if (unpaired_[trajectory] == 0) {
     unpaired_[trajectory] = unrounded.size();
