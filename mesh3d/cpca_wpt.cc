@@ -23,6 +23,14 @@
 
 namespace m4mesh {
 
+#ifdef M4MESH_CPCA_SIMD
+namespace {
+// 1.5 · 2^52's binary64 bits: added to an integer below 2^51 in magnitude they are the bits of that integer plus
+// the bias, exactly (the vector loops' conversions of integers and products to and from binary64).
+constexpr int64_t kExactBias = 0x4338000000000000, kExactRange = int64_t{1} << 51;
+}  // namespace
+#endif
+
 std::vector<std::vector<NodeIndex>> cpca_members(std::span<const uint32_t> cluster_of, uint32_t cluster_count) {
   std::vector<std::vector<NodeIndex>> members(cluster_count);
   for (NodeIndex v = 0; v < cluster_of.size(); ++v) members[cluster_of[v]].push_back(v);
@@ -108,7 +116,7 @@ void CpcaSlots::convert(const uint64_t* values, size_t first_slot, size_t slots,
   // take position().
   const __m128d origin[3] = {_mm_set_pd(origin_[1], origin_[0]), _mm_set_pd(origin_[0], origin_[2]), _mm_set_pd(origin_[2], origin_[1])};
   const __m128d unit[3] = {_mm_set_pd(unit_[1], unit_[0]), _mm_set_pd(unit_[0], unit_[2]), _mm_set_pd(unit_[2], unit_[1])};
-  const __m128i bias = _mm_set1_epi64x(0x4338000000000000), half_range = _mm_set1_epi64x(int64_t{1} << 51);
+  const __m128i bias = _mm_set1_epi64x(kExactBias), half_range = _mm_set1_epi64x(kExactRange);
   const __m128d biased = _mm_castsi128_pd(bias);
   for (; s + 2 <= slots; s += 2) {
     Float3& first = positions[vertex[s]];
@@ -149,7 +157,7 @@ namespace {
 __attribute__((target("avx2"))) size_t convert_blocks_avx2(const uint64_t* values, const NodeIndex* vertex, size_t blocks,
                                                            const std::array<double, 3>& origin, const std::array<double, 3>& unit,
                                                            Float3* positions) {
-  const __m256i bias = _mm256_set1_epi64x(0x4338000000000000), half_range = _mm256_set1_epi64x(int64_t{1} << 51);
+  const __m256i bias = _mm256_set1_epi64x(kExactBias), half_range = _mm256_set1_epi64x(kExactRange);
   const __m256d biased = _mm256_castsi256_pd(bias);
   const __m256d origins[3] = {_mm256_set1_pd(origin[0]), _mm256_set1_pd(origin[1]), _mm256_set1_pd(origin[2])};
   const __m256d units[3] = {_mm256_set1_pd(unit[0]), _mm256_set1_pd(unit[1]), _mm256_set1_pd(unit[2])};
@@ -193,7 +201,7 @@ void CpcaSlots::convert_blocked(const uint64_t* values, size_t first_slot, size_
 #ifdef M4MESH_CPCA_SIMD
   // A block a time, two members of an axis a vector, convert()'s IEEE steps; a block with a value beyond 2^51 in
   // magnitude takes position(). Where the processor has AVX2, its loop takes the blocks up to such a one.
-  const __m128i bias = _mm_set1_epi64x(0x4338000000000000), half_range = _mm_set1_epi64x(int64_t{1} << 51);
+  const __m128i bias = _mm_set1_epi64x(kExactBias), half_range = _mm_set1_epi64x(kExactRange);
   const __m128d biased = _mm_castsi128_pd(bias);
   for (; s + kCpcaBlock <= slots; s += kCpcaBlock) {
 #ifdef M4MESH_CPCA_AVX2
@@ -269,7 +277,7 @@ std::array<int64_t, 3> coefficients_of(std::span<const int32_t> coefficients, ui
 // its integer the low bits; `before` takes the bias out and adds the rounding half and 2^63, so that the
 // rounding shift is a logical one, and `after` takes 2^(63 − u) out after it; u ≤ 0 shifts left.
 struct TermScaling {
-  static constexpr uint64_t kBias = 0x4338000000000000, kTop = uint64_t{1} << 63;
+  static constexpr uint64_t kBias = kExactBias, kTop = uint64_t{1} << 63;
   explicit TermScaling(int u)
       : before(u > 0 ? (uint64_t{1} << (u - 1)) + kTop - kBias : 0 - kBias),
         after(u > 0 ? kTop >> u : 0),
